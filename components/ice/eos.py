@@ -1,0 +1,356 @@
+"""Equations of state for ICE materials (Uintah src/CCA/Components/ICE/EOS).
+
+Why: ICE cell kernels (equilibration pressure, speed of sound, temperature)
+evaluate the EOS of every material in every cell.  To keep multi-material
+kernels monomorphic each material is described by an integer code and a
+float64 parameter row ``params`` (length ``MAX_PARAMS``, zero-padded; stack the
+rows of all materials into an (nmat, MAX_PARAMS) array); the ``eos_*``
+dispatchers branch on the code inside numba.  ``gamma`` and ``cv`` are the ICE
+material tags <gamma> and <specific_heat>, passed separately as in Uintah.
+
+Codes and parameter layouts (Uintah deck tags in brackets):
+
+  IDEAL_GAS = 0      ``ideal_gas``   params unused
+                     p = (gamma-1) rho cv T,  e = cv T
+  MURNAGHAN = 1      ``Murnaghan``   [K, n, rho0, P0]
+                     K is the *compressibility* (1/bulk modulus, 1/Pa), as in
+                     Uintah: p = P0 + ((rho/rho0)^n - 1)/(n K)  for rho >= rho0,
+                     p = P0 (rho/rho0)^(1/(K P0))  for rho < rho0 (Uintah's
+                     low-pressure branch; it is the paper-000 sec. 3.1 threshold
+                     with p_th = P0, see below).  No temperature dependence.
+  JWL = 2            ``JWL``         [A, B, R1, R2, om, rho0]
+                     p = A exp(-R1 V) + B exp(-R2 V) + om cv T rho,  V = rho0/rho
+                     (as Uintah JWL.cc: om*cv*T*rho = om cv T rho0/V, not om cv T/V)
+  JWLC = 3           ``JWLC``        [A, B, C, R1, R2, om, rho0]
+                     p = A exp(-R1 V) + B exp(-R2 V) + C (rho/rho0)^(1+om)
+  STIFFENED_GAS = 4  ``Stiffened_gas`` [Pinf]   (not in Uintah; pysus tag names)
+                     p = (gamma-1) rho e - gamma Pinf with e = cv T + Pinf/rho,
+                     i.e. p = (gamma-1) rho cv T - Pinf.
+
+Per-cell functions (all @njit, scalar float64):
+  eos_press_eos(code, params, rho_micro, temp, cv, gamma) -> (p, dp_drho, dp_de)
+      as Uintah computePressEOS; dp_drho = (dp/drho)_T, dp_de = (dp/dT)_rho / cv
+  eos_press / eos_dp_drho / eos_dp_de(code, params, rho_micro, temp, cv, gamma)
+  eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess)  (computeRhoMicro)
+  eos_temp(code, params, press, rho_micro, cv, gamma)             (computeTempCC)
+  eos_alpha(code, params, rho_micro, temp, cv, gamma)   (1/v)(dv/dT)_p (getAlpha,
+      paper 000 eq. 48)
+  eos_sound_speed2(code, params, rho_micro, temp, cv, gamma)
+      thermodynamic c^2 = (dp/drho)_T + T (dp/dT)_rho^2 / (rho^2 cv)
+  sound_speed2_uintah(press, rho_micro, dp_drho, dp_de)
+      Uintah ICE's c^2 = dp_drho + dp_de p / rho^2; identical for ideal gas,
+      Murnaghan and JWLC; for Stiffened_gas/JWL it assumes e = cv T and differs.
+
+Condensed-phase threshold (paper 000, sec. 3.1, Fig. 1): below a threshold
+pressure p_th the condensed-phase pressure is replaced by a curve that is
+continuous and smooth (C1) at p_th and tends to zero as v -> infinity.  We use
+the same curve Uintah uses (MPM constitutive models' ``useModifiedEOS``, and the
+Murnaghan low-pressure branch): p = p_th (rho/rho_th)^m, m = rho_th c_th^2/p_th,
+with rho_th the density where the full EOS gives p_th and c_th^2 = dp/drho
+there.  ``threshold_press``/``threshold_rho_micro`` are the bare curve (for MPM
+solids: p_th = p_ref, rho_th = rho0, rho_th c_th^2 = bulk);
+``eos_press_eos_threshold``/``eos_rho_micro_threshold`` apply it to any code.
+For solids m ~ bulk/p_th ~ 1e4-1e5, so below p_th rho stays ~ rho_th while p -> 0.
+
+Deck-level descriptions: ``make_eos(type_name, {tag: value})`` returns an
+``EOSModel`` (fields type_name, code, tags, values; ``.params()`` gives the row).
+JWL's cv and Stiffened_gas's gamma/cv come from the ICE material tags
+<specific_heat>/<gamma>, as Uintah's JWL.cc requires only A,B,R1,R2,om,rho0.
+"""
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+IDEAL_GAS = 0
+MURNAGHAN = 1
+JWL = 2
+JWLC = 3
+STIFFENED_GAS = 4
+MAX_PARAMS = 8
+
+
+# ----------------------------------------------------------------------------
+# ideal gas (IdealGas.cc)
+@njit(cache=True)
+def ideal_gas_press_eos(rho, temp, cv, gamma):
+    """p = (gamma-1) rho cv T with (dp/drho)_T and dp/de."""
+    return (gamma - 1.0) * rho * cv * temp, (gamma - 1.0) * cv * temp, (gamma - 1.0) * rho
+
+
+@njit(cache=True)
+def ideal_gas_rho_micro(press, temp, cv, gamma):
+    return press / ((gamma - 1.0) * cv * temp)
+
+
+# ----------------------------------------------------------------------------
+# stiffened gas: p = (gamma-1) rho e - gamma pinf, e = cv T + pinf/rho
+@njit(cache=True)
+def stiffened_gas_press_eos(rho, temp, cv, gamma, pinf):
+    return (gamma - 1.0) * rho * cv * temp - pinf, (gamma - 1.0) * cv * temp, (gamma - 1.0) * rho
+
+
+@njit(cache=True)
+def stiffened_gas_rho_micro(press, temp, cv, gamma, pinf):
+    return (press + pinf) / ((gamma - 1.0) * cv * temp)
+
+
+# ----------------------------------------------------------------------------
+# Murnaghan (Murnaghan.cc); K = compressibility 1/Pa
+@njit(cache=True)
+def murnaghan_press_eos(rho, K, n, rho0, P0):
+    if rho >= rho0:
+        p = P0 + (1.0 / (n * K)) * ((rho / rho0) ** n - 1.0)
+        dp = (1.0 / (K * rho0)) * (rho / rho0) ** (n - 1.0)
+    else:  # low-pressure branch = paper 000 sec. 3.1 threshold at p_th = P0
+        m = 1.0 / (K * P0)
+        p = P0 * (rho / rho0) ** m
+        dp = (1.0 / (K * rho0)) * (rho / rho0) ** (m - 1.0)
+    return p, dp, 0.0
+
+
+@njit(cache=True)
+def murnaghan_rho_micro(press, K, n, rho0, P0):
+    if press >= P0:
+        return rho0 * (n * K * (press - P0) + 1.0) ** (1.0 / n)
+    if press <= 0.0:
+        return 0.0
+    return rho0 * (press / P0) ** (K * P0)
+
+
+# ----------------------------------------------------------------------------
+# JWL (JWL.cc) and JWLC (JWLC.cc)
+@njit(cache=True)
+def jwl_press_eos(rho, temp, cv, A, B, R1, R2, om, rho0):
+    v = rho0 / rho
+    p1 = A * math.exp(-R1 * v)
+    p2 = B * math.exp(-R2 * v)
+    p3 = om * cv * temp * rho
+    dp = (R1 * rho0 * p1 + R2 * rho0 * p2) / (rho * rho) + om * cv * temp
+    return p1 + p2 + p3, dp, om * rho
+
+
+@njit(cache=True)
+def jwlc_press_eos(rho, A, B, C, R1, R2, om, rho0):
+    v = rho0 / rho
+    p1 = A * math.exp(-R1 * v)
+    p2 = B * math.exp(-R2 * v)
+    p3 = C * (rho / rho0) ** (1.0 + om)
+    dp = (R1 * rho0 * p1 + R2 * rho0 * p2) / (rho * rho) + (1.0 + om) * p3 / rho
+    return p1 + p2 + p3, dp, 0.0
+
+
+# ----------------------------------------------------------------------------
+# dispatchers
+@njit(cache=True)
+def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
+    """(p, (dp/drho)_T, dp/de) for material EOS ``code`` (Uintah computePressEOS)."""
+    if code == IDEAL_GAS:
+        return ideal_gas_press_eos(rho_micro, temp, cv, gamma)
+    elif code == MURNAGHAN:
+        return murnaghan_press_eos(rho_micro, params[0], params[1], params[2], params[3])
+    elif code == JWL:
+        return jwl_press_eos(rho_micro, temp, cv, params[0], params[1], params[2],
+                             params[3], params[4], params[5])
+    elif code == JWLC:
+        return jwlc_press_eos(rho_micro, params[0], params[1], params[2], params[3],
+                              params[4], params[5], params[6])
+    elif code == STIFFENED_GAS:
+        return stiffened_gas_press_eos(rho_micro, temp, cv, gamma, params[0])
+    return math.nan, math.nan, math.nan
+
+
+@njit(cache=True)
+def eos_press(code, params, rho_micro, temp, cv, gamma):
+    return eos_press_eos(code, params, rho_micro, temp, cv, gamma)[0]
+
+
+@njit(cache=True)
+def eos_dp_drho(code, params, rho_micro, temp, cv, gamma):
+    return eos_press_eos(code, params, rho_micro, temp, cv, gamma)[1]
+
+
+@njit(cache=True)
+def eos_dp_de(code, params, rho_micro, temp, cv, gamma):
+    return eos_press_eos(code, params, rho_micro, temp, cv, gamma)[2]
+
+
+@njit(cache=True)
+def _dp_dtemp(code, params, rho_micro, temp, cv, gamma):
+    """(dp/dT)_rho; every EOS here is linear in T (or T-independent)."""
+    if code == IDEAL_GAS or code == STIFFENED_GAS:
+        return (gamma - 1.0) * rho_micro * cv
+    elif code == JWL:
+        return params[4] * cv * rho_micro
+    return 0.0
+
+
+@njit(cache=True)
+def _solve_rho(code, params, press, temp, cv, gamma, rho_guess):
+    """Safeguarded Newton-bisection for p(rho, T) = press (p increasing in rho)."""
+    lo = 0.0  # p(rho -> 0) -> 0 < press for JWL/JWLC
+    hi = rho_guess if rho_guess > 0.0 else 1.0
+    for _ in range(2000):
+        if eos_press(code, params, hi, temp, cv, gamma) >= press:
+            break
+        lo = hi
+        hi *= 2.0
+    rho = rho_guess if lo < rho_guess < hi else 0.5 * (lo + hi)
+    for _ in range(200):
+        p, dp, _de = eos_press_eos(code, params, rho, temp, cv, gamma)
+        f = p - press
+        if f < 0.0:
+            lo = rho
+        else:
+            hi = rho
+        rho_new = rho - f / dp if dp > 0.0 else 0.5 * (lo + hi)
+        if not (lo < rho_new < hi):
+            rho_new = 0.5 * (lo + hi)
+        if abs(rho_new - rho) <= 1e-15 * rho_new or (hi - lo) <= 1e-15 * hi:
+            return rho_new
+        rho = rho_new
+    return rho
+
+
+@njit(cache=True)
+def eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess):
+    """Microscopic density at (press, temp) (Uintah computeRhoMicro)."""
+    if code == IDEAL_GAS:
+        return ideal_gas_rho_micro(press, temp, cv, gamma)
+    elif code == MURNAGHAN:
+        return murnaghan_rho_micro(press, params[0], params[1], params[2], params[3])
+    elif code == STIFFENED_GAS:
+        return stiffened_gas_rho_micro(press, temp, cv, gamma, params[0])
+    elif code == JWL or code == JWLC:
+        if press <= 0.0:
+            return 0.0
+        return _solve_rho(code, params, press, temp, cv, gamma, rho_guess)
+    return math.nan
+
+
+@njit(cache=True)
+def eos_temp(code, params, press, rho_micro, cv, gamma):
+    """Temperature from (press, rho_micro) (Uintah computeTempCC)."""
+    if code == IDEAL_GAS:
+        return press / ((gamma - 1.0) * cv * rho_micro)
+    elif code == STIFFENED_GAS:
+        return (press + params[0]) / ((gamma - 1.0) * cv * rho_micro)
+    elif code == JWL:
+        v = params[5] / rho_micro
+        cold = params[0] * math.exp(-params[2] * v) + params[1] * math.exp(-params[3] * v)
+        return (press - cold) / (params[4] * rho_micro * cv)
+    return 300.0  # Murnaghan, JWLC: T-independent; Uintah sets 300 K
+
+
+@njit(cache=True)
+def eos_alpha(code, params, rho_micro, temp, cv, gamma):
+    """beta = (1/v)(dv/dT)_p = (dp/dT)_rho / (rho (dp/drho)_T)  (paper 000 eq. 48)."""
+    dpdt = _dp_dtemp(code, params, rho_micro, temp, cv, gamma)
+    if dpdt == 0.0:
+        return 0.0
+    return dpdt / (rho_micro * eos_dp_drho(code, params, rho_micro, temp, cv, gamma))
+
+
+@njit(cache=True)
+def eos_sound_speed2(code, params, rho_micro, temp, cv, gamma):
+    """Adiabatic c^2 = (dp/drho)_T + T (dp/dT)_rho^2 / (rho^2 cv)."""
+    dpdrho = eos_dp_drho(code, params, rho_micro, temp, cv, gamma)
+    dpdt = _dp_dtemp(code, params, rho_micro, temp, cv, gamma)
+    return dpdrho + temp * dpdt * dpdt / (rho_micro * rho_micro * cv)
+
+
+@njit(cache=True)
+def sound_speed2_uintah(press, rho_micro, dp_drho, dp_de):
+    """Uintah ICE: c^2 = dp_drho + dp_de * p / rho^2 (computeEquilibrationPressure)."""
+    return dp_drho + dp_de * press / (rho_micro * rho_micro)
+
+
+# ----------------------------------------------------------------------------
+# condensed-phase threshold (paper 000 sec. 3.1, Fig. 1)
+@njit(cache=True)
+def threshold_press(rho, p_th, rho_th, bulk_th):
+    """p = p_th (rho/rho_th)^m, m = bulk_th/p_th; returns (p, dp/drho)."""
+    m = bulk_th / p_th
+    p = p_th * (rho / rho_th) ** m
+    return p, m * p / rho
+
+
+@njit(cache=True)
+def threshold_rho_micro(press, p_th, rho_th, bulk_th):
+    """Inverse of threshold_press (for 0 < press <= p_th)."""
+    return rho_th * (press / p_th) ** (p_th / bulk_th)
+
+
+@njit(cache=True)
+def _threshold_point(code, params, temp, cv, gamma, p_th):
+    rho_th = eos_rho_micro(code, params, p_th, temp, cv, gamma, 1.0)
+    return rho_th, rho_th * eos_dp_drho(code, params, rho_th, temp, cv, gamma)
+
+
+@njit(cache=True)
+def eos_press_eos_threshold(code, params, rho_micro, temp, cv, gamma, p_th):
+    """eos_press_eos with the sec. 3.1 threshold: below p_th use the C1 power law."""
+    p, dp, de = eos_press_eos(code, params, rho_micro, temp, cv, gamma)
+    if p >= p_th:
+        return p, dp, de
+    rho_th, bulk_th = _threshold_point(code, params, temp, cv, gamma, p_th)
+    p, dp = threshold_press(rho_micro, p_th, rho_th, bulk_th)
+    return p, dp, 0.0
+
+
+@njit(cache=True)
+def eos_rho_micro_threshold(code, params, press, temp, cv, gamma, rho_guess, p_th):
+    """Inverse of eos_press_eos_threshold."""
+    if press >= p_th:
+        return eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess)
+    rho_th, bulk_th = _threshold_point(code, params, temp, cv, gamma, p_th)
+    return threshold_rho_micro(press, p_th, rho_th, bulk_th)
+
+
+# ----------------------------------------------------------------------------
+# deck-level descriptions
+@dataclass
+class EOSModel:
+    """An ICE <EOS type="..."> block: Uintah type name, code and tag values."""
+    type_name: str = ""
+    code: int = -1
+    tags: tuple = ()
+    values: dict = field(default_factory=dict)
+
+    def params(self):
+        """float64 parameter row of length MAX_PARAMS in the documented layout."""
+        row = np.zeros(MAX_PARAMS, dtype=np.float64)
+        for i, tag in enumerate(self.tags):
+            row[i] = float(self.values[tag])
+        return row
+
+
+def _model(type_name, code, tags):
+    def make(**values):
+        missing = [t for t in tags if t not in values]
+        extra = [t for t in values if t not in tags]
+        if missing or extra:
+            raise ValueError(f"EOS {type_name}: missing tags {missing}, unknown tags {extra}")
+        return EOSModel(type_name, code, tags, {t: float(values[t]) for t in tags})
+    make.__name__ = type_name
+    make.__doc__ = f"EOS type='{type_name}' (code {code}); deck tags {list(tags)}."
+    return make
+
+
+IdealGasEOS = _model("ideal_gas", IDEAL_GAS, ())
+MurnaghanEOS = _model("Murnaghan", MURNAGHAN, ("K", "n", "rho0", "P0"))
+JWLEOS = _model("JWL", JWL, ("A", "B", "R1", "R2", "om", "rho0"))
+JWLCEOS = _model("JWLC", JWLC, ("A", "B", "C", "R1", "R2", "om", "rho0"))
+StiffenedGasEOS = _model("Stiffened_gas", STIFFENED_GAS, ("Pinf",))
+
+EOS_TYPES = {"ideal_gas": IdealGasEOS, "Murnaghan": MurnaghanEOS, "JWL": JWLEOS,
+             "JWLC": JWLCEOS, "Stiffened_gas": StiffenedGasEOS}
+
+
+def make_eos(type_name, tags):
+    """Build an EOSModel from the type attribute and a {tag: value} dict."""
+    if type_name not in EOS_TYPES:
+        raise ValueError(f"EOS type '{type_name}' is not implemented in pysus "
+                         f"(available: {sorted(EOS_TYPES)})")
+    return EOS_TYPES[type_name](**tags)
