@@ -1,0 +1,395 @@
+"""Output, checkpoints, restart, and the Python reader of a `.uda` directory.
+
+Layout of `<filebase>`:
+  input.ups                the deck as run
+  index.json               timesteps, labels, materials, grid, checkpoints (rank 0)
+  t00012/rank0000.h5       one HDF5 file per rank per output timestep, group per patch
+  t00012/t00012.xdmf       XDMF of that timestep; `output.xdmf` holds all of them
+  checkpoints/t00012/      same per-rank files holding everything needed to continue
+  KineticEnergy.dat ...    saved reductions, "time value" per line (as Uintah)
+
+Grid arrays are stored in (z, y, x) order so that XDMF readers (ParaView, VisIt) see
+x as the fastest index; the reader transposes back to [i, j, k]. Checkpoints are
+written to a temporary directory and renamed, so a crash never leaves a broken
+newest checkpoint and never touches the older ones.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+
+import h5py
+import numpy as np
+
+from . import labels as label_registry
+from .grid import box_intersect
+from .variables import VarType
+
+SCALAR, VECTOR, TENSOR = "Scalar", "Vector", "Tensor"
+
+
+def _zyx(a, ncomp_shape):
+    """[i,j,k,(c)] -> [k,j,i,(c flattened)]."""
+    t = np.ascontiguousarray(a.transpose((2, 1, 0) + tuple(range(3, a.ndim))))
+    if ncomp_shape == (3, 3):
+        t = t.reshape(t.shape[:3] + (9,))
+    return t
+
+
+def _ijk(a, shape):
+    if shape == (3, 3):
+        a = a.reshape(a.shape[:3] + (3, 3))
+    return np.ascontiguousarray(a.transpose((2, 1, 0) + tuple(range(3, a.ndim))))
+
+
+def _atype(shape):
+    return {(): SCALAR, (3,): VECTOR, (3, 3): TENSOR}.get(tuple(shape), SCALAR)
+
+
+def _write_dw(h5, dw, level, patches, names, region):
+    """Write the named variables of `dw` for `patches` into an open HDF5 file.
+
+    region 'interior' keeps the physical domain only (for viewers), 'owned' keeps extra
+    cells too (for checkpoints). Returns per-patch metadata for the index and XDMF.
+    """
+    meta = {}
+    for p in patches:
+        g = h5.require_group(f"patch_{p.id}")
+        pm = {"grid": {}, "particles": {}}
+        for (name, m, pid), arr in dw.grid.items():
+            if pid != p.id or name not in names:
+                continue
+            label = label_registry.find(name)
+            vt = label.vartype
+            box = p.owned(vt) if region == "owned" else box_intersect(p.owned(vt), level.interior_box(vt))
+            if box is None:
+                continue
+            data = arr[p.slices(vt, box)]
+            ds = g.create_dataset(f"{name}/{m}", data=_zyx(data, label.shape))
+            ds.attrs["low"], ds.attrs["high"] = box[0], box[1]
+            pm["grid"].setdefault(name, {})[m] = (list(box[0]), list(box[1]))
+        for (name, m, pid), arr in dw.particles.items():
+            if pid != p.id or name not in names:
+                continue
+            g.create_dataset(f"particles/{m}/{name}", data=arr)
+            pm["particles"].setdefault(str(m), []).append(name)
+        for (m, pid), n in dw.nparticles.items():
+            if pid == p.id:
+                g.require_group(f"particles/{m}").attrs["n"] = n
+                pm.setdefault("np", {})[str(m)] = n
+        meta[p.id] = pm
+    return meta
+
+
+class Archiver:
+    """Writes output and checkpoints as the `<DataArchiver>` block asks."""
+
+    def __init__(self, spec, level, comm, deck_text: str, component_name: str, materials):
+        self.spec = spec
+        self.level = level
+        self.comm = comm
+        self.dir = spec["filebase"]
+        self.deck_text = deck_text
+        self.component = component_name
+        self.materials = materials
+        self.index = {"timesteps": [], "checkpoints": [], "labels": {}, "component": component_name,
+                      "materials": materials, "nranks": comm.size,
+                      "grid": {"anchor": level.anchor.tolist(), "upper": level.upper.tolist(),
+                               "ncells": list(level.ncells), "patches": list(level.layout),
+                               "extra": list(level.extra), "periodic": list(level.periodic)}}
+        self.next_output_time = None
+        self.next_checkpoint_time = None
+
+    # -- set-up ---------------------------------------------------------------------
+    def setup(self, t0, restart_from=None):
+        if self.comm.rank == 0:
+            os.makedirs(self.dir, exist_ok=True)
+            with open(os.path.join(self.dir, "input.ups"), "w") as f:
+                f.write(self.deck_text)
+            if restart_from:
+                self.index["restarted_from"] = restart_from
+        self.comm.barrier()
+        if self.spec["outputInterval"] > 0:
+            self.next_output_time = t0
+        if self.spec["checkpoint_interval"] > 0:
+            self.next_checkpoint_time = t0 + self.spec["checkpoint_interval"]
+
+    @staticmethod
+    def unique_dir(base, rank_comm):
+        """`base`, or base.000, base.001 ... if it exists (as Uintah), agreed on by all ranks."""
+        name = None
+        if rank_comm.rank == 0:
+            name = base
+            i = 0
+            while os.path.exists(name):
+                stem = base[:-4] if base.endswith(".uda") else base
+                name = f"{stem}.uda.{i:03d}"
+                i += 1
+        return rank_comm.bcast(name)
+
+    # -- when ----------------------------------------------------------------------
+    def output_due(self, timestep, t) -> bool:
+        s = self.spec
+        if s["outputTimestepInterval"] > 0:
+            return timestep % s["outputTimestepInterval"] == 0
+        if self.next_output_time is not None and t >= self.next_output_time * (1 - 1e-12) - 1e-300:
+            return True
+        return False
+
+    def checkpoint_due(self, timestep, t) -> bool:
+        s = self.spec
+        if timestep == 0:
+            return False
+        if s["checkpoint_timestepInterval"] > 0:
+            return timestep % s["checkpoint_timestepInterval"] == 0
+        if self.next_checkpoint_time is not None and t >= self.next_checkpoint_time * (1 - 1e-12):
+            return True
+        return False
+
+    def next_event_time(self):
+        times = [x for x in (self.next_output_time, self.next_checkpoint_time) if x is not None]
+        return min(times) if times else None
+
+    # -- output --------------------------------------------------------------------
+    def output(self, dw, timestep, t, delt, local_patches):
+        s = self.spec
+        if s["outputInterval"] > 0:
+            while self.next_output_time <= t * (1 + 1e-12):
+                self.next_output_time += s["outputInterval"]
+        names = set(s["save"])
+        tdir = os.path.join(self.dir, f"t{timestep:05d}")
+        if self.comm.rank == 0:
+            os.makedirs(tdir, exist_ok=True)
+        self.comm.barrier()
+        fname = os.path.join(tdir, f"rank{self.comm.rank:04d}.h5")
+        with h5py.File(fname, "w") as h5:
+            meta = _write_dw(h5, dw, self.level, local_patches, names, "interior")
+        allmeta = self.comm.allgather((self.comm.rank, meta))
+        reductions = {n: dw.reductions[(n, m)] for (n, m) in dw.reductions if n in names}
+        if self.comm.rank == 0:
+            patches = {}
+            for r, m in allmeta:
+                for pid, pm in m.items():
+                    pm["file"] = f"rank{r:04d}.h5"
+                    patches[str(pid)] = pm
+            for n in names:
+                lab = label_registry.find(n)
+                if lab is not None:
+                    self.index["labels"][n] = {"type": lab.vartype.value, "shape": list(lab.shape)}
+            entry = {"timestep": timestep, "time": t, "delT": delt, "dir": f"t{timestep:05d}", "patches": patches}
+            self.index["timesteps"].append(entry)
+            for n, v in reductions.items():
+                with open(os.path.join(self.dir, f"{n}.dat"), "a") as f:
+                    vals = " ".join(repr(float(x)) for x in np.atleast_1d(v))
+                    f.write(f"{t!r} {vals}\n")
+            from .xdmf import write_xdmf
+            write_xdmf(self.dir, self.index, self.level)
+            self._write_index()
+
+    def _write_index(self):
+        tmp = os.path.join(self.dir, "index.json.tmp")
+        with open(tmp, "w") as f:
+            json.dump(self.index, f, indent=1)
+        os.replace(tmp, os.path.join(self.dir, "index.json"))
+
+    # -- checkpoints ---------------------------------------------------------------
+    def checkpoint(self, dw, carried, timestep, t, state, local_patches):
+        """Write every carried variable and the controller state; atomic per checkpoint."""
+        s = self.spec
+        if s["checkpoint_interval"] > 0:
+            while self.next_checkpoint_time <= t * (1 + 1e-12):
+                self.next_checkpoint_time += s["checkpoint_interval"]
+        cdir = os.path.join(self.dir, "checkpoints")
+        final = os.path.join(cdir, f"t{timestep:05d}")
+        tmp = final + ".tmp"
+        if self.comm.rank == 0:
+            os.makedirs(cdir, exist_ok=True)
+            shutil.rmtree(tmp, ignore_errors=True)
+            os.makedirs(tmp)
+        self.comm.barrier()
+        with h5py.File(os.path.join(tmp, f"rank{self.comm.rank:04d}.h5"), "w") as h5:
+            meta = _write_dw(h5, dw, self.level, local_patches, set(carried), "owned")
+        allmeta = self.comm.allgather((self.comm.rank, meta))
+        if self.comm.rank == 0:
+            patches = {}
+            for r, m in allmeta:
+                for pid in m:
+                    patches[str(pid)] = f"rank{r:04d}.h5"
+            reds = {f"{n}|{m}": (np.asarray(v).tolist()) for (n, m), v in dw.reductions.items()}
+            info = {"timestep": timestep, "time": t, "state": state, "patches": patches,
+                    "carried": sorted(carried), "reductions": reds, "nranks": self.comm.size}
+            with open(os.path.join(tmp, "checkpoint.json"), "w") as f:
+                json.dump(info, f, indent=1)
+            with open(os.path.join(tmp, "input.ups"), "w") as f:
+                f.write(self.deck_text)
+            for fn in os.listdir(tmp):
+                fd = os.open(os.path.join(tmp, fn), os.O_RDONLY)
+                os.fsync(fd)
+                os.close(fd)
+            shutil.rmtree(final, ignore_errors=True)
+            os.replace(tmp, final)
+            self.index["checkpoints"].append({"timestep": timestep, "time": t, "dir": f"checkpoints/t{timestep:05d}"})
+            keep = s["checkpoint_cycle"]
+            if keep > 0:
+                while len(self.index["checkpoints"]) > keep:
+                    old = self.index["checkpoints"].pop(0)
+                    shutil.rmtree(os.path.join(self.dir, old["dir"]), ignore_errors=True)
+            self._write_index()
+        self.comm.barrier()
+
+
+def load_checkpoint(uda, index=-1):
+    """(checkpoint directory, its checkpoint.json content, deck text) of checkpoint `index`."""
+    cdir = os.path.join(uda, "checkpoints")
+    if not os.path.isdir(cdir):
+        raise FileNotFoundError(f"{uda} has no checkpoints/ directory")
+    cps = sorted(d for d in os.listdir(cdir) if d.startswith("t") and not d.endswith(".tmp"))
+    if not cps:
+        raise FileNotFoundError(f"{uda}/checkpoints holds no complete checkpoint")
+    try:
+        d = os.path.join(cdir, cps[index])
+    except IndexError:
+        raise FileNotFoundError(f"{uda} has {len(cps)} checkpoints; -t {index} does not exist") from None
+    with open(os.path.join(d, "checkpoint.json")) as f:
+        info = json.load(f)
+    with open(os.path.join(d, "input.ups")) as f:
+        deck = f.read()
+    return d, info, deck
+
+
+def restore_dw(dw, cdir, info, level, local_patches):
+    """Fill a warehouse with a checkpoint's variables for this rank's patches."""
+    files = {}
+    try:
+        for p in local_patches:
+            fn = info["patches"][str(p.id)]
+            h5 = files.get(fn) or files.setdefault(fn, h5py.File(os.path.join(cdir, fn), "r"))
+            g = h5[f"patch_{p.id}"]
+            if "particles" in g:
+                for m in g["particles"]:
+                    pg = g["particles"][m]
+                    dw.create_particles(int(m), p, int(pg.attrs["n"]))
+                    for name in pg:
+                        dw.put(label_registry.find(name), int(m), p, pg[name][...])
+            for name in g:
+                if name == "particles":
+                    continue
+                label = label_registry.find(name)
+                if label is None:
+                    raise KeyError(f"checkpoint holds {name}, which no component defines")
+                for m in g[name]:
+                    ds = g[name][m]
+                    box = (tuple(ds.attrs["low"]), tuple(ds.attrs["high"]))
+                    arr = np.zeros(p.alloc_shape(label.vartype) + label.shape, dtype=label.dtype)
+                    arr[p.slices(label.vartype, box)] = _ijk(ds[...], label.shape)
+                    dw.put(label, int(m), p, arr)
+    finally:
+        for h in files.values():
+            h.close()
+    for key, v in info["reductions"].items():
+        n, m = key.split("|")
+        dw.reductions[(n, int(m))] = v if np.ndim(v) == 0 else np.asarray(v)
+
+
+class DataArchive:
+    """Read a `.uda` back into numpy: times, labels, whole-level variables, particles."""
+
+    def __init__(self, path):
+        self.path = path
+        with open(os.path.join(path, "index.json")) as f:
+            self.index = json.load(f)
+        g = self.index["grid"]
+        self.anchor = np.array(g["anchor"])
+        self.upper = np.array(g["upper"])
+        self.ncells = tuple(g["ncells"])
+        self.dx = (self.upper - self.anchor) / np.array(self.ncells)
+
+    @property
+    def times(self):
+        return np.array([e["time"] for e in self.index["timesteps"]])
+
+    @property
+    def timesteps(self):
+        return [e["timestep"] for e in self.index["timesteps"]]
+
+    @property
+    def labels(self):
+        return sorted(self.index["labels"])
+
+    @property
+    def materials(self):
+        return self.index["materials"]
+
+    def _entry(self, timestep):
+        return self.index["timesteps"][timestep]
+
+    def read(self, label, material=0, timestep=-1):
+        """(array over the level's interior, coordinates) of a grid variable.
+
+        Coordinates are three 1D arrays: cell centres for CC, node/face positions
+        along node-like directions. `timestep` indexes the output list (negative counts
+        from the end).
+        """
+        e = self._entry(timestep)
+        info = self.index["labels"].get(label)
+        if info is None:
+            raise KeyError(f"{label} was not saved; saved: {', '.join(self.labels)}")
+        vt = VarType(info["type"])
+        shape = tuple(info["shape"])
+        glo, ghi = [None] * 3, [None] * 3
+        pieces = []
+        for pid, pm in e["patches"].items():
+            boxes = pm["grid"].get(label, {})
+            if str(material) not in boxes and material not in boxes:
+                continue
+            lo, hi = boxes.get(str(material), boxes.get(material))
+            pieces.append((pm["file"], pid, lo, hi))
+            for d in range(3):
+                glo[d] = lo[d] if glo[d] is None else min(glo[d], lo[d])
+                ghi[d] = hi[d] if ghi[d] is None else max(ghi[d], hi[d])
+        if not pieces:
+            raise KeyError(f"{label} material {material} not in timestep {e['timestep']}")
+        out = np.zeros(tuple(h - l for l, h in zip(glo, ghi)) + shape)
+        files = {}
+        try:
+            for fn, pid, lo, hi in pieces:
+                h5 = files.get(fn) or files.setdefault(fn, h5py.File(os.path.join(self.path, e["dir"], fn), "r"))
+                data = _ijk(h5[f"patch_{pid}/{label}/{material}"][...], shape)
+                sl = tuple(slice(l - g0, h - g0) for l, h, g0 in zip(lo, hi, glo))
+                out[sl] = data
+        finally:
+            for h in files.values():
+                h.close()
+        coords = []
+        for d in range(3):
+            idx = np.arange(glo[d], ghi[d])
+            node = vt.node_like(d) and self.ncells[d] > 1
+            coords.append(self.anchor[d] + (idx + (0.0 if node else 0.5)) * self.dx[d])
+        return out, coords
+
+    def particles(self, material=0, timestep=-1):
+        """All particles of a material at an output timestep, as {label: array}."""
+        e = self._entry(timestep)
+        out = {}
+        files = {}
+        try:
+            for pid in sorted(e["patches"], key=int):
+                pm = e["patches"][pid]
+                names = pm["particles"].get(str(material), [])
+                if not names:
+                    continue
+                fn = pm["file"]
+                h5 = files.get(fn) or files.setdefault(fn, h5py.File(os.path.join(self.path, e["dir"], fn), "r"))
+                for n in names:
+                    out.setdefault(n, []).append(h5[f"patch_{pid}/particles/{material}/{n}"][...])
+        finally:
+            for h in files.values():
+                h.close()
+        return {k: np.concatenate(v) for k, v in out.items()}
+
+    def reduction(self, label):
+        """(times, values) from `<label>.dat`."""
+        fn = os.path.join(self.path, f"{label}.dat")
+        data = np.loadtxt(fn, ndmin=2)
+        return data[:, 0], data[:, 1:].squeeze()

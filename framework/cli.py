@@ -1,0 +1,126 @@
+"""`pysus`: run a deck, restart from a checkpoint, or show the task graph.
+
+    pysus deck.ups                    run on one rank
+    pysus --np 4 deck.ups             run on 4 ranks (re-launches itself under mpiexec)
+    mpiexec -n 4 pysus deck.ups       the same, launched by the user or a batch script
+    pysus -restart run.uda [-t -1]    continue from a checkpoint (any number of ranks)
+    pysus --graph deck.ups [--dot f]  print the tasks the deck will run, in order
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import sys
+import traceback
+
+MPI_ENV = ("PMI_RANK", "PMI_SIZE", "PMIX_RANK", "OMPI_COMM_WORLD_SIZE", "MPI_LOCALNRANKS", "HYDI_CONTROL_FD")
+
+
+def under_mpi() -> bool:
+    return any(v in os.environ for v in MPI_ENV)
+
+
+def make_comm():
+    """The MPI communicator when launched by mpiexec, else the serial stand-in (no MPI import)."""
+    from .scheduler.comm import Comm
+    if under_mpi():
+        from mpi4py import MPI
+        return Comm(MPI.COMM_WORLD)
+    return Comm(None)
+
+
+def parser():
+    p = argparse.ArgumentParser(prog="pysus", description="Uintah-style simulations: MPM, ICE, MPMICE.")
+    p.add_argument("deck", nargs="?", help="the .ups input deck")
+    p.add_argument("--np", type=int, default=1, help="number of MPI ranks (launches mpiexec)")
+    p.add_argument("-restart", "--restart", dest="restart", metavar="UDA", help="continue from a checkpoint")
+    p.add_argument("-t", dest="t", type=int, default=-1, help="which checkpoint of -restart (index, default newest)")
+    p.add_argument("--graph", action="store_true", help="print the scheduled tasks in order and exit")
+    p.add_argument("--dot", metavar="FILE", help="with --graph: also write the task graph as DOT")
+    p.add_argument("--quiet", "-q", action="store_true", help="no progress display")
+    p.add_argument("--filebase", help="override <DataArchiver><filebase>")
+    p.add_argument("--max-timesteps", type=int, help="override <Time><max_Timesteps>")
+    p.add_argument("--timing", action="store_true", help="print time per task at the end")
+    return p
+
+
+def relaunch(args, argv):
+    """Re-run this command under the mpiexec next to this Python, with --np removed."""
+    mpiexec = os.path.join(os.path.dirname(sys.executable), "mpiexec")
+    if not os.path.exists(mpiexec):
+        mpiexec = shutil.which("mpiexec") or "mpiexec"
+    rest, skip = [], False
+    for a in argv:
+        if skip:
+            skip = False
+            continue
+        if a == "--np":
+            skip = True
+            continue
+        if a.startswith("--np="):
+            continue
+        rest.append(a)
+    cmd = [mpiexec, "-n", str(args.np), sys.executable, "-m", "framework.cli"] + rest
+    os.execv(cmd[0], cmd)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    args = parser().parse_args(argv)
+    if args.np > 1 and not under_mpi():
+        relaunch(args, argv)
+    if not args.deck and not args.restart:
+        parser().print_usage(sys.stderr)
+        print("pysus: error: give a deck (or -restart UDA)", file=sys.stderr)
+        return 2
+    comm = make_comm()
+    from .problemspec import InputError
+    from .scheduler.compile import GraphError
+    try:
+        from .controller import Controller
+        ctl = Controller(args.deck, comm, restart=args.restart, restart_index=args.t, quiet=args.quiet,
+                         filebase=args.filebase, max_timesteps=args.max_timesteps)
+        if args.graph:
+            if comm.rank == 0:
+                from .graphview import describe, write_dot
+                print(describe(ctl))
+                if args.dot:
+                    write_dot(ctl, args.dot)
+            return 0
+        ctl.run()
+        if comm.rank == 0 and not args.quiet:
+            n = len(ctl.step_times)
+            print(f"pysus: {n} timesteps to t = {ctl.t:.6g} in {ctl.wall:.2f} s"
+                  + (f" on {comm.size} ranks" if comm.size > 1 else "")
+                  + (f"; output in {ctl.archiver.dir}" if ctl.archiver else ""))
+        if args.timing and comm.rank == 0:
+            for name, t, calls, pct in ctl.sched.timing_table():
+                print(f"  {name:40s} {t:9.3f} s {calls:7d} calls {pct:5.1f}%")
+        return 0
+    except (InputError, FileNotFoundError) as e:
+        # every rank reads the same deck and finds the same error: report once, exit together
+        if comm.rank == 0:
+            print(f"pysus: error: {e}", file=sys.stderr)
+        return 2
+    except GraphError as e:
+        if comm.rank == 0:
+            print(f"pysus: task graph error: {e}", file=sys.stderr)
+        return 3
+    except Exception:
+        prefix = f"[rank {comm.rank}] " if comm.size > 1 else ""
+        msg = traceback.format_exc()
+        sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
+        return _exit(comm, 1)
+
+
+def _exit(comm, code):
+    """End every rank promptly: one rank's error aborts the whole job, never a hang."""
+    sys.stderr.flush()
+    if comm.size > 1:
+        comm.mpi.Abort(code)
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())

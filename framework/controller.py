@@ -1,0 +1,303 @@
+"""The time loop: read the deck, compile the graphs, step, output, checkpoint, restart.
+
+delT for the next step is the minimum over patches of the component's stable timestep
+(a `delT` reduction), times timestep_multiplier, limited by max_delt_increase,
+delt_init (first step), delt_min/delt_max, and end_at_max_time_exactly, as Uintah's
+simulation controller does.
+"""
+from __future__ import annotations
+
+import math
+import os
+import sys
+import time
+
+from . import labels as L
+from .archiver import Archiver, load_checkpoint, restore_dw
+from .component import lookup
+from .datawarehouse import DataWarehouse
+from .gridspec import level_from_spec
+from .loadbalancer import LoadBalancer
+from .problemspec import InputError, Param, ProblemSpec
+from .progress import Progress
+from .scheduler.comm import Comm
+from .scheduler.compile import GraphError
+from .scheduler.scheduler import Scheduler
+
+TIME = {
+    "maxTime": Param("float"),
+    "initTime": Param("float", 0.0),
+    "delt_min": Param("float", 0.0),
+    "delt_max": Param("float", math.inf),
+    "delt_init": Param("float", math.inf),
+    "max_initial_delt": Param("float", math.inf),
+    "timestep_multiplier": Param("float", 1.0),
+    "max_delt_increase": Param("float", 1e99),
+    "max_Timesteps": Param("int", 2**62),
+    "max_iterations": Param("int", 2**62),
+    "end_at_max_time_exactly": Param("bool", False),
+    "clamp_timesteps_to_output": Param("bool", False),
+}
+
+ARCHIVER = {
+    "filebase": Param("str", "pysus_output.uda"),
+    "outputInterval": Param("float", 0.0),
+    "outputTimestepInterval": Param("int", 0),
+}
+
+
+def read_archiver(root):
+    """The `<DataArchiver>` block as a dict (None when the deck has none)."""
+    da = root.child("DataArchiver")
+    if da is None:
+        return None
+    spec = da.read(ARCHIVER)
+    if spec["outputInterval"] > 0 and spec["outputTimestepInterval"] > 0:
+        raise da.error("give either <outputInterval> or <outputTimestepInterval>, not both")
+    spec["save"] = []
+    spec["save_nodes"] = {}
+    for s in da.children("save"):
+        name = s.attr("label")
+        s.attr("material", default=None)
+        s.attr("matl", default=None)
+        spec["save"].append(name)
+        spec["save_nodes"][name] = s
+    spec["checkpoint_interval"] = 0.0
+    spec["checkpoint_timestepInterval"] = 0
+    spec["checkpoint_cycle"] = 2
+    cps = da.children("checkpoint")
+    if len(cps) > 1:
+        raise cps[1].error("only one <checkpoint> is accepted")
+    if cps:
+        c = cps[0]
+        spec["checkpoint_interval"] = c.attr("interval", "float", 0.0)
+        spec["checkpoint_timestepInterval"] = c.attr("timestepInterval", "int", 0)
+        spec["checkpoint_cycle"] = c.attr("cycle", "int", 2)
+        c.attr("walltimeStart", "float", None)
+        c.attr("walltimeInterval", "float", None)
+        if spec["checkpoint_interval"] <= 0 and spec["checkpoint_timestepInterval"] <= 0:
+            raise c.error('<checkpoint> needs interval="..." (time) or timestepInterval="..." (steps)')
+    return spec
+
+
+class Controller:
+    """Sets up a run from a deck (or a checkpoint) and runs the time loop."""
+
+    def __init__(self, deck=None, comm: Comm | None = None, restart=None, restart_index=-1,
+                 quiet=False, filebase=None, max_timesteps=None, deck_text=None):
+        self.comm = comm or Comm(None)
+        self.quiet = quiet
+        self.restart = restart
+        self.restart_info = None
+        if restart is not None:
+            cdir, info, deck_text = load_checkpoint(restart, restart_index)
+            self.restart_info = (cdir, info)
+            deck = os.path.join(cdir, "input.ups")
+        if deck_text is not None and restart is None:
+            self.root = ProblemSpec.from_string(deck_text, deck or "<string>")
+        else:
+            self.root = ProblemSpec.load(deck)
+        with open(self.root.filename) as f:
+            self.deck_text = f.read()
+        self._read_deck()
+        if filebase is not None and self.archive_spec is not None:
+            self.archive_spec["filebase"] = filebase
+        if max_timesteps is not None:
+            self.time["max_Timesteps"] = max_timesteps
+        self._build()
+
+    # -- set-up ----------------------------------------------------------------------
+    def _read_deck(self):
+        root = self.root
+        meta = root.child("Meta")
+        if meta is not None:
+            meta.mark_used()
+        sc = root.child("SimulationComponent", required=True)
+        self.component_name = sc.attr("type")
+        cls = lookup(self.component_name, sc)
+        t = root.child("Time", required=True)
+        self.time = t.read(TIME)
+        self.time["delt_init"] = min(self.time["delt_init"], self.time["max_initial_delt"])
+        self.time["max_Timesteps"] = min(self.time["max_Timesteps"], self.time["max_iterations"])
+        if self.time["maxTime"] < self.time["initTime"]:
+            raise t.child("maxTime").error("maxTime is before initTime")
+        if self.time["delt_min"] > self.time["delt_max"]:
+            raise t.child("delt_min").error("delt_min exceeds delt_max")
+        self.level = level_from_spec(root)
+        lbn = root.child("LoadBalancer")
+        self.lb_interval = 0
+        if lbn is not None:
+            lbn.attr("type", default="SFC", choices=("SFC", "DLB", "Simple", "SimpleLoadBalancer"))
+            self.lb_interval = lbn.get("timestepInterval", "int", 0)
+        self.archive_spec = read_archiver(root)
+        self.component = cls()
+        self.component.problem_setup(root, self.level)
+        root.check_all_used()
+
+    def _build(self):
+        comm, level = self.comm, self.level
+        try:
+            self.lb = LoadBalancer(level, comm.size, comm.rank, self.lb_interval)
+        except ValueError as e:
+            raise InputError(str(e), self.root.filename) from None
+        self.sched = Scheduler(level, self.lb, comm)
+        self.outputs = set(self.archive_spec["save"]) if self.archive_spec else set()
+        self.sched.output_labels = set(self.outputs)
+        self.compile()
+        self.archiver = None
+        if self.archive_spec is not None:
+            base = self.archive_spec["filebase"]
+            self.archive_spec["filebase"] = Archiver.unique_dir(base, comm)
+            self.archiver = Archiver(self.archive_spec, level, comm, self.deck_text, self.component_name,
+                                     self.component.material_names())
+
+    def compile(self):
+        """Compile the initialization and timestep graphs and check they fit together."""
+        sched, comp, level = self.sched, self.component, self.level
+        provided = {L.delT.name, L.simTime.name}
+        sched.begin_graph("timestep")
+        comp.schedule_time_advance(level, sched)
+        comp.schedule_compute_stable_timestep(level, sched)
+        step_tasks, step_reloc = list(sched.tasks), sched.relocation
+        probe = sched.compile({L.delT.name} | self.outputs | self._old_requires(step_tasks),
+                              old_available=_Anything(), build_patch_graph=False)
+        carried = probe.carried - provided
+
+        sched.begin_graph("initialize")
+        comp.schedule_initialize(level, sched)
+        comp.schedule_compute_stable_timestep(level, sched)
+        init_tasks = list(sched.tasks)
+        all_computed = set()
+        for t in init_tasks + step_tasks:
+            all_computed |= {d.label.name for d in t.computes_}
+        if step_reloc is not None:
+            all_computed |= {l.name for l in [step_reloc.pos] + step_reloc.labels}
+        for name in sorted(self.outputs):
+            if name not in all_computed:
+                node = self.archive_spec["save_nodes"][name]
+                raise node.error(f'<save label="{name}"> names a variable this deck does not compute; '
+                                 f"computed: {', '.join(sorted(all_computed - provided))}")
+        init_needed = {L.delT.name} | carried | (self.outputs & all_computed)
+        self.init_graph = sched.compile(init_needed, old_available=None)
+        missing = carried - self.init_graph.computed
+        if missing:
+            name = sorted(missing)[0]
+            user = next(t.name for t in step_tasks if any(d.label.name == name for d in t.requires_))
+            raise GraphError(f"task {user} requires {name} from the old warehouse, but initialization "
+                             "does not compute it")
+
+        sched.begin_graph("timestep")
+        sched.tasks, sched.relocation = step_tasks, step_reloc
+        self.carried = carried
+        self.step_graph = sched.compile({L.delT.name} | carried | self.outputs,
+                                        old_available=self.init_graph.computed | carried | provided,
+                                        protect={L.delT.name} | carried)
+        sched.set_halo([self.init_graph, self.step_graph])
+
+    @staticmethod
+    def _old_requires(tasks):
+        return {d.label.name for t in tasks for d in t.requires_ if d.dw == "old"}
+
+    # -- delT ---------------------------------------------------------------------------
+    def next_delt(self, raw, t, prev, first):
+        tm = self.time
+        delt = raw * tm["timestep_multiplier"]
+        if first:
+            delt = min(delt, tm["delt_init"])
+        if prev is not None and delt > (1.0 + tm["max_delt_increase"]) * prev:
+            delt = (1.0 + tm["max_delt_increase"]) * prev
+        if delt < tm["delt_min"]:
+            if self.comm.rank == 0 and not self.quiet:
+                print(f"pysus: warning: delT {delt:.3e} below delt_min, using delt_min {tm['delt_min']:.3e}",
+                      file=sys.stderr)
+            delt = tm["delt_min"]
+        delt = min(delt, tm["delt_max"])
+        if tm["clamp_timesteps_to_output"] and self.archiver is not None:
+            nxt = self.archiver.next_event_time()
+            if nxt is not None and t < nxt < t + delt:
+                delt = nxt - t
+        if tm["end_at_max_time_exactly"] and t + delt > tm["maxTime"]:
+            delt = tm["maxTime"] - t
+        return delt
+
+    # -- the loop ------------------------------------------------------------------------
+    def initialize(self):
+        """Run the initialization graph (or load the checkpoint); returns the warehouse."""
+        dw = DataWarehouse(0)
+        if self.restart_info is not None:
+            cdir, info = self.restart_info
+            restore_dw(dw, cdir, info, self.level, self.sched.local_patches)
+            st = info["state"]
+            self.t, self.timestep, self.prev_delt = st["time"], st["timestep"], st["prev_delt"]
+            if self.archiver is not None:
+                self.archiver.setup(self.t, restart_from=self.restart)
+                self.archiver.next_output_time = st.get("next_output_time")
+                self.archiver.next_checkpoint_time = st.get("next_checkpoint_time")
+            return dw
+        self.t, self.timestep, self.prev_delt = self.time["initTime"], 0, None
+        self.sched.execute(self.init_graph, None, dw, keep=self.outputs)
+        if self.archiver is not None:
+            self.archiver.setup(self.t)
+            if self.archiver.output_due(0, self.t):
+                self.archiver.output(dw, 0, self.t, 0.0, self.sched.local_patches)
+        return dw
+
+    def run(self):
+        """Initialize and step to maxTime or max_Timesteps; returns the final warehouse."""
+        wall0 = time.perf_counter()
+        dw = self.initialize()
+        tm = self.time
+        progress = Progress(enabled=not self.quiet and self.comm.rank == 0)
+        first = self.restart_info is None
+        step_wall = []
+        while self.t < tm["maxTime"] * (1 - 1e-14) and self.timestep < tm["max_Timesteps"]:
+            raw = self.sched.reduce_delT(dw)
+            delt = self.next_delt(raw, self.t, self.prev_delt, first)
+            if not (delt > 0.0) or not math.isfinite(delt):
+                raise RuntimeError(f"timestep {self.timestep}: delT = {delt} (stable timestep {raw}); "
+                                   "the solution has probably blown up")
+            first = False
+            if self.lb.due(self.timestep):
+                self._rebalance(dw)
+            old, dw = dw, DataWarehouse(self.timestep + 1)
+            old.set_reduction(L.delT, delt)
+            old.set_reduction(L.simTime, self.t)
+            keep = self.outputs
+            s0 = time.perf_counter()
+            self.sched.execute(self.step_graph, old, dw, keep=keep)
+            step_wall.append(time.perf_counter() - s0)
+            del old
+            self.t += delt
+            self.timestep += 1
+            self.prev_delt = delt
+            if self.archiver is not None:
+                if self.archiver.output_due(self.timestep, self.t):
+                    self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
+                if self.archiver.checkpoint_due(self.timestep, self.t):
+                    self.archiver.checkpoint(dw, self.carried | {L.delT.name}, self.timestep, self.t,
+                                             self._state(), self.sched.local_patches)
+            progress.update(self.timestep, self.t, delt, time.perf_counter() - wall0, step_wall[-1])
+        progress.close()
+        self.wall = time.perf_counter() - wall0
+        self.step_times = step_wall
+        return dw
+
+    def _state(self):
+        a = self.archiver
+        return {"time": self.t, "timestep": self.timestep, "prev_delt": self.prev_delt,
+                "next_output_time": a.next_output_time if a else None,
+                "next_checkpoint_time": a.next_checkpoint_time if a else None}
+
+    def _rebalance(self, dw):
+        costs = self.sched.patch_costs(dw)
+        old_map = list(self.lb.rank_of)
+        if self.lb.rebalance(costs):
+            from .migrate import migrate
+            migrate(dw, self.level, old_map, self.lb.rank_of, self.comm)
+
+
+class _Anything:
+    """old_available stand-in that accepts every label (first compile pass)."""
+
+    def __contains__(self, item):
+        return True

@@ -1,0 +1,56 @@
+"""Build a Level from the deck's `<Grid>` block."""
+from __future__ import annotations
+
+import numpy as np
+
+from .grid import Level
+from .problemspec import Param
+
+
+BOX = {
+    "lower": Param("vector"),
+    "upper": Param("vector"),
+    "extraCells": Param("ivector", (0, 0, 0)),
+    "patches": Param("ivector", (1, 1, 1)),
+    "resolution": Param("ivector", None),
+}
+
+
+def level_from_spec(root):
+    """The single level of `<Grid><Level>`; boundary conditions are left to components."""
+    grid = root.child("Grid", required=True)
+    levels = grid.children("Level")
+    if not levels:
+        raise grid.error("missing required tag <Level>")
+    if len(levels) > 1:
+        raise levels[1].error("only one <Level> is supported (no AMR in pysus)")
+    lv = levels[0]
+    boxes = lv.children("Box")
+    if len(boxes) != 1:
+        raise (boxes[1] if boxes else lv).error("exactly one <Box> per <Level> is supported")
+    box = boxes[0]
+    box.attr("label", default=None)
+    b = box.read(BOX)
+    spacing = lv.get("spacing", "vector", None)
+    periodic = lv.get("periodic", "ivector", (0, 0, 0))
+    lower, upper = np.array(b["lower"]), np.array(b["upper"])
+    if np.any(upper <= lower):
+        raise box.error(f"<upper> {tuple(upper)} must exceed <lower> {tuple(lower)} in every direction")
+    if b["resolution"] is not None and spacing is not None:
+        raise lv.error("give either <Box><resolution> or <Level><spacing>, not both")
+    if b["resolution"] is not None:
+        res = b["resolution"]
+    elif spacing is not None:
+        res = tuple(int(round(x)) for x in (upper - lower) / np.array(spacing))
+        if any(abs(r * s - (u - l)) > 1e-8 * (u - l) for r, s, u, l in zip(res, spacing, upper, lower)):
+            raise lv.child("spacing").error("spacing does not divide the box into whole cells")
+    else:
+        raise box.error("missing <resolution> (or <Level><spacing>)")
+    if any(r < 1 for r in res):
+        raise box.error(f"resolution {res} must be at least 1 in every direction")
+    if any(e < 0 for e in b["extraCells"]):
+        raise box.child("extraCells").error("extraCells must be 0 or positive")
+    try:
+        return Level(lower, upper, res, b["patches"], b["extraCells"], tuple(bool(x) for x in periodic))
+    except ValueError as e:
+        raise box.child("patches").error(str(e)) from None

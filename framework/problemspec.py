@@ -1,0 +1,259 @@
+"""Reading `.ups` decks with line-numbered errors.
+
+A `ProblemSpec` wraps one XML element. Components read their part of the deck through
+typed getters (or a declarative `Param` table) and every element and attribute they
+read is marked as used; `check_all_used()` then turns anything left over into an
+`InputError` naming the file, line and tag path, so no input is ever ignored silently.
+lxml is used because it keeps source line numbers, which the standard library does not.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any, Callable
+
+from lxml import etree
+
+REQUIRED = object()
+
+
+class InputError(Exception):
+    """A problem with the deck: file, line, tag path and what would be accepted."""
+
+    def __init__(self, message, filename=None, line=None, path=None):
+        self.filename, self.line, self.path, self.message = filename, line, path, message
+        where = ""
+        if filename:
+            where = f"{filename}:{line}: " if line else f"{filename}: "
+        tag = f"<{path}> " if path else ""
+        super().__init__(f"{where}{tag}{message}")
+
+
+def _parse_float(text):
+    return float(text.strip())
+
+
+def _parse_int(text):
+    t = text.strip()
+    v = float(t)
+    if v != int(v):
+        raise ValueError(t)
+    return int(v)
+
+
+def _parse_bool(text):
+    t = text.strip().lower()
+    if t in ("true", "1", "yes"):
+        return True
+    if t in ("false", "0", "no"):
+        return False
+    raise ValueError(t)
+
+
+def _parse_vector(text, conv=float):
+    t = text.strip()
+    if not (t.startswith("[") and t.endswith("]")):
+        raise ValueError(t)
+    parts = [p for p in t[1:-1].replace(",", " ").split()]
+    if len(parts) != 3:
+        raise ValueError(t)
+    return tuple(conv(p) for p in parts)
+
+
+PARSERS: dict[str, tuple[Callable[[str], Any], str]] = {
+    "float": (_parse_float, "a number"),
+    "int": (_parse_int, "an integer"),
+    "bool": (_parse_bool, "true or false"),
+    "str": (lambda t: t.strip(), "text"),
+    "vector": (_parse_vector, "a vector [x, y, z]"),
+    "ivector": (lambda t: _parse_vector(t, _parse_int), "an integer vector [i, j, k]"),
+}
+
+
+@dataclass(frozen=True)
+class Param:
+    """One accepted child tag: its type, default (REQUIRED if none) and allowed values."""
+
+    type: str = "float"
+    default: Any = REQUIRED
+    choices: tuple | None = None
+    doc: str = ""
+
+
+class _Doc:
+    """Book-keeping shared by all nodes of one parsed file."""
+
+    def __init__(self, filename, root):
+        self.filename = filename
+        # lxml proxies may be recreated with new ids unless kept alive: keep them all
+        self.alive = list(root.iter())
+        self.used: set = set()
+        self.queried: dict = {}
+
+
+class ProblemSpec:
+    """One element of a deck, with typed access and usage tracking."""
+
+    def __init__(self, element, doc: _Doc, path: str):
+        self.element = element
+        self.doc = doc
+        self.path = path
+        doc.used.add(id(element))
+
+    # -- construction -------------------------------------------------------------
+    @classmethod
+    def load(cls, filename) -> "ProblemSpec":
+        """Parse a deck file; malformed XML becomes an InputError with its line."""
+        filename = os.fspath(filename)
+        parser = etree.XMLParser(remove_comments=False, resolve_entities=False)
+        try:
+            tree = etree.parse(filename, parser)
+        except OSError as e:
+            raise InputError(f"cannot read the deck: {e}", filename) from None
+        except etree.XMLSyntaxError as e:
+            line = e.lineno if hasattr(e, "lineno") else None
+            raise InputError(f"malformed XML: {e.msg}", filename, line) from None
+        root = tree.getroot()
+        node = cls(root, _Doc(filename, root), root.tag)
+        node._keep = tree
+        return node
+
+    @classmethod
+    def from_string(cls, text: str, filename="<string>") -> "ProblemSpec":
+        try:
+            root = etree.fromstring(text.encode() if isinstance(text, str) else text)
+        except etree.XMLSyntaxError as e:
+            raise InputError(f"malformed XML: {e.msg}", filename, getattr(e, "lineno", None)) from None
+        return cls(root, _Doc(filename, root), root.tag)
+
+    # -- basic facts -----------------------------------------------------------
+    @property
+    def tag(self) -> str:
+        return self.element.tag
+
+    @property
+    def line(self) -> int:
+        return self.element.sourceline
+
+    @property
+    def filename(self) -> str:
+        return self.doc.filename
+
+    def error(self, message) -> InputError:
+        """An InputError located at this element."""
+        return InputError(message, self.doc.filename, self.line, self.path)
+
+    def _elements(self, tag=None):
+        for child in self.element:
+            if not isinstance(child.tag, str):
+                continue
+            if tag is None or child.tag == tag:
+                yield child
+
+    def _note_query(self, tag):
+        self.doc.queried.setdefault(id(self.element), set()).add(tag)
+
+    # -- children ----------------------------------------------------------------
+    def child(self, tag, required=False) -> "ProblemSpec | None":
+        """The single child `tag`, None if absent (or an error if required)."""
+        self._note_query(tag)
+        found = list(self._elements(tag))
+        if not found:
+            if required:
+                raise self.error(f"missing required tag <{tag}>")
+            return None
+        if len(found) > 1:
+            extra = ProblemSpec(found[1], self.doc, f"{self.path}/{tag}")
+            raise extra.error(f"<{tag}> given more than once; only one is accepted here")
+        return ProblemSpec(found[0], self.doc, f"{self.path}/{tag}")
+
+    def children(self, tag=None) -> list["ProblemSpec"]:
+        """All children with this tag (every element child when tag is None)."""
+        if tag is not None:
+            self._note_query(tag)
+        return [ProblemSpec(e, self.doc, f"{self.path}/{e.tag}") for e in self._elements(tag)]
+
+    def has(self, tag) -> bool:
+        self._note_query(tag)
+        return any(True for _ in self._elements(tag))
+
+    # -- values ------------------------------------------------------------------
+    def text(self) -> str:
+        return (self.element.text or "").strip()
+
+    def value(self, type_="float", choices=None):
+        """This element's own text converted to `type_`."""
+        parse, what = PARSERS[type_]
+        raw = self.text()
+        try:
+            v = parse(raw)
+        except (ValueError, TypeError):
+            raise self.error(f"value '{raw}' is not {what}") from None
+        if choices is not None and v not in choices:
+            raise self.error(f"value '{raw}' is not accepted; accepted: {', '.join(map(str, choices))}")
+        return v
+
+    def get(self, tag, type_="float", default=REQUIRED, choices=None):
+        """The value of child `tag`, or `default`; a missing required tag is an error."""
+        node = self.child(tag)
+        if node is None:
+            if default is REQUIRED:
+                raise self.error(f"missing required tag <{tag}> ({PARSERS[type_][1]})")
+            return default
+        return node.value(type_, choices)
+
+    def attr(self, name, type_="str", default=REQUIRED, choices=None):
+        """The value of attribute `name` of this element."""
+        self.doc.used.add((id(self.element), name))
+        raw = self.element.get(name)
+        if raw is None:
+            if default is REQUIRED:
+                raise self.error(f"missing required attribute {name}=\"...\"")
+            return default
+        parse, what = PARSERS[type_]
+        try:
+            v = parse(raw)
+        except (ValueError, TypeError):
+            raise self.error(f"attribute {name}=\"{raw}\" is not {what}") from None
+        if choices is not None and v not in choices:
+            raise self.error(f"attribute {name}=\"{raw}\" is not accepted; accepted: {', '.join(map(str, choices))}")
+        return v
+
+    def read(self, table: dict[str, Param]) -> dict:
+        """Read every tag of a declarative table; returns {tag: value}."""
+        out = {}
+        for tag, p in table.items():
+            out[tag] = self.get(tag, p.type, p.default, p.choices)
+        return out
+
+    def mark_used(self, recursive=True):
+        """Mark this element (and its subtree) as read, e.g. for <Meta>."""
+        self.doc.used.add(id(self.element))
+        for name in self.element.attrib:
+            self.doc.used.add((id(self.element), name))
+        if recursive:
+            for c in self._elements():
+                ProblemSpec(c, self.doc, f"{self.path}/{c.tag}").mark_used(True)
+
+    # -- the final check -----------------------------------------------------------
+    def check_all_used(self):
+        """Raise an InputError for the first element or attribute nobody read."""
+        self._check(self.element, self.path)
+
+    def _check(self, el, path):
+        for name in el.attrib:
+            if (id(el), name) not in self.doc.used:
+                raise InputError(f"attribute {name}=\"{el.get(name)}\" is not supported here",
+                                 self.doc.filename, el.sourceline, path)
+        for c in el:
+            if not isinstance(c.tag, str):
+                continue
+            cpath = f"{path}/{c.tag}"
+            if id(c) not in self.doc.used:
+                accepted = sorted(self.doc.queried.get(id(el), ()))
+                hint = f"; accepted here: {', '.join('<%s>' % a for a in accepted)}" if accepted else ""
+                raise InputError(f"unsupported tag <{c.tag}>{hint}", self.doc.filename, c.sourceline, cpath)
+            self._check(c, cpath)
+
+    def to_string(self) -> str:
+        return etree.tostring(self.element, encoding="unicode")

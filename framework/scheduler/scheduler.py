@@ -1,0 +1,185 @@
+"""The scheduler: collects a component's tasks, compiles them, and executes the graph.
+
+Serial and MPI execution are the same code: with one rank every ghost source is
+local and no MPI call is made. Component code never calls MPI; every copy and
+message comes from the task declarations.
+"""
+from __future__ import annotations
+
+import time
+from collections import defaultdict
+
+import numpy as np
+
+from ..labels import delT as delT_label
+from ..task import NEW, OLD, Task, TaskError, TaskView
+from ..variables import VarType
+from .comm import Comm, Exchange, GridPlan
+from .compile import CompiledGraph, compile_graph, halo_widths
+from .relocate import RelocationSpec, relocate, relocation_task
+
+
+class Scheduler:
+    """What a component schedules into, and what runs the compiled graphs."""
+
+    def __init__(self, level, lb, comm: Comm | None = None):
+        self.level = level
+        self.lb = lb
+        self.comm = comm or Comm(None)
+        self.tasks: list[Task] = []
+        self.relocation: RelocationSpec | None = None
+        self.position_label = None
+        self.particle_id_label = None
+        self.timing: dict = defaultdict(float)
+        self.calls: dict = defaultdict(int)
+        self.particles_removed = 0
+        self.scrub_old = True
+        self._plans: dict = {}
+        self.graph_name = ""
+
+    # -- what components call ----------------------------------------------------------
+    def add_task(self, task: Task):
+        self.tasks.append(task)
+        return task
+
+    def schedule_particle_relocation(self, pos_pre, labels_pre, pos, labels, matls, id_label=None):
+        """Move particles to their new patch at the end of the step (Uintah's relocation)."""
+        if len(labels_pre) != len(labels):
+            raise ValueError("relocation needs one final label per pre-relocation label")
+        self.relocation = RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label)
+        self.register_particle_labels(pos, id_label)
+
+    def register_particle_labels(self, pos, id_label=None):
+        """Position label (for ghost particles) and, optionally, the ID label that fixes their order."""
+        self.position_label = pos
+        self.particle_id_label = id_label
+
+    @property
+    def local_patches(self):
+        return self.lb.local_patches()
+
+    # -- compile ---------------------------------------------------------------------------
+    def begin_graph(self, name: str):
+        self.graph_name = name
+        self.tasks = []
+        self.relocation = None
+
+    def compile(self, needed, old_available, protect=None, build_patch_graph=True) -> CompiledGraph:
+        tasks = list(self.tasks)
+        for t in tasks:
+            self._add_implicit_particle_requires(t)
+        if self.relocation is not None:
+            tasks.append(relocation_task(self.relocation))
+        return compile_graph(self.graph_name, tasks, self.level.patches, self.level, set(needed),
+                             old_available, protect, build_patch_graph)
+
+    def _add_implicit_particle_requires(self, task):
+        """Ghost particles are chosen by position (and ordered by ID): the task reads those too."""
+        extra = [l for l in (self.position_label, self.particle_id_label) if l is not None]
+        for dep in list(task.requires_):
+            if dep.label.vartype is not VarType.PARTICLE or not dep.n:
+                continue
+            for lab in extra:
+                if not any(d.label.name == lab.name and d.dw == dep.dw and d.n >= dep.n for d in task.requires_):
+                    task.requires(dep.dw, lab, dep.ghost, dep.n, dep.matls)
+
+    def set_halo(self, graphs):
+        """Fix the stored halo of each grid type to the widest ghost any task requires."""
+        halo = halo_widths(graphs)
+        for vt in self.level.halo:
+            self.level.halo[vt] = halo.get(vt, 0)
+        self.level.clear_cache()
+        self._plans.clear()
+
+    def grid_plan(self, vt: VarType, g: int) -> GridPlan:
+        key = (vt, g, self.lb.version)
+        if key not in self._plans:
+            self._plans[key] = GridPlan(self.level, self.lb.rank_of, vt, g, self.comm.rank)
+        return self._plans[key]
+
+    # -- execute ---------------------------------------------------------------------------
+    def execute(self, cg: CompiledGraph, old_dw, new_dw, keep=frozenset()):
+        """Run every task of the graph on this rank's patches."""
+        if old_dw is not None:
+            new_dw.pre_counts = dict(old_dw.nparticles)
+        for task in cg.tasks:
+            t0 = time.perf_counter()
+            if hasattr(task, "relocation"):
+                relocate(self, task.relocation, new_dw)
+            else:
+                self._run(task, old_dw, new_dw)
+            self.timing[task.name] += time.perf_counter() - t0
+            self.calls[task.name] += 1
+            for name in cg.scrub_after.get(task, ()):
+                if name not in keep:
+                    new_dw.scrub(name)
+            if old_dw is not None and self.scrub_old:
+                for name in cg.scrub_old_after.get(task, ()):
+                    old_dw.scrub(name)
+
+    def _run(self, task: Task, old_dw, new_dw):
+        ov = TaskView(old_dw, task, OLD) if old_dw is not None else None
+        nv = TaskView(new_dw, task, NEW)
+        exchanges = []
+        for which, dw in ((OLD, old_dw), (NEW, new_dw)):
+            grid = [(d.label, d.n, d.matls) for d in task.requires_
+                    if d.dw == which and d.n and d.label.vartype.is_grid]
+            parts = [(d.label, d.n, d.matls) for d in task.requires_
+                     if d.dw == which and d.n and d.label.vartype is VarType.PARTICLE]
+            if grid or parts:
+                ex = Exchange(self, dw, grid, parts)
+                ex.begin()
+                exchanges.append(ex)
+        remote = set().union(*(ex.remote_patches for ex in exchanges)) if exchanges else set()
+        patches = self.local_patches
+        for p in patches:
+            if p.id not in remote:
+                self._call(task, p, ov, nv, new_dw)
+        for ex in exchanges:
+            ex.finish()
+        for p in patches:
+            if p.id in remote:
+                self._call(task, p, ov, nv, new_dw)
+        for dep in task.computes_:
+            if dep.label.vartype is VarType.REDUCTION:
+                for m in dep.matls:
+                    key = (dep.label.name, m)
+                    v = new_dw.reductions.get(key, new_dw.identity(dep.label))
+                    new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
+
+    def _call(self, task, patch, ov, nv, new_dw):
+        task.fn(patch, task.matls, ov, nv)
+        for dep in task.computes_:
+            vt = dep.label.vartype
+            if vt is VarType.REDUCTION:
+                continue
+            store = new_dw.grid if vt.is_grid else (new_dw.particles if vt is VarType.PARTICLE else new_dw.perpatch)
+            for m in dep.matls:
+                if (dep.label.name, m, patch.id) not in store:
+                    raise TaskError(f"task {task.name} declared it computes {dep.label.name} "
+                                    f"(material {m}) but did not put it on patch {patch.id}")
+
+    # -- helpers for the controller ----------------------------------------------------
+    def reduce_delT(self, dw) -> float:
+        return float(dw.get_reduction(delT_label))
+
+    def patch_costs(self, dw) -> list[float]:
+        """Measured cost per patch (cells + weighted particles), gathered on every rank."""
+        from ..loadbalancer import PARTICLE_WEIGHT
+        local = {}
+        for p in self.local_patches:
+            n = sum(v for (m, pid), v in dw.nparticles.items() if pid == p.id)
+            local[p.id] = p.ncells + PARTICLE_WEIGHT * n
+        merged = {}
+        for d in self.comm.allgather(local):
+            merged.update(d)
+        return [merged[p.id] for p in self.level.patches]
+
+    def timing_table(self):
+        total = sum(self.timing.values()) or 1.0
+        rows = sorted(self.timing.items(), key=lambda kv: -kv[1])
+        return [(name, t, self.calls[name], 100.0 * t / total) for name, t in rows]
+
+
+def as_array(x):
+    return np.asarray(x)

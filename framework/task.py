@@ -1,0 +1,167 @@
+"""Tasks: one algorithm step written for ONE patch, with declared inputs and outputs.
+
+A task requires (label, old or new warehouse, materials, ghost type and count),
+computes or modifies labels. The callback `fn(patch, matls, old_dw, new_dw)` sees the
+warehouses through a `TaskView` that refuses any read it did not declare and any
+write it did not declare; after the call the executor checks every compute was put.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .labels import VarLabel
+from .variables import Ghost, VarType
+
+OLD = "old"
+NEW = "new"
+
+
+class TaskError(Exception):
+    """A task broke its declaration (read undeclared data, missed a compute ...)."""
+
+
+@dataclass(frozen=True)
+class Dependency:
+    label: VarLabel
+    dw: str
+    matls: tuple | None
+    ghost: Ghost = Ghost.NONE
+    n: int = 0
+
+
+class Task:
+    """A named step with its callback and declarations.
+
+    `matls` is the material subset it runs for (None: no materials, e.g. a reduction
+    over everything). Dependencies default to the task's materials.
+    """
+
+    def __init__(self, name: str, fn, matls=None):
+        self.name = name
+        self.fn = fn
+        self.matls = tuple(matls) if matls is not None else ()
+        self.requires_: list[Dependency] = []
+        self.computes_: list[Dependency] = []
+        self.modifies_: list[Dependency] = []
+        self.order = -1
+
+    def __repr__(self):
+        return f"Task({self.name})"
+
+    def _matls(self, label, matls):
+        if matls is not None:
+            return tuple(matls)
+        if label.vartype is VarType.REDUCTION:
+            return (-1,)
+        return self.matls
+
+    def requires(self, dw, label: VarLabel, ghost: Ghost = Ghost.NONE, n: int = 0, matls=None):
+        if dw not in (OLD, NEW):
+            raise ValueError(f"task {self.name}: dw must be OLD or NEW, not {dw!r}")
+        if (ghost is Ghost.NONE) != (n == 0):
+            raise ValueError(f"task {self.name}: {label.name} ghost type {ghost.value} with {n} layers")
+        self.requires_.append(Dependency(label, dw, self._matls(label, matls), ghost, int(n)))
+        return self
+
+    def computes(self, label: VarLabel, matls=None):
+        self.computes_.append(Dependency(label, NEW, self._matls(label, matls)))
+        return self
+
+    def modifies(self, label: VarLabel, matls=None):
+        self.modifies_.append(Dependency(label, NEW, self._matls(label, matls)))
+        return self
+
+    def writes(self):
+        return self.computes_ + self.modifies_
+
+
+class TaskView:
+    """A warehouse as one task may see it: only what it declared."""
+
+    __slots__ = ("dw", "task", "which", "reads", "writes", "puts", "ghosted")
+
+    def __init__(self, dw, task: Task, which: str):
+        self.dw = dw
+        self.task = task
+        self.which = which
+        self.reads = {}
+        self.ghosted = {}
+        for dep in task.requires_:
+            if dep.dw == which:
+                self.reads[dep.label.name] = dep.matls
+                if dep.n:
+                    self.ghosted[dep.label.name] = dep.n
+        self.writes = {}
+        if which == NEW:
+            for dep in task.modifies_:
+                self.reads[dep.label.name] = dep.matls
+                self.writes[dep.label.name] = dep.matls
+            for dep in task.computes_:
+                self.writes[dep.label.name] = dep.matls
+
+    def _fail(self, what, label, matl):
+        return TaskError(f"task {self.task.name} {what} {label.name} (material {matl}) in the "
+                         f"{self.which} warehouse without declaring it")
+
+    def _check_read(self, label, matl):
+        m = self.reads.get(label.name)
+        if m is None or (matl not in m and matl != -1 and m):
+            raise self._fail("reads", label, matl)
+
+    def _check_write(self, label, matl):
+        m = self.writes.get(label.name)
+        if m is None or (matl not in m and matl != -1 and m):
+            raise self._fail("writes", label, matl)
+
+    # -- reads ---------------------------------------------------------------------
+    def get(self, label: VarLabel, matl: int, patch):
+        """The variable; grid arrays include the halo, particles include declared ghosts."""
+        self._check_read(label, matl)
+        if label.vartype is VarType.PARTICLE and label.name in self.ghosted:
+            return self.dw.ghost_particles[(label.name, matl, patch.id, self.ghosted[label.name])]
+        return self.dw.get(label, matl, patch)
+
+    def get_reduction(self, label: VarLabel, matl: int = -1):
+        self._check_read(label, matl)
+        return self.dw.get_reduction(label, matl)
+
+    def num_particles(self, matl: int, patch) -> int:
+        return self.dw.num_particles(matl, patch)
+
+    def num_ghost_particles(self, label: VarLabel, matl: int, patch) -> int:
+        """Owned plus ghost particles returned by get() for a ghosted particle label."""
+        return len(self.get(label, matl, patch))
+
+    def exists(self, label: VarLabel, matl: int = -1, patch=None) -> bool:
+        return self.dw.exists(label, matl, patch)
+
+    # -- writes --------------------------------------------------------------------
+    def allocate(self, label: VarLabel, matl: int, patch, fill=0.0):
+        self._check_write(label, matl)
+        return self.dw.allocate(label, matl, patch, fill)
+
+    def put(self, label: VarLabel, matl: int, patch, value):
+        self._check_write(label, matl)
+        self.dw.put(label, matl, patch, value)
+
+    def get_modifiable(self, label: VarLabel, matl: int, patch):
+        m = self.writes.get(label.name)
+        if m is None or label.name not in self.reads:
+            raise self._fail("modifies", label, matl)
+        self.dw.halo_valid.pop((label.name, matl), None)
+        return self.dw.get(label, matl, patch)
+
+    def replace(self, label: VarLabel, matl: int, patch, value):
+        """Put a new array for a variable the task declared to modify."""
+        if label.name not in self.writes or label.name not in self.reads:
+            raise self._fail("modifies", label, matl)
+        self.dw.replace(label, matl, patch, value)
+
+    def put_reduction(self, label: VarLabel, value, matl: int = -1):
+        self._check_write(label, matl)
+        self.dw.put_reduction(label, value, matl)
+
+    def create_particles(self, matl: int, patch, n: int):
+        if self.which != NEW:
+            raise TaskError(f"task {self.task.name} creates particles in the old warehouse")
+        self.dw.create_particles(matl, patch, n)

@@ -1,0 +1,106 @@
+"""XDMF (version 2) descriptions of a `.uda` so ParaView and VisIt open it directly.
+
+Each output timestep is a spatial collection of one uniform grid per patch (a
+3DCoRectMesh for grid variables, a Polyvertex set per material for particles), and
+`output.xdmf` is the temporal collection of all of them. HDF5 datasets are stored
+(z, y, x) so the XDMF dimensions are written slowest first.
+"""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from .variables import VarType
+
+_ATYPE = {0: "Scalar", 3: "Vector", 9: "Tensor"}
+
+
+def _ncomp(shape):
+    return int(np.prod(shape)) if shape else 1
+
+
+def _dataitem(path, dims):
+    d = " ".join(str(x) for x in dims)
+    return f'<DataItem Dimensions="{d}" NumberType="Float" Precision="8" Format="HDF">{path}</DataItem>'
+
+
+def _attribute(name, center, path, dims, ncomp):
+    atype = _ATYPE.get(ncomp, "Matrix")
+    full = list(dims) + ([ncomp] if ncomp > 1 else [])
+    return (f'<Attribute Name="{name}" AttributeType="{atype}" Center="{center}">'
+            f'{_dataitem(path, full)}</Attribute>')
+
+
+def timestep_grids(entry, index, level, prefix=""):
+    """XML of one timestep: a spatial collection of patch grids and particle sets."""
+    labels = index["labels"]
+    out = [f'<Grid Name="t{entry["timestep"]}" GridType="Collection" CollectionType="Spatial">',
+           f'<Time Value="{entry["time"]!r}"/>']
+    for pid, pm in sorted(entry["patches"].items(), key=lambda kv: int(kv[0])):
+        fn = f'{prefix}{pm["file"]}'
+        by_kind = {}
+        for name, boxes in pm["grid"].items():
+            vt = VarType(labels[name]["type"])
+            for m, (lo, hi) in boxes.items():
+                key = "cells" if vt is VarType.CC else "nodes"
+                if vt not in (VarType.CC, VarType.NC):
+                    continue
+                by_kind.setdefault((key, tuple(lo), tuple(hi)), []).append((name, m, labels[name]["shape"]))
+        for (kind, lo, hi), items in sorted(by_kind.items()):
+            dims = [h - l for l, h in zip(lo, hi)]
+            if kind == "cells":
+                origin = [level.anchor[d] + lo[d] * level.dx[d] for d in range(3)]
+                npts = [n + 1 for n in dims]
+                center = "Cell"
+            else:
+                origin = [level.anchor[d] + lo[d] * level.dx[d] for d in range(3)]
+                npts = dims
+                center = "Node"
+            out.append(f'<Grid Name="patch{pid}_{kind}" GridType="Uniform">')
+            out.append(f'<Topology TopologyType="3DCoRectMesh" Dimensions="{npts[2]} {npts[1]} {npts[0]}"/>')
+            out.append('<Geometry GeometryType="ORIGIN_DXDYDZ">'
+                       f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
+                       f'{origin[2]!r} {origin[1]!r} {origin[0]!r}</DataItem>'
+                       f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
+                       f'{level.dx[2]!r} {level.dx[1]!r} {level.dx[0]!r}</DataItem></Geometry>')
+            for name, m, shape in items:
+                out.append(_attribute(f"{name}_{m}", center, f"{fn}:/patch_{pid}/{name}/{m}",
+                                      [dims[2], dims[1], dims[0]], _ncomp(shape)))
+            out.append("</Grid>")
+        for m, names in sorted(pm["particles"].items()):
+            n = pm.get("np", {}).get(m, 0)
+            if n == 0 or "p.x" not in names:
+                continue
+            out.append(f'<Grid Name="patch{pid}_particles_m{m}" GridType="Uniform">')
+            out.append(f'<Topology TopologyType="Polyvertex" NumberOfElements="{n}" NodesPerElement="1"/>')
+            out.append(f'<Geometry GeometryType="XYZ">{_dataitem(f"{fn}:/patch_{pid}/particles/{m}/p.x", [n, 3])}</Geometry>')
+            for name in names:
+                if name == "p.x":
+                    continue
+                lab = labels.get(name, {"shape": []})
+                nc = _ncomp(lab["shape"])
+                out.append(_attribute(name, "Node", f"{fn}:/patch_{pid}/particles/{m}/{name}", [n], nc))
+            out.append("</Grid>")
+    out.append("</Grid>")
+    return "\n".join(out)
+
+
+def _document(body):
+    return ('<?xml version="1.0" ?>\n<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>\n'
+            '<Xdmf Version="2.0">\n<Domain>\n' + body + "\n</Domain>\n</Xdmf>\n")
+
+
+def write_xdmf(uda, index, level):
+    """Write the newest timestep's XDMF and rewrite the temporal `output.xdmf`."""
+    entry = index["timesteps"][-1]
+    with open(os.path.join(uda, entry["dir"], f'{entry["dir"]}.xdmf'), "w") as f:
+        f.write(_document(timestep_grids(entry, index, level)))
+    body = ['<Grid Name="TimeSeries" GridType="Collection" CollectionType="Temporal">']
+    for e in index["timesteps"]:
+        body.append(timestep_grids(e, index, level, prefix=f'{e["dir"]}/'))
+    body.append("</Grid>")
+    tmp = os.path.join(uda, "output.xdmf.tmp")
+    with open(tmp, "w") as f:
+        f.write(_document("\n".join(body)))
+    os.replace(tmp, os.path.join(uda, "output.xdmf"))
