@@ -106,7 +106,7 @@ def _setup(kind, dim, dx, shape):
                 q += 1
     ih = np.empty(3)
     for d in range(3):
-        ih[d] = 1.0 / dx[d]
+        ih[d] = 1.0 / dx[d] if dx[d] != 0.0 else 0.0
     return (na, nb, nc, nn, off, ih, np.zeros(3, np.int64), np.zeros((3, 3)),
             np.zeros((3, 3)), np.zeros(nn), np.zeros((nn, 3)))
 
