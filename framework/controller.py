@@ -95,10 +95,11 @@ class Controller:
             deck = os.path.join(cdir, "input.ups")
         if deck_text is not None and restart is None:
             self.root = ProblemSpec.from_string(deck_text, deck or "<string>")
+            self.deck_text = deck_text
         else:
             self.root = ProblemSpec.load(deck)
-        with open(self.root.filename) as f:
-            self.deck_text = f.read()
+            with open(self.root.filename) as f:
+                self.deck_text = f.read()
         self._read_deck()
         if filebase is not None and self.archive_spec is not None:
             self.archive_spec["filebase"] = filebase
@@ -263,6 +264,7 @@ class Controller:
             old.set_reduction(L.delT, delt)
             old.set_reduction(L.simTime, self.t)
             keep = self.outputs
+            self._inject_fault()
             s0 = time.perf_counter()
             self.sched.execute(self.step_graph, old, dw, keep=keep)
             step_wall.append(time.perf_counter() - s0)
@@ -281,6 +283,14 @@ class Controller:
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw
+
+    def _inject_fault(self):
+        """PYSUS_FAULT=rank:timestep raises on that rank before that step (to test failure handling)."""
+        spec = os.environ.get("PYSUS_FAULT")
+        if spec:
+            rank, step = (int(x) for x in spec.split(":"))
+            if rank == self.comm.rank and step == self.timestep:
+                raise RuntimeError(f"fault injected by PYSUS_FAULT on rank {rank} at timestep {step}")
 
     def _state(self):
         a = self.archiver

@@ -1,0 +1,41 @@
+"""Shared helpers: run a deck in-process or through the `pysus` command."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+BIN = Path(sys.executable).parent
+UINTAH_INPUTS = ROOT.parent / "shared" / "uintah-inputs"
+
+
+def run_deck(text, tmp_path, name="run", **kw):
+    """Run deck text in this process; returns the Controller (ctl.archiver.dir is the .uda)."""
+    from framework.controller import Controller
+    ctl = Controller(str(tmp_path / f"{name}.ups"), deck_text=text, quiet=True,
+                     filebase=str(tmp_path / f"{name}.uda"), **kw)
+    ctl.final_dw = ctl.run()
+    return ctl
+
+
+def pysus(*args, np_=1, env=None, timeout=300, cwd=None):
+    """Run the pysus command (under mpiexec when np_ > 1); returns CompletedProcess."""
+    cmd = [str(BIN / "pysus"), *map(str, args), "-q"]
+    if np_ > 1:
+        cmd = [str(BIN / "mpiexec"), "-n", str(np_)] + cmd
+    e = dict(os.environ)
+    e.update(env or {})
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=cwd or ROOT, env=e)
+
+
+@pytest.fixture
+def deckfile(tmp_path):
+    def make(text, name="deck.ups"):
+        p = tmp_path / name
+        p.write_text(text)
+        return p
+    return make
