@@ -1,0 +1,112 @@
+"""Runs under mpiexec -n 2 and -n 3 equal the one-rank answer; restart across rank counts.
+
+Each test launches `mpiexec -n N pysus` (oversubscribed on small machines is fine)
+and compares the archives bitwise: the example component's sums are ordered by
+particle ID and ghost cells are exact copies, so no round-off differs.
+"""
+import os
+
+import numpy as np
+import pytest
+
+from framework.archiver import DataArchive
+from tests.conftest import pysus
+from tests.framework import decks
+
+SAVE = '<save label="p.x"/><save label="p.particleID"/><save label="p.mass"/><save label="g.mass"/>'
+
+
+def deck(**kw):
+    base = dict(n=24, patches="[3,2,1]", maxTime=0.1, particles=True, velocity="[1,0.5,0]",
+                omega=3.0, extra_save=SAVE, out=4, checkpoint='<checkpoint timestepInterval="10" cycle="3"/>')
+    base.update(kw)
+    return decks.heat(**base)
+
+
+def same(a, b, steps=(-1,)):
+    da, db = DataArchive(a), DataArchive(b)
+    n = min(len(da.times), len(db.times))  # a restarted run holds only the later outputs
+    assert n > 0 and np.array_equal(da.times[-n:], db.times[-n:])
+    for s in steps:
+        for lab in ("temp_CC", "g.mass"):
+            assert np.array_equal(da.read(lab, 0, s)[0], db.read(lab, 0, s)[0]), (lab, s)
+        pa, pb = da.particles(0, s), db.particles(0, s)
+        oa, ob = np.argsort(pa["p.particleID"]), np.argsort(pb["p.particleID"])
+        assert np.array_equal(pa["p.particleID"][oa], pb["p.particleID"][ob])
+        for lab in ("p.x", "p.mass"):
+            assert np.array_equal(pa[lab][oa], pb[lab][ob]), lab
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    d = tmp_path_factory.mktemp("serial")
+    (d / "deck.ups").write_text(deck())
+    r = pysus(d / "deck.ups", "--filebase", d / "one.uda")
+    assert r.returncode == 0, r.stderr
+    return d
+
+
+@pytest.mark.parametrize("nranks", [2, 3])
+def test_ranks_equal_one_rank(serial, tmp_path, nranks):
+    uda = tmp_path / f"n{nranks}.uda"
+    r = pysus(serial / "deck.ups", "--filebase", uda, np_=nranks)
+    assert r.returncode == 0, r.stderr
+    same(serial / "one.uda", uda, steps=(1, 3, -1))
+    files = os.listdir(uda / DataArchive(uda).index["timesteps"][-1]["dir"])
+    assert sum(f.endswith(".h5") for f in files) == nranks
+
+
+def test_particles_cross_ranks_without_loss_or_duplicates(serial, tmp_path):
+    uda = tmp_path / "p.uda"
+    r = pysus(serial / "deck.ups", "--filebase", uda, np_=3)
+    assert r.returncode == 0, r.stderr
+    da = DataArchive(uda)
+    p0, p1 = da.particles(0, 0), da.particles(0, -1)
+    assert len(np.unique(p1["p.particleID"])) == len(p1["p.particleID"])
+    # nothing leaves this domain: count and total mass are kept exactly
+    assert len(p1["p.x"]) == len(p0["p.x"])
+    assert p1["p.mass"].sum() == pytest.approx(p0["p.mass"].sum(), rel=1e-14)
+    e = da.index["timesteps"][-1]
+    owners = {int(pid): pm["file"] for pid, pm in e["patches"].items() if pm.get("np", {}).get("0", 0)}
+    assert len(set(owners.values())) > 1
+
+
+@pytest.mark.parametrize("onto", [3, 1])
+def test_restart_from_two_ranks_onto_other_counts(serial, tmp_path, onto):
+    first = tmp_path / "two.uda"
+    r = pysus(serial / "deck.ups", "--filebase", first, np_=2)
+    assert r.returncode == 0, r.stderr
+    again = tmp_path / "again.uda"
+    r = pysus("-restart", first, "-t", "0", "--filebase", again, np_=onto)
+    assert r.returncode == 0, r.stderr
+    same(serial / "one.uda", again)
+
+
+def test_error_on_one_rank_ends_all_ranks_and_keeps_checkpoint(serial, tmp_path):
+    uda = tmp_path / "fail.uda"
+    r = pysus(serial / "deck.ups", "--filebase", uda, np_=3, env={"PYSUS_FAULT": "1:15"}, timeout=120)
+    assert r.returncode != 0
+    assert "[rank 1]" in r.stderr and "fault injected" in r.stderr
+    cps = DataArchive(uda).index["checkpoints"]
+    assert [c["timestep"] for c in cps] == [10]
+    r = pysus("-restart", uda, "--filebase", tmp_path / "resumed.uda", np_=2)
+    assert r.returncode == 0, r.stderr
+    same(serial / "one.uda", tmp_path / "resumed.uda")
+
+
+def test_np_option_relaunches_under_mpiexec(serial, tmp_path):
+    uda = tmp_path / "np.uda"
+    r = pysus(serial / "deck.ups", "--filebase", uda, "--np", "2")
+    assert r.returncode == 0, r.stderr
+    same(serial / "one.uda", uda)
+
+
+def test_rebalancing_keeps_the_answer(serial, tmp_path):
+    text = deck().replace("<DataArchiver>", '<LoadBalancer type="DLB"><timestepInterval>3</timestepInterval>'
+                                            '</LoadBalancer>\n  <DataArchiver>')
+    path = tmp_path / "lb.ups"
+    path.write_text(text)
+    uda = tmp_path / "lb.uda"
+    r = pysus(path, "--filebase", uda, np_=3)
+    assert r.returncode == 0, r.stderr
+    same(serial / "one.uda", uda, steps=(1, -1))
