@@ -1,0 +1,163 @@
+"""Geometry pieces of Uintah decks (`<geom_object>` contents), shared by MPM and ICE.
+
+A piece answers `inside(points) -> bool array` for points of shape (n, 3). Pieces:
+
+  <box>          <min> <max>                      axis-aligned box (closed)
+  <sphere>       <origin> <radius>
+  <cylinder>     <bottom> <top> <radius>          finite circular cylinder
+  <union>        two or more pieces               inside any
+  <intersection> two or more pieces               inside all
+  <difference>   exactly two pieces               inside the first, not the second
+
+Any piece may carry `label="name"`; a later empty element with the same tag and
+label (`<box label="name"></box>`) reuses the earlier piece, as in Uintah. The
+labels are remembered by a `GeometryReader`, which lives as long as one deck.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+PRIMITIVES = ("box", "sphere", "cylinder")
+COMBINERS = ("union", "intersection", "difference")
+PIECE_TAGS = PRIMITIVES + COMBINERS
+
+
+class Box:
+    def __init__(self, lo, hi):
+        self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
+
+    def inside(self, x):
+        return np.all((x >= self.lo) & (x <= self.hi), axis=1)
+
+
+class Sphere:
+    def __init__(self, origin, radius):
+        self.origin, self.radius = np.asarray(origin, float), float(radius)
+
+    def inside(self, x):
+        return np.sum((x - self.origin) ** 2, axis=1) <= self.radius ** 2
+
+
+class Cylinder:
+    def __init__(self, bottom, top, radius):
+        self.bottom, self.top, self.radius = np.asarray(bottom, float), np.asarray(top, float), float(radius)
+        self.axis = self.top - self.bottom
+        self.length2 = float(self.axis @ self.axis)
+
+    def inside(self, x):
+        rel = x - self.bottom
+        s = rel @ self.axis / self.length2          # position along the axis, 0..1
+        r2 = np.sum(rel ** 2, axis=1) - s ** 2 * self.length2
+        return (s >= 0.0) & (s <= 1.0) & (r2 <= self.radius ** 2)
+
+
+class Union:
+    def __init__(self, pieces):
+        self.pieces = list(pieces)
+
+    def inside(self, x):
+        out = np.zeros(len(x), bool)
+        for p in self.pieces:
+            out |= p.inside(x)
+        return out
+
+
+class Intersection(Union):
+    def inside(self, x):
+        out = np.ones(len(x), bool)
+        for p in self.pieces:
+            out &= p.inside(x)
+        return out
+
+
+class Difference:
+    def __init__(self, a, b):
+        self.a, self.b = a, b
+
+    def inside(self, x):
+        return self.a.inside(x) & ~self.b.inside(x)
+
+
+class GeometryReader:
+    """Builds pieces from deck elements and remembers labelled ones for reuse."""
+
+    def __init__(self):
+        self.labelled: dict = {}
+
+    @staticmethod
+    def _piece_children(node):
+        for tag in PIECE_TAGS:
+            node.children(tag)          # note the accepted tags for error messages
+        return [c for c in node.children() if c.tag in PIECE_TAGS]
+
+    def read_object(self, node):
+        """The union of the pieces of a <geom_object> (an error if it has none)."""
+        pieces = [self.read(c) for c in self._piece_children(node)]
+        if not pieces:
+            raise node.error(f"no geometry piece; accepted: {', '.join('<%s>' % t for t in PIECE_TAGS)}")
+        return pieces[0] if len(pieces) == 1 else Union(pieces)
+
+    def read(self, node):
+        """One piece element (primitive, combination or labelled reference)."""
+        label = node.attr("label", default=None)
+        if label is not None and not node.children():
+            key = (node.tag, label)
+            if key not in self.labelled:
+                raise node.error(f'<{node.tag} label="{label}"> refers to no earlier piece with that label')
+            return self.labelled[key]
+        piece = self._build(node)
+        if label is not None:
+            self.labelled[(node.tag, label)] = piece
+        return piece
+
+    def _build(self, node):
+        tag = node.tag
+        if tag == "box":
+            lo, hi = node.get("min", "vector"), node.get("max", "vector")
+            if any(h < l for l, h in zip(lo, hi)):
+                raise node.error(f"<max> {hi} is below <min> {lo}")
+            return Box(lo, hi)
+        if tag == "sphere":
+            r = node.get("radius", "float")
+            if r <= 0:
+                raise node.child("radius").error("radius must be positive")
+            return Sphere(node.get("origin", "vector"), r)
+        if tag == "cylinder":
+            b, t, r = node.get("bottom", "vector"), node.get("top", "vector"), node.get("radius", "float")
+            if r <= 0:
+                raise node.child("radius").error("radius must be positive")
+            if np.allclose(b, t):
+                raise node.error("<bottom> and <top> coincide")
+            return Cylinder(b, t, r)
+        parts = [self.read(c) for c in self._piece_children(node)]
+        if tag == "difference":
+            if len(parts) != 2:
+                raise node.error(f"<difference> needs exactly two pieces, found {len(parts)}")
+            return Difference(*parts)
+        if len(parts) < 1:
+            raise node.error(f"<{tag}> needs at least one piece")
+        return Union(parts) if tag == "union" else Intersection(parts)
+
+
+def cell_fractions(piece, level, box, res):
+    """Fraction of each cell of an index box inside `piece`, from res samples per direction.
+
+    Returns an array over the box; collapsed directions use one sample per cell. The
+    box is sampled one x-slab at a time so memory stays bounded on big patches.
+    """
+    shape = tuple(h - l for l, h in zip(*box))
+    axes = []
+    for d in range(3):
+        n = 1 if level.collapsed[d] else int(res[d])
+        off = (np.arange(n) + 0.5) / n
+        cells = np.arange(box[0][d], box[1][d])
+        axes.append(level.anchor[d] + (cells[:, None] + off[None, :]) * level.dx[d])
+    out = np.empty(shape)
+    Y = axes[1][:, None, :, None]
+    Z = axes[2][None, :, None, :]
+    for i in range(shape[0]):
+        X = axes[0][i][None, None, None, None, :]
+        Xb, Yb, Zb = np.broadcast_arrays(X, Y[..., None], Z[..., None])
+        pts = np.stack([Xb.ravel(), Yb.ravel(), Zb.ravel()], axis=1)
+        out[i] = piece.inside(pts).reshape(Xb.shape).mean(axis=(2, 3, 4))
+    return out
