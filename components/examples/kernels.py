@@ -24,17 +24,21 @@ def diffuse(T, Tn, lo, hi, c):
 @njit(cache=True)
 def neumann_face(T, lo, hi, d, side):
     """Copy the first interior layer into the extra cells of one face (zero gradient)."""
-    for i in range(T.shape[0]):
-        for j in range(T.shape[1]):
-            for k in range(T.shape[2]):
-                idx = (i, j, k)
-                v = idx[d]
-                if side == 0 and v < lo[d]:
-                    src = (lo[d] if d == 0 else i, lo[d] if d == 1 else j, lo[d] if d == 2 else k)
-                    T[i, j, k] = T[src[0], src[1], src[2]]
-                elif side == 1 and v >= hi[d]:
-                    src = (hi[d] - 1 if d == 0 else i, hi[d] - 1 if d == 1 else j, hi[d] - 1 if d == 2 else k)
-                    T[i, j, k] = T[src[0], src[1], src[2]]
+    a0 = np.zeros(3, np.int64)
+    a1 = np.array(T.shape, dtype=np.int64)
+    if side == 0:
+        a1[d] = lo[d]
+        src = lo[d]
+    else:
+        a0[d] = hi[d]
+        src = hi[d] - 1
+    for i in range(a0[0], a1[0]):
+        for j in range(a0[1], a1[1]):
+            for k in range(a0[2], a1[2]):
+                si = src if d == 0 else i
+                sj = src if d == 1 else j
+                sk = src if d == 2 else k
+                T[i, j, k] = T[si, sj, sk]
 
 
 @njit(cache=True)
