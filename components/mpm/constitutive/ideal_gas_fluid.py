@@ -1,0 +1,93 @@
+"""Compressible viscous ideal-gas fluid material points (004 sec. 3.3).
+
+    sigma = 2 mu D - 2/3 mu tr(D) I - (p + q) I              (004 eq. 21)
+    p     = (gamma - 1) rho e                                (004 eq. 22)
+    e^{k+1} = e^k + dt sigma^{k+1} : D / rho^{k+1}           (004 eq. 23)
+    q     = c_max g rho lambda~ |D_v| (c1 + c2 |div v| / max|div v|),
+            only where div v < 0                              (004 eqs. 24-25)
+
+Eq. 23 is solved exactly for e^{k+1} (p is linear in e):
+    e^{k+1} = (e^k + dt/rho (2 mu D':D' - q div v)) / (1 + (gamma-1) dt div v).
+q is taken with the sign that raises the pressure in compression; c_max is
+the largest sound speed sqrt(gamma (gamma-1) e) and max|div v| the largest
+over the particles passed in (one material on one patch).
+
+Tags: ``gamma``, ``viscosity`` (mu), optional ``specific_heat`` (not used
+here), ``artificial_viscosity`` (bool), ``av_g`` (g, e.g. sqrt(2) dx),
+``av_lambda`` (lambda~, 0.75 in 004), ``artificial_viscosity_coeff1`` (c1),
+``artificial_viscosity_coeff2`` (c2).  State: specific internal energy e.
+``energy`` receives the internal energy INCREMENT m (e^{k+1} - e^k).
+Wave speed c = sqrt(gamma p / rho) (viscous limit not included).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from ._common import _get, max_wavespeed
+
+ENERGY_IS_INCREMENT = True
+
+
+@dataclass(frozen=True)
+class Params:
+    gamma: float = 1.4
+    viscosity: float = 0.0
+    specific_heat: float = 0.0
+    artificial_viscosity: bool = False
+    av_g: float = 0.0
+    av_lambda: float = 0.75
+    artificial_viscosity_coeff1: float = 1.0
+    artificial_viscosity_coeff2: float = 1.0
+
+    @classmethod
+    def from_ups(cls, d):
+        av = str(d.get("artificial_viscosity", "false")).strip().lower() in ("true", "1")
+        return cls(_get(d, "gamma", 1.4), _get(d, "viscosity", 0.0),
+                   _get(d, "specific_heat", 0.0), av, _get(d, "av_g", 0.0),
+                   _get(d, "av_lambda", 0.75), _get(d, "artificial_viscosity_coeff1", 1.0),
+                   _get(d, "artificial_viscosity_coeff2", 1.0))
+
+
+@njit(cache=True)
+def kernel(gamma, mu, use_av, g, lam, c1, c2, L, vol, mass, vel, dt, e_old, e_new,
+           stress_new, energy):
+    n = L.shape[0]
+    cmax = 0.0
+    dmax = 0.0
+    if use_av:
+        for p in range(n):
+            cmax = max(cmax, np.sqrt(max(gamma * (gamma - 1.0) * e_old[p], 0.0)))
+            dmax = max(dmax, abs(L[p, 0, 0] + L[p, 1, 1] + L[p, 2, 2]))
+    ws = np.zeros(3)
+    for p in range(n):
+        rho = mass[p] / vol[p]
+        div = L[p, 0, 0] + L[p, 1, 1] + L[p, 2, 2]
+        q = 0.0
+        if use_av and div < 0.0:  # eqs. 24-25
+            q = cmax * g * rho * lam * (-div) * (c1 + c2 * abs(div) / dmax)
+        visc = 0.0  # 2 mu D':D'
+        for i in range(3):
+            for j in range(3):
+                Dij = 0.5 * (L[p, i, j] + L[p, j, i]) - (div / 3.0 if i == j else 0.0)
+                visc += Dij * Dij
+        visc *= 2.0 * mu
+        en = (e_old[p] + dt / rho * (visc - q * div)) / (1.0 + (gamma - 1.0) * dt * div)  # eq. 23
+        e_new[p] = en
+        pr = (gamma - 1.0) * rho * en  # eq. 22
+        for i in range(3):
+            for j in range(3):
+                Dij = 0.5 * (L[p, i, j] + L[p, j, i]) - (div / 3.0 if i == j else 0.0)
+                stress_new[p, i, j] = 2.0 * mu * Dij - (pr + q if i == j else 0.0)  # eq. 21
+        energy[p] = mass[p] * (en - e_old[p])
+        max_wavespeed(ws, np.sqrt(max(gamma * pr / rho, 0.0)), vel, p)
+    return ws
+
+
+def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy,
+           e_old, e_new):
+    """Update stress and specific internal energy; returns wave speed (3,)."""
+    P = params
+    return kernel(P.gamma, P.viscosity, bool(P.artificial_viscosity), P.av_g, P.av_lambda,
+                  P.artificial_viscosity_coeff1, P.artificial_viscosity_coeff2, L, vol,
+                  mass, vel, dt, e_old, e_new, stress_new, energy)
