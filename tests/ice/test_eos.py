@@ -172,7 +172,7 @@ def test_murnaghan_low_branch_is_the_threshold_curve():
     assert E.threshold_press(1000.0, 101325.0, 1000.0, 1.0e9)[1] == pytest.approx(1.0e6)
 
 
-@njit(cache=True)
+@njit  # not cached: test modules are not importable by name under importlib mode
 def _mixture_kernel(codes, params, rho_micro, temp, cv, gamma, press, c2):
     for c in range(rho_micro.shape[1]):
         for m in range(codes.shape[0]):
