@@ -1,0 +1,217 @@
+"""ICE boundary conditions: `<Grid><BoundaryConditions>` read per face and material, and applied.
+
+Extra cells hold the boundary values of CC variables, as in Uintah:
+  Dirichlet            extra cell = value
+  Neumann              extra cell = first interior cell + value * dx (value: the
+                       gradient along the outward normal; 0 = zero gradient)
+  symmetry             scalars copied; the normal velocity component reflected; the
+                       normal face velocity is zero
+  computeFromDensity   (SpecificVol only) v = theta / rho in the extra cell
+Face velocities on a boundary face: Dirichlet sets the normal component, symmetry
+zero, Neumann keeps the value computed from the extra cells.
+A `<BCType id="all">` applies to every material; Pressure is one field (material 0).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY = 0, 1, 2, 3
+KINDS = {"Neumann": NEUMANN, "Dirichlet": DIRICHLET, "symmetry": SYMMETRY, "computeFromDensity": FROM_DENSITY}
+VARS = ("Pressure", "Velocity", "Temperature", "Density", "SpecificVol")
+FACE_NAMES = ("x-", "x+", "y-", "y+", "z-", "z+")
+
+
+def read_bcs(root, level, nmat):
+    """{face: {var: [(kind, value) per material]}} for every physical face of the level."""
+    grid = root.child("Grid", required=True)
+    bcn = grid.child("BoundaryConditions")
+    found = {}
+    nodes = {}
+    if bcn is not None:
+        for face in bcn.children("Face"):
+            side = face.attr("side", choices=FACE_NAMES)
+            table = found.setdefault(side, {})
+            nodes[side] = face
+            for bt in face.children("BCType"):
+                _read_bctype(bt, table, nmat)
+    out = {}
+    for d in range(3):
+        if level.collapsed[d] or level.periodic[d]:
+            continue
+        for s in range(2):
+            name = FACE_NAMES[2 * d + s]
+            table = found.get(name, {})
+            where = nodes.get(name, bcn if bcn is not None else grid)
+            face = {}
+            for var in VARS:
+                per = table.get(var, [None] * nmat)
+                if var == "Pressure":
+                    per = per[:1]
+                for m, e in enumerate(per):
+                    if e is None:
+                        if "symmetry" in table:
+                            per[m] = (SYMMETRY, None)
+                        elif var == "SpecificVol":
+                            per[m] = (FROM_DENSITY, None)
+                        else:
+                            raise where.error(f"face {name}: no boundary condition for {var} of material {m}; "
+                                              'give <BCType id="..." label="' + var +
+                                              '" var="Dirichlet|Neumann"> or a symmetry BCType')
+                face[var] = per
+            out[name] = face
+    return out
+
+
+def _read_bctype(bt, table, nmat):
+    ident = bt.attr("id")
+    label = bt.attr("label")
+    kind = bt.attr("var", choices=tuple(KINDS))
+    if ident == "all":
+        mats = range(nmat)
+    else:
+        try:
+            mats = [int(ident)]
+        except ValueError:
+            raise bt.error(f'id="{ident}" is not a material index or "all"') from None
+        if not 0 <= mats[0] < nmat:
+            raise bt.error(f"id={ident}: there are {nmat} ICE materials (0..{nmat - 1})")
+    if kind == "symmetry":
+        if bt.has("value"):
+            bt.child("value").mark_used()
+        table["symmetry"] = True
+        for var in VARS:
+            per = table.setdefault(var, [None] * nmat)
+            for m in mats:
+                per[m] = (SYMMETRY, None)
+        return
+    if label not in VARS:
+        raise bt.error(f'label="{label}" is not supported; accepted: {", ".join(VARS)} (or var="symmetry")')
+    if kind == "computeFromDensity" and label != "SpecificVol":
+        raise bt.error('var="computeFromDensity" applies only to label="SpecificVol"')
+    if label == "SpecificVol" and kind not in ("computeFromDensity",):
+        raise bt.error('SpecificVol accepts only var="computeFromDensity"')
+    vtype = "vector" if label == "Velocity" else "float"
+    value = bt.get("value", vtype, 0.0 if vtype == "float" else (0.0, 0.0, 0.0))
+    if label == "Pressure" and mats != [0] and ident != "all":
+        raise bt.error('the pressure is one field: give its BCType with id="0"')
+    per = table.setdefault(label, [None] * nmat)
+    for m in mats:
+        per[m] = (KINDS[kind], np.asarray(value, dtype=np.float64) if vtype == "vector" else float(value))
+
+
+@njit(cache=True)
+def bc_scalar(q, d, side, kind, value, dx, lo, hi):
+    """Fill the extra-cell layer of face (d, side) of a scalar CC array."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    n = lo[d] if side == 0 else hi[d] - 1
+    add = value * dx if kind == 0 else 0.0
+    sh = q.shape
+    for a in range(sh[(d + 1) % 3]):
+        for b in range(sh[(d + 2) % 3]):
+            ie = [0, 0, 0]
+            ie[d] = e
+            ie[(d + 1) % 3] = a
+            ie[(d + 2) % 3] = b
+            if kind == 1:
+                q[ie[0], ie[1], ie[2]] = value
+            else:
+                ie_n = ie.copy()
+                ie_n[d] = n
+                q[ie[0], ie[1], ie[2]] = q[ie_n[0], ie_n[1], ie_n[2]] + add
+
+
+@njit(cache=True)
+def bc_vector(q, d, side, kind, value, dx, lo, hi):
+    """Fill the extra-cell layer of a vector CC array (velocity)."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    n = lo[d] if side == 0 else hi[d] - 1
+    sh = q.shape
+    for a in range(sh[(d + 1) % 3]):
+        for b in range(sh[(d + 2) % 3]):
+            ie = [0, 0, 0]
+            ie[d] = e
+            ie[(d + 1) % 3] = a
+            ie[(d + 2) % 3] = b
+            i_n = ie.copy()
+            i_n[d] = n
+            for c in range(3):
+                if kind == 1:
+                    q[ie[0], ie[1], ie[2], c] = value[c]
+                elif kind == 2:
+                    v = q[i_n[0], i_n[1], i_n[2], c]
+                    q[ie[0], ie[1], ie[2], c] = -v if c == d else v
+                else:
+                    q[ie[0], ie[1], ie[2], c] = q[i_n[0], i_n[1], i_n[2], c] + value[c] * dx
+
+
+@njit(cache=True)
+def bc_sp_vol_from_density(spv, vf, rho, d, side, lo, hi):
+    """computeFromDensity: v = theta / rho in the extra-cell layer of face (d, side)."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    sh = spv.shape
+    for a in range(sh[(d + 1) % 3]):
+        for b in range(sh[(d + 2) % 3]):
+            ie = [0, 0, 0]
+            ie[d] = e
+            ie[(d + 1) % 3] = a
+            ie[(d + 2) % 3] = b
+            spv[ie[0], ie[1], ie[2]] = vf[ie[0], ie[1], ie[2]] / rho[ie[0], ie[1], ie[2]]
+
+
+@njit(cache=True)
+def bc_face_velocity(uf, d, index, value):
+    """Set every face of layer `index` (along d) of a face-velocity array to `value`."""
+    sh = uf.shape
+    for a in range(sh[(d + 1) % 3]):
+        for b in range(sh[(d + 2) % 3]):
+            ie = [0, 0, 0]
+            ie[d] = index
+            ie[(d + 1) % 3] = a
+            ie[(d + 2) % 3] = b
+            uf[ie[0], ie[1], ie[2]] = value
+
+
+class BoundaryConditions:
+    """The boundary conditions of one deck, applied to one patch's arrays."""
+
+    def __init__(self, table, level):
+        self.table = table
+        self.level = level
+
+    def _faces(self, patch):
+        for name in patch.boundary_faces:
+            i = FACE_NAMES.index(name)
+            yield name, i // 2, i % 2
+
+    def scalar(self, patch, q, var, m, lo, hi):
+        """Temperature, Density or Pressure (m = 0) in the extra cells of one CC array."""
+        for name, d, s in self._faces(patch):
+            kind, value = self.table[name][var][m]
+            v = 0.0 if value is None else value
+            if kind == DIRICHLET:
+                bc_scalar(q, d, s, 1, v, 0.0, lo, hi)
+            else:
+                bc_scalar(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], lo, hi)
+
+    def velocity(self, patch, q, m, lo, hi):
+        for name, d, s in self._faces(patch):
+            kind, value = self.table[name]["Velocity"][m]
+            v = np.zeros(3) if value is None else value
+            bc_vector(q, d, s, kind, v, self.level.dx[d], lo, hi)
+
+    def sp_vol(self, patch, spv, vf, rho, m, lo, hi):
+        for name, d, s in self._faces(patch):
+            bc_sp_vol_from_density(spv, vf, rho, d, s, lo, hi)
+
+    def face_velocity(self, patch, uf, d, m, flo, fhi):
+        """Boundary faces of direction d: Dirichlet -> value[d], symmetry -> 0."""
+        for s, at in ((0, patch.at_low[d]), (1, patch.at_high[d])):
+            if not at:
+                continue
+            kind, value = self.table[FACE_NAMES[2 * d + s]]["Velocity"][m]
+            idx = flo[d] if s == 0 else fhi[d] - 1
+            if kind == DIRICHLET:
+                bc_face_velocity(uf, d, idx, float(value[d]))
+            elif kind == SYMMETRY:
+                bc_face_velocity(uf, d, idx, 0.0)

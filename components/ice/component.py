@@ -1,0 +1,240 @@
+"""The ICE component: multi-material, cell-centred, compressible Eulerian flow.
+
+`<SimulationComponent type="ice">`. Reads Uintah's tags (`<CFD>`, `<PhysicalConstants>`,
+`<MaterialProperties><ICE>`, `<exchange_properties>`, `<Grid><BoundaryConditions>`) and
+schedules one timestep as the tasks of paper 000 sec. 3.3, steps 2-12 (tasks.py).
+Physics a deck does not call for is not scheduled: the exchange tasks need two or
+more materials with a non-zero coefficient; gravity enters only when non-zero.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from framework import labels as L
+from framework.component import Component, register
+from framework.geometry import GeometryReader
+from framework.problemspec import Param
+from framework.task import NEW, OLD, Task
+from framework.variables import Ghost
+
+from . import labels as I
+from .bc import BoundaryConditions, read_bcs
+from .eos import MAX_PARAMS, make_eos
+from .tasks import IceTasks
+
+G = Ghost.AROUND_CELLS
+
+EOS_TAGS = {"ideal_gas": (), "Murnaghan": ("K", "n", "rho0", "P0"), "JWL": ("A", "B", "R1", "R2", "om", "rho0"),
+            "JWLC": ("A", "B", "C", "R1", "R2", "om", "rho0"), "Stiffened_gas": ("Pinf",)}
+MATERIAL = {
+    "dynamic_viscosity": Param("float", 0.0),
+    "thermal_conductivity": Param("float", 0.0),
+    "specific_heat": Param("float"),
+    "gamma": Param("float"),
+}
+GEOM = {
+    "res": Param("ivector", (2, 2, 2)),
+    "velocity": Param("vector"),
+    "temperature": Param("float"),
+    "density": Param("float"),
+    "pressure": Param("float"),
+}
+
+
+class Material:
+    """One ICE material: EOS, constants and its initial geometry objects."""
+
+    def __init__(self, name, eos, props, objects):
+        self.name = name
+        self.eos = eos
+        self.cv = props["specific_heat"]
+        self.gamma = props["gamma"]
+        self.viscosity = props["dynamic_viscosity"]
+        self.conductivity = props["thermal_conductivity"]
+        self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
+
+
+@register("ice")
+class ICE(IceTasks, Component):
+    """Uintah's ICE: equilibration pressure, face velocities, Lagrangian step, exchange, advection."""
+
+    def problem_setup(self, root, level):
+        self.level = level
+        self.dims = np.array([not c for c in level.collapsed])
+        cfd = root.child("CFD", required=True)
+        self.cfl = cfd.get("cfl", "float")
+        ice = cfd.child("ICE", required=True)
+        adv = ice.child("advection", required=True)
+        self.second_order = adv.attr("type", choices=("FirstOrder", "SecondOrder")) == "SecondOrder"
+        adv.attr("useCompatibleFluxes", "bool", True)
+        self.max_iter = ice.get("max_iteration_equilibration", "int", 100)
+        pc = root.child("PhysicalConstants", required=True)
+        self.gravity = np.array(pc.get("gravity", "vector"), dtype=np.float64)
+        self.reference_pressure = pc.get("reference_pressure", "float", 101325.0)
+        self.use_gravity = bool(np.any(self.gravity != 0.0))
+        mp = root.child("MaterialProperties", required=True)
+        icen = mp.child("ICE", required=True)
+        geo = GeometryReader()
+        self.materials = [self._read_material(m, geo) for m in icen.children("material")]
+        if not self.materials:
+            raise icen.error("no <material>: ICE needs at least one")
+        n = len(self.materials)
+        self.K, self.H = self._read_exchange(mp.child("exchange_properties"), n)
+        self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
+        self.bcs = BoundaryConditions(read_bcs(root, level, n), level)
+        self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)
+        self.params = np.array([m.eos.params() for m in self.materials]).reshape(n, MAX_PARAMS)
+        self.cvs = np.array([m.cv for m in self.materials])
+        self.gammas = np.array([m.gamma for m in self.materials])
+        self.matls = list(range(n))
+        self._geom_cache = {}
+
+    def material_names(self):
+        return [m.name for m in self.materials]
+
+    def _read_material(self, node, geo):
+        name = node.attr("name", default=f"ice{len(getattr(self, 'materials', []))}")
+        props = node.read(MATERIAL)
+        for tag in ("specific_heat", "gamma"):
+            if props[tag] <= 0:
+                raise node.child(tag).error(f"<{tag}> must be positive")
+        for tag in ("dynamic_viscosity", "thermal_conductivity"):
+            if props[tag] != 0.0:
+                raise node.child(tag).error(f"<{tag}> {props[tag]}: viscous stress and heat conduction are not "
+                                            "implemented in pysus ICE yet; accepted: 0")
+        en = node.child("EOS", required=True)
+        etype = en.attr("type", choices=tuple(EOS_TAGS))
+        eos = make_eos(etype, {t: en.get(t, "float") for t in EOS_TAGS[etype]})
+        objects = []
+        for go in node.children("geom_object"):
+            objects.append((geo.read_object(go), go.read(GEOM)))
+        if not objects:
+            raise node.error("material has no <geom_object> (initial condition)")
+        return Material(name, eos, props, objects)
+
+    @staticmethod
+    def _read_exchange(node, n):
+        K, H = np.zeros((n, n)), np.zeros((n, n))
+        if node is None:
+            return K, H
+        ec = node.child("exchange_coefficients")
+        if ec is None:
+            return K, H
+        pairs = [(a, b) for a in range(n) for b in range(a + 1, n)]
+        for tag, mat in (("momentum", K), ("heat", H)):
+            c = ec.child(tag)
+            if c is None:
+                continue
+            txt = c.text().strip()
+            try:
+                vals = [float(v) for v in txt.strip("[]").replace(",", " ").split()]
+            except ValueError:
+                raise c.error(f"'{txt}' is not a list of numbers [K01, K02, ..., K12, ...]") from None
+            if len(vals) != len(pairs):
+                raise c.error(f"{len(vals)} coefficients for {n} materials; expected {len(pairs)} "
+                              "(pairs 0-1, 0-2, ..., 1-2, ...)")
+            if any(v < 0 for v in vals):
+                raise c.error("exchange coefficients must be >= 0")
+            for (a, b), v in zip(pairs, vals):
+                mat[a, b] = mat[b, a] = v
+        return K, H
+
+    # -- scheduling -----------------------------------------------------------------------
+    def schedule_initialize(self, level, sched):
+        sched.add_task(Task("ICE::actuallyInitialize", self.initialize, self.matls)
+                       .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC)
+                       .computes(I.press_CC, matls=[0]))
+
+    def schedule_compute_stable_timestep(self, level, sched):
+        sched.add_task(Task("ICE::computeStableTimestep", self.stable_timestep, self.matls)
+                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
+                       .computes(L.delT))
+
+    def schedule_time_advance(self, level, sched):
+        m0 = [0]
+        many = len(self.matls) > 1
+        gadv = 2 if self.second_order else 1
+        dirs = [d for d in range(3) if self.dims[d]]
+        t = Task("ICE::computeEquilibrationPressure", self.equilibration_pressure, self.matls) \
+            .requires(OLD, I.rho_CC).requires(OLD, I.temp_CC).requires(OLD, I.sp_vol_CC) \
+            .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \
+            .computes(I.speedSound_CC)
+        if many:
+            t.requires(OLD, I.press_CC, matls=m0)
+        sched.add_task(t)
+
+        t = Task("ICE::computeVel_FC", self.vel_fc, self.matls) \
+            .requires(OLD, L.delT).requires(OLD, I.rho_CC, G, 1).requires(OLD, I.vel_CC, G, 1) \
+            .requires(NEW, I.sp_vol_CC, G, 1).requires(NEW, I.press_equil_CC, G, 1, matls=m0)
+        for d in dirs:
+            t.computes(I.FC_VEL[d])
+            if not self.exchange:
+                t.computes(I.FC_VEL_ME[d])
+        sched.add_task(t)
+
+        if self.exchange:
+            t = Task("ICE::addExchangeContributionToFCVel", self.exchange_fc, self.matls) \
+                .requires(OLD, L.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
+            for d in dirs:
+                t.requires(NEW, I.FC_VEL[d]).computes(I.FC_VEL_ME[d])
+            sched.add_task(t)
+
+        t = Task("ICE::computeDelPressAndUpdatePressCC", self.delp_press, self.matls) \
+            .requires(OLD, L.delT).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
+            .requires(NEW, I.press_equil_CC, matls=m0) \
+            .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
+        if many:
+            t.requires(NEW, I.vol_frac_CC, G, 1)
+        else:
+            t.requires(NEW, I.vol_frac_CC)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL_ME[d])
+        sched.add_task(t)
+
+        t = Task("ICE::computePressFC", self.press_fc, self.matls) \
+            .requires(NEW, I.press_CC, G, 1, matls=m0).requires(OLD, I.rho_CC, G, 1)
+        for d in dirs:
+            t.computes(I.PRESS_FC[d], matls=m0)
+        sched.add_task(t)
+
+        t = Task("ICE::computeLagrangianValues", self.lagrangian_values, self.matls) \
+            .requires(OLD, L.delT).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(OLD, I.temp_CC) \
+            .requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
+            .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
+            .computes(I.mass_L_CC).computes(I.mom_L_CC).computes(I.int_eng_L_CC)
+        for d in dirs:
+            t.requires(NEW, I.PRESS_FC[d], matls=m0)
+        if not self.exchange:
+            t.computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+        sched.add_task(t)
+
+        if self.exchange:
+            sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", self.exchange_cc, self.matls)
+                           .requires(OLD, L.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC)
+                           .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC)
+                           .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC))
+
+        t = Task("ICE::computeLagrangianSpecificVolume", self.lagrangian_sp_vol, self.matls) \
+            .requires(OLD, L.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.sp_vol_CC) \
+            .requires(NEW, I.vol_frac_CC).requires(NEW, I.speedSound_CC) \
+            .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.sp_vol_L_CC)
+        if many:
+            t.requires(NEW, I.int_eng_L_ME_CC).requires(OLD, I.temp_CC)
+        sched.add_task(t)
+
+        t = Task("ICE::advectAndAdvanceInTime", self.advect_and_advance, self.matls) \
+            .requires(OLD, L.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
+            .requires(NEW, I.int_eng_L_ME_CC, G, gadv).requires(NEW, I.sp_vol_L_CC, G, gadv) \
+            .requires(NEW, I.vol_frac_CC) \
+            .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL_ME[d])
+        sched.add_task(t)
+
+        sched.add_task(Task("ICE::sumConservedQuantities", self.conserved_sums, self.matls)
+                       .requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.temp_CC)
+                       .computes(I.TotalMass).computes(I.KineticEnergy).computes(I.TotalIntEng)
+                       .computes(I.TotalMomentum))
+        sched.add_task(Task("ICE::computeMach", self.compute_mach, self.matls)
+                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
+                       .computes(I.mach))

@@ -1,0 +1,395 @@
+"""Numba kernels of the ICE Lagrangian phase (paper 000 sec. 3.3 steps 2-11).
+
+Conventions: every grid array is a patch's stored array (halo included); `lo`, `hi`
+are local index ranges (int64[3]). Face arrays (SFCX/Y/Z) have their own origin:
+`sh = low_index(SFC) - low_index(CC)` maps face (i,j,k) to its right/upper cell
+(i,j,k)+sh; the left cell is one step back along the face normal `dd`. Materials of
+a multi-material kernel come as tuples of arrays (one entry per material), so one
+compiled kernel serves any number of materials. Kernels loop only over the
+directions that exist: a 2D run never touches a third face direction.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .eos import eos_alpha, eos_press_eos, eos_rho_micro
+
+TINY = 1.0e-100
+
+
+@njit(cache=True)
+def equilibrate_one(rho, temp, sp_vol, press, vol_frac, cs, code, params, cv, gamma, lo, hi):
+    """Eq. 13 for one material: theta = 1, rho_micro = rho; p and c from the EOS."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                r = rho[i, j, k]
+                p, dpdr, dpde = eos_press_eos(code, params, r, temp[i, j, k], cv, gamma)
+                press[i, j, k] = p
+                sp_vol[i, j, k] = 1.0 / r
+                vol_frac[i, j, k] = 1.0
+                cs[i, j, k] = np.sqrt(max(dpdr + dpde * p / (r * r), TINY))
+
+
+@njit(cache=True)
+def equilibrate_many(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, params, cvs, gammas,
+                     lo, hi, tol, max_iter):
+    """Eq. 13 by Newton per cell: find p with sum_m rho_m / rho_micro_m(p, T_m) = 1.
+
+    Linearising theta_m(p) = rho_m/rho_micro_m about the current iterate gives
+    dp = (sum theta - 1 - sum Q_m/y_m) / sum 1/y_m, Q_m = p - p_eos_m,
+    y_m = (dp/drho)_m rho_micro_m^2 / rho_m. Returns the largest iteration count.
+    """
+    n = len(rhos)
+    rm = np.empty(n)
+    pe = np.empty(n)
+    dpr = np.empty(n)
+    dpe = np.empty(n)
+    worst = 0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                p = p_guess[i, j, k]
+                for m in range(n):
+                    rm[m] = 1.0 / sp_old[m][i, j, k]
+                    pe[m], dpr[m], dpe[m] = eos_press_eos(codes[m], params[m], rm[m], temps[m][i, j, k],
+                                                          cvs[m], gammas[m])
+                it = 0
+                while it < max_iter:
+                    it += 1
+                    A = 0.0
+                    B = 0.0
+                    C = 0.0
+                    for m in range(n):
+                        th = rhos[m][i, j, k] / rm[m]
+                        A += th
+                        y = max(dpr[m], TINY) * rm[m] * rm[m] / rhos[m][i, j, k]
+                        B += (p - pe[m]) / y
+                        C += 1.0 / y
+                    dp = (A - 1.0 - B) / C
+                    pn = p + dp
+                    if p > 0.0 and pn < 0.1 * p:
+                        pn = 0.1 * p            # keep an ideal-gas iterate positive
+                    p = pn
+                    for m in range(n):
+                        rm[m] = eos_rho_micro(codes[m], params[m], p, temps[m][i, j, k], cvs[m], gammas[m], rm[m])
+                        pe[m], dpr[m], dpe[m] = eos_press_eos(codes[m], params[m], rm[m], temps[m][i, j, k],
+                                                              cvs[m], gammas[m])
+                    if abs(dp) <= tol * abs(p) + 1e-300 and abs(A - 1.0) < 1e-9:
+                        break
+                worst = max(worst, it)
+                press[i, j, k] = p
+                for m in range(n):
+                    sp_new[m][i, j, k] = 1.0 / rm[m]
+                    vfs[m][i, j, k] = rhos[m][i, j, k] / rm[m]
+                    css[m][i, j, k] = np.sqrt(max(dpr[m] + dpe[m] * pe[m] / (rm[m] * rm[m]), TINY))
+    return worst
+
+
+@njit(cache=True)
+def face_velocity(rho, vel, sp_vol, press, uf, sh, dd, comp, flo, fhi, dt, dx, g):
+    """Eq. 28: mass-weighted average minus dt * harmonic specific volume * dp/dx (+ dt g)."""
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                a, b, c = i + sh[0], j + sh[1], k + sh[2]
+                l0, l1, l2 = a - dd[0], b - dd[1], c - dd[2]
+                rL = rho[l0, l1, l2]
+                rR = rho[a, b, c]
+                vL = sp_vol[l0, l1, l2]
+                vR = sp_vol[a, b, c]
+                avg = (rL * vel[l0, l1, l2, comp] + rR * vel[a, b, c, comp]) / (rL + rR)
+                uf[i, j, k] = avg - dt * (2.0 * vL * vR / (vL + vR)) * (press[a, b, c] - press[l0, l1, l2]) / dx \
+                    + dt * g
+
+
+@njit(cache=True)
+def solve_small(a, b, n):
+    """Gaussian elimination without pivoting (a is row diagonally dominant); b is overwritten."""
+    for p in range(n):
+        for r in range(p + 1, n):
+            f = a[r, p] / a[p, p]
+            for c in range(p, n):
+                a[r, c] -= f * a[p, c]
+            b[r] -= f * b[p]
+    for r in range(n - 1, -1, -1):
+        s = b[r]
+        for c in range(r + 1, n):
+            s -= a[r, c] * b[c]
+        b[r] = s / a[r, r]
+
+
+@njit(cache=True)
+def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
+    """Eqs. 28+38 on faces: implicit momentum exchange of the face velocities of all materials.
+
+    With face-averaged theta and v: u_m - u_m* = sum_n dt theta_n K_mn v_m (u_n - u_m).
+    """
+    n = len(ufs)
+    a = np.empty((n, n))
+    b = np.empty(n)
+    th = np.empty(n)
+    sv = np.empty(n)
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                x, y, z = i + sh[0], j + sh[1], k + sh[2]
+                l0, l1, l2 = x - dd[0], y - dd[1], z - dd[2]
+                for m in range(n):
+                    th[m] = 0.5 * (vfs[m][x, y, z] + vfs[m][l0, l1, l2])
+                    sv[m] = 0.5 * (sps[m][x, y, z] + sps[m][l0, l1, l2])
+                    b[m] = ufs[m][i, j, k]
+                _exchange_matrix(a, th, sv, K, dt, n, None)
+                solve_small(a, b, n)
+                for m in range(n):
+                    out[m][i, j, k] = b[m]
+
+
+@njit(cache=True)
+def _exchange_matrix(a, th, sv, K, dt, n, cv):
+    """(I + B): B_mn = -dt theta_n K_mn v_m (/cv_m for heat), B_mm = -sum_n B_mn."""
+    for m in range(n):
+        diag = 1.0
+        for q in range(n):
+            if q == m:
+                continue
+            beta = dt * th[q] * K[m, q] * sv[m]
+            if cv is not None:
+                beta /= cv[m]
+            a[m, q] = -beta
+            diag += beta
+        a[m, m] = diag
+
+
+@njit(cache=True)
+def div_theta_u(vf, one, ux, uy, uz, shx, shy, shz, dims, lo, hi, dt, dx, out):
+    """Adds dt * div(theta u*) (donor-cell theta on faces) of one material to `out` (eq. 29).
+
+    `one`: a single material, theta = 1 and the divergence is that of u*.
+    """
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                s = 0.0
+                if dims[0]:
+                    a, b, c = i - shx[0], j - shx[1], k - shx[2]
+                    s += (_vflux(vf, ux[a + 1, b, c], i, j, k, 1, 0, 0, one)
+                          - _vflux(vf, ux[a, b, c], i - 1, j, k, 1, 0, 0, one)) / dx[0]
+                if dims[1]:
+                    a, b, c = i - shy[0], j - shy[1], k - shy[2]
+                    s += (_vflux(vf, uy[a, b + 1, c], i, j, k, 0, 1, 0, one)
+                          - _vflux(vf, uy[a, b, c], i, j - 1, k, 0, 1, 0, one)) / dx[1]
+                if dims[2]:
+                    a, b, c = i - shz[0], j - shz[1], k - shz[2]
+                    s += (_vflux(vf, uz[a, b, c + 1], i, j, k, 0, 0, 1, one)
+                          - _vflux(vf, uz[a, b, c], i, j, k - 1, 0, 0, 1, one)) / dx[2]
+                out[i, j, k] += dt * s
+
+
+@njit(cache=True)
+def _vflux(vf, u, i, j, k, di, dj, dk, one):
+    """u * theta of the donor cell of the face between (i,j,k) and (i,j,k)+d."""
+    if one:
+        return u
+    if u >= 0.0:
+        return u * vf[i, j, k]
+    return u * vf[i + di, j + dj, k + dk]
+
+
+@njit(cache=True)
+def update_pressure(press_eq, div, kap_sum, delP, press, lo, hi):
+    """Eqs. 29-30: delP = -sum dt div(theta u*) / sum theta kappa; p = p_eq + delP."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                d = -div[i, j, k] / kap_sum[i, j, k]
+                delP[i, j, k] = d
+                press[i, j, k] = press_eq[i, j, k] + d
+
+
+@njit(cache=True)
+def add_theta_kappa(vf, sp_vol, cs, out, lo, hi):
+    """out += theta kappa, kappa = v / c^2 (isothermal compressibility of eq. 47, as Uintah)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                c = cs[i, j, k]
+                out[i, j, k] += vf[i, j, k] * sp_vol[i, j, k] / (c * c)
+
+
+@njit(cache=True)
+def face_pressure(press, rho_sum, pf, sh, dd, flo, fhi):
+    """Eq. 31: p* = (pL/rhoL + pR/rhoR) / (1/rhoL + 1/rhoR), rho summed over materials."""
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                a, b, c = i + sh[0], j + sh[1], k + sh[2]
+                l0, l1, l2 = a - dd[0], b - dd[1], c - dd[2]
+                rL = rho_sum[l0, l1, l2]
+                rR = rho_sum[a, b, c]
+                pf[i, j, k] = (press[l0, l1, l2] * rR + press[a, b, c] * rL) / (rL + rR)
+
+
+@njit(cache=True)
+def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy, shz, dims,
+               mass_L, mom_L, eng_L, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g):
+    """Eqs. 33-37 for one material: m, m u, m e plus pressure-gradient and flow-work sources.
+
+    Everywhere (extra cells included) m u and m e start from the current state; the
+    sources act on interior cells: -dt V theta grad p* (+ dt m g), V theta kappa p delP.
+    """
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                m = rho[i, j, k] * vol
+                mass_L[i, j, k] = m
+                eng_L[i, j, k] = m * cv * temp[i, j, k]
+                for c in range(3):
+                    mom_L[i, j, k, c] = m * vel[i, j, k, c]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                th = vf[i, j, k]
+                f = -dt * vol * th
+                if dims[0]:
+                    mom_L[i, j, k, 0] += f * (px[i - shx[0] + 1, j - shx[1], k - shx[2]]
+                                              - px[i - shx[0], j - shx[1], k - shx[2]]) / dx[0]
+                if dims[1]:
+                    mom_L[i, j, k, 1] += f * (py[i - shy[0], j - shy[1] + 1, k - shy[2]]
+                                              - py[i - shy[0], j - shy[1], k - shy[2]]) / dx[1]
+                if dims[2]:
+                    mom_L[i, j, k, 2] += f * (pz[i - shz[0], j - shz[1], k - shz[2] + 1]
+                                              - pz[i - shz[0], j - shz[1], k - shz[2]]) / dx[2]
+                if use_g:
+                    for c in range(3):
+                        mom_L[i, j, k, c] += dt * mass_L[i, j, k] * g[c]
+                c2 = cs[i, j, k] ** 2
+                eng_L[i, j, k] += vol * th * sp_vol[i, j, k] / c2 * press[i, j, k] * delP[i, j, k]
+
+
+@njit(cache=True)
+def exchange_cells(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H):
+    """Eqs. 38-39, pointwise implicit for any number of materials (stable for K = 1e15).
+
+    Velocities: (I + B_K) u^L = u^L-; temperatures: (I + B_H / cv) T^L = T^L-, with
+    B from _exchange_matrix; both conserve the mixture's momentum and energy.
+    """
+    n = len(masses)
+    a = np.empty((n, n))
+    b = np.empty(n)
+    th = np.empty(n)
+    sv = np.empty(n)
+    cvv = np.empty(n)
+    for m in range(n):
+        cvv[m] = cvs[m]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for m in range(n):
+                    th[m] = vfs[m][i, j, k]
+                    sv[m] = sps[m][i, j, k]
+                for c in range(3):
+                    for m in range(n):
+                        b[m] = moms[m][i, j, k, c] / masses[m][i, j, k]
+                    _exchange_matrix(a, th, sv, K, dt, n, None)
+                    solve_small(a, b, n)
+                    for m in range(n):
+                        mom_out[m][i, j, k, c] = b[m] * masses[m][i, j, k]
+                for m in range(n):
+                    b[m] = engs[m][i, j, k] / (masses[m][i, j, k] * cvv[m])
+                _exchange_matrix(a, th, sv, H, dt, n, cvv)
+                solve_small(a, b, n)
+                for m in range(n):
+                    eng_out[m][i, j, k] = b[m] * masses[m][i, j, k] * cvv[m]
+
+
+@njit(cache=True)
+def sp_vol_lagrangian_one(mass_L, sp_vol, vf, cs, delP, out, lo, hi, vol):
+    """Eq. 40 for one material: (m v)^L = m v - V theta kappa delP (f_theta = 1, no Tdot terms)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                v = sp_vol[i, j, k]
+                kap = v / cs[i, j, k] ** 2
+                out[i, j, k] = max(mass_L[i, j, k] * v - vol * vf[i, j, k] * kap * delP[i, j, k], TINY)
+
+
+@njit(cache=True)
+def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, params, cvs, gammas,
+                           outs, lo, hi, vol, dt):
+    """Eq. 40: (m v)^L = m v + V [-theta kappa delP + dt (theta beta Tdot - f_theta sum theta beta Tdot)]."""
+    n = len(masses)
+    tb = np.empty(n)
+    fth = np.empty(n)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                ksum = 0.0
+                bsum = 0.0
+                for m in range(n):
+                    v = sps[m][i, j, k]
+                    th = vfs[m][i, j, k]
+                    fth[m] = th * v / css[m][i, j, k] ** 2
+                    ksum += fth[m]
+                    t_old = temps_old[m][i, j, k]
+                    t_L = engs[m][i, j, k] / (masses[m][i, j, k] * cvs[m])
+                    beta = eos_alpha(codes[m], params[m], 1.0 / v, t_L, cvs[m], gammas[m])
+                    tb[m] = th * beta * (t_L - t_old) / dt
+                    bsum += tb[m]
+                for m in range(n):
+                    v = sps[m][i, j, k]
+                    src = -fth[m] * delP[i, j, k] + dt * (tb[m] - fth[m] / ksum * bsum)
+                    outs[m][i, j, k] = max(masses[m][i, j, k] * v + vol * src, TINY)
+
+
+@njit(cache=True)
+def stable_dt(vel, temp, sp_vol, code, params, cv, gamma, dims, dx, lo, hi):
+    """CFL limit min over cells and directions of dx / (c + |u|) for one material."""
+    best = np.inf
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                r = 1.0 / sp_vol[i, j, k]
+                p, dpdr, dpde = eos_press_eos(code, params, r, temp[i, j, k], cv, gamma)
+                c = np.sqrt(max(dpdr + dpde * p / (r * r), TINY))
+                for d in range(3):
+                    if dims[d]:
+                        best = min(best, dx[d] / (c + abs(vel[i, j, k, d])))
+    return best
+
+
+@njit(cache=True)
+def mach_number(vel, temp, sp_vol, out, code, params, cv, gamma, lo, hi):
+    """|u| / c from the end-of-step state."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                r = 1.0 / sp_vol[i, j, k]
+                p, dpdr, dpde = eos_press_eos(code, params, r, temp[i, j, k], cv, gamma)
+                c = np.sqrt(max(dpdr + dpde * p / (r * r), TINY))
+                u = vel[i, j, k]
+                out[i, j, k] = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / c
+
+
+@njit(cache=True)
+def conserved_sums(rho, vel, temp, cv, vol, lo, hi, out):
+    """out += [mass, kinetic energy, internal energy, momentum x, y, z] over cells [lo, hi)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                m = rho[i, j, k] * vol
+                u0, u1, u2 = vel[i, j, k, 0], vel[i, j, k, 1], vel[i, j, k, 2]
+                out[0] += m
+                out[1] += 0.5 * m * (u0 * u0 + u1 * u1 + u2 * u2)
+                out[2] += m * cv * temp[i, j, k]
+                out[3] += m * u0
+                out[4] += m * u1
+                out[5] += m * u2
+
+
+@njit(cache=True)
+def rho_micro_fill(press, temp, out, guess, code, params, cv, gamma):
+    """rho_micro(p, T) from the EOS for flat arrays (initial condition)."""
+    for n in range(press.size):
+        out[n] = eos_rho_micro(code, params, press[n], temp[n], cv, gamma, guess)

@@ -1,0 +1,49 @@
+"""ICE variable labels, named as in Uintah's ICELabel.cc.
+
+Per-material CC variables are stored for every ICE material; the single-field
+pressure variables (press_equil_CC, press_CC, delP_Dilatate, press*_FC) live under
+material 0, as Uintah's "press_matl". Vectors have shape (3,) in 1D and 2D too.
+"""
+from framework import labels as L
+from framework.variables import VarType
+
+CC, X, Y, Z, R = VarType.CC, VarType.SFCX, VarType.SFCY, VarType.SFCZ, VarType.REDUCTION
+
+# state carried from step to step
+rho_CC = L.create("rho_CC", CC)                 # macroscopic density (mass / cell volume)
+vel_CC = L.create("vel_CC", CC, (3,))
+temp_CC = L.create("temp_CC", CC)
+sp_vol_CC = L.create("sp_vol_CC", CC)           # specific volume 1/rho_micro
+press_CC = L.create("press_CC", CC)             # material 0
+
+# step 2: equilibration (eq. 13)
+press_equil_CC = L.create("press_equil_CC", CC)
+vol_frac_CC = L.create("vol_frac_CC", CC)
+speedSound_CC = L.create("speedSound_CC", CC)
+
+# step 3: face velocities (eq. 28) and their exchange
+FC_VEL = (L.create("uvel_FC", X), L.create("vvel_FC", Y), L.create("wvel_FC", Z))
+FC_VEL_ME = (L.create("uvel_FCME", X), L.create("vvel_FCME", Y), L.create("wvel_FCME", Z))
+
+# steps 5-6: pressure increment (eq. 29-30), face pressure (eq. 31)
+delP_Dilatate = L.create("delP_Dilatate", CC)
+PRESS_FC = (L.create("pressX_FC", X), L.create("pressY_FC", Y), L.create("pressZ_FC", Z))
+
+# optional physics sources (viscous stress, heat conduction)
+viscous_src_CC = L.create("viscous_src_CC", CC, (3,))
+heatCond_src_CC = L.create("heatCond_src_CC", CC)
+
+# steps 8-11: Lagrangian values (eq. 35-37), exchange (38-39), specific volume (40)
+mass_L_CC = L.create("mass_L_CC", CC)
+mom_L_CC = L.create("mom_L_CC", CC, (3,))
+int_eng_L_CC = L.create("int_eng_L_CC", CC)
+mom_L_ME_CC = L.create("mom_L_ME_CC", CC, (3,))
+int_eng_L_ME_CC = L.create("int_eng_L_ME_CC", CC)
+sp_vol_L_CC = L.create("sp_vol_L_CC", CC)       # material volume m*v, advected
+
+# diagnostics
+mach = L.create("mach", CC)
+TotalMass = L.create("TotalMass", R, reduction="sum")
+KineticEnergy = L.create("KineticEnergy", R, reduction="sum")
+TotalIntEng = L.create("TotalIntEng", R, reduction="sum")
+TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")

@@ -1,0 +1,280 @@
+"""ICE task bodies, in the order of paper 000 sec. 3.3 (steps 2-12).
+
+Each task gets arrays from the warehouses, calls kernels (kernels.py, advection.py,
+bc.py) and puts its results. Index boxes of a patch are cached in `_boxes`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from framework import labels as L
+from framework.geometry import cell_fractions
+from framework.variables import VarType
+
+from . import advection as A
+from . import kernels as K
+from . import labels as I
+
+FC_TYPES = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)
+UNIT = np.eye(3, dtype=np.int64)
+
+
+class Boxes:
+    """Local index ranges of one patch: interior/owned cells, faces of interior cells."""
+
+    def __init__(self, patch, dims):
+        lv = patch.level
+        self.lo, self.hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
+        self.olo, self.ohi = (np.array(x, dtype=np.int64) for x in patch.owned_local(VarType.CC))
+        cc0 = np.array(patch.low_index(VarType.CC))
+        self.sh, self.flo, self.fhi = [], [], []
+        for d in range(3):
+            vt = FC_TYPES[d]
+            f0 = np.array(patch.low_index(vt))
+            glo = np.array(patch.lo)
+            ghi = np.array(patch.hi) + (UNIT[d] if dims[d] else 0)
+            self.sh.append((f0 - cc0).astype(np.int64) if dims[d] else np.zeros(3, np.int64))
+            self.flo.append((glo - f0).astype(np.int64))
+            self.fhi.append((ghi - f0).astype(np.int64))
+        self.vol = float(np.prod(lv.dx))
+
+
+class IceTasks:
+    """Task callbacks of the ICE component (mixed into the component class)."""
+
+    def boxes(self, patch) -> Boxes:
+        key = (patch.id, tuple(sorted((k.value, v) for k, v in patch.level.halo.items())))
+        b = self._geom_cache.get(key)
+        if b is None:
+            b = self._geom_cache[key] = Boxes(patch, self.dims)
+        return b
+
+    def _eos(self, m):
+        return self.codes[m], self.params[m], self.cvs[m], self.gammas[m]
+
+    def _faces(self, dw, labels, m, patch):
+        """The three face arrays of a material (a 1-element dummy for absent directions)."""
+        dummy = np.zeros((1, 1, 1))
+        return [dw.get(labels[d], m, patch) if self.dims[d] else dummy for d in range(3)]
+
+    # -- initialization -----------------------------------------------------------------------
+    def initialize(self, patch, matls, old_dw, new_dw):
+        """Cell fractions of every geometry object -> theta, then rho_micro from the EOS at (p, T)."""
+        b = self.boxes(patch)
+        own = patch.owned(VarType.CC)
+        lv = patch.level
+        fr = [[cell_fractions(piece, lv, own, g["res"]) for piece, g in mat.objects] for mat in self.materials]
+        shape = fr[0][0].shape
+        ptot, wtot = np.zeros(shape), np.zeros(shape)
+        for mat, fm in zip(self.materials, fr):
+            for (piece, g), f in zip(mat.objects, fm):
+                ptot += f * g["pressure"]
+                wtot += f
+        press = ptot / np.maximum(wtot, 1e-300)
+        press[wtot == 0] = self.materials[0].objects[0][1]["pressure"]
+        sl = patch.slices(VarType.CC, own)
+        p_arr = new_dw.allocate(I.press_CC, 0, patch)
+        p_arr[sl] = press
+        for m, (mat, fm) in enumerate(zip(self.materials, fr)):
+            w = sum(fm)
+            temp = sum(f * g["temperature"] for (_, g), f in zip(mat.objects, fm))
+            vel = sum(f[..., None] * np.array(g["velocity"]) for (_, g), f in zip(mat.objects, fm))
+            g0 = mat.objects[0][1]
+            ws = np.maximum(w, 1e-300)
+            temp = np.where(w > 0, temp / ws, g0["temperature"])
+            vel = np.where(w[..., None] > 0, vel / ws[..., None], np.array(g0["velocity"]))
+            rho_micro = _rho_micro_array(press, temp, g0["density"], *self._eos(m))
+            arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC)]
+            arrs[0][sl] = np.maximum(rho_micro * np.minimum(w, 1.0), 1e-12 * rho_micro)
+            arrs[1][sl] = vel
+            arrs[2][sl] = temp
+            arrs[3][sl] = 1.0 / rho_micro
+
+    def stable_timestep(self, patch, matls, old_dw, new_dw):
+        """CFL: delT = cfl * min dx / (c + |u|) over materials, cells and directions."""
+        b = self.boxes(patch)
+        dt = np.inf
+        for m in matls:
+            dt = min(dt, K.stable_dt(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
+                                     new_dw.get(I.sp_vol_CC, m, patch), *self._eos(m), self.dims.astype(np.int64),
+                                     patch.level.dx, b.lo, b.hi))
+        new_dw.put_reduction(L.delT, self.cfl * dt)
+
+    # -- step 2: equilibration pressure (eq. 13) ------------------------------------------------
+    def equilibration_pressure(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        peq = new_dw.allocate(I.press_equil_CC, 0, patch)
+        if len(matls) == 1:
+            out = [new_dw.allocate(lab, 0, patch) for lab in (I.sp_vol_CC, I.vol_frac_CC, I.speedSound_CC)]
+            K.equilibrate_one(old_dw.get(I.rho_CC, 0, patch), old_dw.get(I.temp_CC, 0, patch), out[0], peq,
+                              out[1], out[2], *self._eos(0), b.olo, b.ohi)
+        else:
+            get = lambda lab: tuple(old_dw.get(lab, m, patch) for m in matls)
+            new = lambda lab: tuple(new_dw.allocate(lab, m, patch) for m in matls)
+            spv, vfs, css = new(I.sp_vol_CC), new(I.vol_frac_CC), new(I.speedSound_CC)
+            K.equilibrate_many(get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC), old_dw.get(I.press_CC, 0, patch),
+                               spv, vfs, css, peq, self.codes, self.params, self.cvs, self.gammas,
+                               b.olo, b.ohi, 1e-11, self.max_iter)
+        self.bcs.scalar(patch, peq, "Pressure", 0, b.lo, b.hi)
+
+    # -- step 3: face velocities (eq. 28) and their exchange --------------------------------------
+    def vel_fc(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        peq = new_dw.get(I.press_equil_CC, 0, patch)
+        for m in matls:
+            rho, vel = old_dw.get(I.rho_CC, m, patch), old_dw.get(I.vel_CC, m, patch)
+            spv = new_dw.get(I.sp_vol_CC, m, patch)
+            for d in range(3):
+                if not self.dims[d]:
+                    continue
+                uf = new_dw.allocate(I.FC_VEL[d], m, patch)
+                K.face_velocity(rho, vel, spv, peq, uf, b.sh[d], UNIT[d], d, b.flo[d], b.fhi[d], dt,
+                                patch.level.dx[d], self.gravity[d])
+                self.bcs.face_velocity(patch, uf, d, m, b.flo[d], b.fhi[d])
+                if not self.exchange:
+                    new_dw.put(I.FC_VEL_ME[d], m, patch, uf)   # one material: the exchange is the identity
+
+    def exchange_fc(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in matls)
+        sps = tuple(new_dw.get(I.sp_vol_CC, m, patch) for m in matls)
+        for d in range(3):
+            if not self.dims[d]:
+                continue
+            ufs = tuple(new_dw.get(I.FC_VEL[d], m, patch) for m in matls)
+            out = tuple(new_dw.allocate(I.FC_VEL_ME[d], m, patch) for m in matls)
+            K.exchange_faces(ufs, vfs, sps, out, b.sh[d], UNIT[d], b.flo[d], b.fhi[d], dt, self.K)
+            for m in matls:
+                self.bcs.face_velocity(patch, out[m], d, m, b.flo[d], b.fhi[d])
+
+    # -- step 5: pressure increment (eqs. 29-30) ------------------------------------------------
+    def delp_press(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        shape = patch.alloc_shape(VarType.CC)
+        div, ksum = np.zeros(shape), np.zeros(shape)
+        one = len(matls) == 1
+        for m in matls:
+            vf = new_dw.get(I.vol_frac_CC, m, patch)
+            uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
+            K.div_theta_u(vf, one, uf[0], uf[1], uf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, b.lo, b.hi,
+                          dt, patch.level.dx, div)
+            K.add_theta_kappa(vf, new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch),
+                              ksum, b.lo, b.hi)
+        delP = new_dw.allocate(I.delP_Dilatate, 0, patch)
+        press = new_dw.allocate(I.press_CC, 0, patch)
+        K.update_pressure(new_dw.get(I.press_equil_CC, 0, patch), div, ksum, delP, press, b.lo, b.hi)
+        self.bcs.scalar(patch, press, "Pressure", 0, b.lo, b.hi)
+
+    # -- step 6: face pressure (eq. 31) -------------------------------------------------------------
+    def press_fc(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        press = new_dw.get(I.press_CC, 0, patch)
+        rho = old_dw.get(I.rho_CC, 0, patch)
+        if len(matls) > 1:
+            rho = rho.copy()
+            for m in matls[1:]:
+                rho += old_dw.get(I.rho_CC, m, patch)
+        for d in range(3):
+            if self.dims[d]:
+                pf = new_dw.allocate(I.PRESS_FC[d], 0, patch)
+                K.face_pressure(press, rho, pf, b.sh[d], UNIT[d], b.flo[d], b.fhi[d])
+
+    # -- steps 8-9: sources and Lagrangian values (eqs. 33-37) ----------------------------------
+    def lagrangian_values(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        pf = self._faces(new_dw, I.PRESS_FC, 0, patch)
+        press, delP = new_dw.get(I.press_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch)
+        for m in matls:
+            mass = new_dw.allocate(I.mass_L_CC, m, patch, fill=None)
+            mom = new_dw.allocate(I.mom_L_CC, m, patch, fill=None)
+            eng = new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None)
+            K.lagrangian(old_dw.get(I.rho_CC, m, patch), old_dw.get(I.vel_CC, m, patch),
+                         old_dw.get(I.temp_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
+                         new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), press, delP,
+                         pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, mass, mom, eng,
+                         b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, self.cvs[m], self.gravity,
+                         self.use_gravity)
+            if not self.exchange:
+                new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
+                new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
+
+    # -- step 10: momentum and heat exchange (eqs. 38-39) ---------------------------------------
+    def exchange_cc(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
+        mom_out = tuple(new_dw.allocate(I.mom_L_ME_CC, m, patch, fill=None) for m in matls)
+        eng_out = tuple(new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None) for m in matls)
+        K.exchange_cells(get(I.mass_L_CC), get(I.mom_L_CC), get(I.int_eng_L_CC), get(I.vol_frac_CC),
+                         get(I.sp_vol_CC), self.cvs, mom_out, eng_out, b.olo, b.ohi, dt, self.K, self.H)
+
+    # -- step 11: specific volume (eq. 40) --------------------------------------------------------
+    def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        delP = new_dw.get(I.delP_Dilatate, 0, patch)
+        if len(matls) == 1:
+            out = new_dw.allocate(I.sp_vol_L_CC, 0, patch, fill=None)
+            K.sp_vol_lagrangian_one(new_dw.get(I.mass_L_CC, 0, patch), new_dw.get(I.sp_vol_CC, 0, patch),
+                                    new_dw.get(I.vol_frac_CC, 0, patch), new_dw.get(I.speedSound_CC, 0, patch),
+                                    delP, out, b.olo, b.ohi, b.vol)
+            return
+        dt = old_dw.get_reduction(L.delT)
+        get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
+        outs = tuple(new_dw.allocate(I.sp_vol_L_CC, m, patch, fill=None) for m in matls)
+        K.sp_vol_lagrangian_many(get(I.mass_L_CC), get(I.sp_vol_CC), get(I.vol_frac_CC), get(I.speedSound_CC),
+                                 delP, get(I.int_eng_L_ME_CC), tuple(old_dw.get(I.temp_CC, m, patch) for m in matls),
+                                 self.codes, self.params, self.cvs, self.gammas, outs, b.olo, b.ohi, b.vol, dt)
+
+    # -- step 12: advection and the new state ----------------------------------------------------
+    def advect_and_advance(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        for m in matls:
+            mass, mom = new_dw.get(I.mass_L_CC, m, patch), new_dw.get(I.mom_L_ME_CC, m, patch)
+            eng, volm = new_dw.get(I.int_eng_L_ME_CC, m, patch), new_dw.get(I.sp_vol_L_CC, m, patch)
+            rho = new_dw.allocate(I.rho_CC, m, patch)
+            vel = new_dw.allocate(I.vel_CC, m, patch)
+            temp = new_dw.allocate(I.temp_CC, m, patch)
+            spv = new_dw.get_modifiable(I.sp_vol_CC, m, patch)
+            A.advect_start(mass, mom, eng, volm, rho, vel, temp, spv, b.lo, b.hi)
+            for d in range(3):
+                if self.dims[d]:
+                    A.advect_dir(mass, mom, eng, volm, new_dw.get(I.FC_VEL_ME[d], m, patch), b.sh[d], UNIT[d],
+                                 b.flo[d], b.fhi[d], b.lo, b.hi, dt, patch.level.dx[d], self.second_order,
+                                 rho, vel, temp, spv)
+            A.advect_finish(rho, vel, temp, spv, b.lo, b.hi, b.vol, self.cvs[m])
+            self.bcs.scalar(patch, rho, "Density", m, b.lo, b.hi)
+            self.bcs.scalar(patch, temp, "Temperature", m, b.lo, b.hi)
+            self.bcs.velocity(patch, vel, m, b.lo, b.hi)
+            self.bcs.sp_vol(patch, spv, new_dw.get(I.vol_frac_CC, m, patch), rho, m, b.lo, b.hi)
+
+    # -- diagnostics ----------------------------------------------------------------------------
+    def conserved_sums(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        acc = np.zeros(6)
+        for m in matls:
+            K.conserved_sums(new_dw.get(I.rho_CC, m, patch), new_dw.get(I.vel_CC, m, patch),
+                             new_dw.get(I.temp_CC, m, patch), self.cvs[m], b.vol, b.lo, b.hi, acc)
+        new_dw.put_reduction(I.TotalMass, acc[0])
+        new_dw.put_reduction(I.KineticEnergy, acc[1])
+        new_dw.put_reduction(I.TotalIntEng, acc[2])
+        new_dw.put_reduction(I.TotalMomentum, acc[3:6])
+
+    def compute_mach(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        for m in matls:
+            out = new_dw.allocate(I.mach, m, patch)
+            K.mach_number(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
+                          new_dw.get(I.sp_vol_CC, m, patch), out, *self._eos(m), b.olo, b.ohi)
+
+
+def _rho_micro_array(press, temp, guess, code, params, cv, gamma):
+    """rho_micro(p, T) of one material over an array (initial condition, eos_rho_micro per cell)."""
+    out = np.empty(press.size)
+    K.rho_micro_fill(np.ascontiguousarray(press).ravel(), np.ascontiguousarray(temp).ravel(), out, guess,
+                     code, params, cv, gamma)
+    return out.reshape(press.shape)
