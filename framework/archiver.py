@@ -30,16 +30,16 @@ SCALAR, VECTOR, TENSOR = "Scalar", "Vector", "Tensor"
 
 
 def _zyx(a, ncomp_shape):
-    """[i,j,k,(c)] -> [k,j,i,(c flattened)]."""
+    """[i,j,k,(c)] -> flat (n,) or (n, ncomp) with x fastest, as XDMF readers expect."""
     t = np.ascontiguousarray(a.transpose((2, 1, 0) + tuple(range(3, a.ndim))))
-    if ncomp_shape == (3, 3):
-        t = t.reshape(t.shape[:3] + (9,))
-    return t
+    ncomp = int(np.prod(ncomp_shape)) if ncomp_shape else 1
+    return t.reshape(-1, ncomp) if ncomp > 1 else t.reshape(-1)
 
 
-def _ijk(a, shape):
-    if shape == (3, 3):
-        a = a.reshape(a.shape[:3] + (3, 3))
+def _ijk(a, shape, box):
+    """Inverse of _zyx for an index box."""
+    n = [h - l for l, h in zip(box[0], box[1])]
+    a = a.reshape((n[2], n[1], n[0]) + tuple(shape))
     return np.ascontiguousarray(a.transpose((2, 1, 0) + tuple(range(3, a.ndim))))
 
 
@@ -282,7 +282,7 @@ def restore_dw(dw, cdir, info, level, local_patches):
                     ds = g[name][m]
                     box = (tuple(ds.attrs["low"]), tuple(ds.attrs["high"]))
                     arr = np.zeros(p.alloc_shape(label.vartype) + label.shape, dtype=label.dtype)
-                    arr[p.slices(label.vartype, box)] = _ijk(ds[...], label.shape)
+                    arr[p.slices(label.vartype, box)] = _ijk(ds[...], label.shape, box)
                     dw.put(label, int(m), p, arr)
     finally:
         for h in files.values():
@@ -355,7 +355,7 @@ class DataArchive:
         try:
             for fn, pid, lo, hi in pieces:
                 h5 = files.get(fn) or files.setdefault(fn, h5py.File(os.path.join(self.path, e["dir"], fn), "r"))
-                data = _ijk(h5[f"patch_{pid}/{label}/{material}"][...], shape)
+                data = _ijk(h5[f"patch_{pid}/{label}/{material}"][...], shape, (lo, hi))
                 sl = tuple(slice(l - g0, h - g0) for l, h, g0 in zip(lo, hi, glo))
                 out[sl] = data
         finally:

@@ -13,7 +13,7 @@ import numpy as np
 
 from .variables import VarType
 
-_ATYPE = {0: "Scalar", 3: "Vector", 9: "Tensor"}
+_ATYPE = {1: "Scalar", 3: "Vector", 9: "Tensor"}
 
 
 def _ncomp(shape):
@@ -26,6 +26,7 @@ def _dataitem(path, dims):
 
 
 def _attribute(name, center, path, dims, ncomp):
+    """An attribute stored flat: (n,) scalars or (n, ncomp) vectors/tensors."""
     atype = _ATYPE.get(ncomp, "Matrix")
     full = list(dims) + ([ncomp] if ncomp > 1 else [])
     return (f'<Attribute Name="{name}" AttributeType="{atype}" Center="{center}">'
@@ -36,7 +37,7 @@ def timestep_grids(entry, index, level, prefix=""):
     """XML of one timestep: a spatial collection of patch grids and particle sets."""
     labels = index["labels"]
     out = [f'<Grid Name="t{entry["timestep"]}" GridType="Collection" CollectionType="Spatial">',
-           f'<Time Value="{entry["time"]!r}"/>']
+           f'<Time Value="{float(entry["time"])!r}"/>']
     for pid, pm in sorted(entry["patches"].items(), key=lambda kv: int(kv[0])):
         fn = f'{prefix}{pm["file"]}'
         by_kind = {}
@@ -61,9 +62,9 @@ def timestep_grids(entry, index, level, prefix=""):
             out.append(f'<Topology TopologyType="3DCoRectMesh" Dimensions="{npts[2]} {npts[1]} {npts[0]}"/>')
             out.append('<Geometry GeometryType="ORIGIN_DXDYDZ">'
                        f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
-                       f'{origin[2]!r} {origin[1]!r} {origin[0]!r}</DataItem>'
+                       f'{float(origin[2])!r} {float(origin[1])!r} {float(origin[0])!r}</DataItem>'
                        f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
-                       f'{level.dx[2]!r} {level.dx[1]!r} {level.dx[0]!r}</DataItem></Geometry>')
+                       f'{float(level.dx[2])!r} {float(level.dx[1])!r} {float(level.dx[0])!r}</DataItem></Geometry>')
             for name, m, shape in items:
                 out.append(_attribute(f"{name}_{m}", center, f"{fn}:/patch_{pid}/{name}/{m}",
                                       [dims[2], dims[1], dims[0]], _ncomp(shape)))

@@ -124,15 +124,19 @@ def test_output_opens_as_xdmf_and_hdf5(tmp_path):
     ctl = run_deck(decks.heat(n=8, patches="[2,1,1]", maxTime=0.01, out=2, particles=True,
                               extra_save='<save label="p.x"/><save label="p.mass"/>'), tmp_path)
     uda = ctl.archiver.dir
+    text = open(f"{uda}/output.xdmf").read()
+    assert "np." not in text
     doc = etree.parse(f"{uda}/output.xdmf")
+    types = {a.get("Name"): a.get("AttributeType") for a in doc.iter("Attribute")}
+    assert types["temp_CC_0"] == "Scalar" and types["p.mass"] == "Scalar"
     items = doc.findall(".//DataItem[@Format='HDF']")
     assert items
     for it in items:
         fn, path = it.text.split(":")
         with h5py.File(f"{uda}/{fn}", "r") as h5:
-            shape = h5[path].shape
-        dims = tuple(int(x) for x in it.get("Dimensions").split())
-        assert shape == dims, (it.text, shape, dims)
+            size = h5[path].size
+        dims = [int(x) for x in it.get("Dimensions").split()]
+        assert size == np.prod(dims), (it.text, size, dims)
 
 
 def test_progress_display_quiet_off_terminal(tmp_path, deckfile):
