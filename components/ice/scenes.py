@@ -1,0 +1,149 @@
+"""Validation scenes of ICE: shock-tube deck template and errors against the exact solution.
+
+`shock_tube_deck(name, n, order)` writes the deck text of Sod's problem and Toro's
+tests 1-5 (inputs/ICE/*.ups are made from it by inputs/ICE/make_decks.py);
+`shock_tube_errors(archive, name)` gives the L1 errors of density, velocity and
+pressure at the last output against components/ice/exact_riemann.py. Shared by the
+tests and scripts/accuracy_cost.py.
+"""
+from __future__ import annotations
+
+import os
+
+# Toro (2009) table 4.1, gamma = 1.4, cv = 2.5 (so T = p / rho); x0 and end time per test.
+TORO = {
+    "sod":   dict(left=(1.0, 0.0, 1.0), right=(0.125, 0.0, 0.1), x0=0.5, t=0.2,
+                  what="Sod's shock tube: rarefaction, contact, shock"),
+    "toro1": dict(left=(1.0, 0.75, 1.0), right=(0.125, 0.0, 0.1), x0=0.3, t=0.2,
+                  what="Toro test 1 (modified Sod): sonic point in the rarefaction"),
+    "toro2": dict(left=(1.0, -2.0, 0.4), right=(1.0, 2.0, 0.4), x0=0.5, t=0.15,
+                  what="Toro test 2 (the 123 problem): two rarefactions, near-vacuum centre"),
+    "toro3": dict(left=(1.0, 0.0, 1000.0), right=(1.0, 0.0, 0.01), x0=0.5, t=0.012,
+                  what="Toro test 3: left blast wave, pressure ratio 1e5"),
+    "toro4": dict(left=(1.0, 0.0, 0.01), right=(1.0, 0.0, 100.0), x0=0.4, t=0.035,
+                  what="Toro test 4: right blast wave"),
+    "toro5": dict(left=(5.99924, 19.5975, 460.894), right=(5.99242, -6.19633, 46.0950), x0=0.4, t=0.035,
+                  what="Toro test 5: collision of two shocks"),
+}
+
+FACE = """      <Face side="{side}">
+        <BCType id="all" label="Pressure" var="Neumann"><value> 0. </value></BCType>
+        <BCType id="all" label="Velocity" var="Neumann"><value> [0.,0.,0.] </value></BCType>
+        <BCType id="all" label="Temperature" var="Neumann"><value> 0. </value></BCType>
+        <BCType id="all" label="Density" var="Neumann"><value> 0. </value></BCType>
+        <BCType id="all" label="SpecificVol" var="computeFromDensity"><value> 0. </value></BCType>
+      </Face>
+"""
+
+TEMPLATE = """<?xml version="1.0" encoding="iso-8859-1"?>
+<!--
+  {title}
+  Scene: 1D shock tube on [0, 1], {n} cells, interface at x = {x0}, ideal gas gamma = 1.4,
+  cv = 2.5 (T = p / rho), {order} advection, CFL {cfl}, end time {t}.
+  Checks: density, velocity and pressure against the exact Riemann solution
+  (components/ice/exact_riemann.py; tests/ice/test_shock_tubes.py).
+  Runtime: about {runtime} on one core.
+  Command: .venv/bin/pysus inputs/ICE/{name}.ups
+-->
+<Uintah_specification>
+  <Meta><title>{name}</title></Meta>
+  <SimulationComponent type="ice"/>
+  <Time>
+    <maxTime> {t} </maxTime>
+    <initTime> 0.0 </initTime>
+    <delt_min> 0.0 </delt_min>
+    <delt_max> 1.0 </delt_max>
+    <delt_init> 1.0e-6 </delt_init>
+    <timestep_multiplier> 1.0 </timestep_multiplier>
+    <end_at_max_time_exactly> true </end_at_max_time_exactly>
+  </Time>
+  <Grid>
+    <BoundaryConditions>
+{faces}    </BoundaryConditions>
+    <Level>
+      <Box label="1">
+        <lower> [0,0,0] </lower>
+        <upper> [1,0.01,0.01] </upper>
+        <extraCells> [1,1,1] </extraCells>
+        <patches> [{patches},1,1] </patches>
+        <resolution> [{n},1,1] </resolution>
+      </Box>
+    </Level>
+  </Grid>
+  <DataArchiver>
+    <filebase>{name}.uda</filebase>
+    <outputInterval> {t} </outputInterval>
+    <save label="rho_CC"/>
+    <save label="vel_CC"/>
+    <save label="press_CC"/>
+    <save label="temp_CC"/>
+    <save label="TotalMass"/>
+    <save label="TotalIntEng"/>
+    <save label="KineticEnergy"/>
+  </DataArchiver>
+  <CFD>
+    <cfl> {cfl} </cfl>
+    <ICE><advection type="{order}"/></ICE>
+  </CFD>
+  <PhysicalConstants>
+    <gravity> [0,0,0] </gravity>
+    <reference_pressure> 1.0 </reference_pressure>
+  </PhysicalConstants>
+  <MaterialProperties>
+    <ICE>
+      <material name="gas">
+        <EOS type="ideal_gas"/>
+        <dynamic_viscosity> 0.0 </dynamic_viscosity>
+        <thermal_conductivity> 0.0 </thermal_conductivity>
+        <specific_heat> 2.5 </specific_heat>
+        <gamma> 1.4 </gamma>
+        <geom_object>
+          <box label="left"><min> [-1,-1,-1] </min><max> [{x0},1,1] </max></box>
+          <res> [2,2,2] </res>
+          <velocity> [{ul},0,0] </velocity>
+          <temperature> {Tl} </temperature>
+          <density> {rl} </density>
+          <pressure> {pl} </pressure>
+        </geom_object>
+        <geom_object>
+          <difference>
+            <box><min> [-1,-1,-1] </min><max> [2,1,1] </max></box>
+            <box label="left"/>
+          </difference>
+          <res> [2,2,2] </res>
+          <velocity> [{ur},0,0] </velocity>
+          <temperature> {Tr} </temperature>
+          <density> {rr} </density>
+          <pressure> {pr} </pressure>
+        </geom_object>
+      </material>
+    </ICE>
+  </MaterialProperties>
+</Uintah_specification>
+"""
+
+
+def shock_tube_deck(name, n=200, order="SecondOrder", cfl=0.4, patches=1, runtime="a few seconds"):
+    """The deck text of one Toro test at n cells."""
+    s = TORO[name]
+    (rl, ul, pl), (rr, ur, pr) = s["left"], s["right"]
+    faces = FACE.format(side="x-") + FACE.format(side="x+")
+    return TEMPLATE.format(title=s["what"], name=name, n=n, x0=s["x0"], order=order, cfl=cfl, t=s["t"],
+                           runtime=runtime, faces=faces, patches=patches, rl=rl, ul=ul, pl=pl, rr=rr, ur=ur,
+                           pr=pr, Tl=pl / rl, Tr=pr / rr)
+
+
+
+def shock_tube_errors(da, name, timestep=-1):
+    """{'rho', 'u', 'p'}: mean |numerical - exact| over the cells, plus the exact fields and x."""
+    import numpy as np
+    from .exact_riemann import exact_riemann
+    s = TORO[name]
+    rho, (x, _, _) = da.read("rho_CC", 0, timestep)
+    vel, _ = da.read("vel_CC", 0, timestep)
+    p, _ = da.read("press_CC", 0, timestep)
+    t = da.times[timestep]
+    ex = exact_riemann(s["left"], s["right"], x, t, s["x0"])
+    num = {"rho": rho[:, 0, 0], "u": vel[:, 0, 0, 0], "p": p[:, 0, 0]}
+    err = {k: float(np.mean(np.abs(num[k] - ex[k]))) for k in num}
+    return err, num, ex, x
