@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .eos import eos_alpha, eos_press_eos, eos_rho_micro
+from .eos import eos_alpha, eos_press_eos, eos_rho_micro, eos_sound_speed2
 
 TINY = 1.0e-100
 
@@ -29,7 +29,7 @@ def equilibrate_one(rho, temp, sp_vol, press, vol_frac, cs, code, params, cv, ga
                 press[i, j, k] = p
                 sp_vol[i, j, k] = 1.0 / r
                 vol_frac[i, j, k] = 1.0
-                cs[i, j, k] = np.sqrt(max(dpdr + dpde * p / (r * r), TINY))
+                cs[i, j, k] = np.sqrt(max(eos_sound_speed2(code, params, r, temp[i, j, k], cv, gamma), TINY))
 
 
 @njit(cache=True)
@@ -83,7 +83,8 @@ def equilibrate_many(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, code
                 for m in range(n):
                     sp_new[m][i, j, k] = 1.0 / rm[m]
                     vfs[m][i, j, k] = rhos[m][i, j, k] / rm[m]
-                    css[m][i, j, k] = np.sqrt(max(dpr[m] + dpe[m] * pe[m] / (rm[m] * rm[m]), TINY))
+                    css[m][i, j, k] = np.sqrt(max(eos_sound_speed2(codes[m], params[m], rm[m], temps[m][i, j, k],
+                                                                   cvs[m], gammas[m]), TINY))
     return worst
 
 
@@ -233,11 +234,14 @@ def face_pressure(press, rho_sum, pf, sh, dd, flo, fhi):
 
 @njit(cache=True)
 def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy, shz, dims,
-               mass_L, mom_L, eng_L, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g):
+               mass_L, mom_L, eng_L, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g, code, params, gamma):
     """Eqs. 33-37 for one material: m, m u, m e plus pressure-gradient and flow-work sources.
 
     Everywhere (extra cells included) m u and m e start from the current state; the
-    sources act on interior cells: -dt V theta grad p* (+ dt m g), V theta kappa p delP.
+    sources act on interior cells: -dt V theta grad p* (+ dt m g), V theta kappa p_w delP.
+    ICE carries e = cv T, so the flow work uses p_w = p + (T (dp/dT)_v - p_eos): for an
+    ideal gas p_w = p exactly (as Uintah); for a stiffened gas it is p + Pinf, which
+    keeps cv dT = -T (dp/dT)_v dv consistent with the EOS.
     """
     for i in range(olo[0], ohi[0]):
         for j in range(olo[1], ohi[1]):
@@ -265,7 +269,10 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
                     for c in range(3):
                         mom_L[i, j, k, c] += dt * mass_L[i, j, k] * g[c]
                 c2 = cs[i, j, k] ** 2
-                eng_L[i, j, k] += vol * th * sp_vol[i, j, k] / c2 * press[i, j, k] * delP[i, j, k]
+                t = temp[i, j, k]
+                pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / sp_vol[i, j, k], t, cv, gamma)
+                pw = press[i, j, k] + (dpde * cv * t - pe)
+                eng_L[i, j, k] += vol * th * sp_vol[i, j, k] / c2 * pw * delP[i, j, k]
 
 
 @njit(cache=True)
@@ -351,8 +358,7 @@ def stable_dt(vel, temp, sp_vol, code, params, cv, gamma, dims, dx, lo, hi):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
                 r = 1.0 / sp_vol[i, j, k]
-                p, dpdr, dpde = eos_press_eos(code, params, r, temp[i, j, k], cv, gamma)
-                c = np.sqrt(max(dpdr + dpde * p / (r * r), TINY))
+                c = np.sqrt(max(eos_sound_speed2(code, params, r, temp[i, j, k], cv, gamma), TINY))
                 for d in range(3):
                     if dims[d]:
                         best = min(best, dx[d] / (c + abs(vel[i, j, k, d])))
@@ -366,8 +372,7 @@ def mach_number(vel, temp, sp_vol, out, code, params, cv, gamma, lo, hi):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
                 r = 1.0 / sp_vol[i, j, k]
-                p, dpdr, dpde = eos_press_eos(code, params, r, temp[i, j, k], cv, gamma)
-                c = np.sqrt(max(dpdr + dpde * p / (r * r), TINY))
+                c = np.sqrt(max(eos_sound_speed2(code, params, r, temp[i, j, k], cv, gamma), TINY))
                 u = vel[i, j, k]
                 out[i, j, k] = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / c
 

@@ -197,7 +197,7 @@ class IceTasks:
                          new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), press, delP,
                          pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, mass, mom, eng,
                          b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, self.cvs[m], self.gravity,
-                         self.use_gravity)
+                         self.use_gravity, self.codes[m], self.params[m], self.gammas[m])
             if not self.exchange:
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
