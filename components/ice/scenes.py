@@ -123,11 +123,16 @@ TEMPLATE = """<?xml version="1.0" encoding="iso-8859-1"?>
 """
 
 
-def shock_tube_deck(name, n=200, order="SecondOrder", cfl=0.4, patches=1, runtime="a few seconds"):
-    """The deck text of one Toro test at n cells."""
+WALL = """      <Face side="{side}"><BCType id="all" label="Symmetric" var="symmetry"/></Face>
+"""
+
+
+def shock_tube_deck(name, n=200, order="SecondOrder", cfl=0.4, patches=1, runtime="a few seconds", walls=False):
+    """The deck text of one Toro test at n cells (walls=True: closed ends, reflecting)."""
     s = TORO[name]
     (rl, ul, pl), (rr, ur, pr) = s["left"], s["right"]
-    faces = FACE.format(side="x-") + FACE.format(side="x+")
+    face = WALL if walls else FACE
+    faces = face.format(side="x-") + face.format(side="x+")
     return TEMPLATE.format(title=s["what"], name=name, n=n, x0=s["x0"], order=order, cfl=cfl, t=s["t"],
                            runtime=runtime, faces=faces, patches=patches, rl=rl, ul=ul, pl=pl, rr=rr, ur=ur,
                            pr=pr, Tl=pl / rl, Tr=pr / rr)
