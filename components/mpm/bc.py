@@ -1,0 +1,79 @@
+"""Grid velocity boundary conditions of MPM from `<Grid><BoundaryConditions>`.
+
+Accepted per `<Face side="x-|x+|y-|y+|z-|z+">`:
+  <BCType id="all|N" var="Dirichlet" label="Velocity"><value>[u,v,w]</value></BCType>
+  <BCType id="all|N" var="symmetry"  label="Symmetric"/>   (normal velocity zero)
+They are applied to g.velocity_star on the face's nodes and on the extra-cell nodes
+beyond it, after the acceleration is integrated, and the acceleration there is
+recomputed as (v* - v)/dt, as Uintah's setGridBoundaryConditions. Faces of collapsed
+directions (2D, 1D) hold no nodes of their own and need nothing. A face without a
+condition is left free (traction-free).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from framework.grid import FACES
+from framework.variables import VarType
+
+from . import kernels
+
+
+class GridBCs:
+    def __init__(self, root, level, nmat):
+        self.items = []          # (d, side, comps mask, value, materials)
+        grid = root.child("Grid")
+        bcs = grid.child("BoundaryConditions") if grid is not None else None
+        if bcs is None:
+            return
+        for face in bcs.children("Face"):
+            side = face.attr("side", choices=FACES)
+            d, s = FACES.index(side) // 2, FACES.index(side) % 2
+            for bc in face.children("BCType"):
+                ident = bc.attr("id")
+                var = bc.attr("var", choices=("Dirichlet", "symmetry"))
+                label = bc.attr("label", choices=("Velocity", "Symmetric"))
+                if ident == "all":
+                    mats = tuple(range(nmat))
+                else:
+                    try:
+                        mats = (int(ident),)
+                    except ValueError:
+                        raise bc.error(f'id="{ident}": accepted: all or a material index') from None
+                    if not 0 <= mats[0] < nmat:
+                        raise bc.error(f'id="{ident}": there are {nmat} MPM materials')
+                if (var == "symmetry") != (label == "Symmetric"):
+                    raise bc.error('accepted: var="Dirichlet" label="Velocity" or var="symmetry" label="Symmetric"')
+                if var == "symmetry":
+                    comps = np.zeros(3, np.bool_)
+                    comps[d] = True
+                    value = np.zeros(3)
+                else:
+                    comps = np.ones(3, np.bool_)
+                    value = np.array(bc.get("value", "vector"), float)
+                if level.periodic[d]:
+                    raise bc.error(f"face {side} is periodic; it takes no boundary condition")
+                if not level.collapsed[d]:
+                    self.items.append((d, s, comps, value, mats))
+
+    def apply(self, patch, matl, gvs, gacc, gvel, dt):
+        """Apply every condition of this material on the faces `patch` touches."""
+        if not self.items:
+            return
+        lo_all, hi_all = (0, 0, 0), gvs.shape[:3]
+        own_lo, own_hi = patch.owned_local(VarType.NC)
+        inner = patch.level.interior_box(VarType.NC)
+        base = patch.low_index(VarType.NC)
+        for d, s, comps, value, mats in self.items:
+            if matl not in mats or not (patch.at_high if s else patch.at_low)[d]:
+                continue
+            lo = list(own_lo)
+            hi = list(own_hi)
+            if s == 0:
+                hi[d] = inner[0][d] - base[d] + 1          # face node and the extra nodes below
+            else:
+                lo[d] = inner[1][d] - 1 - base[d]          # face node and the extra nodes above
+            lo = np.maximum(lo, lo_all)
+            hi = np.minimum(hi, hi_all)
+            kernels.velocity_bc(gvs, gacc, gvel, dt, np.asarray(lo, np.int64), np.asarray(hi, np.int64),
+                                comps, value)

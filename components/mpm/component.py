@@ -1,0 +1,201 @@
+"""Explicit MPM (Uintah's SerialMPM, paper 000 sec. 3.2, paper 004 eqs. 5-17).
+
+`<SimulationComponent type="mpm">`. The deck blocks read here:
+  <MPM>                 FLAGS below (interpolator linear|gimp, explicit only, ...)
+  <PhysicalConstants>   <gravity>
+  <MaterialProperties><MPM>  <material> (materials.py) and <contact> (CONTACT)
+  <Grid><BoundaryConditions> velocity Dirichlet / symmetry faces (bc.py)
+  <DataAnalysis>        <Module name="particleExtract"> (analysis.py)
+
+One timestep (tasks.py), all MPM materials in each task:
+  interpolateParticlesToGrid      m_i, v_i, V_i, fext_i, fint_i from the particles
+                                  and their stress (update stress last)
+  exMomInterpolated               contact on v_i          (only with contact)
+  computeAndIntegrateAcceleration a_i, v*_i
+  exMomIntegrated                 contact on v*_i, a_i    (only with contact)
+  setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
+  interpolateToParticlesAndUpdate v_p, x_p, L_p; conserved totals
+  computeStressTensor             F_p, V_p, sigma_p, strain energy, wave speed
+  relocateParticles, computeStableTimestep
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from framework import labels as FL
+from framework.component import Component, register
+from framework.problemspec import Param
+from framework.task import NEW, OLD, Task
+from framework.variables import Ghost
+
+from . import labels as L
+from .analysis import ParticleExtract
+from .bc import GridBCs
+from .contact import Contact
+from .materials import Material
+from .shape import get_interpolator
+from .kernels import P2G
+from .tasks import MPMTasks
+
+FLAGS = {
+    "time_integrator": Param("str", "explicit", ("explicit",), "only explicit MPM is implemented"),
+    "interpolator": Param("str", "linear", ("linear", "gimp")),
+    "withColor": Param("bool", False, doc="carry p.color from <geom_object><color>"),
+    "artificial_damping_coeff": Param("float", 0.0, doc="a_i -= coeff * v_i (1/s)"),
+    "minimum_particle_mass": Param("float", 0.0, doc="lighter particles are deleted"),
+    "maximum_particle_velocity": Param("float", np.inf, doc="faster particles are deleted"),
+    "minimum_mass_for_acc": Param("float", 0.0, doc="nodes this light get no force acceleration"),
+    "do_grid_reset": Param("bool", True, (True,), doc="the grid is always reset"),
+    "DoExplicitHeatConduction": Param("bool", False, (False,), doc="heat conduction is not implemented"),
+    "axisymmetric": Param("bool", False, (False,), doc="axisymmetry is not implemented"),
+    "stress_update": Param("str", "musl", ("musl", "usl"),
+                           "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
+                           "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
+    "use_load_curves": Param("bool", False, doc="pressure BCs follow <PhysicalBC> load curves"),
+}
+
+
+@register("mpm")
+class MPM(MPMTasks, Component):
+    """Explicit single-grid MPM with Uintah's deck tags and variable names."""
+
+    def problem_setup(self, root, level):
+        self.level = level
+        self.dims = tuple(not c for c in level.collapsed)
+        self.dim = level.dim
+        mpm = root.child("MPM")
+        self.flags = mpm.read(FLAGS) if mpm is not None else {k: p.default for k, p in FLAGS.items()}
+        pc = root.child("PhysicalConstants")
+        self.gravity = np.array(pc.get("gravity", "vector", (0.0, 0.0, 0.0)) if pc is not None else (0.0, 0.0, 0.0))
+        if pc is not None:
+            pc.get("reference_pressure", "float", 101325.0)
+        self.kind = self.flags["interpolator"]
+        self.musl = self.flags["stress_update"] == "musl"
+        if self.dim == 0:
+            raise root.child("Grid").error("MPM needs at least one direction with more than one cell")
+        if self.kind == "gimp":
+            bad = [d for d in range(3) if self.dims[d] and not level.periodic[d] and level.extra[d] < 1]
+            if bad:
+                raise root.child("Grid").error(
+                    f"GIMP particles reach one node beyond the domain: <extraCells> must be at least 1 in "
+                    f"{'xyz'[bad[0]]} (Uintah needs the same)")
+        self.interp = get_interpolator(self.kind, self.dim)
+        self.p2g = P2G[(self.kind, self.dim)]
+        self.ng = 1 if self.kind == "linear" else 2
+        mp = root.child("MaterialProperties", required=True).child("MPM", required=True)
+        geom = getattr(root, "_geometry_reader", None)
+        if geom is None:
+            from framework.geometry import GeometryReader
+            geom = GeometryReader()
+        self.materials = [Material(m, i, geom, self.flags["withColor"])
+                          for i, m in enumerate(mp.children("material"))]
+        if not self.materials:
+            raise mp.error("no <material>")
+        self.matls = list(range(len(self.materials)))
+        self.contact = Contact(mp, len(self.materials))
+        self.bcs = GridBCs(root, level, len(self.materials))
+        self.analysis = ParticleExtract(root, self)
+        self.pressure_bcs = None  # <PhysicalBC> is read in tasks when present
+        self._read_physical_bc(root)
+        self._carried()
+
+    def _carried(self):
+        """(final, pre-relocation) particle labels this deck carries, besides p.x."""
+        c = [(L.pVelocity, L.pVelocityPre), (L.pMass, L.pMassPre), (L.pVolume, L.pVolumePre),
+             (L.pStress, L.pStressPre), (L.pF, L.pFPre), (L.pID, L.pIDPre)]
+        if self.kind == "gimp":
+            c.append((L.pSize, L.pSizePre))
+        if self.flags["withColor"]:
+            c.append((L.pColor, L.pColorPre))
+        if any(m.increment_energy for m in self.materials):
+            c.append((L.pStrainEnergy, L.pStrainEnergyPre))
+        if any(m.has_plastic_strain for m in self.materials):
+            c.append((L.pPlasticStrain, L.pPlasticStrainPre))
+        if self.pressure_bcs:
+            c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
+        self.carry = c
+
+    # -- scheduling ---------------------------------------------------------------------
+    def schedule_initialize(self, level, sched):
+        t = Task("MPM::actuallyInitialize", self.initialize, self.matls).computes(L.pX)
+        for final, _ in self.carry:
+            t.computes(final)
+        for r in (L.WaveSpeed, L.KineticEnergy, L.StrainEnergy, L.TotalMass, L.TotalMomentum,
+                  L.CenterOfMassPosition):
+            t.computes(r)
+        sched.add_task(t)
+        sched.register_particle_labels(L.pX, L.pID)
+
+    def schedule_compute_stable_timestep(self, level, sched):
+        sched.add_task(Task("MPM::computeStableTimestep", self.compute_stable_timestep, self.matls)
+                       .requires(NEW, L.WaveSpeed).computes(FL.delT))
+
+    def schedule_time_advance(self, level, sched):
+        ms, g, ng = self.matls, Ghost.AROUND_NODES, self.ng
+        t = Task("MPM::interpolateParticlesToGrid", self.interpolate_particles_to_grid, ms)
+        for lab in self._p2g_labels():
+            t.requires(OLD, lab, g, ng)
+        for lab in (L.gMass, L.gVolume, L.gVelocity, L.gExtForce, L.gIntForce):
+            t.computes(lab)
+        sched.add_task(t)
+        t = Task("MPM::interpolateStressToGrid", self.interpolate_stress_to_grid, ms)
+        for lab in [L.pX, L.pMass, L.pStress] + ([L.pSize] if self.kind == "gimp" else []):
+            t.requires(OLD, lab, g, ng)
+        sched.add_task(t.computes(L.gStressFS))       # pruned unless g.stressFS is saved
+        if self.contact.active:
+            sched.add_task(Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms)
+                           .requires(NEW, L.gMass).modifies(L.gVelocity))
+        sched.add_task(Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
+                       .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
+                       .requires(NEW, L.gIntForce).requires(NEW, L.gExtForce)
+                       .computes(L.gVelocityStar).computes(L.gAcceleration))
+        if self.contact.active:
+            sched.add_task(Task("MPM::exMomIntegrated", self.ex_mom_integrated, ms)
+                           .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
+                           .modifies(L.gVelocityStar).modifies(L.gAcceleration))
+        if self.bcs.items:
+            sched.add_task(Task("MPM::setGridBoundaryConditions", self.set_grid_bcs, ms)
+                           .requires(OLD, FL.delT).requires(NEW, L.gVelocity)
+                           .modifies(L.gVelocityStar).modifies(L.gAcceleration))
+        t = Task("MPM::interpolateToParticlesAndUpdate", self.interpolate_to_particles, ms).requires(OLD, FL.delT)
+        pg = (g, ng) if self.musl else (Ghost.NONE, 0)
+        for lab in [L.pX, L.pVelocity, L.pMass] + ([L.pSize] if self.kind == "gimp" else []):
+            t.requires(OLD, lab, *pg)
+        gg = 2 * ng if self.musl else ng
+        t.requires(NEW, L.gVelocityStar, Ghost.AROUND_CELLS, gg).requires(NEW, L.gAcceleration, Ghost.AROUND_CELLS, gg)
+        t.computes(L.pXpre).computes(L.pVelocityPre)
+        if self.musl:
+            t.requires(NEW, L.gMass).requires(OLD, FL.delT).computes(L.gVelocityL)
+        else:
+            t.computes(L.pVelGrad)
+        for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
+            t.computes(r)
+        sched.add_task(t)
+        t = (Task("MPM::computeStressTensor", self.compute_stress_tensor, ms)
+             .requires(OLD, FL.delT).requires(NEW, L.pVelocityPre))
+        if self.musl:
+            t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng).requires(OLD, L.pX)
+        else:
+            t.requires(NEW, L.pVelGrad)
+        moved = {L.pVelocity.name}
+        for final, pre in self.carry:
+            if final.name not in moved:
+                t.requires(OLD, final).computes(pre)
+        t.computes(L.WaveSpeed).computes(L.StrainEnergy)
+        sched.add_task(t)
+        if self.analysis.active:
+            self.analysis.schedule(sched)
+        sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in self.carry], L.pX,
+                                           [final for final, _ in self.carry], ms, id_label=L.pID)
+
+    def _p2g_labels(self):
+        labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]
+        if self.kind == "gimp":
+            labs.append(L.pSize)
+        if self.pressure_bcs:
+            labs.append(L.pExtForce)
+        return labs
+
+    def _read_physical_bc(self, root):
+        from .pressure import PressureBCs
+        self.pressure_bcs = PressureBCs.read(root, self)

@@ -1,0 +1,255 @@
+"""Numba kernels of the explicit MPM step (paper 000 sec. 3.2, paper 004 eqs. 5-17).
+
+Node arrays use local indices (global = local + node_low) as in shape.py. The
+particle->grid scatter here adds every particle's share to a node on its own, in the
+order the particles are given; the framework hands owned plus ghost particles sorted
+by particle ID, so a node's sum is the same sequence of additions whatever the patch
+layout: 1 patch and many patches agree bitwise.
+"""
+import numpy as np
+from numba import njit
+
+from .shape import GIMP, LINEAR, _particle, _setup
+
+FM = {'contract'}
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, lp, anchor, dx, node_low,
+         gmass, gmom, gvol, gfext, gfint):
+    """m_i, (mv)_i, V_i, fext_i (000 eq. 22) and fint_i = -sum V sigma.grad S (000 eq. 24)."""
+    shape = np.array(gmass.shape, np.int64)
+    na, nb, nc, nn, off, ih, base, w, g, Sq, Gq = _setup(kind, dim, dx, shape)
+    fm = gmass.reshape(-1)
+    fv = gvol.reshape(-1)
+    fp = gmom.reshape(-1)
+    fe = gfext.reshape(-1)
+    fi = gfint.reshape(-1)
+    for p in range(px.shape[0]):
+        f0 = _particle(kind, dim, px, lp, p, anchor, ih, node_low, shape, base, w, g,
+                       na, nb, nc, Sq, Gq)
+        m = pmass[p]
+        V = pvol[p]
+        for q in range(nn):
+            f = f0 + off[q]
+            f3 = 3 * f
+            S = Sq[q]
+            G0 = Gq[q, 0]
+            G1 = Gq[q, 1] if dim >= 2 else 0.0
+            G2 = Gq[q, 2] if dim >= 3 else 0.0
+            fm[f] += m * S
+            fv[f] += V * S
+            for d in range(3):
+                fp[f3 + d] += m * pvel[p, d] * S
+                fe[f3 + d] += pfext[p, d] * S
+                s = pstress[p, d, 0] * G0
+                if dim >= 2:
+                    s += pstress[p, d, 1] * G1
+                if dim >= 3:
+                    s += pstress[p, d, 2] * G2
+                fi[f3 + d] -= V * s
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_linear_1d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
+    _p2g(LINEAR, 1, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_linear_2d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
+    _p2g(LINEAR, 2, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_linear_3d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
+    _p2g(LINEAR, 3, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_gimp_1d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
+    _p2g(GIMP, 1, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_gimp_2d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
+    _p2g(GIMP, 2, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_gimp_3d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
+    _p2g(GIMP, 3, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
+
+
+P2G = {("linear", 1): p2g_linear_1d, ("linear", 2): p2g_linear_2d, ("linear", 3): p2g_linear_3d,
+       ("gimp", 1): p2g_gimp_1d, ("gimp", 2): p2g_gimp_2d, ("gimp", 3): p2g_gimp_3d}
+
+
+# ---- grid ---------------------------------------------------------------------------
+@njit(cache=True)
+def velocity_from_momentum(gmass, gmom, gvel):
+    """v_i = (m v)_i / m_i (000 eq. 22); zero where there is no mass."""
+    m = gmass.reshape(-1)
+    p = gmom.reshape(-1)
+    v = gvel.reshape(-1)
+    for i in range(m.shape[0]):
+        inv = 1.0 / m[i] if m[i] > 0.0 else 0.0
+        for d in range(3):
+            v[3 * i + d] = p[3 * i + d] * inv
+
+
+@njit(cache=True)
+def integrate_acceleration(gmass, gvel, gfint, gfext, gravity, dt, min_mass, damp, gvs, gacc):
+    """a_i = (fint_i + fext_i)/m_i + g - damp v_i (000 eq. 21), v*_i = v_i + a_i dt (eq. 25).
+
+    Nodes with m_i <= min_mass get no force-driven acceleration (Uintah's
+    minimum_mass_for_acc); empty nodes get a = 0."""
+    m = gmass.reshape(-1)
+    v = gvel.reshape(-1)
+    fi = gfint.reshape(-1)
+    fe = gfext.reshape(-1)
+    vs = gvs.reshape(-1)
+    ac = gacc.reshape(-1)
+    for i in range(m.shape[0]):
+        mi = m[i]
+        for d in range(3):
+            k = 3 * i + d
+            if mi > 0.0:
+                a = gravity[d] - damp * v[k]
+                if mi > min_mass:
+                    a += (fi[k] + fe[k]) / mi
+            else:
+                a = 0.0
+            ac[k] = a
+            vs[k] = v[k] + a * dt
+
+
+@njit(cache=True)
+def velocity_bc(gvs, gacc, gvel, dt, lo, hi, comps, value):
+    """Set v* components `comps` (mask) to `value` on the node box [lo, hi) and
+    recompute a = (v* - v)/dt there, as Uintah's setGridBoundaryConditions."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for d in range(3):
+                    if comps[d]:
+                        gvs[i, j, k, d] = value[d]
+                        gacc[i, j, k, d] = (value[d] - gvel[i, j, k, d]) / dt
+
+
+@njit(cache=True)
+def single_velocity(gmass, gvel, gacc, gvel_old, dt):
+    """Single-velocity contact: every material takes the centre-of-mass velocity of the
+    node (004: one velocity field); with gacc, a_m = (v_cm - v_old_m)/dt.
+
+    gmass (nm, N), gvel/gacc/gvel_old (nm, N, 3) flattened per material."""
+    nm = gmass.shape[0]
+    for i in range(gmass.shape[1]):
+        M = 0.0
+        n_with = 0
+        for m in range(nm):
+            if gmass[m, i] > 0.0:
+                M += gmass[m, i]
+                n_with += 1
+        if n_with < 2:
+            continue
+        for d in range(3):
+            P = 0.0
+            for m in range(nm):
+                P += gmass[m, i] * gvel[m, i, d]
+            vcm = P / M
+            for m in range(nm):
+                gvel[m, i, d] = vcm
+                if dt > 0.0:
+                    gacc[m, i, d] = (vcm - gvel_old[m, i, d]) / dt
+
+
+# ---- particles ----------------------------------------------------------------------
+@njit(cache=True)
+def deform(L, F_old, F_new, dt, mass, rho0, vol_new):
+    """F^{n+1} = (I + L dt) F^n (004 eq. 14), V = m/rho0 det F (004 eq. 17)."""
+    A = np.empty((3, 3))
+    for p in range(L.shape[0]):
+        for i in range(3):
+            for j in range(3):
+                A[i, j] = (1.0 if i == j else 0.0) + dt * L[p, i, j]
+        for i in range(3):
+            for j in range(3):
+                F_new[p, i, j] = A[i, 0] * F_old[p, 0, j] + A[i, 1] * F_old[p, 1, j] + A[i, 2] * F_old[p, 2, j]
+        F = F_new[p]
+        J = (F[0, 0] * (F[1, 1] * F[2, 2] - F[1, 2] * F[2, 1])
+             - F[0, 1] * (F[1, 0] * F[2, 2] - F[1, 2] * F[2, 0])
+             + F[0, 2] * (F[1, 0] * F[2, 1] - F[1, 1] * F[2, 0]))
+        vol_new[p] = mass[p] / rho0 * J
+
+
+@njit(cache=True)
+def sums(pm, pv, px, out):
+    """out += [sum m, sum m v^2/2, sum m v (3), sum m x (3)] over particles."""
+    for p in range(pm.shape[0]):
+        m = pm[p]
+        out[0] += m
+        out[1] += 0.5 * m * (pv[p, 0] ** 2 + pv[p, 1] ** 2 + pv[p, 2] ** 2)
+        for d in range(3):
+            out[2 + d] += m * pv[p, d]
+            out[5 + d] += m * px[p, d]
+
+
+@njit(cache=True)
+def flag_deleted(pm, pv, px_new, min_mass, max_vel):
+    """Delete (x = NaN) particles lighter than minimum_particle_mass or faster than
+    maximum_particle_velocity (Uintah's flags); returns how many."""
+    n = 0
+    for p in range(pm.shape[0]):
+        s = np.sqrt(pv[p, 0] ** 2 + pv[p, 1] ** 2 + pv[p, 2] ** 2)
+        if pm[p] < min_mass or s > max_vel:
+            px_new[p, 0] = np.nan
+            n += 1
+    return n
+
+
+@njit(cache=True)
+def p2g_stress(kind, dim, px, pmass, pstress, lp, anchor, dx, node_low, gmass, gsm):
+    """gsm_i += sum S m_p sigma_p and gmass_i += sum S m_p (Uintah's g.stressFS before
+    the division by mass; kind/dim at run time: this is an output-only task)."""
+    shape = np.array(gmass.shape, np.int64)
+    na, nb, nc, nn, off, ih, base, w, g, Sq, Gq = _setup(kind, dim, dx, shape)
+    fm = gmass.reshape(-1)
+    fs = gsm.reshape(-1)
+    for p in range(px.shape[0]):
+        f0 = _particle(kind, dim, px, lp, p, anchor, ih, node_low, shape, base, w, g, na, nb, nc, Sq, Gq)
+        for q in range(nn):
+            f = f0 + off[q]
+            S = Sq[q] * pmass[p]
+            fm[f] += S
+            for a in range(3):
+                for b in range(3):
+                    fs[9 * f + 3 * a + b] += S * pstress[p, a, b]
+
+
+@njit(cache=True)
+def divide_by_mass(gmass, gsm, out):
+    m = gmass.reshape(-1)
+    s = gsm.reshape(-1)
+    o = out.reshape(-1)
+    for i in range(m.shape[0]):
+        inv = 1.0 / m[i] if m[i] > 0.0 else 0.0
+        for k in range(9):
+            o[9 * i + k] = s[9 * i + k] * inv
+
+
+@njit(cache=True)
+def owned_mask(px, anchor, dx, lo, hi, dims, out):
+    """out[p] = particle p lies in the patch's cells [lo, hi) (as relocation decides)."""
+    for p in range(px.shape[0]):
+        ok = True
+        for d in range(3):
+            if dims[d]:
+                c = np.floor((px[p, d] - anchor[d]) / dx[d])
+                ok &= (c >= lo[d]) and (c < hi[d])
+        out[p] = ok
+
+
+@njit(cache=True)
+def remapped_velocity(gmass, gmom, gvel):
+    """v^L_i = sum S m_p v_p^{k+1} / m_i (004 eq. 11 with the updated velocities)."""
+    velocity_from_momentum(gmass, gmom, gvel)

@@ -1,0 +1,57 @@
+"""MPM variable labels, named as in Uintah's MPMLabel.
+
+Particle state carried between steps: p.x, p.velocity, p.mass, p.volume, p.stress,
+p.deformationMeasure (F), p.particleID, p.externalforce (pressure BCs only), p.size
+(uGIMP half-widths, GIMP only), p.color (withColor only) and per-model state
+(plastic strain, internal energy, membrane tangent/thickness, accumulated strain
+energy of rate models). Each has a "+" twin written by the update before relocation.
+Grid: g.mass, g.velocity, g.volume, g.externalforce, g.internalforce,
+g.velocity_star, g.acceleration. Reductions as in Uintah.
+"""
+import numpy as np
+
+from framework import labels as L
+from framework.variables import VarType
+
+P, NC, R = VarType.PARTICLE, VarType.NC, VarType.REDUCTION
+
+
+def _pair(name, shape=(), dtype=np.float64):
+    """The carried particle label and its pre-relocation twin."""
+    return L.create(name, P, shape, dtype), L.create(name + "+", P, shape, dtype)
+
+
+pX, pXpre = _pair("p.x", (3,))
+pVelocity, pVelocityPre = _pair("p.velocity", (3,))
+pMass, pMassPre = _pair("p.mass")
+pVolume, pVolumePre = _pair("p.volume")
+pStress, pStressPre = _pair("p.stress", (3, 3))
+pF, pFPre = _pair("p.deformationMeasure", (3, 3))
+pID, pIDPre = _pair("p.particleID", dtype=np.int64)
+pExtForce, pExtForcePre = _pair("p.externalforce", (3,))
+pSize, pSizePre = _pair("p.size", (3,))
+pColor, pColorPre = _pair("p.color")
+pPlasticStrain, pPlasticStrainPre = _pair("p.plasticStrain")
+pIntEnergy, pIntEnergyPre = _pair("p.internalEnergy")
+pTangent, pTangentPre = _pair("p.tangent", (3,))
+pThickness, pThicknessPre = _pair("p.thickness")
+pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
+pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
+pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
+
+gMass = L.create("g.mass", NC)
+gVolume = L.create("g.volume", NC)
+gVelocity = L.create("g.velocity", NC, (3,))
+gExtForce = L.create("g.externalforce", NC, (3,))
+gIntForce = L.create("g.internalforce", NC, (3,))
+gStressFS = L.create("g.stressFS", NC, (3, 3))     # mass-weighted nodal stress (output)
+gVelocityL = L.create("g.velocity_L", NC, (3,))     # remapped updated velocity (MUSL, 004 eq. 13)
+gVelocityStar = L.create("g.velocity_star", NC, (3,))
+gAcceleration = L.create("g.acceleration", NC, (3,))
+
+KineticEnergy = L.create("KineticEnergy", R, reduction="sum")
+StrainEnergy = L.create("StrainEnergy", R, reduction="sum")
+TotalMass = L.create("TotalMass", R, reduction="sum")
+TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")
+CenterOfMassPosition = L.create("CenterOfMassPosition", R, (3,), reduction="sum")
+WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")

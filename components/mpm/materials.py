@@ -1,0 +1,127 @@
+"""MPM materials from `<MaterialProperties><MPM><material>` and their particles.
+
+A material has a density, a constitutive model (one of MODELS), thermal properties
+(read and checked; MPM heat conduction is not implemented, so they only matter to a
+deck that asks for it, which is refused) and geometry objects that fill it with
+particles: `res` particles per cell per direction (one in a collapsed direction),
+`velocity`, `temperature` and, with `<withColor>`, `color`. Where two objects of one
+material overlap, the first one listed owns the point.
+"""
+from __future__ import annotations
+
+import dataclasses
+import importlib
+
+import numpy as np
+
+from framework.geometry import GeometryReader
+from framework.problemspec import Param
+
+# deck name -> module under components.mpm.constitutive
+MODELS = {
+    "comp_neo_hook": "comp_neo_hook",
+    "comp_mooney_rivlin": "comp_mooney_rivlin",
+    "hypo_elastic": "hypo_elastic",
+    "elastic_plastic": "elastic_plastic",
+    "rigid": "rigid",
+}
+
+MATERIAL = {
+    "density": Param("float", doc="reference mass density (kg/m^3)"),
+    "thermal_conductivity": Param("float", 0.0, doc="W/(m K); read, heat conduction not modelled"),
+    "specific_heat": Param("float", 0.0, doc="J/(kg K); read, heat conduction not modelled"),
+    "room_temp": Param("float", 294.0, doc="K; read, no thermal model uses it"),
+    "melt_temp": Param("float", 1e30, doc="K; read, no thermal model uses it"),
+    "is_rigid": Param("bool", False, doc="rigid body for <contact type=rigid>"),
+    "includeFlowWork": Param("bool", False, doc="read, MPMICE only"),
+}
+
+GEOM = {
+    "res": Param("ivector", doc="particles per cell in each direction"),
+    "velocity": Param("vector", (0.0, 0.0, 0.0)),
+    "temperature": Param("float", 294.0, doc="K; carried only as an input, no thermal model"),
+}
+
+
+class Material:
+    """One MPM material: properties, constitutive model module + params, geometry."""
+
+    def __init__(self, node, index, geom_reader, with_color):
+        self.index = index
+        self.name = node.attr("name", default=f"mpm{index}")
+        props = node.read(MATERIAL)
+        self.density = props["density"]
+        if self.density <= 0:
+            raise node.child("density").error("density must be positive")
+        self.is_rigid = props["is_rigid"]
+        cm = node.child("constitutive_model", required=True)
+        kind = cm.attr("type")
+        if kind not in MODELS:
+            raise cm.error(f'constitutive_model type="{kind}" is not supported; accepted: '
+                           f"{', '.join(MODELS)}")
+        self.model_name = kind
+        self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
+        accepted = [f.name for f in dataclasses.fields(self.model.Params)]
+        values = {}
+        for tag in accepted:
+            c = cm.child(tag)
+            if c is not None:
+                values[tag] = c.text() if tag == "formulation" else str(c.value("float"))
+        try:
+            self.params = self.model.Params.from_ups(values)
+        except KeyError as e:
+            raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
+        self.increment_energy = self.model.ENERGY_IS_INCREMENT
+        self.has_plastic_strain = kind == "elastic_plastic"
+        self.objects = []
+        for g in node.children("geom_object"):
+            piece = geom_reader.read_object(g)
+            spec = g.read(GEOM)
+            if any(r < 1 for r in spec["res"]):
+                raise g.child("res").error("res must be at least 1 in every direction")
+            spec["color"] = g.get("color", "float", 0.0) if with_color else None
+            if not with_color and g.has("color"):
+                raise g.child("color").error("<color> needs <MPM><withColor>true</withColor>")
+            spec["piece"] = piece
+            self.objects.append(spec)
+        if not self.objects:
+            raise node.error("a material needs at least one <geom_object>")
+
+    # -- particles -------------------------------------------------------------------
+    def create(self, patch, obj_base):
+        """Particles of this material in one patch: dict of arrays sorted by ID.
+
+        IDs: object number (global over all materials, `obj_base` + k) times 2^40 plus
+        the index of the particle's sub-cell on the level-wide lattice of that object,
+        so they do not depend on the patch layout."""
+        lv = patch.level
+        taken = None
+        out = []
+        for k, obj in enumerate(self.objects):
+            res = np.array([1 if lv.collapsed[d] else obj["res"][d] for d in range(3)])
+            axes = []
+            for d in range(3):
+                sub = np.arange(patch.lo[d] * res[d], patch.hi[d] * res[d])
+                axes.append(sub)
+            I, J, K = np.meshgrid(*axes, indexing="ij")
+            sub = np.stack([I.ravel(order="F"), J.ravel(order="F"), K.ravel(order="F")], axis=1)
+            x = lv.anchor + (sub + 0.5) / res * lv.dx
+            inside = obj["piece"].inside(x)
+            if taken is not None:
+                inside &= ~taken.inside(x)
+            x, sub = x[inside], sub[inside]
+            nsub = np.array(lv.ncells) * res
+            ids = (obj_base + k) * (1 << 40) + sub[:, 0] + nsub[0] * (sub[:, 1] + nsub[1] * sub[:, 2])
+            vol = float(np.prod(lv.dx / res))
+            n = len(x)
+            out.append(dict(x=x, id=ids.astype(np.int64), vol=np.full(n, vol),
+                            vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
+                            size=np.tile(0.5 * lv.dx / res, (n, 1)),
+                            color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))
+            from framework.geometry import Union
+            taken = obj["piece"] if taken is None else Union([taken, obj["piece"]])
+        data = {key: np.concatenate([o[key] for o in out]) for key in out[0]}
+        order = np.argsort(data["id"], kind="stable")
+        data = {key: np.ascontiguousarray(v[order]) for key, v in data.items()}
+        data["mass"] = self.density * data["vol"]
+        return data

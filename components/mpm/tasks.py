@@ -1,0 +1,296 @@
+"""The task bodies of explicit MPM (paper 000 eqs. 21-27; paper 004 eqs. 5-17).
+
+Each method is one task written for one patch and loops over the MPM materials:
+get arrays from the warehouses, call kernels, put results. Node arrays are filled
+from owned plus ghost particles, so no cross-patch sum of nodal values is needed.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from framework import labels as FL
+from framework.variables import VarType
+
+from . import kernels
+from . import labels as L
+
+NC = VarType.NC
+
+
+def _zeros3(n):
+    """A read-only (n, 3) array of zeros that costs no memory (stride 0)."""
+    return np.broadcast_to(np.zeros(3), (n, 3))
+
+
+def _zeros1(n):
+    return np.broadcast_to(np.zeros(1), (n,))
+
+
+def _zeros33(n):
+    return np.broadcast_to(np.zeros((3, 3)), (n, 3, 3))
+
+
+class MPMTasks:
+    """Mixed into the MPM component: needs self.materials, interp, p2g, flags ..."""
+
+    # -- helpers ----------------------------------------------------------------------------
+    def _lp(self, dw, m, patch, n):
+        return dw.get(L.pSize, m, patch) if self.kind == "gimp" else _zeros3(n)
+
+    def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
+                      old=None, new=None):
+        """Call the material's model; `old`/`new` are its state arrays (plastic strain)."""
+        if mat.has_plastic_strain:
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new)
+        return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy)
+
+    def _obj_base(self, m):
+        return sum(len(self.materials[k].objects) for k in range(m))
+
+    # -- initialization ------------------------------------------------------------------
+    def initialize(self, patch, matls, old_dw, new_dw):
+        """Particles from the geometry objects; zero stress, F = I; totals and wave speed."""
+        ws = np.zeros(3)
+        tot = np.zeros(8)
+        se = 0.0
+        for m in matls:
+            mat = self.materials[m]
+            d = mat.create(patch, self._obj_base(m))
+            n = len(d["id"])
+            new_dw.create_particles(m, patch, n)
+            F = np.zeros((n, 3, 3))
+            F[:, 0, 0] = F[:, 1, 1] = F[:, 2, 2] = 1.0
+            stress = np.zeros((n, 3, 3))
+            energy = np.zeros(n)
+            state = np.zeros(n)
+            ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
+                                                   d["vel"], 0.0, stress, stress, energy, state, state))
+            put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
+                   L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
+                   L.pStrainEnergy: energy, L.pPlasticStrain: state}
+            new_dw.put(L.pX, m, patch, d["x"])
+            for final, _ in self.carry:
+                if final in put:
+                    new_dw.put(final, m, patch, put[final])
+            if self.pressure_bcs:
+                self.pressure_bcs.initialize(patch, m, new_dw, d)
+            kernels.sums(d["mass"], d["vel"], d["x"], tot)
+            se += energy.sum()
+        self._put_totals(new_dw, tot)
+        new_dw.put_reduction(L.StrainEnergy, se)
+        new_dw.put_reduction(L.WaveSpeed, ws)
+
+    def _put_totals(self, dw, tot):
+        dw.put_reduction(L.TotalMass, tot[0])
+        dw.put_reduction(L.KineticEnergy, tot[1])
+        dw.put_reduction(L.TotalMomentum, tot[2:5])
+        dw.put_reduction(L.CenterOfMassPosition, tot[5:8])
+
+    def compute_stable_timestep(self, patch, matls, old_dw, new_dw):
+        """delT = min_d dx_d / (c + |v_d|) over active directions (Uintah's MPM rule)."""
+        ws = np.asarray(new_dw.get_reduction(L.WaveSpeed))
+        dt = np.inf
+        for d in range(3):
+            if self.dims[d] and ws[d] > 0:
+                dt = min(dt, self.level.dx[d] / ws[d])
+        new_dw.put_reduction(FL.delT, dt if np.isfinite(dt) else 1e30)
+
+    # -- particles -> grid ------------------------------------------------------------------
+    def interpolate_particles_to_grid(self, patch, matls, old_dw, new_dw):
+        """m_i, v_i, V_i, fext_i (000 eq. 22) and fint_i (000 eq. 24) per material."""
+        lv = self.level
+        alo, ahi = patch.alloc(NC)
+        pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
+        slo = np.array(alo) - pad
+        shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
+        inner = tuple(slice(pad[d], pad[d] + ahi[d] - alo[d]) for d in range(3))
+        for m in matls:
+            px = old_dw.get(L.pX, m, patch)
+            n = len(px)
+            pm = old_dw.get(L.pMass, m, patch)
+            pv = old_dw.get(L.pVelocity, m, patch)
+            pvol = old_dw.get(L.pVolume, m, patch)
+            ps = old_dw.get(L.pStress, m, patch)
+            pf = old_dw.get(L.pExtForce, m, patch) if self.pressure_bcs else _zeros3(n)
+            lp = self._lp(old_dw, m, patch, n)
+            gm = np.zeros(shape)
+            gmom = np.zeros(shape + (3,))
+            gvol = np.zeros(shape)
+            gfe = np.zeros(shape + (3,))
+            gfi = np.zeros(shape + (3,))
+            self.p2g(px, pm, pv, pvol, ps, pf, lp, lv.anchor, lv.dx, slo, gm, gmom, gvol, gfe, gfi)
+            gmass = np.ascontiguousarray(gm[inner])
+            gvel = np.empty(gmass.shape + (3,))
+            kernels.velocity_from_momentum(gmass, np.ascontiguousarray(gmom[inner]), gvel)
+            new_dw.put(L.gMass, m, patch, gmass)
+            new_dw.put(L.gVelocity, m, patch, gvel)
+            new_dw.put(L.gVolume, m, patch, np.ascontiguousarray(gvol[inner]))
+            new_dw.put(L.gExtForce, m, patch, np.ascontiguousarray(gfe[inner]))
+            new_dw.put(L.gIntForce, m, patch, np.ascontiguousarray(gfi[inner]))
+
+    def interpolate_stress_to_grid(self, patch, matls, old_dw, new_dw):
+        """g.stressFS = sum S m sigma / sum S m: a nodal stress for output only."""
+        lv = self.level
+        alo, ahi = patch.alloc(NC)
+        pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
+        shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
+        inner = tuple(slice(pad[d], pad[d] + ahi[d] - alo[d]) for d in range(3))
+        kind = 0 if self.kind == "linear" else 1
+        for m in matls:
+            px = old_dw.get(L.pX, m, patch)
+            gm = np.zeros(shape)
+            gs = np.zeros(shape + (3, 3))
+            kernels.p2g_stress(kind, self.dim, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pStress, m, patch),
+                               self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, np.array(alo) - pad, gm, gs)
+            out = new_dw.allocate(L.gStressFS, m, patch, None)
+            kernels.divide_by_mass(np.ascontiguousarray(gm[inner]), np.ascontiguousarray(gs[inner]), out)
+
+    # -- grid ---------------------------------------------------------------------------------
+    def ex_mom_interpolated(self, patch, matls, old_dw, new_dw):
+        """Contact on the interpolated velocities."""
+        gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
+        gv = {m: new_dw.get_modifiable(L.gVelocity, m, patch) for m in matls}
+        self.contact.exchange(gm, gv, None, None, 0.0)
+
+    def integrate_acceleration(self, patch, matls, old_dw, new_dw):
+        """a_i = (fint + fext)/m_i + g (000 eq. 21), v*_i = v_i + a_i dt (000 eq. 25)."""
+        dt = old_dw.get_reduction(FL.delT)
+        f = self.flags
+        for m in matls:
+            gm = new_dw.get(L.gMass, m, patch)
+            gv = new_dw.get(L.gVelocity, m, patch)
+            gvs = new_dw.allocate(L.gVelocityStar, m, patch, None)
+            ga = new_dw.allocate(L.gAcceleration, m, patch, None)
+            kernels.integrate_acceleration(gm, gv, new_dw.get(L.gIntForce, m, patch),
+                                           new_dw.get(L.gExtForce, m, patch), self.gravity, dt,
+                                           f["minimum_mass_for_acc"], f["artificial_damping_coeff"], gvs, ga)
+
+    def ex_mom_integrated(self, patch, matls, old_dw, new_dw):
+        """Contact on the integrated velocities; a = (v* - v)/dt where it acts."""
+        dt = old_dw.get_reduction(FL.delT)
+        gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
+        gv = {m: new_dw.get(L.gVelocity, m, patch) for m in matls}
+        gvs = {m: new_dw.get_modifiable(L.gVelocityStar, m, patch) for m in matls}
+        ga = {m: new_dw.get_modifiable(L.gAcceleration, m, patch) for m in matls}
+        self.contact.exchange(gm, gvs, ga, gv, dt)
+
+    def set_grid_bcs(self, patch, matls, old_dw, new_dw):
+        dt = old_dw.get_reduction(FL.delT)
+        for m in matls:
+            self.bcs.apply(patch, m, new_dw.get_modifiable(L.gVelocityStar, m, patch),
+                           new_dw.get_modifiable(L.gAcceleration, m, patch),
+                           new_dw.get(L.gVelocity, m, patch), dt)
+
+    # -- grid -> particles ----------------------------------------------------------------------
+    def interpolate_to_particles(self, patch, matls, old_dw, new_dw):
+        """v_p += dt sum S a (000 eq. 26), x_p += dt sum S v* (eq. 27); totals.
+
+        USL: L_p = sum v*_i (x) grad S (000 eq. 23) for the stress update.
+        MUSL (004 eqs. 11-14): the updated velocities of owned AND ghost particles are
+        mapped back to the nodes, v^L_i = sum S m_p v_p^{k+1} / m_i, and the stress
+        update takes L_p from v^L (next task): no node of little mass can hand a
+        particle a large velocity gradient."""
+        lv = self.level
+        dt = old_dw.get_reduction(FL.delT)
+        low = np.array(patch.low_index(NC), np.int64)
+        tot = np.zeros(8)
+        f = self.flags
+        for m in matls:
+            px = old_dw.get(L.pX, m, patch)
+            n = len(px)
+            pv = old_dw.get(L.pVelocity, m, patch)
+            pm = old_dw.get(L.pMass, m, patch)
+            lp = self._lp(old_dw, m, patch, n)
+            gvs = new_dw.get(L.gVelocityStar, m, patch)
+            gacc = new_dw.get(L.gAcceleration, m, patch)
+            x_new = np.empty((n, 3))
+            v_new = np.empty((n, 3))
+            Lg = np.empty((n, 3, 3))
+            self.interp.g2p(px, pv, lp, lv.anchor, lv.dx, low, gvs, gacc, dt, x_new, v_new, Lg)
+            if self.musl:
+                own = np.empty(n, np.bool_)
+                kernels.owned_mask(px, lv.anchor, lv.dx, np.array(patch.lo), np.array(patch.hi),
+                                   np.array(self.dims), own)
+                self._remap(patch, m, new_dw, px, pm, v_new, lp, dt)
+                x_new, v_new, pm_own = x_new[own], v_new[own], pm[own]
+            else:
+                pm_own = pm
+                new_dw.put(L.pVelGrad, m, patch, Lg)
+            if f["minimum_particle_mass"] > 0 or np.isfinite(f["maximum_particle_velocity"]):
+                kernels.flag_deleted(pm_own, v_new, x_new, f["minimum_particle_mass"],
+                                     f["maximum_particle_velocity"])
+            new_dw.put(L.pXpre, m, patch, x_new)
+            new_dw.put(L.pVelocityPre, m, patch, v_new)
+            kernels.sums(pm_own, v_new, x_new, tot)
+        self._put_totals(new_dw, tot)
+
+    def _remap(self, patch, m, new_dw, px, pm, v_new, lp, dt):
+        """g.velocity_L on the owned nodes from owned + ghost particles, with grid BCs."""
+        lv = self.level
+        alo, ahi = patch.alloc(NC)
+        pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
+        shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
+        inner = tuple(slice(pad[d], pad[d] + ahi[d] - alo[d]) for d in range(3))
+        n = len(px)
+        gm = np.zeros(shape)
+        gmom = np.zeros(shape + (3,))
+        junk_v = np.zeros(shape)
+        junk = np.zeros(shape + (3,))
+        self.p2g(px, pm, v_new, _zeros1(n), _zeros33(n), _zeros3(n), lp, lv.anchor, lv.dx,
+                 np.array(alo) - pad, gm, gmom, junk_v, junk, junk)
+        gvl = new_dw.allocate(L.gVelocityL, m, patch, None)
+        kernels.velocity_from_momentum(new_dw.get(L.gMass, m, patch), np.ascontiguousarray(gmom[inner]), gvl)
+        self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
+
+    def _velocity_gradient(self, patch, m, old_dw, new_dw):
+        """L_p = sum v^L_i (x) grad S_i(x_p) (004 eqs. 13-14) for the owned particles."""
+        lv = self.level
+        px = old_dw.get(L.pX, m, patch)
+        n = len(px)
+        gvl = new_dw.get(L.gVelocityL, m, patch)
+        Lg = np.empty((n, 3, 3))
+        scratch = np.empty((n, 3))
+        self.interp.g2p(px, scratch, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
+                        np.array(patch.low_index(NC), np.int64), gvl, gvl, 0.0, scratch, scratch, Lg)
+        return Lg
+
+    def compute_stress_tensor(self, patch, matls, old_dw, new_dw):
+        """F, V (004 eqs. 14, 17) and the stress from the constitutive model; strain energy
+        (the total: rate models accumulate their increments in p.strainEnergy); wave speed."""
+        dt = old_dw.get_reduction(FL.delT)
+        ws = np.zeros(3)
+        se = 0.0
+        for m in matls:
+            mat = self.materials[m]
+            Lg = self._velocity_gradient(patch, m, old_dw, new_dw) if self.musl else \
+                new_dw.get(L.pVelGrad, m, patch)
+            n = len(Lg)
+            pm = old_dw.get(L.pMass, m, patch)
+            F_old = old_dw.get(L.pF, m, patch)
+            F_new = new_dw.allocate(L.pFPre, m, patch, None)
+            vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
+            kernels.deform(Lg, F_old, F_new, dt, pm, mat.density, vol_new)
+            s_new = new_dw.allocate(L.pStressPre, m, patch, None)
+            energy = np.empty(n)
+            old = new = None
+            if mat.has_plastic_strain:
+                old = old_dw.get(L.pPlasticStrain, m, patch)
+                new = np.empty(n)
+            elif any(f is L.pPlasticStrain for f, _ in self.carry):
+                old = new = old_dw.get(L.pPlasticStrain, m, patch)
+            if old is not None:
+                new_dw.put(L.pPlasticStrainPre, m, patch, new)
+            ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
+                                                   new_dw.get(L.pVelocityPre, m, patch), dt,
+                                                   old_dw.get(L.pStress, m, patch), s_new, energy, old, new))
+            if any(f is L.pStrainEnergy for f, _ in self.carry):
+                if mat.increment_energy:
+                    energy = old_dw.get(L.pStrainEnergy, m, patch) + energy
+                new_dw.put(L.pStrainEnergyPre, m, patch, energy)
+            se += energy.sum()
+            for final, pre in self.carry:
+                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pExtForce, L.pLoadCurveID):
+                    new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+        new_dw.put_reduction(L.StrainEnergy, se)
+        new_dw.put_reduction(L.WaveSpeed, ws)
