@@ -280,7 +280,10 @@ def exchange_cells(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, 
     """Eqs. 38-39, pointwise implicit for any number of materials (stable for K = 1e15).
 
     Velocities: (I + B_K) u^L = u^L-; temperatures: (I + B_H / cv) T^L = T^L-, with
-    B from _exchange_matrix; both conserve the mixture's momentum and energy.
+    B from _exchange_matrix; both conserve the mixture's momentum and energy. The
+    systems are solved for the deviation from the mass- (m cv-) weighted mean, which
+    the exchange leaves unchanged, so round-off stays at the level of the deviations
+    even when K = 1e15 makes the matrix badly conditioned.
     """
     n = len(masses)
     a = np.empty((n, n))
@@ -296,19 +299,32 @@ def exchange_cells(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, 
                 for m in range(n):
                     th[m] = vfs[m][i, j, k]
                     sv[m] = sps[m][i, j, k]
+                msum = 0.0
+                esum = 0.0
+                for m in range(n):
+                    msum += masses[m][i, j, k]
+                    esum += masses[m][i, j, k] * cvv[m]
                 for c in range(3):
+                    ubar = 0.0
                     for m in range(n):
-                        b[m] = moms[m][i, j, k, c] / masses[m][i, j, k]
+                        ubar += moms[m][i, j, k, c]
+                    ubar /= msum
+                    for m in range(n):
+                        b[m] = moms[m][i, j, k, c] / masses[m][i, j, k] - ubar
                     _exchange_matrix(a, th, sv, K, dt, n, None)
                     solve_small(a, b, n)
                     for m in range(n):
-                        mom_out[m][i, j, k, c] = b[m] * masses[m][i, j, k]
+                        mom_out[m][i, j, k, c] = (ubar + b[m]) * masses[m][i, j, k]
+                tbar = 0.0
                 for m in range(n):
-                    b[m] = engs[m][i, j, k] / (masses[m][i, j, k] * cvv[m])
+                    tbar += engs[m][i, j, k]
+                tbar /= esum
+                for m in range(n):
+                    b[m] = engs[m][i, j, k] / (masses[m][i, j, k] * cvv[m]) - tbar
                 _exchange_matrix(a, th, sv, H, dt, n, cvv)
                 solve_small(a, b, n)
                 for m in range(n):
-                    eng_out[m][i, j, k] = b[m] * masses[m][i, j, k] * cvv[m]
+                    eng_out[m][i, j, k] = (tbar + b[m]) * masses[m][i, j, k] * cvv[m]
 
 
 @njit(cache=True)
