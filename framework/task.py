@@ -14,6 +14,9 @@ from .variables import Ghost, VarType
 
 OLD = "old"
 NEW = "new"
+PARENT_OLD = "parent_old"   # inside a Loop body: the timestep's old warehouse
+PARENT_NEW = "parent_new"   # inside a Loop body: the timestep's new warehouse
+WAREHOUSES = (OLD, NEW, PARENT_OLD, PARENT_NEW)
 
 
 class TaskError(Exception):
@@ -56,8 +59,8 @@ class Task:
         return self.matls
 
     def requires(self, dw, label: VarLabel, ghost: Ghost = Ghost.NONE, n: int = 0, matls=None):
-        if dw not in (OLD, NEW):
-            raise ValueError(f"task {self.name}: dw must be OLD or NEW, not {dw!r}")
+        if dw not in WAREHOUSES:
+            raise ValueError(f"task {self.name}: dw must be one of {WAREHOUSES}, not {dw!r}")
         if (ghost is Ghost.NONE) != (n == 0):
             raise ValueError(f"task {self.name}: {label.name} ghost type {ghost.value} with {n} layers")
         self.requires_.append(Dependency(label, dw, self._matls(label, matls), ghost, int(n)))

@@ -6,6 +6,9 @@
   <particles>  particles carried by a given velocity field (uniform plus solid-body
                rotation) across patch boundaries and relocated; their mass is also
                interpolated to the nodes (g.mass) with ghost particles.
+  <diffusion><implicit>true</implicit> takes backward-Euler steps solved by a
+               Jacobi-preconditioned conjugate gradient that runs as an iterated
+               sub-graph (framework.scheduler.loop), across patches and ranks.
 Only the blocks present are scheduled.
 """
 from __future__ import annotations
@@ -15,7 +18,8 @@ import numpy as np
 from framework import labels as L
 from framework.component import Component, register
 from framework.problemspec import Param
-from framework.task import NEW, OLD, Task
+from framework.scheduler.loop import Loop
+from framework.task import NEW, OLD, PARENT_OLD, Task
 from framework.variables import Ghost, VarType
 
 from . import kernels
@@ -33,8 +37,26 @@ TotalMass = L.create("TotalMass", VarType.REDUCTION, reduction="sum")
 
 DIFFUSION = {
     "alpha": Param("float", doc="thermal diffusivity (m^2/s)"),
-    "cfl": Param("float", 0.4, doc="fraction of the explicit stability limit"),
+    "cfl": Param("float", 0.4, doc="fraction of the explicit stability limit (may exceed 1 if implicit)"),
+    "implicit": Param("bool", False, doc="backward Euler solved by preconditioned CG"),
+    "tolerance": Param("float", 1e-10, doc="CG stops when |r| <= tolerance |r0|"),
+    "max_iterations": Param("int", 500),
 }
+
+# implicit solve: timestep-level seeds and the CG iteration's own variables
+cg_x0 = L.create("implicit.x0", VarType.CC)
+cg_r0 = L.create("implicit.r0", VarType.CC)
+cg_p0 = L.create("implicit.p0", VarType.CC)
+cg_rz0 = L.create("implicit.rz0", VarType.REDUCTION, reduction="sum")
+cg_rr0 = L.create("implicit.rr0", VarType.REDUCTION, reduction="sum")
+cg_X = L.create("cg.x", VarType.CC)
+cg_R = L.create("cg.r", VarType.CC)
+cg_Z = L.create("cg.z", VarType.CC)
+cg_P = L.create("cg.p", VarType.CC)
+cg_Q = L.create("cg.q", VarType.CC)
+cg_RZ = L.create("cg.rz", VarType.REDUCTION, reduction="sum")
+cg_RR = L.create("cg.rr", VarType.REDUCTION, reduction="sum")
+cg_PQ = L.create("cg.pq", VarType.REDUCTION, reduction="sum")
 GAUSSIAN = {
     "center": Param("vector"),
     "width": Param("float", doc="standard deviation sigma0"),
@@ -102,11 +124,14 @@ class Examples(Component):
         sched.add_task(t)
 
     def schedule_time_advance(self, level, sched):
-        if self.diffusion:
+        if self.diffusion and self.diffusion["implicit"]:
+            self.schedule_implicit_diffusion(sched)
+        elif self.diffusion:
             sched.add_task(Task("diffuseHeat", self.diffuse_heat, [0])
                            .requires(OLD, temp_CC, Ghost.AROUND_CELLS, 1)
                            .requires(OLD, L.delT)
                            .computes(temp_CC))
+        if self.diffusion:
             sched.add_task(Task("sumHeat", self.sum_heat, [0])
                            .requires(NEW, temp_CC).computes(TotalHeat))
         if self.particles:
@@ -120,6 +145,95 @@ class Examples(Component):
             sched.add_task(Task("sumGridMass", self.sum_grid_mass, [0])
                            .requires(NEW, gMass).computes(TotalMass))
             sched.schedule_particle_relocation(pXpre, [pMassPre, pIDpre], pX, [pMass, pID], [0], id_label=pID)
+
+    def schedule_implicit_diffusion(self, sched):
+        """(I - dt alpha lap) T = T_old by CG: seed, iterate as a sub-graph, set boundaries."""
+        sched.add_task(Task("implicitHeatSetup", self.cg_setup, [0])
+                       .requires(OLD, temp_CC, Ghost.AROUND_CELLS, 1).requires(OLD, L.delT)
+                       .computes(cg_x0).computes(cg_r0).computes(cg_p0).computes(cg_rz0).computes(cg_rr0))
+        body = [
+            Task("cgApplyOperator", self.cg_apply, [0])
+            .requires(OLD, cg_P, Ghost.AROUND_CELLS, 1).requires(PARENT_OLD, L.delT)
+            .computes(cg_Q).computes(cg_PQ),
+            Task("cgUpdateSolution", self.cg_update, [0])
+            .requires(OLD, cg_X).requires(OLD, cg_R).requires(OLD, cg_P).requires(OLD, cg_RZ)
+            .requires(NEW, cg_Q).requires(NEW, cg_PQ).requires(PARENT_OLD, L.delT)
+            .computes(cg_X).computes(cg_R).computes(cg_Z).computes(cg_RZ).computes(cg_RR),
+            Task("cgUpdateDirection", self.cg_direction, [0])
+            .requires(OLD, cg_P).requires(OLD, cg_RZ).requires(NEW, cg_Z).requires(NEW, cg_RZ)
+            .computes(cg_P),
+        ]
+        tol = self.diffusion["tolerance"]
+
+        def converged(dw, k, parent_new):
+            return dw.get_reduction(cg_RR) <= tol * tol * parent_new.get_reduction(cg_rr0)
+
+        self.solve = Loop("implicitHeatSolve", [0], body, init={cg_X.name: cg_x0, cg_R.name: cg_r0,
+                                                                 cg_P.name: cg_p0, cg_RZ.name: cg_rz0},
+                          results={cg_X.name: temp_CC}, converged=converged,
+                          max_iterations=self.diffusion["max_iterations"])
+        sched.add_task(self.solve)
+        sched.add_task(Task("implicitHeatBoundary", self.heat_boundary, [0]).modifies(temp_CC))
+
+    def _coef(self, dt):
+        a = self.diffusion["alpha"]
+        return np.array([a * dt / self.level.dx[d] ** 2 if self.dims[d] else 0.0 for d in range(3)])
+
+    def _neumann(self, patch, a):
+        lo, hi = (np.array(x) for x in patch.interior())
+        for d in range(3):
+            if patch.at_low[d]:
+                kernels.neumann_face(a, lo, hi, d, 0)
+            if patch.at_high[d]:
+                kernels.neumann_face(a, lo, hi, d, 1)
+
+    def cg_setup(self, patch, matls, old_dw, new_dw):
+        c = self._coef(old_dw.get_reduction(L.delT))
+        T = old_dw.get(temp_CC, 0, patch)
+        lo, hi = (np.array(x) for x in patch.interior())
+        x = new_dw.allocate(cg_x0, 0, patch)
+        x[...] = T
+        q = np.zeros_like(T)
+        kernels.helmholtz(T, q, lo, hi, c)
+        r = new_dw.allocate(cg_r0, 0, patch)
+        r[...] = 0.0
+        sl = tuple(slice(a, b) for a, b in zip(lo, hi))
+        r[sl] = T[sl] - q[sl]
+        p = new_dw.allocate(cg_p0, 0, patch)
+        p[...] = r / (1.0 + 2.0 * c.sum())
+        self._neumann(patch, p)
+        new_dw.put_reduction(cg_rz0, float((r[sl] * p[sl]).sum()))
+        new_dw.put_reduction(cg_rr0, float((r[sl] ** 2).sum()))
+
+    def cg_apply(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        c = self._coef(parent_old.get_reduction(L.delT))
+        p = old_dw.get(cg_P, 0, patch)
+        q = new_dw.allocate(cg_Q, 0, patch)
+        lo, hi = (np.array(x) for x in patch.interior())
+        new_dw.put_reduction(cg_PQ, kernels.helmholtz(p, q, lo, hi, c))
+
+    def cg_update(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        c = self._coef(parent_old.get_reduction(L.delT))
+        alpha = old_dw.get_reduction(cg_RZ) / new_dw.get_reduction(cg_PQ)
+        lo, hi = (np.array(x) for x in patch.interior())
+        xn = new_dw.allocate(cg_X, 0, patch)
+        rn = new_dw.allocate(cg_R, 0, patch)
+        zn = new_dw.allocate(cg_Z, 0, patch)
+        rz, rr = kernels.cg_update(old_dw.get(cg_X, 0, patch), old_dw.get(cg_R, 0, patch),
+                                   old_dw.get(cg_P, 0, patch), new_dw.get(cg_Q, 0, patch), xn, rn, zn,
+                                   alpha, 1.0 + 2.0 * c.sum(), lo, hi)
+        new_dw.put_reduction(cg_RZ, rz)
+        new_dw.put_reduction(cg_RR, rr)
+
+    def cg_direction(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        beta = new_dw.get_reduction(cg_RZ) / old_dw.get_reduction(cg_RZ)
+        lo, hi = (np.array(x) for x in patch.interior())
+        pn = new_dw.allocate(cg_P, 0, patch)
+        kernels.cg_direction(new_dw.get(cg_Z, 0, patch), old_dw.get(cg_P, 0, patch), pn, beta, lo, hi)
+        self._neumann(patch, pn)
+
+    def heat_boundary(self, patch, matls, old_dw, new_dw):
+        self._neumann(patch, new_dw.get_modifiable(temp_CC, 0, patch))
 
     # -- tasks --------------------------------------------------------------------------
     def initialize_temperature(self, patch, matls, old_dw, new_dw):

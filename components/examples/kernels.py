@@ -95,3 +95,47 @@ def mass_to_nodes(px, pm, gm, anchor, dx, low, own_lo, own_hi, dims):
                     if K < own_lo[2] or K >= own_hi[2]:
                         continue
                     gm[I, J, K] += pm[p] * wx * wy * wz
+
+
+@njit(cache=True)
+def helmholtz(p, q, lo, hi, c):
+    """q = (I - c . second differences) p over [lo, hi): backward-Euler heat operator."""
+    s = 0.0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                t = p[i, j, k]
+                lap = c[0] * (p[i - 1, j, k] - 2.0 * t + p[i + 1, j, k])
+                if c[1] != 0.0:
+                    lap += c[1] * (p[i, j - 1, k] - 2.0 * t + p[i, j + 1, k])
+                if c[2] != 0.0:
+                    lap += c[2] * (p[i, j, k - 1] - 2.0 * t + p[i, j, k + 1])
+                q[i, j, k] = t - lap
+                s += t * q[i, j, k]
+    return s
+
+
+@njit(cache=True)
+def cg_update(x, r, p, q, xn, rn, zn, alpha, diag, lo, hi):
+    """x += alpha p, r -= alpha q, z = r / diag (Jacobi); returns (r.z, r.r)."""
+    rz = 0.0
+    rr = 0.0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                xn[i, j, k] = x[i, j, k] + alpha * p[i, j, k]
+                rv = r[i, j, k] - alpha * q[i, j, k]
+                rn[i, j, k] = rv
+                zn[i, j, k] = rv / diag
+                rz += rv * zn[i, j, k]
+                rr += rv * rv
+    return rz, rr
+
+
+@njit(cache=True)
+def cg_direction(z, p, pn, beta, lo, hi):
+    """p_new = z + beta p."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                pn[i, j, k] = z[i, j, k] + beta * p[i, j, k]

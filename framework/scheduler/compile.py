@@ -198,8 +198,11 @@ def task_patch_graph(tasks, writers, patches, level) -> nx.DiGraph:
 def halo_widths(graphs) -> dict:
     """The widest ghost requirement of each grid type over all graphs."""
     halo = {}
+    graphs = list(graphs)
     for cg in graphs:
         for t in cg.tasks:
+            if getattr(t, "body_graph", None) is not None:
+                graphs.append(t.body_graph)
             for d in t.requires_:
                 vt = d.label.vartype
                 if vt.is_grid:

@@ -9,13 +9,13 @@ from __future__ import annotations
 import time
 from collections import defaultdict
 
-import numpy as np
 
 from ..labels import delT as delT_label
-from ..task import NEW, OLD, Task, TaskError, TaskView
+from ..task import NEW, OLD, PARENT_NEW, PARENT_OLD, Task, TaskError, TaskView
 from ..variables import VarType
 from .comm import Comm, Exchange, GridPlan
-from .compile import CompiledGraph, compile_graph, halo_widths
+from .compile import CompiledGraph, GraphError, compile_graph, halo_widths
+from .loop import Loop, run_loop
 from .relocate import RelocationSpec, relocate, relocation_task
 
 
@@ -70,8 +70,23 @@ class Scheduler:
             self._add_implicit_particle_requires(t)
         if self.relocation is not None:
             tasks.append(relocation_task(self.relocation))
+        for t in tasks:
+            if isinstance(t, Loop):
+                self._compile_loop(t)
         return compile_graph(self.graph_name, tasks, self.level.patches, self.level, set(needed),
                              old_available, protect, build_patch_graph)
+
+    def _compile_loop(self, loop: Loop):
+        for t in loop.body:
+            self._add_implicit_particle_requires(t)
+        first = set(loop.init)
+        for t in loop.body:
+            for d in t.requires_:
+                if d.dw == OLD and d.label.name not in first:
+                    raise GraphError(f"task {t.name} in loop {loop.name} requires {d.label.name} from the "
+                                     f"previous iteration, but the loop's init does not provide it")
+        loop.body_graph = compile_graph(f"{self.graph_name}:{loop.name}", loop.body, self.level.patches,
+                                        self.level, loop.needed(), first, build_patch_graph=False)
 
     def _add_implicit_particle_requires(self, task):
         """Ghost particles are chosen by position (and ordered by ID): the task reads those too."""
@@ -98,16 +113,18 @@ class Scheduler:
         return self._plans[key]
 
     # -- execute ---------------------------------------------------------------------------
-    def execute(self, cg: CompiledGraph, old_dw, new_dw, keep=frozenset()):
-        """Run every task of the graph on this rank's patches."""
+    def execute(self, cg: CompiledGraph, old_dw, new_dw, keep=frozenset(), parents=None):
+        """Run every task of the graph on this rank's patches (parents: a loop body's timestep DWs)."""
         if old_dw is not None:
             new_dw.pre_counts = dict(old_dw.nparticles)
         for task in cg.tasks:
             t0 = time.perf_counter()
             if hasattr(task, "relocation"):
                 relocate(self, task.relocation, new_dw)
+            elif isinstance(task, Loop):
+                run_loop(self, task, old_dw, new_dw)
             else:
-                self._run(task, old_dw, new_dw)
+                self._run(task, old_dw, new_dw, parents)
             self.timing[task.name] += time.perf_counter() - t0
             self.calls[task.name] += 1
             for name in cg.scrub_after.get(task, ()):
@@ -117,11 +134,16 @@ class Scheduler:
                 for name in cg.scrub_old_after.get(task, ()):
                     old_dw.scrub(name)
 
-    def _run(self, task: Task, old_dw, new_dw):
+    def _run(self, task: Task, old_dw, new_dw, parents=None):
         ov = TaskView(old_dw, task, OLD) if old_dw is not None else None
         nv = TaskView(new_dw, task, NEW)
+        views = (ov, nv)
+        dws = [(OLD, old_dw), (NEW, new_dw)]
+        if parents is not None:
+            views = (ov, nv, TaskView(parents[0], task, PARENT_OLD), TaskView(parents[1], task, PARENT_NEW))
+            dws += [(PARENT_OLD, parents[0]), (PARENT_NEW, parents[1])]
         exchanges = []
-        for which, dw in ((OLD, old_dw), (NEW, new_dw)):
+        for which, dw in dws:
             grid = [(d.label, d.n, d.matls) for d in task.requires_
                     if d.dw == which and d.n and d.label.vartype.is_grid]
             parts = [(d.label, d.n, d.matls) for d in task.requires_
@@ -134,12 +156,12 @@ class Scheduler:
         patches = self.local_patches
         for p in patches:
             if p.id not in remote:
-                self._call(task, p, ov, nv, new_dw)
+                self._call(task, p, views, new_dw)
         for ex in exchanges:
             ex.finish()
         for p in patches:
             if p.id in remote:
-                self._call(task, p, ov, nv, new_dw)
+                self._call(task, p, views, new_dw)
         for dep in task.computes_:
             if dep.label.vartype is VarType.REDUCTION:
                 for m in dep.matls:
@@ -147,8 +169,8 @@ class Scheduler:
                     v = new_dw.reductions.get(key, new_dw.identity(dep.label))
                     new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
 
-    def _call(self, task, patch, ov, nv, new_dw):
-        task.fn(patch, task.matls, ov, nv)
+    def _call(self, task, patch, views, new_dw):
+        task.fn(patch, task.matls, *views)
         for dep in task.computes_:
             vt = dep.label.vartype
             if vt is VarType.REDUCTION:
@@ -180,6 +202,3 @@ class Scheduler:
         rows = sorted(self.timing.items(), key=lambda kv: -kv[1])
         return [(name, t, self.calls[name], 100.0 * t / total) for name, t in rows]
 
-
-def as_array(x):
-    return np.asarray(x)

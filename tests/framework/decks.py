@@ -39,7 +39,7 @@ HEAT = """<?xml version="1.0"?>
 
 DIFFUSION = """<diffusion>
       <alpha>0.01</alpha>
-      <cfl>0.4</cfl>
+      <cfl>{cfl}</cfl>{implicit}
       <gaussian><center>[0.5,0.5,0.5]</center><width>0.08</width><amplitude>1</amplitude></gaussian>
     </diffusion>"""
 
@@ -54,11 +54,14 @@ PARTICLES = """<particles>
 
 
 def heat(n=32, nz=1, patches="[1,1,1]", maxTime=0.2, out=None, extra_save="", checkpoint="",
-         periodic="", diffusion=True, particles=False, velocity="[0,0,0]", omega=6.283185307179586):
+         periodic="", diffusion=True, particles=False, velocity="[0,0,0]", omega=6.283185307179586,
+         implicit=False, cfl=0.4, tolerance=1e-10):
     saves = ('<save label="temp_CC"/>' if diffusion else "") + extra_save
     outtag = (f"<outputInterval>{maxTime}</outputInterval>" if out is None
               else f"<outputTimestepInterval>{out}</outputTimestepInterval>")
     return HEAT.format(outtag=outtag, saves=saves, n=n, nz=nz, zup=1.0 if nz > 1 else 0.05, patches=patches, maxTime=maxTime,
                        checkpoint=checkpoint, periodic=periodic,
-                       diffusion=DIFFUSION if diffusion else "",
+                       diffusion=DIFFUSION.format(cfl=cfl, implicit=(
+                           f"<implicit>true</implicit><tolerance>{tolerance}</tolerance>" if implicit else ""))
+                       if diffusion else "",
                        particles=PARTICLES.format(velocity=velocity, omega=omega) if particles else "")
