@@ -101,14 +101,14 @@ def _read_bctype(bt, table, nmat):
 
 
 @njit(cache=True)
-def bc_scalar(q, d, side, kind, value, dx, lo, hi):
+def bc_scalar(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of face (d, side) of a scalar CC array."""
     e = lo[d] - 1 if side == 0 else hi[d]
     n = lo[d] if side == 0 else hi[d] - 1
     add = value * dx if kind == 0 else 0.0
-    sh = q.shape
-    for a in range(sh[(d + 1) % 3]):
-        for b in range(sh[(d + 2) % 3]):
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    for a in range(olo[d1], ohi[d1]):
+        for b in range(olo[d2], ohi[d2]):
             ie = [0, 0, 0]
             ie[d] = e
             ie[(d + 1) % 3] = a
@@ -122,13 +122,13 @@ def bc_scalar(q, d, side, kind, value, dx, lo, hi):
 
 
 @njit(cache=True)
-def bc_vector(q, d, side, kind, value, dx, lo, hi):
+def bc_vector(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of a vector CC array (velocity)."""
     e = lo[d] - 1 if side == 0 else hi[d]
     n = lo[d] if side == 0 else hi[d] - 1
-    sh = q.shape
-    for a in range(sh[(d + 1) % 3]):
-        for b in range(sh[(d + 2) % 3]):
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    for a in range(olo[d1], ohi[d1]):
+        for b in range(olo[d2], ohi[d2]):
             ie = [0, 0, 0]
             ie[d] = e
             ie[(d + 1) % 3] = a
@@ -146,12 +146,12 @@ def bc_vector(q, d, side, kind, value, dx, lo, hi):
 
 
 @njit(cache=True)
-def bc_sp_vol_from_density(spv, vf, rho, d, side, lo, hi):
+def bc_sp_vol_from_density(spv, vf, rho, d, side, lo, hi, olo, ohi):
     """computeFromDensity: v = theta / rho in the extra-cell layer of face (d, side)."""
     e = lo[d] - 1 if side == 0 else hi[d]
-    sh = spv.shape
-    for a in range(sh[(d + 1) % 3]):
-        for b in range(sh[(d + 2) % 3]):
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    for a in range(olo[d1], ohi[d1]):
+        for b in range(olo[d2], ohi[d2]):
             ie = [0, 0, 0]
             ie[d] = e
             ie[(d + 1) % 3] = a
@@ -179,30 +179,31 @@ class BoundaryConditions:
         self.table = table
         self.level = level
 
+    # `b` below is the patch's Boxes (tasks.py): interior and owned local ranges.
     def _faces(self, patch):
         for name in patch.boundary_faces:
             i = FACE_NAMES.index(name)
             yield name, i // 2, i % 2
 
-    def scalar(self, patch, q, var, m, lo, hi):
+    def scalar(self, patch, q, var, m, b):
         """Temperature, Density or Pressure (m = 0) in the extra cells of one CC array."""
         for name, d, s in self._faces(patch):
             kind, value = self.table[name][var][m]
             v = 0.0 if value is None else value
             if kind == DIRICHLET:
-                bc_scalar(q, d, s, 1, v, 0.0, lo, hi)
+                bc_scalar(q, d, s, 1, v, 0.0, b.lo, b.hi, b.olo, b.ohi)
             else:
-                bc_scalar(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], lo, hi)
+                bc_scalar(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], b.lo, b.hi, b.olo, b.ohi)
 
-    def velocity(self, patch, q, m, lo, hi):
+    def velocity(self, patch, q, m, b):
         for name, d, s in self._faces(patch):
             kind, value = self.table[name]["Velocity"][m]
             v = np.zeros(3) if value is None else value
-            bc_vector(q, d, s, kind, v, self.level.dx[d], lo, hi)
+            bc_vector(q, d, s, kind, v, self.level.dx[d], b.lo, b.hi, b.olo, b.ohi)
 
-    def sp_vol(self, patch, spv, vf, rho, m, lo, hi):
+    def sp_vol(self, patch, spv, vf, rho, m, b):
         for name, d, s in self._faces(patch):
-            bc_sp_vol_from_density(spv, vf, rho, d, s, lo, hi)
+            bc_sp_vol_from_density(spv, vf, rho, d, s, b.lo, b.hi, b.olo, b.ohi)
 
     def face_velocity(self, patch, uf, d, m, flo, fhi):
         """Boundary faces of direction d: Dirichlet -> value[d], symmetry -> 0."""

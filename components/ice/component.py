@@ -23,6 +23,8 @@ from .eos import MAX_PARAMS, make_eos
 from .tasks import IceTasks
 
 G = Ghost.AROUND_CELLS
+# Face arrays are read with one ghost layer: a patch's upper faces belong to its
+# neighbour, and the halo is what makes them part of the stored array.
 
 EOS_TAGS = {"ideal_gas": (), "Murnaghan": ("K", "n", "rho0", "P0"), "JWL": ("A", "B", "R1", "R2", "om", "rho0"),
             "JWLC": ("A", "B", "C", "R1", "R2", "om", "rho0"), "Stiffened_gas": ("Pinf",)}
@@ -176,7 +178,7 @@ class ICE(IceTasks, Component):
             t = Task("ICE::addExchangeContributionToFCVel", self.exchange_fc, self.matls) \
                 .requires(OLD, L.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
             for d in dirs:
-                t.requires(NEW, I.FC_VEL[d]).computes(I.FC_VEL_ME[d])
+                t.requires(NEW, I.FC_VEL[d], G, 1).computes(I.FC_VEL_ME[d])
             sched.add_task(t)
 
         t = Task("ICE::computeDelPressAndUpdatePressCC", self.delp_press, self.matls) \
@@ -188,7 +190,7 @@ class ICE(IceTasks, Component):
         else:
             t.requires(NEW, I.vol_frac_CC)
         for d in dirs:
-            t.requires(NEW, I.FC_VEL_ME[d])
+            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         sched.add_task(t)
 
         t = Task("ICE::computePressFC", self.press_fc, self.matls) \
@@ -203,7 +205,7 @@ class ICE(IceTasks, Component):
             .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
             .computes(I.mass_L_CC).computes(I.mom_L_CC).computes(I.int_eng_L_CC)
         for d in dirs:
-            t.requires(NEW, I.PRESS_FC[d], matls=m0)
+            t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
         if not self.exchange:
             t.computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
         sched.add_task(t)
@@ -228,7 +230,7 @@ class ICE(IceTasks, Component):
             .requires(NEW, I.vol_frac_CC) \
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
         for d in dirs:
-            t.requires(NEW, I.FC_VEL_ME[d])
+            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         sched.add_task(t)
 
         sched.add_task(Task("ICE::sumConservedQuantities", self.conserved_sums, self.matls)

@@ -115,7 +115,7 @@ class IceTasks:
             K.equilibrate_many(get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC), old_dw.get(I.press_CC, 0, patch),
                                spv, vfs, css, peq, self.codes, self.params, self.cvs, self.gammas,
                                b.olo, b.ohi, 1e-11, self.max_iter)
-        self.bcs.scalar(patch, peq, "Pressure", 0, b.lo, b.hi)
+        self.bcs.scalar(patch, peq, "Pressure", 0, b)
 
     # -- step 3: face velocities (eq. 28) and their exchange --------------------------------------
     def vel_fc(self, patch, matls, old_dw, new_dw):
@@ -166,7 +166,7 @@ class IceTasks:
         delP = new_dw.allocate(I.delP_Dilatate, 0, patch)
         press = new_dw.allocate(I.press_CC, 0, patch)
         K.update_pressure(new_dw.get(I.press_equil_CC, 0, patch), div, ksum, delP, press, b.lo, b.hi)
-        self.bcs.scalar(patch, press, "Pressure", 0, b.lo, b.hi)
+        self.bcs.scalar(patch, press, "Pressure", 0, b)
 
     # -- step 6: face pressure (eq. 31) -------------------------------------------------------------
     def press_fc(self, patch, matls, old_dw, new_dw):
@@ -247,10 +247,10 @@ class IceTasks:
                                  b.flo[d], b.fhi[d], b.lo, b.hi, dt, patch.level.dx[d], self.second_order,
                                  rho, vel, temp, spv)
             A.advect_finish(rho, vel, temp, spv, b.lo, b.hi, b.vol, self.cvs[m])
-            self.bcs.scalar(patch, rho, "Density", m, b.lo, b.hi)
-            self.bcs.scalar(patch, temp, "Temperature", m, b.lo, b.hi)
-            self.bcs.velocity(patch, vel, m, b.lo, b.hi)
-            self.bcs.sp_vol(patch, spv, new_dw.get(I.vol_frac_CC, m, patch), rho, m, b.lo, b.hi)
+            self.bcs.scalar(patch, rho, "Density", m, b)
+            self.bcs.scalar(patch, temp, "Temperature", m, b)
+            self.bcs.velocity(patch, vel, m, b)
+            self.bcs.sp_vol(patch, spv, new_dw.get(I.vol_frac_CC, m, patch), rho, m, b)
 
     # -- diagnostics ----------------------------------------------------------------------------
     def conserved_sums(self, patch, matls, old_dw, new_dw):
