@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..grid import box_intersect
 from ..variables import VarType
 
 
@@ -219,5 +218,3 @@ class Exchange:
             inside &= (c[:, d] >= cbox[0][d]) & (c[:, d] < cbox[1][d])
         return np.nonzero(inside)[0]
 
-
-__all__ = ["Comm", "GridPlan", "Exchange", "box_intersect"]
