@@ -185,10 +185,15 @@ class BoundaryConditions:
             i = FACE_NAMES.index(name)
             yield name, i // 2, i % 2
 
-    def scalar(self, patch, q, var, m, b):
-        """Temperature, Density or Pressure (m = 0) in the extra cells of one CC array."""
+    def scalar(self, patch, q, var, m, b, copy=False):
+        """Temperature, Density or Pressure (m = 0) in the extra cells of one CC array.
+
+        copy=True: zero-gradient copy whatever the condition (specific volume at t = 0).
+        """
         for name, d, s in self._faces(patch):
             kind, value = self.table[name][var][m]
+            if copy:
+                kind, value = NEUMANN, 0.0
             v = 0.0 if value is None else value
             if kind == DIRICHLET:
                 bc_scalar(q, d, s, 1, v, 0.0, b.lo, b.hi, b.olo, b.ohi)

@@ -89,6 +89,12 @@ class IceTasks:
             arrs[1][sl] = vel
             arrs[2][sl] = temp
             arrs[3][sl] = 1.0 / rho_micro
+            # extra cells outside every geometry object get their boundary values
+            self.bcs.scalar(patch, arrs[0], "Density", m, b)
+            self.bcs.scalar(patch, arrs[2], "Temperature", m, b)
+            self.bcs.velocity(patch, arrs[1], m, b)
+            self.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
+        self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
 
     def stable_timestep(self, patch, matls, old_dw, new_dw):
         """CFL: delT = cfl * min dx / (c + |u|) over materials, cells and directions."""
