@@ -1,0 +1,119 @@
+#!/usr/bin/env python
+"""What accuracy costs: run a scene at several resolutions and options; print cells,
+steps, wall time, L1 error and observed order side by side; write JSON (and a PNG of
+error vs wall time when matplotlib is importable).
+
+    .venv/bin/python scripts/accuracy_cost.py sod --res 50 100 200 400 \
+        --opt order=FirstOrder,SecondOrder --json sod.json --png sod.png
+
+A scene is a name -> (deck template taking the resolution and options, error function
+of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
+Toro's tests 1-5 from components/ice/scenes.py); nothing else here is component-specific.
+"""
+from __future__ import annotations
+
+import argparse
+import itertools
+import json
+import math
+import os
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+
+from framework.archiver import DataArchive  # noqa: E402
+from framework.controller import Controller  # noqa: E402
+
+
+def _ice_scene(name):
+    from components.ice import scenes
+
+    def deck(n, order="SecondOrder", cfl="0.4"):
+        return scenes.shock_tube_deck(name, n=n, order=order, cfl=float(cfl))
+
+    def error(da):
+        err, _, ex, _ = scenes.shock_tube_errors(da, name)
+        return {k: v for k, v in err.items()}
+    return {"deck": deck, "error": error, "key": "rho",
+            "what": f"ICE {name}: L1 error of density, velocity, pressure vs the exact Riemann solution"}
+
+
+SCENES = {name: (lambda n=name: _ice_scene(n)) for name in ("sod", "toro1", "toro2", "toro3", "toro4", "toro5")}
+
+
+def run_case(scene, n, opts, workdir):
+    """Run one deck; returns a result row (cells, steps, wall time, errors)."""
+    text = scene["deck"](n, **opts)
+    path = os.path.join(workdir, "deck.ups")
+    with open(path, "w") as f:
+        f.write(text)
+    c = Controller(path, quiet=True, filebase=os.path.join(workdir, "run.uda"))
+    t0 = time.perf_counter()
+    c.run()
+    wall = time.perf_counter() - t0
+    err = scene["error"](DataArchive(c.archiver.dir))
+    cells = int(math.prod(c.level.ncells))
+    return {"n": n, "cells": cells, "steps": c.timestep, "wall_s": wall,
+            "step_s": sum(c.step_times), "errors": err, **{f"opt_{k}": v for k, v in opts.items()}}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scene", choices=sorted(SCENES))
+    ap.add_argument("--res", type=int, nargs="+", default=[50, 100, 200, 400])
+    ap.add_argument("--opt", action="append", default=[], help="name=v1,v2 (an option of the deck template)")
+    ap.add_argument("--json", default=None)
+    ap.add_argument("--png", default=None)
+    args = ap.parse_args(argv)
+    scene = SCENES[args.scene]()
+    names = [o.split("=")[0] for o in args.opt]
+    values = [o.split("=")[1].split(",") for o in args.opt]
+    rows = []
+    key = scene["key"]
+    print(scene["what"])
+    for combo in itertools.product(*values) if values else [()]:
+        opts = dict(zip(names, combo))
+        with tempfile.TemporaryDirectory() as d:      # warm-up: numba compiles outside the timings
+            run_case(scene, args.res[0], opts, d)
+        prev = None
+        for n in args.res:
+            with tempfile.TemporaryDirectory() as d:
+                row = run_case(scene, n, opts, d)
+            e = row["errors"][key]
+            row["order"] = math.log(prev[1] / e) / math.log(n / prev[0]) if prev and e > 0 else None
+            prev = (n, e)
+            rows.append(row)
+            o = f"{row['order']:.2f}" if row["order"] is not None else "  - "
+            errs = "  ".join(f"{k}={v:.3e}" for k, v in row["errors"].items())
+            print(f"{' '.join(f'{k}={v}' for k, v in opts.items()):24s} cells={row['cells']:8d} steps={row['steps']:6d} "
+                  f"wall={row['wall_s']:8.3f}s  L1 {errs}  order({key})={o}", flush=True)
+    out = {"scene": args.scene, "what": scene["what"], "rows": rows}
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(out, f, indent=1)
+    if args.png:
+        try:
+            import matplotlib
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+        except ImportError:
+            print("matplotlib not importable: no PNG", file=sys.stderr)
+        else:
+            fig, ax = plt.subplots(figsize=(5, 4))
+            for combo in itertools.product(*values) if values else [()]:
+                sel = [r for r in rows if all(r.get(f"opt_{k}") == v for k, v in zip(names, combo))]
+                ax.loglog([r["wall_s"] for r in sel], [r["errors"][key] for r in sel], "o-",
+                          label=" ".join(combo) or args.scene)
+            ax.set_xlabel("wall time (s)")
+            ax.set_ylabel(f"L1 error ({key})")
+            ax.set_title(args.scene)
+            ax.legend()
+            fig.tight_layout()
+            fig.savefig(args.png, dpi=120)
+    return rows
+
+
+if __name__ == "__main__":
+    main()
