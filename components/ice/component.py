@@ -4,7 +4,8 @@
 `<MaterialProperties><ICE>`, `<exchange_properties>`, `<Grid><BoundaryConditions>`) and
 schedules one timestep as the tasks of paper 000 sec. 3.3, steps 2-12 (tasks.py).
 Physics a deck does not call for is not scheduled: the exchange tasks need two or
-more materials with a non-zero coefficient; gravity enters only when non-zero.
+more materials with a non-zero coefficient; the viscous and heat-conduction tasks a
+non-zero <dynamic_viscosity> / <thermal_conductivity>; gravity enters only when non-zero.
 """
 from __future__ import annotations
 
@@ -89,6 +90,8 @@ class ICE(IceTasks, Component):
         self.cvs = np.array([m.cv for m in self.materials])
         self.gammas = np.array([m.gamma for m in self.materials])
         self.matls = list(range(n))
+        self.viscous = any(m.viscosity > 0 for m in self.materials)
+        self.conduction = any(m.conductivity > 0 for m in self.materials)
         self._geom_cache = {}
 
     def material_names(self):
@@ -101,9 +104,8 @@ class ICE(IceTasks, Component):
             if props[tag] <= 0:
                 raise node.child(tag).error(f"<{tag}> must be positive")
         for tag in ("dynamic_viscosity", "thermal_conductivity"):
-            if props[tag] != 0.0:
-                raise node.child(tag).error(f"<{tag}> {props[tag]}: viscous stress and heat conduction are not "
-                                            "implemented in pysus ICE yet; accepted: 0")
+            if props[tag] < 0.0:
+                raise node.child(tag).error(f"<{tag}> must be >= 0")
         en = node.child("EOS", required=True)
         etype = en.attr("type", choices=tuple(EOS_TAGS))
         eos = make_eos(etype, {t: en.get(t, "float") for t in EOS_TAGS[etype]})
@@ -199,6 +201,15 @@ class ICE(IceTasks, Component):
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
 
+        if self.viscous:
+            sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)
+                           .requires(OLD, L.delT).requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
+                           .computes(I.viscous_src_CC))
+        if self.conduction:
+            sched.add_task(Task("ICE::computeHeatFlux", self.conduction_source, self.matls)
+                           .requires(OLD, L.delT).requires(OLD, I.temp_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
+                           .computes(I.heatCond_src_CC))
+
         t = Task("ICE::computeLagrangianValues", self.lagrangian_values, self.matls) \
             .requires(OLD, L.delT).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(OLD, I.temp_CC) \
             .requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
@@ -208,6 +219,10 @@ class ICE(IceTasks, Component):
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
         if not self.exchange:
             t.computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+        if self.viscous:
+            t.requires(NEW, I.viscous_src_CC)
+        if self.conduction:
+            t.requires(NEW, I.heatCond_src_CC)
         sched.add_task(t)
 
         if self.exchange:

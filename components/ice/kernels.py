@@ -414,3 +414,29 @@ def rho_micro_fill(press, temp, out, guess, code, params, cv, gamma):
     """rho_micro(p, T) from the EOS for flat arrays (initial condition)."""
     for n in range(press.size):
         out[n] = eos_rho_micro(code, params, press[n], temp[n], cv, gamma, guess)
+
+
+@njit(cache=True)
+def diffusion_source(q, vf, coef, out, dims, lo, hi, dx, dt, vol):
+    """Viscous / heat-conduction source (eqs. 8-9): out = dt V div(theta c grad q), per component.
+
+    q is (..., ncomp); face coefficients are harmonic means of theta c of the two cells.
+    """
+    nc = q.shape[3]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                c0 = coef * vf[i, j, k]
+                for c in range(nc):
+                    s = 0.0
+                    for d in range(3):
+                        if not dims[d]:
+                            continue
+                        di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+                        cp = coef * vf[i + di, j + dj, k + dk]
+                        cm = coef * vf[i - di, j - dj, k - dk]
+                        kp = 2.0 * c0 * cp / (c0 + cp + TINY)
+                        km = 2.0 * c0 * cm / (c0 + cm + TINY)
+                        s += (kp * (q[i + di, j + dj, k + dk, c] - q[i, j, k, c])
+                              - km * (q[i, j, k, c] - q[i - di, j - dj, k - dk, c])) / (dx[d] * dx[d])
+                    out[i, j, k, c] = dt * vol * s

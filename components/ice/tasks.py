@@ -104,6 +104,13 @@ class IceTasks:
             dt = min(dt, K.stable_dt(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
                                      new_dw.get(I.sp_vol_CC, m, patch), *self._eos(m), self.dims.astype(np.int64),
                                      patch.level.dx, b.lo, b.hi))
+            mat = self.materials[m]
+            nu = max(mat.viscosity, mat.conductivity / mat.cv)       # diffusivity times density
+            if nu > 0:
+                sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+                rho_min = 1.0 / float(new_dw.get(I.sp_vol_CC, m, patch)[sl].max())     # rho_micro
+                inv = sum(1.0 / patch.level.dx[d] ** 2 for d in range(3) if self.dims[d])
+                dt = min(dt, 0.5 * max(rho_min, 1e-300) / (2.0 * nu * inv) / self.cfl)
         new_dw.put_reduction(L.delT, self.cfl * dt)
 
     # -- step 2: equilibration pressure (eq. 13) ------------------------------------------------
@@ -188,6 +195,24 @@ class IceTasks:
                 pf = new_dw.allocate(I.PRESS_FC[d], 0, patch)
                 K.face_pressure(press, rho, pf, b.sh[d], UNIT[d], b.flo[d], b.fhi[d])
 
+    # -- step 7: fluid stresses and heat flux (only when the deck has them) -----------------------
+    def viscous_source(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        for m in matls:
+            out = new_dw.allocate(I.viscous_src_CC, m, patch)
+            K.diffusion_source(old_dw.get(I.vel_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
+                               self.materials[m].viscosity, out, self.dims, b.lo, b.hi, patch.level.dx, dt, b.vol)
+
+    def conduction_source(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        for m in matls:
+            out = new_dw.allocate(I.heatCond_src_CC, m, patch)
+            K.diffusion_source(old_dw.get(I.temp_CC, m, patch)[..., None], new_dw.get(I.vol_frac_CC, m, patch),
+                               self.materials[m].conductivity, out[..., None], self.dims, b.lo, b.hi,
+                               patch.level.dx, dt, b.vol)
+
     # -- steps 8-9: sources and Lagrangian values (eqs. 33-37) ----------------------------------
     def lagrangian_values(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
@@ -204,6 +229,11 @@ class IceTasks:
                          pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, mass, mom, eng,
                          b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, self.cvs[m], self.gravity,
                          self.use_gravity, self.codes[m], self.params[m], self.gammas[m])
+            sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+            if self.viscous:
+                mom[sl] += new_dw.get(I.viscous_src_CC, m, patch)[sl]
+            if self.conduction:
+                eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
             if not self.exchange:
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
