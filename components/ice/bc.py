@@ -101,6 +101,16 @@ def _read_bctype(bt, table, nmat):
 
 
 @njit(cache=True)
+def _idx(d, e, a, b):
+    """The (i, j, k) with index e along d and (a, b) along the next two directions (cyclic)."""
+    if d == 0:
+        return e, a, b
+    if d == 1:
+        return b, e, a
+    return a, b, e
+
+
+@njit(cache=True)
 def bc_scalar(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of face (d, side) of a scalar CC array."""
     e = lo[d] - 1 if side == 0 else hi[d]
@@ -109,16 +119,11 @@ def bc_scalar(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
-            ie = [0, 0, 0]
-            ie[d] = e
-            ie[(d + 1) % 3] = a
-            ie[(d + 2) % 3] = b
+            ie = _idx(d, e, a, b)
             if kind == 1:
-                q[ie[0], ie[1], ie[2]] = value
+                q[ie] = value
             else:
-                ie_n = ie.copy()
-                ie_n[d] = n
-                q[ie[0], ie[1], ie[2]] = q[ie_n[0], ie_n[1], ie_n[2]] + add
+                q[ie] = q[_idx(d, n, a, b)] + add
 
 
 @njit(cache=True)
@@ -129,12 +134,8 @@ def bc_vector(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
-            ie = [0, 0, 0]
-            ie[d] = e
-            ie[(d + 1) % 3] = a
-            ie[(d + 2) % 3] = b
-            i_n = ie.copy()
-            i_n[d] = n
+            ie = _idx(d, e, a, b)
+            i_n = _idx(d, n, a, b)
             for c in range(3):
                 if kind == 1:
                     q[ie[0], ie[1], ie[2], c] = value[c]
@@ -152,11 +153,8 @@ def bc_sp_vol_from_density(spv, vf, rho, d, side, lo, hi, olo, ohi):
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
-            ie = [0, 0, 0]
-            ie[d] = e
-            ie[(d + 1) % 3] = a
-            ie[(d + 2) % 3] = b
-            spv[ie[0], ie[1], ie[2]] = vf[ie[0], ie[1], ie[2]] / rho[ie[0], ie[1], ie[2]]
+            ie = _idx(d, e, a, b)
+            spv[ie] = vf[ie] / rho[ie]
 
 
 @njit(cache=True)
@@ -165,11 +163,7 @@ def bc_face_velocity(uf, d, index, value):
     sh = uf.shape
     for a in range(sh[(d + 1) % 3]):
         for b in range(sh[(d + 2) % 3]):
-            ie = [0, 0, 0]
-            ie[d] = index
-            ie[(d + 1) % 3] = a
-            ie[(d + 2) % 3] = b
-            uf[ie[0], ie[1], ie[2]] = value
+            uf[_idx(d, index, a, b)] = value
 
 
 class BoundaryConditions:

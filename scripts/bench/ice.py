@@ -31,7 +31,7 @@ FACES = "".join(f'<Face side="{s}"><BCType id="all" label="Symmetric" var="symme
 MATERIAL = """<material><EOS type="ideal_gas"/><dynamic_viscosity>0</dynamic_viscosity>
 <thermal_conductivity>0</thermal_conductivity><specific_heat>{cv}</specific_heat><gamma>1.4</gamma>
 {objects}</material>"""
-OBJ = """<geom_object>{piece}<res>[2,2,2]</res><velocity>[0,0,0]</velocity><temperature>{T}</temperature>
+OBJ = """<geom_object>{piece}<res>[2,2,2]</res><velocity>[0.5,0.3,{w}]</velocity><temperature>{T}</temperature>
 <density>{rho}</density><pressure>{p}</pressure></geom_object>"""
 
 DECK = """<Uintah_specification><SimulationComponent type="ice"/>
@@ -45,22 +45,23 @@ DECK = """<Uintah_specification><SimulationComponent type="ice"/>
 
 
 def deck(dim, nmat, n, steps):
+    """A blast plus a uniform drift, so every face carries a flux (advection costs what it costs)."""
     zup = 2 if dim == 3 else 0.01
     charge = f'<sphere label="c"><origin>[1,1,{1 if dim == 3 else 0.005}]</origin><radius>0.4</radius></sphere>'
     if dim == 2:
         charge = '<cylinder label="c"><bottom>[1,1,-1]</bottom><top>[1,1,1]</top><radius>0.4</radius></cylinder>'
     rest = f'<difference><box><min>[-1,-1,-1]</min><max>[3,3,3]</max></box><{charge.split()[0][1:]} label="c"/>' \
            '</difference>'
-    inside = OBJ.format(piece=charge, T=1.0, rho=1.0, p=1.0)
-    outside = OBJ.format(piece=rest, T=0.8, rho=0.125, p=0.1)
+    inside = OBJ.format(piece=charge, T=1.0, rho=1.0, p=1.0, w=0.2 if dim == 3 else 0)
+    outside = OBJ.format(piece=rest, T=0.8, rho=0.125, p=0.1, w=0.2 if dim == 3 else 0)
     if nmat == 1:
         mats = MATERIAL.format(cv=2.5, objects=inside + outside)
         exch = ""
     else:   # the labelled piece is defined where it first appears (the outer gas)
         tag = charge.split()[0][1:]
         outside = OBJ.format(piece=f'<difference><box><min>[-1,-1,-1]</min><max>[3,3,3]</max></box>{charge}'
-                                   '</difference>', T=0.8, rho=0.125, p=0.1)
-        inside = OBJ.format(piece=f'<{tag} label="c"/>', T=1.0, rho=1.0, p=1.0)
+                                   '</difference>', T=0.8, rho=0.125, p=0.1, w=0.2 if dim == 3 else 0)
+        inside = OBJ.format(piece=f'<{tag} label="c"/>', T=1.0, rho=1.0, p=1.0, w=0.2 if dim == 3 else 0)
         mats = MATERIAL.format(cv=2.5, objects=outside) + MATERIAL.format(cv=2.0, objects=inside)
         exch = ("<exchange_properties><exchange_coefficients><momentum>[1e10]</momentum><heat>[1e10]</heat>"
                 "</exchange_coefficients></exchange_properties>")
