@@ -1,9 +1,42 @@
-"""`<DataAnalysis>` modules of MPM decks: TODO."""
+"""`<DataAnalysis>` of MPM decks.
+
+Only `<Module name="particleExtract">` is accepted (disks.ups has one). Its tags are
+read and checked, but pysus does not yet write Uintah's per-particle text files: it
+says so on stderr at set-up instead of ignoring the block silently. Any other module
+is an input error.
+"""
+import sys
+
+from framework.problemspec import Param
+
+PARTICLE_EXTRACT = {
+    "material": Param("str"),
+    "samplingFrequency": Param("float"),
+    "timeStart": Param("float", 0.0),
+    "timeStop": Param("float", 1e300),
+    "colorThreshold": Param("float", 0.0),
+}
 
 
 class ParticleExtract:
+    active = False      # nothing is scheduled yet
+
     def __init__(self, root, mpm):
-        self.active = False
         da = root.child("DataAnalysis")
-        if da is not None:
-            da.mark_used()
+        if da is None:
+            return
+        for mod in da.children("Module"):
+            name = mod.attr("name", choices=("particleExtract",))
+            spec = mod.read(PARTICLE_EXTRACT)
+            names = [m.name for m in mpm.materials]
+            if spec["material"] not in names:
+                raise mod.child("material").error(f"no MPM material named {spec['material']!r}; "
+                                                  f"materials: {', '.join(names)}")
+            if spec["colorThreshold"] and not mpm.flags["withColor"]:
+                raise mod.child("colorThreshold").error("needs <MPM><withColor>true</withColor>")
+            var = mod.child("Variables", required=True)
+            for a in var.children("analyze"):
+                a.attr("label")
+            print(f"pysus: warning: {mod.filename}:{mod.line}: <Module name=\"{name}\"> is read but "
+                  "its per-particle text output is not implemented in pysus; use <save> for particle data",
+                  file=sys.stderr)

@@ -33,3 +33,13 @@ def test_disks_gimp_energy(tmp_path):
     assert t[-1] >= 0.1 - 1e-9
     assert ke.min() < 0.2 * ke[0]                 # collision happened inside the window
     assert np.max(np.abs(E / E[0] - 1)) < 0.03
+
+
+def test_disks_50x50(tmp_path):
+    """Finer grid (50 x 50, 4 patches): no blow-up at nearly empty nodes, energy kept."""
+    from .helpers import MPM_INPUTS
+    ctl, da = run(deck_text(MPM_INPUTS / "disks_50x50.ups", maxTime=1.6), tmp_path)
+    t, E = energy(da)
+    _, M = da.reduction("TotalMass")
+    assert np.all(np.isfinite(E)) and M[-1] == M[0]
+    assert np.max(np.abs(E / E[0] - 1)) < 0.03

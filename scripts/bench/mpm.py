@@ -1,0 +1,220 @@
+"""MPM throughput: particle-steps per second per core, and the framework's overhead.
+
+    .venv/bin/python scripts/bench/mpm.py [--steps 10] [--json out.json] [--quick]
+
+Cases: 2D/3D x linear/GIMP x MUSL/USL, a block of comp_neo_hook material moving and
+deforming (>= 1 M particles; --quick: ~65 k), one rank, one thread. The first step
+(JIT, warm-up) is not timed. Beside them, `reference_2d_linear` is ONE numba function
+doing the same 2D linear USL step (p2g, grid update, g2p, F, neo-Hooke stress) with no
+framework, so `framework / reference` is a measured ratio. Prints a table, writes JSON.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+import numpy as np
+from numba import njit
+
+DECK = """<?xml version="1.0"?>
+<Uintah_specification>
+  <SimulationComponent type="mpm"/>
+  <Time><maxTime>1e9</maxTime><delt_max>1e-3</delt_max><timestep_multiplier>0.4</timestep_multiplier></Time>
+  <Grid><Level><Box label="1">
+    <lower>[0,0,0]</lower><upper>{upper}</upper><resolution>{res}</resolution>
+    <extraCells>{extra}</extraCells><patches>{patches}</patches>
+  </Box></Level></Grid>
+  <MPM><interpolator>{interp}</interpolator><stress_update>{su}</stress_update></MPM>
+  <MaterialProperties><MPM><material>
+    <density>1000</density>
+    <constitutive_model type="comp_neo_hook"><bulk_modulus>833.3</bulk_modulus><shear_modulus>384.6</shear_modulus></constitutive_model>
+    <geom_object><box><min>{bmin}</min><max>{bmax}</max></box><res>{ppc}</res><velocity>[0.1,0.05,0.02]</velocity></geom_object>
+  </material></MPM></MaterialProperties>
+</Uintah_specification>
+"""
+
+
+def deck(dim, interp, su, n, patches):
+    """n cells per active direction, the block fills the inner 80 %."""
+    if dim == 2:
+        res, upper, ppc, pat = f"[{n},{n},1]", "[1,1,0.01]", "[2,2,1]", f"[{patches},{patches},1]"
+        extra = "[1,1,0]"
+        bmin, bmax = "[0.1,0.1,0]", "[0.9,0.9,0.01]"
+    else:
+        res, upper, ppc, pat = f"[{n},{n},{n}]", "[1,1,1]", "[2,2,2]", f"[{patches},{patches},{patches}]"
+        extra = "[1,1,1]"
+        bmin, bmax = "[0.1,0.1,0.1]", "[0.9,0.9,0.9]"
+    return DECK.format(upper=upper, res=res, extra=extra, patches=pat, interp=interp, su=su, bmin=bmin,
+                       bmax=bmax, ppc=ppc)
+
+
+def run_case(dim, interp, su, n, patches, steps):
+    from framework.controller import Controller
+    ctl = Controller("bench.ups", deck_text=deck(dim, interp, su, n, patches), quiet=True, max_timesteps=1)
+    dw = ctl.run()                       # JIT + first step
+    npart = sum(dw.nparticles.values())
+    ctl.sched.timing.clear()
+    ctl.time["max_Timesteps"] = 1 + steps
+    t0 = time.perf_counter()
+    ctl.restart_info = None
+    # continue the loop from the current warehouse
+    from framework import labels as L
+    tm = ctl.time
+    while ctl.timestep < tm["max_Timesteps"]:
+        delt = ctl.next_delt(ctl.sched.reduce_delT(dw), ctl.t, ctl.prev_delt, False)
+        from framework.datawarehouse import DataWarehouse
+        old, dw = dw, DataWarehouse(ctl.timestep + 1)
+        old.set_reduction(L.delT, delt)
+        old.set_reduction(L.simTime, ctl.t)
+        ctl.sched.execute(ctl.step_graph, old, dw)
+        ctl.t += delt
+        ctl.timestep += 1
+        ctl.prev_delt = delt
+    wall = time.perf_counter() - t0
+    table = ctl.sched.timing_table()
+    return npart, wall, table
+
+
+# ---- the single-function reference: 2D linear USL step, no framework -------------------
+@njit(cache=True, fastmath={'contract'})
+def reference_step(px, pv, pm, pvol, ps, pF, nx, ny, dx, dt, K, mu, rho0):
+    """One explicit 2D linear USL MPM step on a whole (nx+1) x (ny+1) node grid."""
+    gm = np.zeros((nx + 1, ny + 1))
+    gp = np.zeros((nx + 1, ny + 1, 2))
+    gf = np.zeros((nx + 1, ny + 1, 2))
+    ih = 1.0 / dx
+    n = px.shape[0]
+    for p in range(n):
+        x = px[p, 0] * ih
+        y = px[p, 1] * ih
+        i = int(x)
+        j = int(y)
+        fx = x - i
+        fy = y - j
+        for a in range(2):
+            wx = fx if a else 1.0 - fx
+            gx = ih if a else -ih
+            for b in range(2):
+                wy = fy if b else 1.0 - fy
+                gy = ih if b else -ih
+                S = wx * wy
+                G0 = gx * wy
+                G1 = wx * gy
+                gm[i + a, j + b] += pm[p] * S
+                gp[i + a, j + b, 0] += pm[p] * pv[p, 0] * S
+                gp[i + a, j + b, 1] += pm[p] * pv[p, 1] * S
+                gf[i + a, j + b, 0] -= pvol[p] * (ps[p, 0, 0] * G0 + ps[p, 0, 1] * G1)
+                gf[i + a, j + b, 1] -= pvol[p] * (ps[p, 1, 0] * G0 + ps[p, 1, 1] * G1)
+    gv = np.zeros((nx + 1, ny + 1, 2))
+    ga = np.zeros((nx + 1, ny + 1, 2))
+    for i in range(nx + 1):
+        for j in range(ny + 1):
+            if gm[i, j] > 0.0:
+                for d in range(2):
+                    a = gf[i, j, d] / gm[i, j]
+                    ga[i, j, d] = a
+                    gv[i, j, d] = gp[i, j, d] / gm[i, j] + a * dt
+    for p in range(n):
+        x = px[p, 0] * ih
+        y = px[p, 1] * ih
+        i = int(x)
+        j = int(y)
+        fx = x - i
+        fy = y - j
+        a0 = a1 = v0 = v1 = L00 = L01 = L10 = L11 = 0.0
+        for a in range(2):
+            wx = fx if a else 1.0 - fx
+            gx = ih if a else -ih
+            for b in range(2):
+                wy = fy if b else 1.0 - fy
+                gy = ih if b else -ih
+                S = wx * wy
+                a0 += S * ga[i + a, j + b, 0]
+                a1 += S * ga[i + a, j + b, 1]
+                v0 += S * gv[i + a, j + b, 0]
+                v1 += S * gv[i + a, j + b, 1]
+                L00 += gv[i + a, j + b, 0] * gx * wy
+                L01 += gv[i + a, j + b, 0] * wx * gy
+                L10 += gv[i + a, j + b, 1] * gx * wy
+                L11 += gv[i + a, j + b, 1] * wx * gy
+        pv[p, 0] += dt * a0
+        pv[p, 1] += dt * a1
+        px[p, 0] += dt * v0
+        px[p, 1] += dt * v1
+        F00 = (1 + dt * L00) * pF[p, 0, 0] + dt * L01 * pF[p, 1, 0]
+        F01 = (1 + dt * L00) * pF[p, 0, 1] + dt * L01 * pF[p, 1, 1]
+        F10 = dt * L10 * pF[p, 0, 0] + (1 + dt * L11) * pF[p, 1, 0]
+        F11 = dt * L10 * pF[p, 0, 1] + (1 + dt * L11) * pF[p, 1, 1]
+        pF[p, 0, 0] = F00
+        pF[p, 0, 1] = F01
+        pF[p, 1, 0] = F10
+        pF[p, 1, 1] = F11
+        J = F00 * F11 - F01 * F10
+        pvol[p] = pm[p] / rho0 * J
+        Jm23 = J ** (-2.0 / 3.0)
+        b00 = F00 * F00 + F01 * F01
+        b11 = F10 * F10 + F11 * F11
+        b01 = F00 * F10 + F01 * F11
+        tr = Jm23 * (b00 + b11 + 1.0)
+        pr = 0.5 * K * (J - 1.0 / J)
+        ps[p, 0, 0] = pr + mu / J * (Jm23 * b00 - tr / 3.0)
+        ps[p, 1, 1] = pr + mu / J * (Jm23 * b11 - tr / 3.0)
+        ps[p, 2, 2] = pr + mu / J * (Jm23 - tr / 3.0)
+        ps[p, 0, 1] = ps[p, 1, 0] = mu / J * Jm23 * b01
+
+
+def run_reference(n, steps):
+    dx = 1.0 / n
+    sub = (np.arange(2 * n) + 0.5) * dx / 2
+    X, Y = np.meshgrid(sub, sub, indexing="ij")
+    keep = (X >= 0.1) & (X <= 0.9) & (Y >= 0.1) & (Y <= 0.9)
+    px = np.ascontiguousarray(np.stack([X[keep], Y[keep]], axis=1))
+    npart = len(px)
+    pv = np.tile([0.1, 0.05], (npart, 1))
+    pvol = np.full(npart, dx * dx / 4 * 0.01)
+    pm = 1000.0 * pvol
+    ps = np.zeros((npart, 3, 3))
+    pF = np.tile(np.eye(3), (npart, 1, 1))
+    c = np.sqrt((833.3 + 4 * 384.6 / 3) / 1000.0)
+    dt = 0.4 * dx / (c + 0.1)
+    reference_step(px, pv, pm, pvol, ps, pF, n, n, dx, dt, 833.3, 384.6, 1000.0)
+    t0 = time.perf_counter()
+    for _ in range(steps):
+        reference_step(px, pv, pm, pvol, ps, pF, n, n, dx, dt, 833.3, 384.6, 1000.0)
+    return npart, time.perf_counter() - t0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--steps", type=int, default=10)
+    ap.add_argument("--json", default="mpm_bench.json")
+    ap.add_argument("--quick", action="store_true", help="~65 k particles instead of >= 1 M")
+    a = ap.parse_args()
+    n2, n3, p2, p3 = (160, 32, 2, 1) if a.quick else (640, 80, 4, 2)
+    rows = []
+    for dim, n, pt in ((2, n2, p2), (3, n3, p3)):
+        for interp in ("linear", "gimp"):
+            for su in ("musl", "usl"):
+                npart, wall, table = run_case(dim, interp, su, n, pt, a.steps)
+                rate = npart * a.steps / wall
+                share = {name: round(pct, 1) for name, t, calls, pct in table}
+                rows.append(dict(case=f"{dim}D {interp} {su}", particles=npart, patches=pt ** dim,
+                                 seconds_per_step=wall / a.steps, particle_steps_per_s=rate, share=share))
+                print(f"{dim}D {interp:6s} {su:4s} {npart:9d} particles  {wall / a.steps * 1e3:8.1f} ms/step  "
+                      f"{rate / 1e6:6.2f} M particle-steps/s", flush=True)
+                for name, t, calls, pct in table[:6]:
+                    print(f"      {pct:5.1f}%  {name}")
+    npart, wall = run_reference(n2, a.steps)
+    ref = npart * a.steps / wall
+    rows.append(dict(case="reference 2D linear usl (one numba function)", particles=npart,
+                     particle_steps_per_s=ref))
+    fw = next(r for r in rows if r["case"] == "2D linear usl")["particle_steps_per_s"]
+    print(f"reference 2D linear usl: {npart} particles {ref / 1e6:6.2f} M particle-steps/s; "
+          f"framework 2D linear usl / reference = {fw / ref:.2f}")
+    with open(a.json, "w") as f:
+        json.dump(rows, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,47 @@
+"""Bad MPM input is refused with the tag, line and what is accepted."""
+import pytest
+
+from framework.problemspec import InputError
+from tests.conftest import UINTAH_INPUTS
+
+from .helpers import deck_text, run
+
+SULSKY = UINTAH_INPUTS / "MPM" / "disks_sulsky.ups"
+
+
+def _fails(tmp_path, text, *words):
+    with pytest.raises(InputError) as e:
+        run(text, tmp_path)
+    msg = str(e.value)
+    for w in words:
+        assert w in msg, msg
+
+
+def test_unknown_constitutive_model(tmp_path):
+    text = open(SULSKY).read().replace('type="comp_neo_hook"', 'type="soil_foam"')
+    _fails(tmp_path, text, "soil_foam", "accepted", "comp_neo_hook", ".ups:")
+
+
+def test_unknown_contact(tmp_path):
+    text = open(SULSKY).read().replace("<type>null</type>", "<type>approach</type>")
+    _fails(tmp_path, text, "approach", "single_velocity")
+
+
+def test_unknown_mpm_tag(tmp_path):
+    text = open(SULSKY).read().replace("<interpolator>linear</interpolator>",
+                                       "<interpolator>linear</interpolator><XPIC2>true</XPIC2>")
+    _fails(tmp_path, text, "XPIC2")
+
+
+def test_bad_interpolator(tmp_path):
+    _fails(tmp_path, deck_text(SULSKY, interpolator="cpdi"), "cpdi", "gimp")
+
+
+def test_gimp_needs_extra_cells(tmp_path):
+    _fails(tmp_path, deck_text(SULSKY, interpolator="gimp"), "extraCells")
+
+
+def test_unknown_model_parameter(tmp_path):
+    text = open(SULSKY).read().replace("<shear_modulus>384.6</shear_modulus>",
+                                       "<shear_modulus>384.6</shear_modulus><youngs>1</youngs>")
+    _fails(tmp_path, text, "youngs")
