@@ -41,5 +41,5 @@ def test_disks_50x50(tmp_path):
     ctl, da = run(deck_text(MPM_INPUTS / "disks_50x50.ups", maxTime=1.6), tmp_path)
     t, E = energy(da)
     _, M = da.reduction("TotalMass")
-    assert np.all(np.isfinite(E)) and M[-1] == M[0]
+    assert np.all(np.isfinite(E)) and abs(M[-1] / M[0] - 1) < 1e-12   # none lost (sum order varies by patch)
     assert np.max(np.abs(E / E[0] - 1)) < 0.03
