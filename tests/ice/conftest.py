@@ -6,7 +6,7 @@ import pytest
 from framework.archiver import DataArchive
 from framework.controller import Controller
 
-UINTAH = "/work/shared/uintah-inputs/ICE"
+UINTAH = os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "uintah-inputs", "ICE")
 INPUTS = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "ICE")
 
 
