@@ -70,6 +70,9 @@ class ICE(IceTasks, Component):
         adv = ice.child("advection", required=True)
         self.second_order = adv.attr("type", choices=("FirstOrder", "SecondOrder")) == "SecondOrder"
         adv.attr("useCompatibleFluxes", "bool", True)
+        # pysus extension (not in Uintah): transverse (corner) terms of the second-order
+        # face values, second order in time for oblique flow; off = Uintah's scheme
+        self.transverse = adv.attr("transverseTerms", "bool", False) and self.second_order
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100)
         pc = root.child("PhysicalConstants", required=True)
         self.gravity = np.array(pc.get("gravity", "vector"), dtype=np.float64)

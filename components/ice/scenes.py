@@ -152,3 +152,136 @@ def shock_tube_errors(da, name, timestep=-1):
     num = {"rho": rho[:, 0, 0], "u": vel[:, 0, 0, 0], "p": p[:, 0, 0]}
     err = {k: float(np.mean(np.abs(num[k] - ex[k]))) for k in num}
     return err, num, ex, x
+
+
+# -- smooth advected entropy wave (order of accuracy) -----------------------------------------
+WAVE_TEMPLATE = """<?xml version="1.0" encoding="iso-8859-1"?>
+<!--
+  Smooth entropy (density) wave advected at uniform velocity and pressure on a periodic
+  unit {what}: rho = {rho0} + {amp} sin(2 pi s), s = {sdef}, p = {p0}, u = {vel}; ideal gas
+  gamma 1.4, cv 2.5. The exact solution is the translated profile; at t = {t} it is the
+  initial one. Every cell is initialised to the exact cell average of rho (one geometry
+  object per distinct value), temperature p / ((gamma - 1) cv rho).
+  {order} advection, CFL {cfl}, {n} cells per direction.
+-->
+<Uintah_specification>
+  <Meta><title>smooth wave {dim}D</title></Meta>
+  <SimulationComponent type="ice"/>
+  <Time>
+    <maxTime> {t} </maxTime>
+    <initTime> 0.0 </initTime>
+    <delt_min> 0.0 </delt_min>
+    <delt_max> 1.0 </delt_max>
+    <delt_init> 1.0e-6 </delt_init>
+    <timestep_multiplier> 1.0 </timestep_multiplier>
+    <end_at_max_time_exactly> true </end_at_max_time_exactly>
+  </Time>
+  <Grid>
+    <Level>
+      <Box label="1">
+        <lower> [0,0,0] </lower>
+        <upper> [1,{yup},0.01] </upper>
+        <extraCells> [0,0,1] </extraCells>
+        <patches> [1,1,1] </patches>
+        <resolution> [{n},{ny},1] </resolution>
+      </Box>
+      <periodic> [1,{py},0] </periodic>
+    </Level>
+  </Grid>
+  <DataArchiver>
+    <filebase>wave.uda</filebase>
+    <outputInterval> {t} </outputInterval>
+    <save label="rho_CC"/>
+    <save label="vel_CC"/>
+    <save label="press_CC"/>
+    <save label="TotalMass"/>
+    <save label="TotalIntEng"/>
+    <save label="KineticEnergy"/>
+  </DataArchiver>
+  <CFD>
+    <cfl> {cfl} </cfl>
+    <ICE><advection type="{order}" transverseTerms="{transverse}"/></ICE>
+  </CFD>
+  <PhysicalConstants>
+    <gravity> [0,0,0] </gravity>
+    <reference_pressure> 1.0 </reference_pressure>
+  </PhysicalConstants>
+  <MaterialProperties>
+    <ICE>
+      <material name="gas">
+        <EOS type="ideal_gas"/>
+        <dynamic_viscosity> 0.0 </dynamic_viscosity>
+        <thermal_conductivity> 0.0 </thermal_conductivity>
+        <specific_heat> 2.5 </specific_heat>
+        <gamma> 1.4 </gamma>
+{objects}      </material>
+    </ICE>
+  </MaterialProperties>
+</Uintah_specification>
+"""
+WAVE_OBJECT = """        <geom_object>
+          {piece}
+          <res> [1,1,1] </res>
+          <velocity> {vel} </velocity>
+          <temperature> {T!r} </temperature>
+          <density> {rho!r} </density>
+          <pressure> {p0} </pressure>
+        </geom_object>
+"""
+WAVE = dict(rho0=1.0, amp=0.2, p0=1.0)
+
+
+def wave_cell_average(n, dim):
+    """Exact cell averages of the wave's density per diagonal index k = (i + j) mod n."""
+    import numpy as np
+    h = 1.0 / n
+    sinc = np.sin(np.pi * h) / (np.pi * h)
+    k = np.arange(n)
+    # cell centres: s_c = (i + 1/2) h (1D), (i + j + 1) h (2D)
+    sc = (k + 0.5) * h if dim == 1 else (k + 1.0) * h
+    return WAVE["rho0"] + WAVE["amp"] * np.sin(2 * np.pi * sc) * sinc ** dim
+
+
+def smooth_wave_deck(n, order="SecondOrder", cfl=0.4, dim=1, periods=1.0, transverse=False):
+    """Deck text of the periodic smooth wave at n cells per direction, run for `periods` periods."""
+    h = 1.0 / n
+    rho = wave_cell_average(n, dim)
+    vel = "[1.0,0.0,0.0]" if dim == 1 else "[1.0,1.0,0.0]"
+    t = float(periods) if dim == 1 else 0.5 * float(periods)
+    objects = []
+    for k in range(n):
+        if dim == 1:
+            piece = f"<box><min> [{k * h!r},-1,-1] </min><max> [{(k + 1) * h!r},2,1] </max></box>"
+        else:
+            boxes = "".join(f"<box><min> [{i * h!r},{((k - i) % n) * h!r},-1] </min>"
+                            f"<max> [{(i + 1) * h!r},{((k - i) % n + 1) * h!r},1] </max></box>" for i in range(n))
+            piece = f"<union>{boxes}</union>"
+        T = WAVE["p0"] / (0.4 * 2.5 * rho[k])
+        objects.append(WAVE_OBJECT.format(piece=piece, vel=vel, T=float(T), rho=float(rho[k]), p0=WAVE["p0"]))
+    return WAVE_TEMPLATE.format(what="interval" if dim == 1 else "square (wave along the diagonal)",
+                                sdef="x" if dim == 1 else "x + y", vel=vel, t=t, order=order, cfl=cfl, n=n,
+                                dim=dim, transverse=str(bool(transverse)).lower(), yup=1 if dim == 2 else 0.01, ny=n if dim == 2 else 1,
+                                py=1 if dim == 2 else 0, objects="".join(objects), **WAVE)
+
+
+def smooth_wave_errors(da, timestep=-1):
+    """{'rho', 'u', 'p'}: mean |numerical - exact| (exact: cell averages of the translated wave)."""
+    import numpy as np
+    rho, (x, y, _) = da.read("rho_CC", 0, timestep)
+    vel, _ = da.read("vel_CC", 0, timestep)
+    p, _ = da.read("press_CC", 0, timestep)
+    n = rho.shape[0]
+    dim = 2 if rho.shape[1] > 1 else 1
+    t = da.times[timestep]
+    h = 1.0 / n
+    sinc = np.sin(np.pi * h) / (np.pi * h)
+    s = x[:, None] + (y[None, :] if dim == 2 else 0.0)
+    shift = t if dim == 1 else 2.0 * t
+    ex = WAVE["rho0"] + WAVE["amp"] * np.sin(2 * np.pi * (s - shift)) * sinc ** dim
+    u_ex = np.zeros_like(vel[..., 0, :])
+    u_ex[..., 0] = 1.0
+    if dim == 2:
+        u_ex[..., 1] = 1.0
+    return {"rho": float(np.mean(np.abs(rho[:, :, 0] - ex))),
+            "u": float(np.mean(np.abs(vel[:, :, 0, :] - u_ex))),
+            "p": float(np.mean(np.abs(p[:, :, 0] - WAVE["p0"])))}

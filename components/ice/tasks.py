@@ -281,7 +281,7 @@ class IceTasks:
                 if self.dims[d]:
                     A.advect_dir(mass, mom, eng, volm, new_dw.get(I.FC_VEL_ME[d], m, patch), b.sh[d], UNIT[d],
                                  b.flo[d], b.fhi[d], b.lo, b.hi, dt, patch.level.dx[d], self.second_order,
-                                 rho, vel, temp, spv)
+                                 rho, vel, temp, spv, self.transverse, self.dims, patch.level.dx)
             A.advect_finish(rho, vel, temp, spv, b.lo, b.hi, b.vol, self.cvs[m])
             self.bcs.scalar(patch, rho, "Density", m, b)
             self.bcs.scalar(patch, temp, "Temperature", m, b)
