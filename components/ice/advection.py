@@ -14,15 +14,17 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-NQ = 6  # mass, velocity x/y/z, specific internal energy, specific volume
+NQ = 7  # mass, velocity x/y/z, specific internal energy, specific volume, specific total energy
 
 
 @njit(cache=True)
-def advect_start(mass, mom, eng, volm, rho_o, vel_o, temp_o, spv_o, lo, hi):
+def advect_start(mass, mom, eng, volm, rho_o, vel_o, temp_o, spv_o, lo, hi, tot, tot_o, with_e):
     """Copy the Lagrangian totals into the output arrays, which then accumulate fluxes."""
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
+                if with_e:
+                    tot_o[i, j, k] = tot[i, j, k]
                 rho_o[i, j, k] = mass[i, j, k]
                 temp_o[i, j, k] = eng[i, j, k]
                 spv_o[i, j, k] = volm[i, j, k]
@@ -31,8 +33,9 @@ def advect_start(mass, mom, eng, volm, rho_o, vel_o, temp_o, spv_o, lo, hi):
 
 
 @njit(cache=True)
-def _specific(mass, mom, eng, volm, a, b, c, q):
+def _specific(mass, mom, eng, volm, a, b, c, q, tot, with_e):
     m = mass[a, b, c]
+    q[6] = tot[a, b, c] / m if with_e else 0.0
     q[0] = m
     q[1] = mom[a, b, c, 0] / m
     q[2] = mom[a, b, c, 1] / m
@@ -50,7 +53,7 @@ def _van_leer(a, b):
 
 @njit(cache=True)
 def advect_dir(mass, mom, eng, volm, uf, sh, dd, flo, fhi, lo, hi, dt, dx, second,
-               rho_o, vel_o, temp_o, spv_o, transverse, dims, dxs):
+               rho_o, vel_o, temp_o, spv_o, transverse, dims, dxs, tot, tot_o, with_e):
     """Add the fluxes through the faces [flo, fhi) of one direction to the cells [lo, hi).
 
     `transverse` (second order only): the face value is also moved half a step back
@@ -77,15 +80,15 @@ def advect_dir(mass, mom, eng, volm, uf, sh, dd, flo, fhi, lo, hi, dt, dx, secon
                 else:
                     d0, d1, d2, s = r0, r1, r2, -1.0
                 cfl = abs(u) * dt / dx
-                _specific(mass, mom, eng, volm, d0, d1, d2, qd)
+                _specific(mass, mom, eng, volm, d0, d1, d2, qd, tot, with_e)
                 for q in range(NQ):
                     face[q] = qd[q]
                 if second:
                     a0, a1, a2 = d0 - dd[0], d1 - dd[1], d2 - dd[2]
                     b0, b1, b2 = d0 + dd[0], d1 + dd[1], d2 + dd[2]
                     if a0 >= 0 and a1 >= 0 and a2 >= 0 and b0 < nx and b1 < ny and b2 < nz:
-                        _specific(mass, mom, eng, volm, a0, a1, a2, qm)
-                        _specific(mass, mom, eng, volm, b0, b1, b2, qp)
+                        _specific(mass, mom, eng, volm, a0, a1, a2, qm, tot, with_e)
+                        _specific(mass, mom, eng, volm, b0, b1, b2, qp, tot, with_e)
                         w = 0.5 * s * (1.0 - cfl)
                         for q in range(NQ):
                             face[q] += w * _van_leer(qd[q] - qm[q], qp[q] - qd[q])
@@ -97,8 +100,8 @@ def advect_dir(mass, mom, eng, volm, uf, sh, dd, flo, fhi, lo, hi, dt, dx, secon
                             a0, a1, a2 = d0 - e0, d1 - e1, d2 - e2
                             b0, b1, b2 = d0 + e0, d1 + e1, d2 + e2
                             if a0 >= 0 and a1 >= 0 and a2 >= 0 and b0 < nx and b1 < ny and b2 < nz:
-                                _specific(mass, mom, eng, volm, a0, a1, a2, qa)
-                                _specific(mass, mom, eng, volm, b0, b1, b2, qp)
+                                _specific(mass, mom, eng, volm, a0, a1, a2, qa, tot, with_e)
+                                _specific(mass, mom, eng, volm, b0, b1, b2, qp, tot, with_e)
                                 wt = -0.5 * dt * qd[1 + t] / dxs[t]
                                 for q in range(NQ):
                                     face[q] += wt * _van_leer(qd[q] - qa[q], qp[q] - qd[q])
@@ -112,6 +115,8 @@ def advect_dir(mass, mom, eng, volm, uf, sh, dd, flo, fhi, lo, hi, dt, dx, secon
                     vel_o[l0, l1, l2, 2] -= fm * face[3]
                     temp_o[l0, l1, l2] -= fm * face[4]
                     spv_o[l0, l1, l2] -= fm * face[5]
+                    if with_e:
+                        tot_o[l0, l1, l2] -= fm * face[6]
                 if inR:
                     rho_o[r0, r1, r2] += fm
                     vel_o[r0, r1, r2, 0] += fm * face[1]
@@ -119,6 +124,8 @@ def advect_dir(mass, mom, eng, volm, uf, sh, dd, flo, fhi, lo, hi, dt, dx, secon
                     vel_o[r0, r1, r2, 2] += fm * face[3]
                     temp_o[r0, r1, r2] += fm * face[4]
                     spv_o[r0, r1, r2] += fm * face[5]
+                    if with_e:
+                        tot_o[r0, r1, r2] += fm * face[6]
 
 
 @njit(cache=True)
@@ -133,3 +140,21 @@ def advect_finish(rho_o, vel_o, temp_o, spv_o, lo, hi, vol, cv):
                 spv_o[i, j, k] = spv_o[i, j, k] / m
                 for c in range(3):
                     vel_o[i, j, k, c] = vel_o[i, j, k, c] / m
+
+
+@njit(cache=True)
+def energy_finish(rho_o, vel_o, temp_o, tot_o, lo, hi, vol, cv):
+    """Conservative total energy -> temperature: e = E/m - |u|^2/2 where that is positive
+    (elsewhere the advected internal energy stays). Returns the number of such cells."""
+    bad = 0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                m = rho_o[i, j, k] * vol
+                u0, u1, u2 = vel_o[i, j, k, 0], vel_o[i, j, k, 1], vel_o[i, j, k, 2]
+                e = tot_o[i, j, k] / m - 0.5 * (u0 * u0 + u1 * u1 + u2 * u2)
+                if e > 0.0:
+                    temp_o[i, j, k] = e / cv
+                else:
+                    bad += 1
+    return bad

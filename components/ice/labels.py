@@ -40,6 +40,9 @@ int_eng_L_CC = L.create("int_eng_L_CC", CC)
 mom_L_ME_CC = L.create("mom_L_ME_CC", CC, (3,))
 int_eng_L_ME_CC = L.create("int_eng_L_ME_CC", CC)
 sp_vol_L_CC = L.create("sp_vol_L_CC", CC)       # material volume m*v, advected
+# <conserveTotalEnergy> (pysus extension): Lagrangian total energy m (e + |u|^2/2)
+tot_eng_L_CC = L.create("tot_eng_L_CC", CC)
+tot_eng_L_ME_CC = L.create("tot_eng_L_ME_CC", CC)
 
 # diagnostics
 mach = L.create("mach", CC)

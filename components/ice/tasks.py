@@ -237,6 +237,17 @@ class IceTasks:
             if not self.exchange:
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
+            if self.conserve_energy:
+                tot = new_dw.allocate(I.tot_eng_L_CC, m, patch, fill=None)
+                uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
+                K.total_energy_lagrangian(old_dw.get(I.rho_CC, m, patch), old_dw.get(I.vel_CC, m, patch),
+                                          old_dw.get(I.temp_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
+                                          len(matls) == 1, pf[0], pf[1], pf[2], uf[0], uf[1], uf[2],
+                                          b.sh[0], b.sh[1], b.sh[2], self.dims, tot, b.olo, b.ohi, b.lo, b.hi,
+                                          b.vol, patch.level.dx, dt, self.cvs[m], self.gravity, self.use_gravity)
+                if self.conduction:
+                    tot[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
+                new_dw.put(I.tot_eng_L_ME_CC, m, patch, tot)       # one material: no exchange
 
     # -- step 10: momentum and heat exchange (eqs. 38-39) ---------------------------------------
     def exchange_cc(self, patch, matls, old_dw, new_dw):
@@ -247,6 +258,7 @@ class IceTasks:
         eng_out = tuple(new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None) for m in matls)
         K.exchange_cells(get(I.mass_L_CC), get(I.mom_L_CC), get(I.int_eng_L_CC), get(I.vol_frac_CC),
                          get(I.sp_vol_CC), self.cvs, mom_out, eng_out, b.olo, b.ohi, dt, self.K, self.H)
+
 
     # -- step 11: specific volume (eq. 40) --------------------------------------------------------
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
@@ -276,13 +288,20 @@ class IceTasks:
             vel = new_dw.allocate(I.vel_CC, m, patch)
             temp = new_dw.allocate(I.temp_CC, m, patch)
             spv = new_dw.get_modifiable(I.sp_vol_CC, m, patch)
-            A.advect_start(mass, mom, eng, volm, rho, vel, temp, spv, b.lo, b.hi)
+            if self.conserve_energy:
+                tot, tot_o = new_dw.get(I.tot_eng_L_ME_CC, m, patch), np.empty_like(mass)
+            else:
+                tot = tot_o = mass                              # unused
+            A.advect_start(mass, mom, eng, volm, rho, vel, temp, spv, b.lo, b.hi, tot, tot_o, self.conserve_energy)
             for d in range(3):
                 if self.dims[d]:
                     A.advect_dir(mass, mom, eng, volm, new_dw.get(I.FC_VEL_ME[d], m, patch), b.sh[d], UNIT[d],
                                  b.flo[d], b.fhi[d], b.lo, b.hi, dt, patch.level.dx[d], self.second_order,
-                                 rho, vel, temp, spv, self.transverse, self.dims, patch.level.dx)
+                                 rho, vel, temp, spv, self.transverse, self.dims, patch.level.dx,
+                                 tot, tot_o, self.conserve_energy)
             A.advect_finish(rho, vel, temp, spv, b.lo, b.hi, b.vol, self.cvs[m])
+            if self.conserve_energy:
+                A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m])
             self.bcs.scalar(patch, rho, "Density", m, b)
             self.bcs.scalar(patch, temp, "Temperature", m, b)
             self.bcs.velocity(patch, vel, m, b)

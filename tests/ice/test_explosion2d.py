@@ -3,7 +3,8 @@
 Closed walls: mass is conserved to round-off and the momentum stays zero (the scene is
 symmetric); the solution keeps the x <-> y and mirror symmetries; 1 and 4 patches give
 bitwise the same answer; ICE's internal-energy form conserves total energy only
-approximately (measured drift 0.6 % at 128^2; bound 2 %).
+approximately (measured drift 0.6 % at 128^2; bound 2 %); with <conserveTotalEnergy>
+to round-off (tests/ice/test_energy.py).
 """
 import numpy as np
 import pytest

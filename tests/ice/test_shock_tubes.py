@@ -4,7 +4,11 @@ The accuracy bounds (L1 error relative to the mean exact value, 200 cells, secon
 order) were measured with pysus and are set ~25 % above: Sod rho 1.4 %, test 1 2.3 %,
 test 2 1.8 %. Tests 3-5 (strong shocks) are checked for stability and bounds only:
 like Uintah's ICE, the internal-energy form under-heats very strong shocks, which
-leaves a density spike at the contact (see the report in scripts/accuracy_cost.py).
+leaves a density spike at the contact (Toro 3: rho 19.2 vs 6.0; its L1 error grows with
+resolution: L1(rho) 0.21 -> 0.27 -> 0.38 at 100/200/400 cells; with the option
+0.090 -> 0.056 -> 0.028). The pysus option
+<conserveTotalEnergy> fixes that (tests/ice/test_energy.py; scripts/accuracy_cost.py
+toro3 --opt energy=internal,total).
 """
 import numpy as np
 import pytest
