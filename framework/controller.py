@@ -190,10 +190,15 @@ class Controller:
         sched.begin_graph("timestep")
         sched.tasks, sched.relocation = step_tasks, step_reloc
         self.carried = carried
-        self.step_graph = sched.compile({L.delT.name} | carried | self.outputs,
-                                        old_available=self.init_graph.computed | carried | provided,
+        available = self.init_graph.computed | carried | provided
+        self.step_graph = sched.compile({L.delT.name} | carried | self.outputs, old_available=available,
                                         protect={L.delT.name} | carried)
-        sched.set_halo([self.init_graph, self.step_graph])
+        # steps that write no output skip the tasks that only feed output
+        self.quiet_step_graph = self.step_graph
+        if self.outputs - carried - {L.delT.name}:
+            self.quiet_step_graph = sched.compile({L.delT.name} | carried, old_available=available,
+                                                  protect={L.delT.name} | carried, build_patch_graph=False)
+        sched.set_halo([self.init_graph, self.step_graph, self.quiet_step_graph])
 
     @staticmethod
     def _old_requires(tasks):
@@ -263,10 +268,11 @@ class Controller:
             old, dw = dw, DataWarehouse(self.timestep + 1)
             old.set_reduction(L.delT, delt)
             old.set_reduction(L.simTime, self.t)
-            keep = self.outputs
+            writes = self.archiver is not None and self.archiver.output_due(self.timestep + 1, self.t + delt)
+            graph = self.step_graph if writes else self.quiet_step_graph
             self._inject_fault()
             s0 = time.perf_counter()
-            self.sched.execute(self.step_graph, old, dw, keep=keep)
+            self.sched.execute(graph, old, dw, keep=self.outputs if writes else frozenset())
             step_wall.append(time.perf_counter() - s0)
             del old
             self.t += delt

@@ -34,6 +34,9 @@ class DataWarehouse:
         self.reductions: dict = {}
         self.perpatch: dict = {}
         self.ghost_particles: dict = {}
+        self.ghost_order: dict = {}     # (matl, patch, g) -> (ID order, owned mask) of owned+ghost
+        self.ghost_select: dict = {}    # (matl, source patch, cell box) -> indices sent as ghosts
+        self.ghost_seen: set = set()
         self.halo_valid: dict = {}
 
     # -- grid and particle variables ---------------------------------------------

@@ -113,7 +113,8 @@ class Level:
 
     def cells_of(self, x):
         """Cell indices (n,3) int64 of positions x (n,3); collapsed directions give 0."""
-        c = np.floor((x - self.anchor) / self.dx).astype(np.int64)
+        with np.errstate(invalid="ignore"):
+            c = np.floor((x - self.anchor) / self.dx).astype(np.int64)
         for d in range(3):
             if self.collapsed[d]:
                 c[:, d] = 0

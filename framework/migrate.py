@@ -27,3 +27,6 @@ def migrate(dw, level, old_map, new_map, comm):
             dw.nparticles.update(pack["np"])
     dw.halo_valid.clear()
     dw.ghost_particles.clear()
+    dw.ghost_order.clear()
+    dw.ghost_select.clear()
+    dw.ghost_seen.clear()

@@ -128,6 +128,17 @@ class TaskView:
         self._check_read(label, matl)
         return self.dw.get_reduction(label, matl)
 
+    def ghost_owned_mask(self, label: VarLabel, matl: int, patch):
+        """Which entries of get(label) (a ghosted particle variable) belong to this patch.
+
+        None when there are no ghost particles (every entry is owned).
+        """
+        self._check_read(label, matl)
+        g = self.ghosted.get(label.name)
+        if g is None:
+            return None
+        return self.dw.ghost_order.get((matl, patch.id, g), (None, None))[1]
+
     def num_particles(self, matl: int, patch) -> int:
         return self.dw.num_particles(matl, patch)
 

@@ -167,18 +167,19 @@ class Exchange:
                     labels.setdefault((g, m), []).append(label)
         if not labels:
             return
-        extra = [pos] + ([ex.particle_id_label] if ex.particle_id_label is not None else [])
+        idl = ex.particle_id_label
         outgoing, sources = {}, set()
         pieces = {}
         for (g, m), lbls in labels.items():
-            send_lbls = list(dict.fromkeys(lbls + extra))
+            # the ID order of owned+ghost particles is found once per warehouse, then reused
+            send_lbls = list(dict.fromkeys(lbls + ([idl] if idl is not None and (m, g) not in dw.ghost_seen else [])))
             for p in level.patches:
                 for q, shift, cbox in level.particle_ghost_sources(p, g):
                     rp, rq = rank_of[p.id], rank_of[q.id]
                     if rq == me:
                         sel = self._select(dw, pos, m, q, cbox)
                         data = {l.name: dw.get(l, m, q)[sel] for l in send_lbls}
-                        if shift != (0, 0, 0):
+                        if shift != (0, 0, 0) and pos.name in data:
                             data[pos.name] = data[pos.name] + np.asarray(shift) * level.dx
                         if rp == me:
                             pieces.setdefault((g, m, p.id), []).append(data)
@@ -193,22 +194,36 @@ class Exchange:
                 for key, data in got[r]:
                     pieces.setdefault(key, []).append(data)
         for (g, m), lbls in labels.items():
+            first = (m, g) not in dw.ghost_seen
+            dw.ghost_seen.add((m, g))
             for p in ex.local_patches:
                 parts = pieces.get((g, m, p.id), [])
-                order = None
-                if ex.particle_id_label is not None:
-                    ids = np.concatenate([dw.get(ex.particle_id_label, m, p)] +
-                                         [d[ex.particle_id_label.name] for d in parts])
-                    order = np.argsort(ids, kind="stable")
+                key = (m, p.id, g)
+                if first:
+                    order = mask = None
+                    if idl is not None and parts:
+                        ids = np.concatenate([dw.get(idl, m, p)] + [d[idl.name] for d in parts])
+                        order = np.argsort(ids, kind="stable")
+                        mask = order < dw.num_particles(m, p)
+                    elif parts:
+                        n = dw.num_particles(m, p)
+                        mask = np.arange(n + sum(len(next(iter(d.values()))) for d in parts)) < n
+                    dw.ghost_order[key] = (order, mask)
+                order = dw.ghost_order[key][0]
                 for l in dict.fromkeys(lbls):
-                    a = np.concatenate([dw.get(l, m, p)] + [d[l.name] for d in parts]) if parts \
-                        else dw.get(l, m, p)
-                    if order is not None and parts:
-                        a = a[order]
+                    if not parts:
+                        a = dw.get(l, m, p)
+                    else:
+                        a = np.concatenate([dw.get(l, m, p)] + [d[l.name] for d in parts])
+                        if order is not None:
+                            a = a[order]
                     dw.ghost_particles[(l.name, m, p.id, g)] = a
 
     @staticmethod
     def _select(dw, pos, m, q, cbox):
+        key = (m, q.id, cbox)
+        if key in dw.ghost_select:
+            return dw.ghost_select[key]
         x = dw.get(pos, m, q)
         c = q.level.cells_of(x)
         inside = np.ones(len(x), dtype=bool)
@@ -216,5 +231,7 @@ class Exchange:
             if q.level.collapsed[d]:
                 continue
             inside &= (c[:, d] >= cbox[0][d]) & (c[:, d] < cbox[1][d])
-        return np.nonzero(inside)[0]
+        sel = np.nonzero(inside)[0]
+        dw.ghost_select[key] = sel
+        return sel
 
