@@ -39,3 +39,20 @@ def test_each_material_mass_conserved_and_fractions_sum_to_one(archive):
         assert r.sum() * dx == pytest.approx(m0, rel=1e-6)       # 1e-12 floor of the absent phase
     th = archive.read("vol_frac_CC", 0, -1)[0] + archive.read("vol_frac_CC", 1, -1)[0]
     assert np.max(np.abs(th - 1.0)) < 1e-8
+
+
+def test_stiff_exchange_and_vanishing_material_stay_finite(archive):
+    """K = 1e15 and each material a 1e-12 trace in the other's half: nothing blows up.
+
+    Measured: max |u_water - u_air| = 4.4 m/s (0.9 % of the 508 m/s peak, at the
+    interface); the trace air's temperature inside the water ranges 0.75 K .. 8e5 K (no
+    heat exchange in this deck, so nothing ties it to the water's): finite and positive,
+    but not physical, so only that is asserted.
+    """
+    u = [archive.read("vel_CC", m, -1)[0][:, 0, 0, 0] for m in (0, 1)]
+    T = [archive.read("temp_CC", m, -1)[0] for m in (0, 1)]
+    r = [archive.read("rho_CC", m, -1)[0] for m in (0, 1)]
+    for a in u + T + r:
+        assert np.all(np.isfinite(a))
+    assert min(t.min() for t in T) > 0 and min(x.min() for x in r) > 0
+    assert np.abs(u[0] - u[1]).max() < 0.02 * np.abs(u[0]).max()
