@@ -25,6 +25,10 @@ def describe(ctl) -> str:
             lines.append(f"       computes: {_deps(t.computes_)}")
         if cg.pruned:
             lines.append(f"   pruned (outputs not needed): {', '.join(t.name for t in cg.pruned)}")
+    quiet = {t.name for t in ctl.quiet_step_graph.tasks}
+    only_output = [t.name for t in ctl.step_graph.tasks if t.name not in quiet]
+    if only_output:
+        lines.append(f"\nrun only on steps that write output: {', '.join(only_output)}")
     lines.append(f"\ncarried between timesteps: {', '.join(sorted(ctl.carried))}")
     return "\n".join(lines)
 
