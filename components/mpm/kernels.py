@@ -1,87 +1,15 @@
 """Numba kernels of the explicit MPM step (paper 000 sec. 3.2, paper 004 eqs. 5-17).
 
-Node arrays use local indices (global = local + node_low) as in shape.py. The
-particle->grid scatter here adds every particle's share to a node on its own, in the
-order the particles are given; the framework hands owned plus ghost particles sorted
-by particle ID, so a node's sum is the same sequence of additions whatever the patch
-layout: 1 patch and many patches agree bitwise.
+Node arrays use local indices (global = local + node_low) as in shape.py. The particle<->grid
+transfers of the step are in transfer.py; here the grid update, contact, F and V,
+totals and the output-only nodal stress.
 """
 import numpy as np
 from numba import njit
 
-from .shape import GIMP, LINEAR, _particle, _setup
+from .shape import _particle, _setup
 
 FM = {'contract'}
-
-
-@njit(cache=True, fastmath=FM, inline="always")
-def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, lp, anchor, dx, node_low,
-         gmass, gmom, gvol, gfext, gfint):
-    """m_i, (mv)_i, V_i, fext_i (000 eq. 22) and fint_i = -sum V sigma.grad S (000 eq. 24)."""
-    shape = np.array(gmass.shape, np.int64)
-    na, nb, nc, nn, off, ih, base, w, g, Sq, Gq = _setup(kind, dim, dx, shape)
-    fm = gmass.reshape(-1)
-    fv = gvol.reshape(-1)
-    fp = gmom.reshape(-1)
-    fe = gfext.reshape(-1)
-    fi = gfint.reshape(-1)
-    for p in range(px.shape[0]):
-        f0 = _particle(kind, dim, px, lp, p, anchor, ih, node_low, shape, base, w, g,
-                       na, nb, nc, Sq, Gq)
-        m = pmass[p]
-        V = pvol[p]
-        for q in range(nn):
-            f = f0 + off[q]
-            f3 = 3 * f
-            S = Sq[q]
-            G0 = Gq[q, 0]
-            G1 = Gq[q, 1] if dim >= 2 else 0.0
-            G2 = Gq[q, 2] if dim >= 3 else 0.0
-            fm[f] += m * S
-            fv[f] += V * S
-            for d in range(3):
-                fp[f3 + d] += m * pvel[p, d] * S
-                fe[f3 + d] += pfext[p, d] * S
-                s = pstress[p, d, 0] * G0
-                if dim >= 2:
-                    s += pstress[p, d, 1] * G1
-                if dim >= 3:
-                    s += pstress[p, d, 2] * G2
-                fi[f3 + d] -= V * s
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_linear_1d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
-    _p2g(LINEAR, 1, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_linear_2d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
-    _p2g(LINEAR, 2, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_linear_3d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
-    _p2g(LINEAR, 3, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_gimp_1d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
-    _p2g(GIMP, 1, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_gimp_2d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
-    _p2g(GIMP, 2, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_gimp_3d(px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi):
-    _p2g(GIMP, 3, px, pm, pv, pvol, ps, pf, lp, an, dx, lo, gm, gp, gv, ge, gi)
-
-
-P2G = {("linear", 1): p2g_linear_1d, ("linear", 2): p2g_linear_2d, ("linear", 3): p2g_linear_3d,
-       ("gimp", 1): p2g_gimp_1d, ("gimp", 2): p2g_gimp_2d, ("gimp", 3): p2g_gimp_3d}
 
 
 # ---- grid ---------------------------------------------------------------------------
@@ -164,21 +92,42 @@ def single_velocity(gmass, gvel, gacc, gvel_old, dt):
 
 
 # ---- particles ----------------------------------------------------------------------
-@njit(cache=True)
+@njit(cache=True, fastmath=FM)
 def deform(L, F_old, F_new, dt, mass, rho0, vol_new):
     """F^{n+1} = (I + L dt) F^n (004 eq. 14), V = m/rho0 det F (004 eq. 17)."""
-    A = np.empty((3, 3))
     for p in range(L.shape[0]):
-        for i in range(3):
-            for j in range(3):
-                A[i, j] = (1.0 if i == j else 0.0) + dt * L[p, i, j]
-        for i in range(3):
-            for j in range(3):
-                F_new[p, i, j] = A[i, 0] * F_old[p, 0, j] + A[i, 1] * F_old[p, 1, j] + A[i, 2] * F_old[p, 2, j]
-        F = F_new[p]
-        J = (F[0, 0] * (F[1, 1] * F[2, 2] - F[1, 2] * F[2, 1])
-             - F[0, 1] * (F[1, 0] * F[2, 2] - F[1, 2] * F[2, 0])
-             + F[0, 2] * (F[1, 0] * F[2, 1] - F[1, 1] * F[2, 0]))
+        A00 = 1.0 + dt * L[p, 0, 0]
+        A01 = dt * L[p, 0, 1]
+        A02 = dt * L[p, 0, 2]
+        A10 = dt * L[p, 1, 0]
+        A11 = 1.0 + dt * L[p, 1, 1]
+        A12 = dt * L[p, 1, 2]
+        A20 = dt * L[p, 2, 0]
+        A21 = dt * L[p, 2, 1]
+        A22 = 1.0 + dt * L[p, 2, 2]
+        G00, G01, G02 = F_old[p, 0, 0], F_old[p, 0, 1], F_old[p, 0, 2]
+        G10, G11, G12 = F_old[p, 1, 0], F_old[p, 1, 1], F_old[p, 1, 2]
+        G20, G21, G22 = F_old[p, 2, 0], F_old[p, 2, 1], F_old[p, 2, 2]
+        F00 = A00 * G00 + A01 * G10 + A02 * G20
+        F01 = A00 * G01 + A01 * G11 + A02 * G21
+        F02 = A00 * G02 + A01 * G12 + A02 * G22
+        F10 = A10 * G00 + A11 * G10 + A12 * G20
+        F11 = A10 * G01 + A11 * G11 + A12 * G21
+        F12 = A10 * G02 + A11 * G12 + A12 * G22
+        F20 = A20 * G00 + A21 * G10 + A22 * G20
+        F21 = A20 * G01 + A21 * G11 + A22 * G21
+        F22 = A20 * G02 + A21 * G12 + A22 * G22
+        F_new[p, 0, 0] = F00
+        F_new[p, 0, 1] = F01
+        F_new[p, 0, 2] = F02
+        F_new[p, 1, 0] = F10
+        F_new[p, 1, 1] = F11
+        F_new[p, 1, 2] = F12
+        F_new[p, 2, 0] = F20
+        F_new[p, 2, 1] = F21
+        F_new[p, 2, 2] = F22
+        J = (F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20)
+             + F02 * (F10 * F21 - F11 * F20))
         vol_new[p] = mass[p] / rho0 * J
 
 
@@ -192,19 +141,6 @@ def sums(pm, pv, px, out):
         for d in range(3):
             out[2 + d] += m * pv[p, d]
             out[5 + d] += m * px[p, d]
-
-
-@njit(cache=True)
-def flag_deleted(pm, pv, px_new, min_mass, max_vel):
-    """Delete (x = NaN) particles lighter than minimum_particle_mass or faster than
-    maximum_particle_velocity (Uintah's flags); returns how many."""
-    n = 0
-    for p in range(pm.shape[0]):
-        s = np.sqrt(pv[p, 0] ** 2 + pv[p, 1] ** 2 + pv[p, 2] ** 2)
-        if pm[p] < min_mass or s > max_vel:
-            px_new[p, 0] = np.nan
-            n += 1
-    return n
 
 
 @njit(cache=True)
@@ -247,9 +183,3 @@ def owned_mask(px, anchor, dx, lo, hi, dims, out):
                 c = np.floor((px[p, d] - anchor[d]) / dx[d])
                 ok &= (c >= lo[d]) and (c < hi[d])
         out[p] = ok
-
-
-@njit(cache=True)
-def remapped_velocity(gmass, gmom, gvel):
-    """v^L_i = sum S m_p v_p^{k+1} / m_i (004 eq. 11 with the updated velocities)."""
-    velocity_from_momentum(gmass, gmom, gvel)

@@ -22,12 +22,11 @@ def _zeros3(n):
     return np.broadcast_to(np.zeros(3), (n, 3))
 
 
-def _zeros1(n):
-    return np.broadcast_to(np.zeros(1), (n,))
-
-
-def _zeros33(n):
-    return np.broadcast_to(np.zeros((3, 3)), (n, 3, 3))
+# never-read stand-ins for arguments a kernel variant does not use
+_NOF = np.zeros((1, 3))            # no p.externalforce
+_NOL = np.zeros((1, 3, 3))         # MUSL: no L_p from the g2p kernel
+_NOG = np.zeros((1, 1, 1, 3))      # USL: no remapped momentum
+_NOOWN = np.zeros(0, np.bool_)     # USL: every particle given is owned
 
 
 class MPMTasks:
@@ -98,36 +97,23 @@ class MPMTasks:
 
     # -- particles -> grid ------------------------------------------------------------------
     def interpolate_particles_to_grid(self, patch, matls, old_dw, new_dw):
-        """m_i, v_i, V_i, fext_i (000 eq. 22) and fint_i (000 eq. 24) per material."""
+        """m_i, v_i, V_i, fext_i (000 eq. 22) and fint_i (000 eq. 24) per material,
+        scattered straight into the warehouse's node arrays (transfer.py)."""
         lv = self.level
-        alo, ahi = patch.alloc(NC)
-        pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
-        slo = np.array(alo) - pad
-        shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
-        inner = tuple(slice(pad[d], pad[d] + ahi[d] - alo[d]) for d in range(3))
+        low = np.array(patch.low_index(NC), np.int64)
+        has_f = bool(self.pressure_bcs)
         for m in matls:
             px = old_dw.get(L.pX, m, patch)
             n = len(px)
-            pm = old_dw.get(L.pMass, m, patch)
-            pv = old_dw.get(L.pVelocity, m, patch)
-            pvol = old_dw.get(L.pVolume, m, patch)
-            ps = old_dw.get(L.pStress, m, patch)
-            pf = old_dw.get(L.pExtForce, m, patch) if self.pressure_bcs else _zeros3(n)
-            lp = self._lp(old_dw, m, patch, n)
-            gm = np.zeros(shape)
-            gmom = np.zeros(shape + (3,))
-            gvol = np.zeros(shape)
-            gfe = np.zeros(shape + (3,))
-            gfi = np.zeros(shape + (3,))
-            self.p2g(px, pm, pv, pvol, ps, pf, lp, lv.anchor, lv.dx, slo, gm, gmom, gvol, gfe, gfi)
-            gmass = np.ascontiguousarray(gm[inner])
-            gvel = np.empty(gmass.shape + (3,))
-            kernels.velocity_from_momentum(gmass, np.ascontiguousarray(gmom[inner]), gvel)
-            new_dw.put(L.gMass, m, patch, gmass)
-            new_dw.put(L.gVelocity, m, patch, gvel)
-            new_dw.put(L.gVolume, m, patch, np.ascontiguousarray(gvol[inner]))
-            new_dw.put(L.gExtForce, m, patch, np.ascontiguousarray(gfe[inner]))
-            new_dw.put(L.gIntForce, m, patch, np.ascontiguousarray(gfi[inner]))
+            pf = old_dw.get(L.pExtForce, m, patch) if has_f else _NOF
+            gm = new_dw.allocate(L.gMass, m, patch, 0.0)
+            gv = new_dw.allocate(L.gVelocity, m, patch, 0.0)     # momentum, then velocity
+            self.p2g(px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pVelocity, m, patch),
+                     old_dw.get(L.pVolume, m, patch), old_dw.get(L.pStress, m, patch), pf, has_f,
+                     self._lp(old_dw, m, patch, n), lv.anchor, lv.dx, low, gm, gv,
+                     new_dw.allocate(L.gVolume, m, patch, 0.0), new_dw.allocate(L.gExtForce, m, patch, 0.0),
+                     new_dw.allocate(L.gIntForce, m, patch, 0.0))
+            kernels.velocity_from_momentum(gm, gv, gv)
 
     def interpolate_stress_to_grid(self, patch, matls, old_dw, new_dw):
         """g.stressFS = sum S m sigma / sum S m: a nodal stress for output only."""
@@ -184,7 +170,8 @@ class MPMTasks:
 
     # -- grid -> particles ----------------------------------------------------------------------
     def interpolate_to_particles(self, patch, matls, old_dw, new_dw):
-        """v_p += dt sum S a (000 eq. 26), x_p += dt sum S v* (eq. 27); totals.
+        """v_p += dt sum S a (000 eq. 26), x_p += dt sum S v* (eq. 27); totals; deletion by
+        minimum_particle_mass / maximum_particle_velocity; one fused kernel (transfer.py).
 
         USL: L_p = sum v*_i (x) grad S (000 eq. 23) for the stress update.
         MUSL (004 eqs. 11-14): the updated velocities of owned AND ghost particles are
@@ -199,60 +186,49 @@ class MPMTasks:
         for m in matls:
             px = old_dw.get(L.pX, m, patch)
             n = len(px)
-            pv = old_dw.get(L.pVelocity, m, patch)
-            pm = old_dw.get(L.pMass, m, patch)
-            lp = self._lp(old_dw, m, patch, n)
-            gvs = new_dw.get(L.gVelocityStar, m, patch)
-            gacc = new_dw.get(L.gAcceleration, m, patch)
-            x_new = np.empty((n, 3))
-            v_new = np.empty((n, 3))
-            Lg = np.empty((n, 3, 3))
-            self.interp.g2p(px, pv, lp, lv.anchor, lv.dx, low, gvs, gacc, dt, x_new, v_new, Lg)
             if self.musl:
-                own = np.empty(n, np.bool_)
-                kernels.owned_mask(px, lv.anchor, lv.dx, np.array(patch.lo), np.array(patch.hi),
-                                   np.array(self.dims), own)
-                self._remap(patch, m, new_dw, px, pm, v_new, lp, dt)
-                x_new, v_new, pm_own = x_new[own], v_new[own], pm[own]
+                own = self._owned(old_dw, patch, m, px)
+                n_own = int(np.count_nonzero(own))
+                gvl = new_dw.allocate(L.gVelocityL, m, patch, 0.0)   # momentum, then velocity
+                Lg = _NOL
             else:
-                pm_own = pm
+                own, n_own, gvl = _NOOWN, n, _NOG
+                Lg = np.empty((n, 3, 3))
+            x_new = np.empty((n_own, 3))
+            v_new = np.empty((n_own, 3))
+            pm = old_dw.get(L.pMass, m, patch)
+            self.g2p(self.musl, px, old_dw.get(L.pVelocity, m, patch), pm, self._lp(old_dw, m, patch, n),
+                     lv.anchor, lv.dx, low, new_dw.get(L.gVelocityStar, m, patch),
+                     new_dw.get(L.gAcceleration, m, patch), dt, own, x_new, v_new, Lg, gvl, tot,
+                     f["minimum_particle_mass"], f["maximum_particle_velocity"])
+            if self.musl:
+                kernels.velocity_from_momentum(new_dw.get(L.gMass, m, patch), gvl, gvl)
+                self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
+            else:
                 new_dw.put(L.pVelGrad, m, patch, Lg)
-            if f["minimum_particle_mass"] > 0 or np.isfinite(f["maximum_particle_velocity"]):
-                kernels.flag_deleted(pm_own, v_new, x_new, f["minimum_particle_mass"],
-                                     f["maximum_particle_velocity"])
             new_dw.put(L.pXpre, m, patch, x_new)
             new_dw.put(L.pVelocityPre, m, patch, v_new)
-            kernels.sums(pm_own, v_new, x_new, tot)
         self._put_totals(new_dw, tot)
 
-    def _remap(self, patch, m, new_dw, px, pm, v_new, lp, dt):
-        """g.velocity_L on the owned nodes from owned + ghost particles, with grid BCs."""
+    def _owned(self, old_dw, patch, m, px):
+        """Which of the owned + ghost particles the patch owns."""
+        if hasattr(old_dw, "ghost_owned_mask"):
+            own = old_dw.ghost_owned_mask(L.pX, m, patch)
+            return np.ones(len(px), np.bool_) if own is None else own
         lv = self.level
-        alo, ahi = patch.alloc(NC)
-        pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
-        shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
-        inner = tuple(slice(pad[d], pad[d] + ahi[d] - alo[d]) for d in range(3))
-        n = len(px)
-        gm = np.zeros(shape)
-        gmom = np.zeros(shape + (3,))
-        junk_v = np.zeros(shape)
-        junk = np.zeros(shape + (3,))
-        self.p2g(px, pm, v_new, _zeros1(n), _zeros33(n), _zeros3(n), lp, lv.anchor, lv.dx,
-                 np.array(alo) - pad, gm, gmom, junk_v, junk, junk)
-        gvl = new_dw.allocate(L.gVelocityL, m, patch, None)
-        kernels.velocity_from_momentum(new_dw.get(L.gMass, m, patch), np.ascontiguousarray(gmom[inner]), gvl)
-        self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
+        own = np.empty(len(px), np.bool_)
+        kernels.owned_mask(px, lv.anchor, lv.dx, np.array(patch.lo), np.array(patch.hi),
+                           np.array(self.dims), own)
+        return own
 
     def _velocity_gradient(self, patch, m, old_dw, new_dw):
         """L_p = sum v^L_i (x) grad S_i(x_p) (004 eqs. 13-14) for the owned particles."""
         lv = self.level
         px = old_dw.get(L.pX, m, patch)
         n = len(px)
-        gvl = new_dw.get(L.gVelocityL, m, patch)
         Lg = np.empty((n, 3, 3))
-        scratch = np.empty((n, 3))
-        self.interp.g2p(px, scratch, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
-                        np.array(patch.low_index(NC), np.int64), gvl, gvl, 0.0, scratch, scratch, Lg)
+        self.grad(px, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
+                  np.array(patch.low_index(NC), np.int64), new_dw.get(L.gVelocityL, m, patch), Lg)
         return Lg
 
     def compute_stress_tensor(self, patch, matls, old_dw, new_dw):

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ._common import _get, det3, max_wavespeed
+from ._common import _get
 
 ENERGY_IS_INCREMENT = False
 
@@ -28,31 +28,44 @@ class Params:
         return cls(_get(d, "bulk_modulus"), _get(d, "shear_modulus"))
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath={'contract'})
 def kernel(K, mu, F_new, vol, mass, vel, stress_new, energy):
-    ws = np.zeros(3)
-    b = np.empty((3, 3))
+    """Scalar locals only (no scratch arrays that could alias the outputs)."""
+    w0 = w1 = w2 = 0.0
+    cK = K + 4.0 * mu / 3.0
     for p in range(F_new.shape[0]):
-        F = F_new[p]
-        J = det3(F)
-        for i in range(3):
-            for j in range(3):
-                b[i, j] = F[i, 0] * F[j, 0] + F[i, 1] * F[j, 1] + F[i, 2] * F[j, 2]
-        Jm23 = J ** (-2.0 / 3.0)
-        trbb = Jm23 * (b[0, 0] + b[1, 1] + b[2, 2])
-        pr = 0.5 * K * (J - 1.0 / J)
-        for i in range(3):
-            for j in range(3):
-                s = mu / J * Jm23 * b[i, j]
-                if i == j:
-                    s += pr - mu / J * trbb / 3.0
-                stress_new[p, i, j] = s
-        U = 0.5 * K * (0.5 * (J * J - 1.0) - np.log(J))
+        F00, F01, F02 = F_new[p, 0, 0], F_new[p, 0, 1], F_new[p, 0, 2]
+        F10, F11, F12 = F_new[p, 1, 0], F_new[p, 1, 1], F_new[p, 1, 2]
+        F20, F21, F22 = F_new[p, 2, 0], F_new[p, 2, 1], F_new[p, 2, 2]
+        J = (F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20)
+             + F02 * (F10 * F21 - F11 * F20))
+        b00 = F00 * F00 + F01 * F01 + F02 * F02
+        b11 = F10 * F10 + F11 * F11 + F12 * F12
+        b22 = F20 * F20 + F21 * F21 + F22 * F22
+        b01 = F00 * F10 + F01 * F11 + F02 * F12
+        b02 = F00 * F20 + F01 * F21 + F02 * F22
+        b12 = F10 * F20 + F11 * F21 + F12 * F22
+        lnJ = np.log(J)
+        Jm23 = np.exp(-2.0 / 3.0 * lnJ)         # J^(-2/3), from the log the energy needs anyway
+        trbb = Jm23 * (b00 + b11 + b22)
+        iJ = 1.0 / J
+        pr = 0.5 * K * (J - iJ)
+        c = mu * iJ * Jm23
+        d = pr - mu * iJ * trbb / 3.0
+        stress_new[p, 0, 0] = c * b00 + d
+        stress_new[p, 1, 1] = c * b11 + d
+        stress_new[p, 2, 2] = c * b22 + d
+        stress_new[p, 0, 1] = stress_new[p, 1, 0] = c * b01
+        stress_new[p, 0, 2] = stress_new[p, 2, 0] = c * b02
+        stress_new[p, 1, 2] = stress_new[p, 2, 1] = c * b12
+        U = 0.5 * K * (0.5 * (J * J - 1.0) - lnJ)
         W = 0.5 * mu * (trbb - 3.0)
-        energy[p] = (U + W) * vol[p] / J
-        c = np.sqrt((K + 4.0 * mu / 3.0) * vol[p] / mass[p])
-        max_wavespeed(ws, c, vel, p)
-    return ws
+        energy[p] = (U + W) * vol[p] * iJ
+        cs = np.sqrt(cK * vol[p] / mass[p])
+        w0 = max(w0, cs + abs(vel[p, 0]))
+        w1 = max(w1, cs + abs(vel[p, 1]))
+        w2 = max(w2, cs + abs(vel[p, 2]))
+    return np.array([w0, w1, w2])
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy):

@@ -1,0 +1,418 @@
+"""Fused particle<->grid kernels of the explicit MPM step, written with scalar weights.
+
+Each kernel evaluates a particle's shape weights once, as scalars per axis (base node,
+three weights, three gradients: LLVM keeps them in registers; no scratch arrays that
+could alias the node arrays), and does all the work that particle needs at its nodes:
+
+  p2g        m_i, (mv)_i, V_i, fext_i (000 eq. 22), fint_i = -sum V sigma.grad S (eq. 24),
+             straight into the warehouse's node arrays (owned + halo nodes); shares of
+             ghost particles that fall beyond the halo are dropped (no scratch array,
+             no copy).
+  g2p        v_p += dt sum S a_i, x_p += dt sum S v*_i (000 eqs. 26-27), USL: L_p; MUSL:
+             the updated momentum m_p v_p S scattered back in the same pass (004 eq. 13);
+             owned particles are written compacted, with the totals and the
+             minimum_particle_mass / maximum_particle_velocity deletion in the same loop.
+  grad       L_p = sum v_i (x) grad S_i(x_p) (004 eq. 14), MUSL's stress-update gradient.
+
+Node sums are added particle by particle in the order given (sorted by particle ID by
+the framework), so 1 patch and many patches agree bitwise. Node arrays are C-ordered
+with local index = global - node_low; axes >= dim have one node layer (shape.py).
+"""
+import numpy as np
+from numba import njit
+
+from .shape import GIMP, LINEAR, _gimp1
+
+FM = {'contract'}
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _ax(kind, active, x, a0, ih, l):
+    """Base node (global index) and weights / d/dx of one axis: (i, w0, w1, w2, g0, g1, g2)."""
+    if not active:
+        return 0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    xi = (x - a0) * ih
+    if kind == LINEAR:
+        i = int(np.floor(xi))
+        f = xi - i
+        return i, 1.0 - f, f, 0.0, -ih, ih, 0.0
+    i = int(np.floor(xi + 0.5)) - 1
+    lc = l * ih
+    inv = 0.5 / lc
+    s0, d0 = _gimp1(xi - i, lc, inv)
+    s1, d1 = _gimp1(xi - (i + 1), lc, inv)
+    s2, d2 = _gimp1(xi - (i + 2), lc, inv)
+    return i, s0, s1, s2, d0 * ih, d1 * ih, d2 * ih
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _sel(a, x0, x1, x2):
+    return x0 if a == 0 else (x1 if a == 1 else x2)
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _stencil(kind, dim, px, lp, p, anchor, ih, node_low):
+    """The weights of particle p on its three axes, base indices made local."""
+    i, wx0, wx1, wx2, gx0, gx1, gx2 = _ax(kind, True, px[p, 0], anchor[0], ih[0], lp[p, 0])
+    j, wy0, wy1, wy2, gy0, gy1, gy2 = _ax(kind, dim >= 2, px[p, 1], anchor[1], ih[1], lp[p, 1])
+    k, wz0, wz1, wz2, gz0, gz1, gz2 = _ax(kind, dim >= 3, px[p, 2], anchor[2], ih[2], lp[p, 2])
+    i -= node_low[0]
+    if dim >= 2:
+        j -= node_low[1]
+    if dim >= 3:
+        k -= node_low[2]
+    return (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+            wz0, wz1, wz2, gz0, gz1, gz2)
+
+
+@njit(cache=True, inline="always")
+def _counts(kind, dim):
+    na = 2 if kind == LINEAR else 3
+    return na, (na if dim >= 2 else 1), (na if dim >= 3 else 1)
+
+
+@njit(cache=True, inline="always")
+def _inv_dx(dx):
+    ih = np.empty(3)
+    for d in range(3):
+        ih[d] = 1.0 / dx[d] if dx[d] != 0.0 else 0.0
+    return ih[0], ih[1], ih[2]
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx, node_low,
+         gmass, gmom, gvol, gfext, gfint):
+    """Accumulate (+=) m, mv, V, fext, fint of the particles on the node arrays."""
+    sh0, sh1, sh2 = gmass.shape
+    na, nb, nc = _counts(kind, dim)
+    ih = _inv_dx(dx)
+    fm = gmass.reshape(-1)
+    fv = gvol.reshape(-1)
+    fp = gmom.reshape(-1)
+    fe = gfext.reshape(-1)
+    fi = gfint.reshape(-1)
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+        inside = i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2
+        m = pmass[p]
+        V = pvol[p]
+        mv0 = m * pvel[p, 0]
+        mv1 = m * pvel[p, 1]
+        mv2 = m * pvel[p, 2]
+        s00 = V * pstress[p, 0, 0]
+        s10 = V * pstress[p, 1, 0]
+        s20 = V * pstress[p, 2, 0]
+        s01 = V * pstress[p, 0, 1]
+        s11 = V * pstress[p, 1, 1]
+        s21 = V * pstress[p, 2, 1]
+        s02 = V * pstress[p, 0, 2]
+        s12 = V * pstress[p, 1, 2]
+        s22 = V * pstress[p, 2, 2]
+        for a in range(na):
+            wa = _sel(a, wx0, wx1, wx2)
+            ga = _sel(a, gx0, gx1, gx2)
+            for b in range(nb):
+                wb = _sel(b, wy0, wy1, wy2)
+                gb = _sel(b, gy0, gy1, gy2)
+                for c in range(nc):
+                    wc = _sel(c, wz0, wz1, wz2)
+                    gc = _sel(c, gz0, gz1, gz2)
+                    if not inside:
+                        if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
+                            continue
+                    S = wa * wb * wc
+                    G0 = ga * wb * wc
+                    G1 = wa * gb * wc
+                    G2 = wa * wb * gc
+                    f = np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                    f3 = np.uint64(3) * f
+                    fm[f] += m * S
+                    fv[f] += V * S
+                    fp[f3] += mv0 * S
+                    fp[f3 + np.uint64(1)] += mv1 * S
+                    fp[f3 + np.uint64(2)] += mv2 * S
+                    if has_f:
+                        fe[f3] += pfext[p, 0] * S
+                        fe[f3 + np.uint64(1)] += pfext[p, 1] * S
+                        fe[f3 + np.uint64(2)] += pfext[p, 2] * S
+                    if dim == 1:
+                        fi[f3] -= s00 * G0
+                        fi[f3 + np.uint64(1)] -= s10 * G0
+                        fi[f3 + np.uint64(2)] -= s20 * G0
+                    elif dim == 2:
+                        fi[f3] -= s00 * G0 + s01 * G1
+                        fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1
+                        fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1
+                    else:
+                        fi[f3] -= s00 * G0 + s01 * G1 + s02 * G2
+                        fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1 + s12 * G2
+                        fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1 + s22 * G2
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, dt,
+         own, x_out, v_out, L_out, gmom, tot, min_mass, max_vel):
+    """Update every particle given; write the owned ones (own[p], or all when own is
+    empty) compacted to x_out / v_out (USL: L_out too); MUSL: += m v_new S on gmom.
+    Returns the number of particles deleted (x = NaN)."""
+    sh0, sh1, sh2 = gvs.shape[:3]
+    na, nb, nc = _counts(kind, dim)
+    ih = _inv_dx(dx)
+    fv = gvs.reshape(-1)
+    fa = gacc.reshape(-1)
+    fp = gmom.reshape(-1)
+    all_own = own.shape[0] == 0
+    check = min_mass > 0.0 or max_vel < np.inf
+    n_del = 0
+    o = 0
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+            raise IndexError("particle's nodes lie outside the patch node arrays")
+        a0 = a1 = a2 = 0.0
+        v0 = v1 = v2 = 0.0
+        L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
+        for a in range(na):
+            wa = _sel(a, wx0, wx1, wx2)
+            ga = _sel(a, gx0, gx1, gx2)
+            for b in range(nb):
+                wb = _sel(b, wy0, wy1, wy2)
+                gb = _sel(b, gy0, gy1, gy2)
+                for c in range(nc):
+                    wc = _sel(c, wz0, wz1, wz2)
+                    gc = _sel(c, gz0, gz1, gz2)
+                    S = wa * wb * wc
+                    f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                    gv0 = fv[f3]
+                    gv1 = fv[f3 + np.uint64(1)]
+                    gv2 = fv[f3 + np.uint64(2)]
+                    a0 += S * fa[f3]
+                    a1 += S * fa[f3 + np.uint64(1)]
+                    a2 += S * fa[f3 + np.uint64(2)]
+                    v0 += S * gv0
+                    v1 += S * gv1
+                    v2 += S * gv2
+                    if not musl:
+                        G0 = ga * wb * wc
+                        L00 += gv0 * G0
+                        L10 += gv1 * G0
+                        L20 += gv2 * G0
+                        if dim >= 2:
+                            G1 = wa * gb * wc
+                            L01 += gv0 * G1
+                            L11 += gv1 * G1
+                            L21 += gv2 * G1
+                        if dim >= 3:
+                            G2 = wa * wb * gc
+                            L02 += gv0 * G2
+                            L12 += gv1 * G2
+                            L22 += gv2 * G2
+        nv0 = pvel[p, 0] + dt * a0
+        nv1 = pvel[p, 1] + dt * a1
+        nv2 = pvel[p, 2] + dt * a2
+        m = pmass[p]
+        if musl:
+            mv0 = m * nv0
+            mv1 = m * nv1
+            mv2 = m * nv2
+            for a in range(na):
+                wa = _sel(a, wx0, wx1, wx2)
+                for b in range(nb):
+                    wb = _sel(b, wy0, wy1, wy2)
+                    for c in range(nc):
+                        S = wa * wb * _sel(c, wz0, wz1, wz2)
+                        f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                        fp[f3] += mv0 * S
+                        fp[f3 + np.uint64(1)] += mv1 * S
+                        fp[f3 + np.uint64(2)] += mv2 * S
+        if not (all_own or own[p]):
+            continue
+        x0 = px[p, 0] + dt * v0
+        x1 = px[p, 1] + dt * v1
+        x2 = px[p, 2] + dt * v2
+        if check:
+            if m < min_mass or np.sqrt(nv0 * nv0 + nv1 * nv1 + nv2 * nv2) > max_vel:
+                x0 = np.nan
+                n_del += 1
+        x_out[o, 0] = x0
+        x_out[o, 1] = x1
+        x_out[o, 2] = x2
+        v_out[o, 0] = nv0
+        v_out[o, 1] = nv1
+        v_out[o, 2] = nv2
+        if not musl:
+            L_out[o, 0, 0] = L00
+            L_out[o, 0, 1] = L01
+            L_out[o, 0, 2] = L02
+            L_out[o, 1, 0] = L10
+            L_out[o, 1, 1] = L11
+            L_out[o, 1, 2] = L12
+            L_out[o, 2, 0] = L20
+            L_out[o, 2, 1] = L21
+            L_out[o, 2, 2] = L22
+        tot[0] += m
+        tot[1] += 0.5 * m * (nv0 ** 2 + nv1 ** 2 + nv2 ** 2)
+        tot[2] += m * nv0
+        tot[3] += m * nv1
+        tot[4] += m * nv2
+        tot[5] += m * x0
+        tot[6] += m * x1
+        tot[7] += m * x2
+        o += 1
+    return n_del
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _grad(kind, dim, px, lp, anchor, dx, node_low, gvel, L_out):
+    """L_p = sum_i v_i (x) grad S_i(x_p)."""
+    sh0, sh1, sh2 = gvel.shape[:3]
+    na, nb, nc = _counts(kind, dim)
+    ih = _inv_dx(dx)
+    fv = gvel.reshape(-1)
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+            raise IndexError("particle's nodes lie outside the patch node arrays")
+        L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
+        for a in range(na):
+            wa = _sel(a, wx0, wx1, wx2)
+            ga = _sel(a, gx0, gx1, gx2)
+            for b in range(nb):
+                wb = _sel(b, wy0, wy1, wy2)
+                gb = _sel(b, gy0, gy1, gy2)
+                for c in range(nc):
+                    wc = _sel(c, wz0, wz1, wz2)
+                    gc = _sel(c, gz0, gz1, gz2)
+                    f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                    gv0 = fv[f3]
+                    gv1 = fv[f3 + np.uint64(1)]
+                    gv2 = fv[f3 + np.uint64(2)]
+                    G0 = ga * wb * wc
+                    L00 += gv0 * G0
+                    L10 += gv1 * G0
+                    L20 += gv2 * G0
+                    if dim >= 2:
+                        G1 = wa * gb * wc
+                        L01 += gv0 * G1
+                        L11 += gv1 * G1
+                        L21 += gv2 * G1
+                    if dim >= 3:
+                        G2 = wa * wb * gc
+                        L02 += gv0 * G2
+                        L12 += gv1 * G2
+                        L22 += gv2 * G2
+        L_out[p, 0, 0] = L00
+        L_out[p, 0, 1] = L01
+        L_out[p, 0, 2] = L02
+        L_out[p, 1, 0] = L10
+        L_out[p, 1, 1] = L11
+        L_out[p, 1, 2] = L12
+        L_out[p, 2, 0] = L20
+        L_out[p, 2, 1] = L21
+        L_out[p, 2, 2] = L22
+
+
+# ---- specialised entry points: (kind, dim) are compile-time constants -------------------
+# p2g(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
+# g2p(musl, px, pv, pm, lp, anchor, dx, node_low, gvs, gacc, dt, own, x_out, v_out, L_out,
+#     gmom, tot, min_mass, max_vel) -> number deleted
+# grad(px, lp, anchor, dx, node_low, gvel, L_out)
+
+@njit(cache=True, fastmath=FM)
+def p2g_l1(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(LINEAR, 1, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_l2(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(LINEAR, 2, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_l3(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(LINEAR, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_g1(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(GIMP, 1, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_g2(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(GIMP, 2, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_g3(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(GIMP, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_l1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
+    return _g2p(LINEAR, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_l2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
+    return _g2p(LINEAR, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_l3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
+    return _g2p(LINEAR, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
+    return _g2p(GIMP, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
+    return _g2p(GIMP, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
+    return _g2p(GIMP, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_l1(px, lp, an, dx, lo, gv, Lo):
+    _grad(LINEAR, 1, px, lp, an, dx, lo, gv, Lo)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_l2(px, lp, an, dx, lo, gv, Lo):
+    _grad(LINEAR, 2, px, lp, an, dx, lo, gv, Lo)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_l3(px, lp, an, dx, lo, gv, Lo):
+    _grad(LINEAR, 3, px, lp, an, dx, lo, gv, Lo)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_g1(px, lp, an, dx, lo, gv, Lo):
+    _grad(GIMP, 1, px, lp, an, dx, lo, gv, Lo)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_g2(px, lp, an, dx, lo, gv, Lo):
+    _grad(GIMP, 2, px, lp, an, dx, lo, gv, Lo)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_g3(px, lp, an, dx, lo, gv, Lo):
+    _grad(GIMP, 3, px, lp, an, dx, lo, gv, Lo)
+
+
+KERNELS = {
+    ("linear", 1): (p2g_l1, g2p_l1, grad_l1), ("linear", 2): (p2g_l2, g2p_l2, grad_l2),
+    ("linear", 3): (p2g_l3, g2p_l3, grad_l3), ("gimp", 1): (p2g_g1, g2p_g1, grad_g1),
+    ("gimp", 2): (p2g_g2, g2p_g2, grad_g2), ("gimp", 3): (p2g_g3, g2p_g3, grad_g3),
+}
