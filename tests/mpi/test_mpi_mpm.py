@@ -1,0 +1,49 @@
+"""MPM decks on 2 and 3 ranks give bitwise the one-rank answer.
+
+Particle-to-grid sums run in particle-ID order over owned and ghost particles, and
+relocation keeps each patch's particles sorted by ID, so neither the patch layout nor
+the rank count changes the arithmetic.
+"""
+import numpy as np
+import pytest
+
+from framework.archiver import DataArchive
+from tests.conftest import UINTAH_INPUTS, pysus
+
+CASES = {
+    "disks_sulsky": (UINTAH_INPUTS / "MPM" / "disks_sulsky.ups",
+                     [("<patches>[1,1,1]</patches>", "<patches>[2,2,1]</patches>"),
+                      ("<maxTime>3.0</maxTime>", "<maxTime>0.6</maxTime>"),
+                      ('<save label = "p.x"/>', '<save label = "p.x"/><save label="p.particleID"/>')]),
+    "disks_gimp": (UINTAH_INPUTS / "MPM" / "disks.ups", [("<maxTime>0.2</maxTime>", "<maxTime>0.01</maxTime>"),
+                                                         ('<save label = "p.x"/>',
+                                                          '<save label = "p.x"/><save label="p.particleID"/>')]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_mpm_ranks_equal_one_rank(tmp_path, case):
+    src, repl = CASES[case]
+    text = src.read_text()
+    for a, b in repl:
+        assert a in text, (case, a)
+        text = text.replace(a, b)
+    path = tmp_path / f"{case}.ups"
+    path.write_text(text)
+    runs = {}
+    for n in (1, 2, 3):
+        uda = tmp_path / f"{case}_{n}.uda"
+        r = pysus(path, "--filebase", uda, np_=n, timeout=600)
+        assert r.returncode == 0, r.stderr[-2000:]
+        runs[n] = DataArchive(uda)
+    base = {m: runs[1].particles(m, -1) for m in range(len(runs[1].materials))}
+    assert sum(len(b["p.x"]) for b in base.values()) > 0
+    for n in (2, 3):
+        assert np.array_equal(runs[1].times, runs[n].times)
+        for m, b in base.items():
+            other = runs[n].particles(m, -1)
+            oa, ob = np.argsort(b["p.particleID"]), np.argsort(other["p.particleID"])
+            assert np.array_equal(b["p.particleID"][oa], other["p.particleID"][ob])
+            for lab in ("p.x", "p.velocity", "p.stress"):
+                if lab in b:
+                    assert np.array_equal(b[lab][oa], other[lab][ob]), (case, n, m, lab)
