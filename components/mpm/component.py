@@ -95,8 +95,8 @@ class MPM(MPMTasks, Component):
         self.contact = Contact(mp, len(self.materials))
         self.bcs = GridBCs(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
-        self.pressure_bcs = None  # <PhysicalBC> is read in tasks when present
-        self._read_physical_bc(root)
+        self.pressure_bcs = None
+        self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure> (pressure.py)
         self._carried()
 
     def _carried(self):
@@ -123,6 +123,8 @@ class MPM(MPMTasks, Component):
         for r in (L.WaveSpeed, L.KineticEnergy, L.StrainEnergy, L.TotalMass, L.TotalMomentum,
                   L.CenterOfMassPosition):
             t.computes(r)
+        if self.pressure_bcs:
+            t.computes(L.PressureBCParticles)
         sched.add_task(t)
         sched.register_particle_labels(L.pX, L.pID)
 
@@ -137,6 +139,8 @@ class MPM(MPMTasks, Component):
             t.requires(OLD, lab, g, ng)
         for lab in (L.gMass, L.gVolume, L.gVelocity, L.gExtForce, L.gIntForce):
             t.computes(lab)
+        if self.pressure_bcs:
+            t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
         sched.add_task(t)
         t = Task("MPM::interpolateStressToGrid", self.interpolate_stress_to_grid, ms)
         for lab in [L.pX, L.pMass, L.pStress] + ([L.pSize] if self.kind == "gimp" else []):
@@ -182,6 +186,10 @@ class MPM(MPMTasks, Component):
             if final.name not in moved:
                 t.requires(OLD, final).computes(pre)
         t.computes(L.WaveSpeed).computes(L.StrainEnergy)
+        if self.pressure_bcs:
+            t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
+            if not self.musl:
+                t.requires(OLD, L.pX)
         sched.add_task(t)
         if self.analysis.active:
             self.analysis.schedule(sched)
@@ -193,7 +201,7 @@ class MPM(MPMTasks, Component):
         if self.kind == "gimp":
             labs.append(L.pSize)
         if self.pressure_bcs:
-            labs.append(L.pExtForce)
+            labs.append(L.pLoadCurveID)
         return labs
 
     def _read_physical_bc(self, root):

@@ -55,3 +55,4 @@ TotalMass = L.create("TotalMass", R, reduction="sum")
 TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")
 CenterOfMassPosition = L.create("CenterOfMassPosition", R, (3,), reduction="sum")
 WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")
+PressureBCParticles = L.create("MPM.pressureBCParticles", R, (16,), reduction="sum")  # N per pressure BC

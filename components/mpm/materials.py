@@ -88,12 +88,13 @@ class Material:
             raise node.error("a material needs at least one <geom_object>")
 
     # -- particles -------------------------------------------------------------------
-    def create(self, patch, obj_base):
+    def create(self, patch, obj_base, pressure=None):
         """Particles of this material in one patch: dict of arrays sorted by ID.
 
         IDs: object number (global over all materials, `obj_base` + k) times 2^40 plus
         the index of the particle's sub-cell on the level-wide lattice of that object,
-        so they do not depend on the patch layout."""
+        so they do not depend on the patch layout. With pressure BCs (pressure.py), "lcid"
+        is p.loadCurveID of the particles on a loaded surface."""
         lv = patch.level
         taken = None
         out = []
@@ -114,7 +115,9 @@ class Material:
             ids = (obj_base + k) * (1 << 40) + sub[:, 0] + nsub[0] * (sub[:, 1] + nsub[1] * sub[:, 2])
             vol = float(np.prod(lv.dx / res))
             n = len(x)
+            dxpp = lv.dx / res
             out.append(dict(x=x, id=ids.astype(np.int64), vol=np.full(n, vol),
+                            lcid=pressure.flag(x, obj["piece"], dxpp) if pressure else np.zeros(n),
                             vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                             size=np.tile(0.5 * lv.dx / res, (n, 1)),
                             color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))

@@ -55,7 +55,7 @@ class MPMTasks:
         se = 0.0
         for m in matls:
             mat = self.materials[m]
-            d = mat.create(patch, self._obj_base(m))
+            d = mat.create(patch, self._obj_base(m), self.pressure_bcs)
             n = len(d["id"])
             new_dw.create_particles(m, patch, n)
             F = np.zeros((n, 3, 3))
@@ -73,7 +73,9 @@ class MPMTasks:
                 if final in put:
                     new_dw.put(final, m, patch, put[final])
             if self.pressure_bcs:
-                self.pressure_bcs.initialize(patch, m, new_dw, d)
+                new_dw.put(L.pLoadCurveID, m, patch, d["lcid"])
+                new_dw.put(L.pExtForce, m, patch, np.zeros((n, 3)))
+                new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(d["lcid"]))
             kernels.sums(d["mass"], d["vel"], d["x"], tot)
             se += energy.sum()
         self._put_totals(new_dw, tot)
@@ -105,7 +107,7 @@ class MPMTasks:
         for m in matls:
             px = old_dw.get(L.pX, m, patch)
             n = len(px)
-            pf = old_dw.get(L.pExtForce, m, patch) if has_f else _NOF
+            pf = self._ext_force(old_dw, m, patch, px) if has_f else _NOF
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
             gv = new_dw.allocate(L.gVelocity, m, patch, 0.0)     # momentum, then velocity
             self.p2g(px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pVelocity, m, patch),
@@ -114,6 +116,12 @@ class MPMTasks:
                      new_dw.allocate(L.gVolume, m, patch, 0.0), new_dw.allocate(L.gExtForce, m, patch, 0.0),
                      new_dw.allocate(L.gIntForce, m, patch, 0.0))
             kernels.velocity_from_momentum(gm, gv, gv)
+
+    def _ext_force(self, old_dw, m, patch, px):
+        """p.externalforce of the pressure BCs at the time this step starts (pressure.py)."""
+        return self.pressure_bcs.forces(px, old_dw.get(L.pLoadCurveID, m, patch),
+                                        old_dw.get_reduction(FL.simTime),
+                                        old_dw.get_reduction(L.PressureBCParticles))
 
     def interpolate_stress_to_grid(self, patch, matls, old_dw, new_dw):
         """g.stressFS = sum S m sigma / sum S m: a nodal stress for output only."""
@@ -266,7 +274,11 @@ class MPMTasks:
                 new_dw.put(L.pStrainEnergyPre, m, patch, energy)
             se += energy.sum()
             for final, pre in self.carry:
-                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pExtForce, L.pLoadCurveID):
+                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID):
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            if self.pressure_bcs:
+                lcid = old_dw.get(L.pLoadCurveID, m, patch)
+                new_dw.put(L.pExtForcePre, m, patch, self._ext_force(old_dw, m, patch, old_dw.get(L.pX, m, patch)))
+                new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(lcid))
         new_dw.put_reduction(L.StrainEnergy, se)
         new_dw.put_reduction(L.WaveSpeed, ws)

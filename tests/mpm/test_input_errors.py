@@ -4,7 +4,7 @@ import pytest
 from framework.problemspec import InputError
 from tests.conftest import UINTAH_INPUTS
 
-from .helpers import deck_text, run
+from .helpers import MPM_INPUTS, deck_text, run
 
 SULSKY = UINTAH_INPUTS / "MPM" / "disks_sulsky.ups"
 
@@ -45,3 +45,17 @@ def test_unknown_model_parameter(tmp_path):
     text = open(SULSKY).read().replace("<shear_modulus>384.6</shear_modulus>",
                                        "<shear_modulus>384.6</shear_modulus><youngs>1</youngs>")
     _fails(tmp_path, text, "youngs")
+
+
+CYLINDER = MPM_INPUTS / "thick_cylinder.ups"
+
+
+def test_pressure_needs_load_curves(tmp_path):
+    _fails(tmp_path, deck_text(CYLINDER, use_load_curves="false"), "use_load_curves", "<pressure>")
+
+
+def test_pressure_surface_must_be_box_or_cylinder(tmp_path):
+    text = open(CYLINDER).read().replace(
+        '<cylinder label="inner surface"><bottom>[0,0,0]</bottom><top>[0,0,0.01]</top><radius>0.5</radius></cylinder>',
+        "<sphere><origin>[0,0,0]</origin><radius>0.5</radius></sphere>")
+    _fails(tmp_path, text, "<box>", "<cylinder>")
