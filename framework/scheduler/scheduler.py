@@ -35,6 +35,7 @@ class Scheduler:
         self.particles_removed = 0
         self.scrub_old = True
         self._plans: dict = {}
+        self.min_halo: dict = {}
         self.graph_name = ""
 
     # -- what components call ----------------------------------------------------------
@@ -98,11 +99,16 @@ class Scheduler:
                 if not any(d.label.name == lab.name and d.dw == dep.dw and d.n >= dep.n for d in task.requires_):
                     task.requires(dep.dw, lab, dep.ghost, dep.n, dep.matls)
 
+    def request_halo(self, vt: VarType, width: int):
+        """Store arrays of type vt with at least `width` ghost layers even if no task requires
+        them (e.g. scatter targets of ghost particles); no exchange is implied."""
+        self.min_halo[vt] = max(self.min_halo.get(vt, 0), int(width))
+
     def set_halo(self, graphs):
         """Fix the stored halo of each grid type to the widest ghost any task requires."""
         halo = halo_widths(graphs)
         for vt in self.level.halo:
-            self.level.halo[vt] = halo.get(vt, 0)
+            self.level.halo[vt] = max(halo.get(vt, 0), self.min_halo.get(vt, 0))
         self.level.clear_cache()
         self._plans.clear()
 

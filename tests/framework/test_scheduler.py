@@ -156,3 +156,16 @@ def test_ghost_fill_matches_neighbour_data(vt, periodic):
     dw = DataWarehouse()
     s.execute(cg, None, dw)
     assert dw.get_reduction(out) == 0
+
+
+def test_requested_halo_widens_storage_without_exchange():
+    lv, s = make()
+    s.begin_graph("g")
+    s.add_task(Task("makeA", fill(A), [0]).computes(A))
+    cg = s.compile({A.name}, None)
+    s.request_halo(VarType.CC, 2)
+    s.set_halo([cg])
+    dw = DataWarehouse()
+    s.execute(cg, None, dw)
+    p = lv.patches[0]
+    assert dw.get(A, 0, p).shape[:2] == (4 + 1 + 2, 4 + 1 + 2)   # 4 cells, 1 extra cell, 2 ghosts
