@@ -59,12 +59,17 @@ FLAGS = {
 class MPM(MPMTasks, Component):
     """Explicit single-grid MPM with Uintah's deck tags and variable names."""
 
+    # MPMICE hooks: the <MPM> flag table, grid-BC reader and contact reader it may extend
+    flags_spec = FLAGS
+    grid_bcs_class = GridBCs
+    contact_class = Contact
+
     def problem_setup(self, root, level):
         self.level = level
         self.dims = tuple(not c for c in level.collapsed)
         self.dim = level.dim
         mpm = root.child("MPM")
-        self.flags = mpm.read(FLAGS) if mpm is not None else {k: p.default for k, p in FLAGS.items()}
+        self.flags = mpm.read(self.flags_spec) if mpm is not None else {k: p.default for k, p in self.flags_spec.items()}
         pc = root.child("PhysicalConstants")
         self.gravity = np.array(pc.get("gravity", "vector", (0.0, 0.0, 0.0)) if pc is not None else (0.0, 0.0, 0.0))
         if pc is not None:
@@ -92,8 +97,8 @@ class MPM(MPMTasks, Component):
         if not self.materials:
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
-        self.contact = Contact(mp, len(self.materials))
-        self.bcs = GridBCs(root, level, len(self.materials))
+        self.contact = self.contact_class(mp, len(self.materials))
+        self.bcs = self.grid_bcs_class(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure> (pressure.py)
@@ -146,17 +151,27 @@ class MPM(MPMTasks, Component):
         for lab in [L.pX, L.pMass, L.pStress] + ([L.pSize] if self.kind == "gimp" else []):
             t.requires(OLD, lab, g, ng)
         sched.add_task(t.computes(L.gStressFS))       # pruned unless g.stressFS is saved
-        if self.contact.active:
-            sched.add_task(Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms)
-                           .requires(NEW, L.gMass).modifies(L.gVelocity))
+        if self.contact.interpolated:
+            t = Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms) \
+                .requires(NEW, L.gMass).modifies(L.gVelocity).requires(OLD, FL.delT)
+            if self.contact.needs_normals:
+                for lab in [L.pX, L.pMass] + ([L.pSize] if self.kind == "gimp" else []):
+                    t.requires(OLD, lab, g, ng)
+                t.computes(L.gSurfNorm)
+            sched.add_task(t)
         sched.add_task(Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
                        .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
                        .requires(NEW, L.gIntForce).requires(NEW, L.gExtForce)
                        .computes(L.gVelocityStar).computes(L.gAcceleration))
         if self.contact.active:
-            sched.add_task(Task("MPM::exMomIntegrated", self.ex_mom_integrated, ms)
-                           .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
-                           .modifies(L.gVelocityStar).modifies(L.gAcceleration))
+            t = (Task("MPM::exMomIntegrated", self.ex_mom_integrated, ms)
+                 .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
+                 .modifies(L.gVelocityStar).modifies(L.gAcceleration))
+            if self.contact.needs_normals:
+                t.requires(NEW, L.gSurfNorm)
+            if self.contact.needs_time:
+                t.requires(OLD, FL.simTime)
+            sched.add_task(t)
         if self.bcs.items:
             sched.add_task(Task("MPM::setGridBoundaryConditions", self.set_grid_bcs, ms)
                            .requires(OLD, FL.delT).requires(NEW, L.gVelocity)

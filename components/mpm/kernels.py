@@ -183,3 +183,86 @@ def owned_mask(px, anchor, dx, lo, hi, dims, out):
                 c = np.floor((px[p, d] - anchor[d]) / dx[d])
                 ok &= (c >= lo[d]) and (c < hi[d])
         out[p] = ok
+
+
+@njit(cache=True)
+def friction(gmass, gvel, gnorm, mu, dx, delt, gacc, gvel_old, dt):
+    """Coulomb friction contact (Uintah's FrictionContactBard without the separation and
+    volume constraints); see contact.py. gnorm: outward unit normals per material;
+    dt > 0: also a_m = (v_m - v_old_m)/dt at the nodes changed."""
+    nm = gmass.shape[0]
+    vcm = np.empty(3)
+    for i in range(gmass.shape[1]):
+        M = 0.0
+        n_with = 0
+        for m in range(nm):
+            if gmass[m, i] > 0.0:
+                M += gmass[m, i]
+                n_with += 1
+        if n_with < 2:
+            continue
+        for d in range(3):
+            P = 0.0
+            for m in range(nm):
+                P += gmass[m, i] * gvel[m, i, d]
+            vcm[d] = P / M
+        for m in range(nm):
+            mass = gmass[m, i]
+            if not (mass > 1e-15 * M and M - mass > 1e-15 * M):
+                continue
+            d0 = gvel[m, i, 0] - vcm[0]
+            d1 = gvel[m, i, 1] - vcm[1]
+            d2 = gvel[m, i, 2] - vcm[2]
+            n0, n1, n2 = gnorm[m, i, 0], gnorm[m, i, 1], gnorm[m, i, 2]
+            dn = d0 * n0 + d1 * n1 + d2 * n2
+            if not dn > 0.0:                        # separating or sliding: free surface
+                continue
+            t0 = d0 - dn * n0
+            t1 = d1 - dn * n1
+            t2 = d2 - dn * n2
+            tl = np.sqrt(t0 * t0 + t1 * t1 + t2 * t2)
+            D0 = -dn * n0
+            D1 = -dn * n1
+            D2 = -dn * n2
+            if tl > 1e-14 * abs(dn):
+                fc = min(mu, tl / dn)               # tl = dv . tangent
+                D0 -= t0 / tl * fc * dn
+                D1 -= t1 / tl * fc * dn
+                D2 -= t2 / tl * fc * dn
+            # Uintah's limiter on the strain the contact imposes in one step
+            emax = 0.0
+            for d, Dd in ((0, D0), (1, D1), (2, D2)):
+                if dx[d] > 0.0:
+                    emax = max(emax, abs(Dd / dx[d] * delt))
+            if emax > 0.0:
+                emax *= max(1.0, mass / (M - mass))
+                ff = min(emax, 0.5) / emax
+                D0 *= ff
+                D1 *= ff
+                D2 *= ff
+            gvel[m, i, 0] += D0
+            gvel[m, i, 1] += D1
+            gvel[m, i, 2] += D2
+            if dt > 0.0:
+                for d in range(3):
+                    gacc[m, i, d] = (gvel[m, i, d] - gvel_old[m, i, d]) / dt
+
+
+@njit(cache=True)
+def rigid(gmass, gvel, gacc, gvel_old, dt, master, direction, vel, use_own):
+    """Uintah's SpecifiedBodyContact after integration: where the master material has
+    mass it takes the rigid velocity, the others its components along `direction`."""
+    nm = gmass.shape[0]
+    rv = np.empty(3)
+    for i in range(gmass.shape[1]):
+        if not gmass[master, i] > 0.0:
+            continue
+        for d in range(3):
+            rv[d] = gvel[master, i, d] if use_own else vel[d]
+        for m in range(nm):
+            for d in range(3):
+                if m == master or direction[d]:
+                    gvel[m, i, d] = rv[d]
+                    if dt > 0.0:
+                        gacc[m, i, d] = (rv[d] - gvel_old[m, i, d]) / dt
+

@@ -46,6 +46,7 @@ gExtForce = L.create("g.externalforce", NC, (3,))
 gIntForce = L.create("g.internalforce", NC, (3,))
 gStressFS = L.create("g.stressFS", NC, (3, 3))     # mass-weighted nodal stress (output)
 gVelocityL = L.create("g.velocity_L", NC, (3,))     # remapped updated velocity (MUSL, 004 eq. 13)
+gSurfNorm = L.create("g.surfNorm", NC, (3,))       # outward unit normal (friction contact)
 gVelocityStar = L.create("g.velocity_star", NC, (3,))
 gAcceleration = L.create("g.acceleration", NC, (3,))
 

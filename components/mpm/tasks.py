@@ -11,7 +11,7 @@ import numpy as np
 from framework import labels as FL
 from framework.variables import VarType
 
-from . import kernels
+from . import kernels, transfer
 from . import labels as L
 
 NC = VarType.NC
@@ -27,6 +27,10 @@ _NOF = np.zeros((1, 3))            # no p.externalforce
 _NOL = np.zeros((1, 3, 3))         # MUSL: no L_p from the g2p kernel
 _NOG = np.zeros((1, 1, 1, 3))      # USL: no remapped momentum
 _NOOWN = np.zeros(0, np.bool_)     # USL: every particle given is owned
+
+
+def matls_not_in(matls, chosen):
+    return [m for m in matls if m not in chosen]
 
 
 class MPMTasks:
@@ -142,10 +146,41 @@ class MPMTasks:
 
     # -- grid ---------------------------------------------------------------------------------
     def ex_mom_interpolated(self, patch, matls, old_dw, new_dw):
-        """Contact on the interpolated velocities."""
+        """Contact on the interpolated velocities (friction: normals first)."""
         gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
         gv = {m: new_dw.get_modifiable(L.gVelocity, m, patch) for m in matls}
-        self.contact.exchange(gm, gv, None, None, 0.0)
+        normals = self._normals(patch, old_dw, new_dw) if self.contact.needs_normals else None
+        self.contact.exchange(gm, gv, None, None, old_dw.get_reduction(FL.delT), normals=normals,
+                              dx=self.level.dx)
+
+    def _normals(self, patch, old_dw, new_dw):
+        """g.surfNorm per contact material, as Uintah's computeNormals: g_m = sum m_p grad S
+        (outward: mass falls off along it), made collinear with the other materials'
+        (0.5 (g_m - mass-weighted mean of the others' g)), then unit length."""
+        lv = self.level
+        low = np.array(patch.low_index(NC), np.int64)
+        kind = 0 if self.kind == "linear" else 1
+        g, gm = {}, {}
+        for m in self.contact.materials:
+            px = old_dw.get(L.pX, m, patch)
+            g[m] = np.zeros(patch.alloc_shape(NC) + (3,))
+            transfer.mass_gradient(kind, self.dim, px, old_dw.get(L.pMass, m, patch),
+                                   self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, g[m])
+            gm[m] = new_dw.get(L.gMass, m, patch)[..., None]
+        out = {}
+        for m in self.contact.materials:
+            others = [k for k in self.contact.materials if k != m]
+            mon = sum(gm[k] for k in others)
+            mwon = sum(gm[k] * g[k] for k in others) / (mon + 1e-100)
+            n = new_dw.allocate(L.gSurfNorm, m, patch, None)
+            np.multiply(0.5, g[m] - mwon, out=n)
+            n[np.broadcast_to(gm[m] <= 1e-200, n.shape)] = 0.0
+            norm = np.linalg.norm(n, axis=-1, keepdims=True)
+            np.divide(n, norm, out=n, where=norm > 1e-15)
+            out[m] = n
+        for m in matls_not_in(self.matls, self.contact.materials):
+            new_dw.allocate(L.gSurfNorm, m, patch, 0.0)
+        return out
 
     def integrate_acceleration(self, patch, matls, old_dw, new_dw):
         """a_i = (fint + fext)/m_i + g (000 eq. 21), v*_i = v_i + a_i dt (000 eq. 25)."""
@@ -163,11 +198,14 @@ class MPMTasks:
     def ex_mom_integrated(self, patch, matls, old_dw, new_dw):
         """Contact on the integrated velocities; a = (v* - v)/dt where it acts."""
         dt = old_dw.get_reduction(FL.delT)
+        c = self.contact
         gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
         gv = {m: new_dw.get(L.gVelocity, m, patch) for m in matls}
         gvs = {m: new_dw.get_modifiable(L.gVelocityStar, m, patch) for m in matls}
         ga = {m: new_dw.get_modifiable(L.gAcceleration, m, patch) for m in matls}
-        self.contact.exchange(gm, gvs, ga, gv, dt)
+        normals = {m: new_dw.get(L.gSurfNorm, m, patch) for m in c.materials} if c.needs_normals else None
+        t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
+        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx)
 
     def set_grid_bcs(self, patch, matls, old_dw, new_dw):
         dt = old_dw.get_reduction(FL.delT)

@@ -416,3 +416,32 @@ KERNELS = {
     ("linear", 3): (p2g_l3, g2p_l3, grad_l3), ("gimp", 1): (p2g_g1, g2p_g1, grad_g1),
     ("gimp", 2): (p2g_g2, g2p_g2, grad_g2), ("gimp", 3): (p2g_g3, g2p_g3, grad_g3),
 }
+
+
+@njit(cache=True, fastmath=FM)
+def mass_gradient(kind, dim, px, pm, lp, anchor, dx, node_low, out):
+    """out_i += sum_p m_p grad S_i(x_p) (contact normals; kind/dim at run time), shares
+    beyond the node array dropped."""
+    sh0, sh1, sh2 = out.shape[:3]
+    na, nb, nc = _counts(kind, dim)
+    ih = _inv_dx(dx)
+    fo = out.reshape(-1)
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+        m = pm[p]
+        for a in range(na):
+            wa = _sel(a, wx0, wx1, wx2)
+            ga = _sel(a, gx0, gx1, gx2)
+            for b in range(nb):
+                wb = _sel(b, wy0, wy1, wy2)
+                gb = _sel(b, gy0, gy1, gy2)
+                for c in range(nc):
+                    wc = _sel(c, wz0, wz1, wz2)
+                    gc = _sel(c, gz0, gz1, gz2)
+                    if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
+                        continue
+                    f3 = 3 * (((i + a) * sh1 + j + b) * sh2 + k + c)
+                    fo[f3] += m * ga * wb * wc
+                    fo[f3 + 1] += m * wa * gb * wc
+                    fo[f3 + 2] += m * wa * wb * gc

@@ -59,3 +59,14 @@ def test_pressure_surface_must_be_box_or_cylinder(tmp_path):
         '<cylinder label="inner surface"><bottom>[0,0,0]</bottom><top>[0,0,0.01]</top><radius>0.5</radius></cylinder>',
         "<sphere><origin>[0,0,0]</origin><radius>0.5</radius></sphere>")
     _fails(tmp_path, text, "<box>", "<cylinder>")
+
+
+def test_friction_needs_mu(tmp_path):
+    text = open(MPM_INPUTS / "friction_block.ups").read().replace("<mu>0.3</mu>", "")
+    _fails(tmp_path, text, "<mu>")
+
+
+def test_rigid_master_material_exists(tmp_path):
+    text = open(MPM_INPUTS / "rigid_piston.ups").read().replace(
+        "<type>rigid</type>", "<type>rigid</type><master_material>5</master_material>")
+    _fails(tmp_path, text, "material 5")
