@@ -61,6 +61,10 @@ class Material:
 class ICE(IceTasks, Component):
     """Uintah's ICE: equilibration pressure, face velocities, Lagrangian step, exchange, advection."""
 
+    # MPMICE hook: number of (MPM) materials before ICE's in the global material index
+    # space; exchange coefficients and boundary-condition ids are read for all of them
+    n_before = 0
+
     def problem_setup(self, root, level):
         self.level = level
         self.dims = np.array([not c for c in level.collapsed])
@@ -85,14 +89,14 @@ class ICE(IceTasks, Component):
         self.use_gravity = bool(np.any(self.gravity != 0.0))
         mp = root.child("MaterialProperties", required=True)
         icen = mp.child("ICE", required=True)
-        geo = GeometryReader()
+        geo = getattr(root, "_geometry_reader", None) or GeometryReader()   # MPMICE shares one
         self.materials = [self._read_material(m, geo) for m in icen.children("material")]
         if not self.materials:
             raise icen.error("no <material>: ICE needs at least one")
         n = len(self.materials)
-        self.K, self.H = self._read_exchange(mp.child("exchange_properties"), n)
+        self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n)
         self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
-        self.bcs = BoundaryConditions(read_bcs(root, level, n), level)
+        self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n), level)
         self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)
         if self.conserve_energy and (n > 1 or self.codes[0] != IDEAL_GAS):
             # with e = cv T the flow work of a stiffened gas is (p + Pinf) dv, not the p dv of

@@ -1,0 +1,274 @@
+"""MPMICE: MPM solids and ICE fluids coupled through the multi-field equations (paper 000).
+
+`<SimulationComponent type="mpmice">` (and "rmpmice": the same coupling, where a
+<constitutive_model type="rigid"> solid moves as prescribed by its velocity). Reads
+<MPM>, <CFD><ICE>, <MaterialProperties><MPM> and <ICE>, <exchange_properties> through
+the MPM and ICE components (setup.py): MPM materials first, then ICE, one global
+material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order):
+
+  1  MPM::interpolateParticlesToGrid, MPMICE::interpolateNCToCC_0
+  2  MPMICE::computeEquilibrationPressure     (ICE's body, all materials, solids with
+                                               the sec. 3.1 threshold EOS)
+  3  ICE::computeVel_FC, addExchangeContributionToFCVel   (all materials)
+  5  ICE::computeDelPressAndUpdatePressCC, 6 ICE::computePressFC   (all materials)
+  7  MPMICE::interpolatePAndGradP (mean pressure in the solid's internal force),
+     MPM::computeAndIntegrateAcceleration; ICE viscous stress (fluids)
+  8-9  MPMICE::computeLagrangianValuesMPM, ICE::computeLagrangianValues (fluids)
+  10 ICE::addExchangeToMomentumAndEnergy (all), 11 computeLagrangianSpecificVolume (all)
+  -> MPMICE::computeCCVelAndTempRates, interpolateCCToNC (the solid's change to the nodes)
+  13 MPM grid BCs, interpolateToParticlesAndUpdate, computeStressTensor, relocation
+  12 ICE::advectAndAdvanceInTime (fluids)
+The ICE and MPM tasks are those components' own task bodies; this module only
+declares them over the right material sets and interleaves the coupling tasks.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from components.ice import labels as I
+from components.mpm import labels as M
+from framework import labels as FL
+from framework.component import Component, register
+from framework.geometry import GeometryReader
+from framework.task import NEW, OLD, Task
+from framework.variables import Ghost
+
+from . import labels as MI
+from .setup import ICEinMPMICE, MPMinMPMICE
+from .tasks import MPMICETasks
+
+G = Ghost.AROUND_CELLS
+STATE = (I.rho_CC, I.vel_CC, I.temp_CC)
+MPM_AFTER = "MPM::computeAndIntegrateAcceleration"
+
+
+class _Recorder:
+    """Collects the tasks a component schedules; passes the particle set-up through."""
+
+    def __init__(self, sched):
+        self.sched, self.tasks = sched, []
+
+    def add_task(self, task):
+        self.tasks.append(task)
+        return task
+
+    def __getattr__(self, name):
+        return getattr(self.sched, name)
+
+
+@register("mpmice", "rmpmice")
+class MPMICE(MPMICETasks, Component):
+    """Fluid-structure interaction: explicit MPM solids in explicit multi-material ICE."""
+
+    tiny = 1e-12        # solid density floor, relative to its reference density (empty cells)
+
+    def problem_setup(self, root, level):
+        self.level = level
+        self.names_used = root.child("SimulationComponent").attr("type")
+        if not hasattr(root, "_geometry_reader"):
+            root._geometry_reader = GeometryReader()     # one label namespace for MPM and ICE objects
+        mp = root.child("MaterialProperties", required=True)
+        ice_node = mp.child("ICE", required=True)
+        n_ice = len(ice_node.children("material"))
+        mpm_node = mp.child("MPM", required=True)
+        n_all = len(mpm_node.children("material")) + n_ice
+        for cm in root.child("MaterialProperties").child("MPM").children("material"):
+            c = cm.child("constitutive_model")
+            if c is not None and c.has("useModifiedEOS"):
+                c.get("useModifiedEOS", "bool")        # the sec. 3.1 threshold is always applied
+        self.mpm = MPMinMPMICE(n_all)
+        self.mpm.problem_setup(root, level)
+        nm = len(self.mpm.materials)
+        self.mpm_matls = list(range(nm))
+        bulk = [_bulk(m) for m in self.mpm.materials]
+        cv = [_specific_heat(m) for m in self.mpm.materials]
+        self.ice = ICEinMPMICE(self.mpm.materials, cv, bulk)
+        self.ice.problem_setup(root, level)
+        if self.ice.implicit if hasattr(self.ice, "implicit") else False:
+            raise root.child("CFD").child("ICE").error("MPMICE runs explicit ICE only (no <ImplicitSolver>)")
+        if self.ice.conserve_energy:
+            raise self.ice._conserve_node.error("<conserveTotalEnergy> is not available with MPMICE")
+        self.all_matls = list(range(n_all))
+        self.materials = self.ice.materials
+        self.dims_i = np.array(self.ice.dims, dtype=np.int64)
+        self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
+
+    def material_names(self):
+        return self.ice.material_names()
+
+    # -- scheduling -----------------------------------------------------------------------------
+    def schedule_initialize(self, level, sched):
+        self.mpm.schedule_initialize(level, sched)
+        ng = self.mpm.ng
+        t = Task("MPMICE::actuallyInitialize", self.initialize_fluids, self.ice.ice_matls) \
+            .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC) \
+            .computes(I.press_CC, matls=[0])
+        for lab in [M.pX, M.pMass, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
+            t.requires(NEW, lab, Ghost.AROUND_NODES, ng, matls=self.mpm_matls)
+        sched.add_task(t)
+
+    def schedule_compute_stable_timestep(self, level, sched):
+        sched.add_task(Task("MPMICE::computeStableTimestep", self.stable_timestep, self.ice.ice_matls)
+                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
+                       .requires(NEW, M.WaveSpeed).computes(FL.delT))
+
+    def schedule_time_advance(self, level, sched):
+        rec = _Recorder(sched)
+        self.mpm.schedule_time_advance(level, rec)
+        names = [t.name for t in rec.tasks]
+        cut = names.index(MPM_AFTER)
+        before, acc, after = rec.tasks[:cut], rec.tasks[cut], rec.tasks[cut + 1:]
+        for t in before:
+            sched.add_task(t)
+        self._schedule_fluid_lagrangian_start(sched)
+        sched.add_task(acc)
+        self._schedule_exchange(sched)
+        for t in after:
+            sched.add_task(t)
+        self._schedule_advection(sched)
+
+    def _schedule_fluid_lagrangian_start(self, sched):
+        """Steps 1-7: solid state at cell centres, pressure, face velocities, solid forces."""
+        ice, ms, alls, fl, m0 = self.ice, self.mpm_matls, self.all_matls, self.ice.ice_matls, [0]
+        dirs = [d for d in range(3) if ice.dims[d]]
+        t = Task("MPMICE::interpolateNCToCC_0", self.interpolate_nc_to_cc, ms) \
+            .computes(MI.cMass).computes(MI.sp_vol_mpm_CC).computes(I.rho_CC).computes(I.vel_CC) \
+            .computes(I.temp_CC)
+        for lab in (M.gMass, M.gVolume, M.gVelocity):
+            t.requires(NEW, lab, G, 1)
+        sched.add_task(t)
+
+        t = Task("MPMICE::computeEquilibrationPressure", self.equilibration_pressure, alls) \
+            .requires(OLD, I.press_CC, matls=m0).requires(NEW, MI.sp_vol_mpm_CC, matls=ms) \
+            .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \
+            .computes(I.speedSound_CC)
+        self._start_state(t, (I.rho_CC, I.temp_CC, I.sp_vol_CC), 0)
+        sched.add_task(t)
+
+        t = Task("ICE::computeVel_FC", self.vel_fc, alls) \
+            .requires(OLD, FL.delT).requires(NEW, I.sp_vol_CC, G, 1).requires(NEW, I.press_equil_CC, G, 1, matls=m0)
+        self._start_state(t, (I.rho_CC, I.vel_CC), 1)
+        for d in dirs:
+            t.computes(I.FC_VEL[d])
+        sched.add_task(t)
+        t = Task("ICE::addExchangeContributionToFCVel", ice.exchange_fc, alls) \
+            .requires(OLD, FL.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL[d], G, 1).computes(I.FC_VEL_ME[d])
+        sched.add_task(t)
+
+        t = Task("ICE::computeDelPressAndUpdatePressCC", ice.delp_press, alls) \
+            .requires(OLD, FL.delT).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
+            .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.vol_frac_CC, G, 1) \
+            .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+        sched.add_task(t)
+
+        t = Task("ICE::computePressFC", self.press_fc, alls).requires(NEW, I.press_CC, G, 1, matls=m0)
+        self._start_state(t, (I.rho_CC,), 1)
+        for d in dirs:
+            t.computes(I.PRESS_FC[d], matls=m0)
+        sched.add_task(t)
+
+        if not self.rigid:
+            ng = self.mpm.ng
+            t = Task("MPMICE::interpolatePAndGradP", self.pressure_internal_force, ms) \
+                .requires(NEW, I.press_CC, G, ng + 1, matls=m0).modifies(M.gIntForce).computes(MI.pPressure)
+            for lab in [M.pX, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
+                t.requires(OLD, lab, Ghost.AROUND_NODES, ng)
+            sched.add_task(t)
+
+        if ice.viscous:
+            sched.add_task(Task("ICE::viscousShearStress", ice.viscous_source, fl)
+                           .requires(OLD, FL.delT).requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
+                           .computes(I.viscous_src_CC))
+        if ice.conduction:
+            raise NotImplementedError("MPMICE: ICE heat conduction is not coupled yet (set thermal_conductivity 0)")
+
+    def _start_state(self, t, labels, ghost):
+        """Requires of the start-of-step state: fluids from OLD, solids from step 1 (NEW)."""
+        g = (G, ghost) if ghost else (Ghost.NONE, 0)
+        for lab in labels:
+            t.requires(OLD, lab, *g, matls=self.ice.ice_matls)
+            if lab is not I.sp_vol_CC:
+                t.requires(NEW, lab, *g, matls=self.mpm_matls)
+
+    def _schedule_exchange(self, sched):
+        """Steps 8-11 and the exchange's change of the solid carried back to the nodes."""
+        ice, ms, alls, fl, m0 = self.ice, self.mpm_matls, self.all_matls, self.ice.ice_matls, [0]
+        dirs = [d for d in range(3) if ice.dims[d]]
+        t = Task("MPMICE::computeLagrangianValuesMPM", self.lagrangian_values_mpm, ms) \
+            .requires(OLD, FL.delT).requires(NEW, MI.cMass).requires(NEW, I.temp_CC) \
+            .requires(NEW, M.gMass, G, 1).requires(NEW, M.gVolume, G, 1).requires(NEW, M.gVelocityStar, G, 1) \
+            .requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
+            .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
+            .computes(MI.mom_mpm_CC).computes(I.mass_L_CC).computes(I.mom_L_CC).computes(I.int_eng_L_CC)
+        for d in dirs:
+            t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
+        sched.add_task(t)
+
+        t = Task("ICE::computeLagrangianValues", ice.lagrangian_values, fl) \
+            .requires(OLD, FL.delT).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(OLD, I.temp_CC) \
+            .requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
+            .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
+            .computes(I.mass_L_CC).computes(I.mom_L_CC).computes(I.int_eng_L_CC)
+        for d in dirs:
+            t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
+        if ice.viscous:
+            t.requires(NEW, I.viscous_src_CC)
+        sched.add_task(t)
+
+        sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", ice.exchange_cc, alls)
+                       .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC)
+                       .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC)
+                       .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC))
+
+        t = Task("ICE::computeLagrangianSpecificVolume", self.lagrangian_sp_vol, alls) \
+            .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.sp_vol_CC) \
+            .requires(NEW, I.vol_frac_CC).requires(NEW, I.speedSound_CC) \
+            .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.sp_vol_L_CC).requires(NEW, I.int_eng_L_ME_CC)
+        self._start_state(t, (I.temp_CC,), 0)
+        sched.add_task(t)
+
+        if not self.rigid:
+            sched.add_task(Task("MPMICE::computeCCVelAndTempRates", self.velocity_rates, ms)
+                           .requires(OLD, FL.delT).requires(NEW, I.mom_L_ME_CC).requires(NEW, MI.mom_mpm_CC)
+                           .requires(NEW, I.mass_L_CC).computes(MI.dVdt_CC))
+            sched.add_task(Task("MPMICE::interpolateCCToNC", self.interpolate_cc_to_nc, ms)
+                           .requires(OLD, FL.delT).requires(NEW, MI.dVdt_CC, G, 1)
+                           .modifies(M.gVelocityStar).modifies(M.gAcceleration))
+
+    def _schedule_advection(self, sched):
+        """Step 12 for the fluids, and the fluids' Mach number."""
+        ice, fl = self.ice, self.ice.ice_matls
+        dirs = [d for d in range(3) if ice.dims[d]]
+        gadv = 2 if ice.second_order else 1
+        t = Task("ICE::advectAndAdvanceInTime", ice.advect_and_advance, fl) \
+            .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
+            .requires(NEW, I.int_eng_L_ME_CC, G, gadv).requires(NEW, I.sp_vol_L_CC, G, gadv) \
+            .requires(NEW, I.vol_frac_CC) \
+            .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+        sched.add_task(t)
+        sched.add_task(Task("ICE::computeMach", ice.compute_mach, fl)
+                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
+                       .computes(I.mach))
+
+    @property
+    def rigid(self):
+        """rmpmice: the solid's motion is prescribed (no pressure force, no exchange change)."""
+        return self.names_used == "rmpmice"
+
+    names_used = "mpmice"
+
+
+def _bulk(mat):
+    """The solid's bulk modulus for its EOS in the equilibration (rigid: effectively incompressible)."""
+    K = getattr(mat.params, "bulk_modulus", 0.0) or 0.0
+    return K if K > 0 else 1e12
+
+
+def _specific_heat(mat):
+    return getattr(mat, "specific_heat", 0.0) or 1.0

@@ -1,0 +1,210 @@
+"""Numba kernels of the MPMICE coupling (paper 000 sec. 3.3, steps 1, 7, 8 and 13).
+
+Index conventions as in the ICE and MPM kernels: arrays are a patch's stored arrays,
+`cc_low` / `node_low` the global index of their entry [0, 0, 0]. A cell (i, j, k)
+has the nodes (i..i+1, j..j+1, k..k+1) in the directions that exist (`dims`); a
+collapsed direction has one node layer (index 0) and one cell layer.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from components.mpm.transfer import _counts, _inv_dx, _sel, _stencil
+
+
+@njit(cache=True)
+def _node_weight(n, d, dims, sym_lo, sym_hi, n_lo, n_hi):
+    """Weight of node index n (global) along d in a cell average: 1/2, doubled on a
+    symmetry plane (the mirrored solid would give that node as much again, step 1)."""
+    if not dims[d]:
+        return 1.0
+    w = 0.5
+    if (sym_lo[d] and n == n_lo[d]) or (sym_hi[d] and n == n_hi[d]):
+        w = 1.0
+    return w
+
+
+@njit(cache=True)
+def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n_lo, n_hi,
+             tiny_mass, rho0, vol, cmass, spv, vel, rho):
+    """Step 1 (interpolateNCToCC_0): solid mass, specific volume, velocity, density per cell.
+
+    cmass = sum_w m_i (+ tiny_mass where no solid), v = (sum_w V_i + tiny/rho0) / cmass,
+    u = sum_w m_i u_i / cmass, rho = cmass / V, with w the node weights of _node_weight.
+    `rho` may be a dummy (size 1) when not wanted, as may `spv`.
+    """
+    want_rho = rho.size > 1
+    want_spv = spv.size > 1
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                gi, gj, gk = i + cc_low[0], j + cc_low[1], k + cc_low[2]
+                m = 0.0
+                v = 0.0
+                p0 = 0.0
+                p1 = 0.0
+                p2 = 0.0
+                for a in range(2 if dims[0] else 1):
+                    wa = _node_weight(gi + a, 0, dims, sym_lo, sym_hi, n_lo, n_hi)
+                    for b in range(2 if dims[1] else 1):
+                        wb = _node_weight(gj + b, 1, dims, sym_lo, sym_hi, n_lo, n_hi)
+                        for c in range(2 if dims[2] else 1):
+                            wc = _node_weight(gk + c, 2, dims, sym_lo, sym_hi, n_lo, n_hi)
+                            x = gi + a - node_low[0] if dims[0] else 0
+                            y = gj + b - node_low[1] if dims[1] else 0
+                            z = gk + c - node_low[2] if dims[2] else 0
+                            w = wa * wb * wc
+                            mw = w * gmass[x, y, z]
+                            m += mw
+                            v += w * gvol[x, y, z]
+                            p0 += mw * gvel[x, y, z, 0]
+                            p1 += mw * gvel[x, y, z, 1]
+                            p2 += mw * gvel[x, y, z, 2]
+                if m < tiny_mass:
+                    v += (tiny_mass - m) / rho0
+                    m = tiny_mass
+                cmass[i, j, k] = m
+                vel[i, j, k, 0] = p0 / m
+                vel[i, j, k, 1] = p1 / m
+                vel[i, j, k, 2] = p2 / m
+                if want_spv:
+                    spv[i, j, k] = v / m
+                if want_rho:
+                    rho[i, j, k] = m / vol
+
+
+@njit(cache=True)
+def velocity_rates(mom_me, mom_mpm, mass_L, dt, lo, hi, out):
+    """Step 10 -> 13 (computeCCVelAndTempRates): dV/dt = ((mu)^L_ME - sum_w m v*) / (m^L dt),
+    the solid's velocity change from the pressure source (eq. 33) and the exchange (eq. 38)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                inv = 1.0 / (mass_L[i, j, k] * dt)
+                for c in range(3):
+                    out[i, j, k, c] = (mom_me[i, j, k, c] - mom_mpm[i, j, k, c]) * inv
+
+
+@njit(cache=True)
+def cc_to_nc_increment(dvdt, cc_low, node_low, nlo, nhi, dims, dt, gvs, gacc):
+    """Step 13 (interpolateCCToNC): every node [nlo, nhi) takes the mean dV/dt of the
+    cells around it: v*_i += dt a_i, a_i += a_i(CC)."""
+    sh = dvdt.shape
+    for x in range(nlo[0], nhi[0]):
+        for y in range(nlo[1], nhi[1]):
+            for z in range(nlo[2], nhi[2]):
+                gx, gy, gz = x + node_low[0], y + node_low[1], z + node_low[2]
+                a0 = 0.0
+                a1 = 0.0
+                a2 = 0.0
+                n = 0
+                for a in range(2 if dims[0] else 1):
+                    for b in range(2 if dims[1] else 1):
+                        for c in range(2 if dims[2] else 1):
+                            i = gx - a - cc_low[0] if dims[0] else 0
+                            j = gy - b - cc_low[1] if dims[1] else 0
+                            k = gz - c - cc_low[2] if dims[2] else 0
+                            i = min(max(i, 0), sh[0] - 1)
+                            j = min(max(j, 0), sh[1] - 1)
+                            k = min(max(k, 0), sh[2] - 1)
+                            a0 += dvdt[i, j, k, 0]
+                            a1 += dvdt[i, j, k, 1]
+                            a2 += dvdt[i, j, k, 2]
+                            n += 1
+                a0 /= n
+                a1 /= n
+                a2 /= n
+                gvs[x, y, z, 0] += dt * a0
+                gvs[x, y, z, 1] += dt * a1
+                gvs[x, y, z, 2] += dt * a2
+                gacc[x, y, z, 0] += a0
+                gacc[x, y, z, 1] += a1
+                gacc[x, y, z, 2] += a2
+
+
+@njit(cache=True)
+def _node_pressure(press, gx, gy, gz, cc_low, dims):
+    """Mean of press_CC over the cells around global node (gx, gy, gz) (interpolatePressCCToPressNC)."""
+    sh = press.shape
+    s = 0.0
+    n = 0
+    for a in range(2 if dims[0] else 1):
+        for b in range(2 if dims[1] else 1):
+            for c in range(2 if dims[2] else 1):
+                i = min(max(gx - a - cc_low[0], 0), sh[0] - 1) if dims[0] else 0
+                j = min(max(gy - b - cc_low[1], 0), sh[1] - 1) if dims[1] else 0
+                k = min(max(gz - c - cc_low[2], 0), sh[2] - 1) if dims[2] else 0
+                s += press[i, j, k]
+                n += 1
+    return s / n
+
+
+@njit(cache=True)
+def _pressure_force(kind, dim, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint,
+                    own, ppress):
+    """Step 7 (mean pressure): p_p = sum S p_i - p_ref and fint_i -= V_p p_p grad S_ip, i.e. the
+    solid's stress in the internal force is sigma + (p - p_ref) I (the bulk part the
+    equilibration pressure carries, eq. 33's sigma_r - sigma). Owned p_p go to `ppress`."""
+    sh0, sh1, sh2 = gfint.shape[:3]
+    na, nb, nc = _counts(kind, dim)
+    ih = _inv_dx(dx)
+    fi = gfint.reshape(-1)
+    o = 0
+    all_own = own.shape[0] == 0
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+        pr = 0.0
+        for a in range(na):
+            wa = _sel(a, wx0, wx1, wx2)
+            for b in range(nb):
+                wb = _sel(b, wy0, wy1, wy2)
+                for c in range(nc):
+                    S = wa * wb * _sel(c, wz0, wz1, wz2)
+                    if S != 0.0:
+                        pr += S * _node_pressure(press, i + a + node_low[0], j + b + node_low[1],
+                                                 k + c + node_low[2], cc_low, dims)
+        pr -= p_ref
+        if all_own or own[p]:
+            ppress[o] = pr
+            o += 1
+        s = pvol[p] * pr
+        for a in range(na):
+            wa = _sel(a, wx0, wx1, wx2)
+            ga = _sel(a, gx0, gx1, gx2)
+            for b in range(nb):
+                wb = _sel(b, wy0, wy1, wy2)
+                gb = _sel(b, gy0, gy1, gy2)
+                for c in range(nc):
+                    wc = _sel(c, wz0, wz1, wz2)
+                    gc = _sel(c, gz0, gz1, gz2)
+                    x, y, z = i + a, j + b, k + c
+                    if not (0 <= x < sh0 and 0 <= y < sh1 and 0 <= z < sh2):
+                        continue
+                    f3 = 3 * ((x * sh1 + y) * sh2 + z)
+                    fi[f3] -= s * ga * wb * wc
+                    if dim >= 2:
+                        fi[f3 + 1] -= s * wa * gb * wc
+                    if dim >= 3:
+                        fi[f3 + 2] -= s * wa * wb * gc
+
+
+@njit(cache=True)
+def pressure_force_linear(dim, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress):
+    if dim == 1:
+        _pressure_force(0, 1, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+    elif dim == 2:
+        _pressure_force(0, 2, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+    else:
+        _pressure_force(0, 3, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+
+
+@njit(cache=True)
+def pressure_force_gimp(dim, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress):
+    if dim == 1:
+        _pressure_force(1, 1, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+    elif dim == 2:
+        _pressure_force(1, 2, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+    else:
+        _pressure_force(1, 3, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)

@@ -1,0 +1,299 @@
+"""MPMICE's own task bodies (paper 000 sec. 3.3) and the warehouse view that lets ICE's
+task bodies run over solid and fluid materials together.
+
+ICE's bodies read the start-of-step state (rho_CC, vel_CC, temp_CC, sp_vol_CC) from
+the OLD warehouse; for an MPM material that state is this step's interpolation of
+its particles (step 1) in the NEW warehouse. `StartOfStep` wraps the old warehouse
+and sends those reads of MPM materials to the new one (sp_vol_CC to sp_vol_mpm_CC).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from components.ice import kernels as IK
+from components.ice import labels as I
+from components.ice.bc import NEUMANN, SYMMETRY, bc_vector
+from components.ice.tasks import _rho_micro_array
+from components.mpm import labels as M
+from framework import labels as FL
+from framework.geometry import cell_fractions
+from framework.variables import VarType
+
+from . import kernels as K
+from . import labels as MI
+
+NC, CC = VarType.NC, VarType.CC
+_REDIRECT = {I.rho_CC.name: I.rho_CC, I.vel_CC.name: I.vel_CC, I.temp_CC.name: I.temp_CC,
+             I.sp_vol_CC.name: MI.sp_vol_mpm_CC}
+_NO3 = np.zeros((1, 1, 1, 3))
+_NO1 = np.zeros((1, 1, 1))
+
+
+class StartOfStep:
+    """The old warehouse, except that the state of MPM materials comes from the new one."""
+
+    def __init__(self, old_dw, new_dw, mpm_matls):
+        self.old, self.new, self.mpm = old_dw, new_dw, set(mpm_matls)
+
+    def get(self, label, m, patch):
+        if m in self.mpm and label.name in _REDIRECT:
+            return self.new.get(_REDIRECT[label.name], m, patch)
+        return self.old.get(label, m, patch)
+
+    def get_reduction(self, label, m=-1):
+        return self.old.get_reduction(label, m)
+
+
+class _Capture:
+    """A new warehouse whose put_reduction is kept (to combine two stable timesteps)."""
+
+    def __init__(self, dw):
+        self.dw, self.value = dw, None
+
+    def __getattr__(self, name):
+        return getattr(self.dw, name)
+
+    def put_reduction(self, label, value, m=-1):
+        self.value = value
+
+
+class MPMICETasks:
+    """Mixed into the MPMICE component: needs self.mpm, self.ice, self.mpm_matls, ..."""
+
+    # -- helpers ---------------------------------------------------------------------------
+    def _geom(self, patch):
+        """(boxes, cc_low, node_low, dims, first and last domain node) of a patch."""
+        b = self.ice.boxes(patch)
+        lv = patch.level
+        inner = lv.interior_box(NC)
+        return (b, np.array(patch.low_index(CC), np.int64), np.array(patch.low_index(NC), np.int64),
+                self.dims_i, np.array(inner[0], np.int64), np.array(inner[1], np.int64) - 1)
+
+    def _sym(self, m):
+        """Per direction: is the low / high domain face a symmetry plane for material m."""
+        lo, hi = np.zeros(3, np.bool_), np.zeros(3, np.bool_)
+        for name, face in self.ice.bcs.table.items():
+            i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
+            if face["Velocity"][m][0] == SYMMETRY:
+                (hi if i % 2 else lo)[i // 2] = True
+        return lo, hi
+
+    def _nc_to_cc(self, patch, m, gmass, gvol, gvel, cmass, spv, vel, rho):
+        b, cc_low, node_low, dims, n_lo, n_hi = self._geom(patch)
+        sym_lo, sym_hi = self._sym(m)
+        mat = self.mpm.materials[m]
+        K.nc_to_cc(gmass, gvol, gvel, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
+                   self.tiny * mat.density * b.vol, mat.density, b.vol, cmass, spv, vel, rho)
+
+    def _extra_vector(self, patch, q, m, b):
+        """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere."""
+        for name in patch.boundary_faces:
+            i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
+            kind = SYMMETRY if self.ice.bcs.table[name]["Velocity"][m][0] == SYMMETRY else NEUMANN
+            bc_vector(q, i // 2, i % 2, kind, np.zeros(3), 0.0, b.lo, b.hi, b.olo, b.ohi)
+
+    # -- initialization: fluids fill what the particles leave ---------------------------------
+    def initialize_fluids(self, patch, matls, old_dw, new_dw):
+        """ICE state where the ICE materials' volume fractions are 1 - theta_solid, split in
+        proportion to their geometry fractions, theta_solid from the particles through the
+        nodes (step 1), so the first equilibration sees sum theta = 1 and a body at rest in
+        gas at the same pressure stays at rest."""
+        ice, lv = self.ice, patch.level
+        b = ice.boxes(patch)
+        own = patch.owned(CC)
+        sl = patch.slices(CC, own)
+        ths = np.zeros(patch.alloc_shape(CC))
+        for m in self.mpm_matls:
+            gm, gv = self._particle_nodes(patch, m, new_dw)
+            cm = np.zeros_like(ths)
+            spv = np.zeros_like(ths)
+            self._nc_to_cc(patch, m, gm, gv, np.zeros(gm.shape + (3,)), cm, spv, np.zeros(ths.shape + (3,)), _NO1)
+            ths += cm * spv / b.vol
+        ice_mats = [ice.materials[m] for m in ice.ice_matls]
+        fr = [sum(cell_fractions(piece, lv, own, g["res"]) for piece, g in mat.objects) for mat in ice_mats]
+        pw = sum(cell_fractions(piece, lv, own, g["res"]) * g["pressure"] for mat in ice_mats
+                 for piece, g in mat.objects)
+        tot = sum(fr)
+        empty = tot <= 0.0
+        if empty.any():           # cells the solid's geometry fills: take the neighbours' fluid
+            fr = [_spread(f, empty) for f in fr]
+            pw = _spread(pw, empty)
+            tot = sum(fr)
+            fr = [np.where(tot > 0, f, 1.0 if k == 0 else 0.0) for k, f in enumerate(fr)]
+            tot = np.where(tot > 0, tot, 1.0)
+        press = pw / tot
+        free = np.clip(1.0 - ths[sl], 0.0, 1.0)
+        p_arr = new_dw.allocate(I.press_CC, 0, patch)
+        p_arr[sl] = press
+        for m, mat, f in zip(ice.ice_matls, ice_mats, fr):
+            g0 = mat.objects[0][1]
+            temp = np.full(press.shape, g0["temperature"])
+            vel = np.broadcast_to(np.array(g0["velocity"], float), press.shape + (3,))
+            rho_micro = _rho_micro_array(press, temp, g0["density"], *ice._eos(m))
+            theta = free * f / tot
+            arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC)]
+            arrs[0][sl] = np.maximum(rho_micro * theta, 1e-12 * rho_micro)
+            arrs[1][sl] = vel
+            arrs[2][sl] = temp
+            arrs[3][sl] = 1.0 / rho_micro
+            ice.bcs.scalar(patch, arrs[0], "Density", m, b)
+            ice.bcs.scalar(patch, arrs[2], "Temperature", m, b)
+            ice.bcs.velocity(patch, arrs[1], m, b)
+            ice.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
+        ice.bcs.scalar(patch, p_arr, "Pressure", 0, b)
+
+    def _particle_nodes(self, patch, m, dw):
+        """Node mass and volume of material m from its particles (owned + ghost) in `dw`."""
+        mpm, lv = self.mpm, patch.level
+        px = dw.get(M.pX, m, patch)
+        n = len(px)
+        shape = patch.alloc_shape(NC)
+        gm, gv = np.zeros(shape), np.zeros(shape)
+        scratch = np.zeros(shape + (3,))
+        mpm.p2g(px, dw.get(M.pMass, m, patch), np.zeros((n, 3)), dw.get(M.pVolume, m, patch),
+                np.zeros((n, 3, 3)), np.zeros((1, 3)), False, mpm._lp(dw, m, patch, n), lv.anchor, lv.dx,
+                np.array(patch.low_index(NC), np.int64), gm, scratch, gv, scratch.copy(), scratch.copy())
+        return gm, gv
+
+    # -- step 1: particle state -> nodes -> cell centres ------------------------------------------
+    def interpolate_nc_to_cc(self, patch, matls, old_dw, new_dw):
+        """interpolateNCToCC_0: cMass, rho_CC, vel_CC, temp_CC and the specific volume of each
+        solid at the cell centres (the specific volume is the particles' volume, which MPM
+        integrates in time through F: eq. 53 for the solid)."""
+        b = self.ice.boxes(patch)
+        for m in matls:
+            cm = new_dw.allocate(MI.cMass, m, patch)
+            spv = new_dw.allocate(MI.sp_vol_mpm_CC, m, patch, 1.0 / self.mpm.materials[m].density)
+            vel = new_dw.allocate(I.vel_CC, m, patch)
+            rho = new_dw.allocate(I.rho_CC, m, patch)
+            temp = new_dw.allocate(I.temp_CC, m, patch, self.solid_temp[m])
+            self._nc_to_cc(patch, m, new_dw.get(M.gMass, m, patch), new_dw.get(M.gVolume, m, patch),
+                           new_dw.get(M.gVelocity, m, patch), cm, spv, vel, rho)
+            self.ice.bcs.scalar(patch, rho, "Density", m, b)
+            self.ice.bcs.scalar(patch, spv, "Temperature", m, b, copy=True)
+            self.ice.bcs.scalar(patch, cm, "Temperature", m, b, copy=True)
+            self._extra_vector(patch, vel, m, b)
+            del temp
+
+    # -- steps 2-6: ICE's multi-material tasks over all materials ----------------------------------
+    def equilibration_pressure(self, patch, matls, old_dw, new_dw):
+        """Eq. 13 over solids and fluids (the solids with the sec. 3.1 threshold EOS)."""
+        self.ice.equilibration_pressure(patch, matls, StartOfStep(old_dw, new_dw, self.mpm_matls), new_dw)
+
+    def vel_fc(self, patch, matls, old_dw, new_dw):
+        """Eq. 28 for every material (the solids' from their step-1 cell-centre state)."""
+        self.ice.vel_fc(patch, matls, StartOfStep(old_dw, new_dw, self.mpm_matls), new_dw)
+
+    def press_fc(self, patch, matls, old_dw, new_dw):
+        """Eq. 31 with rho summed over solids and fluids."""
+        self.ice.press_fc(patch, matls, StartOfStep(old_dw, new_dw, self.mpm_matls), new_dw)
+
+    def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
+        """Eq. 40 for every material (the solids' result is unused: their volume is the particles')."""
+        self.ice.lagrangian_sp_vol(patch, matls, StartOfStep(old_dw, new_dw, self.mpm_matls), new_dw)
+
+    # -- step 7: the equilibration pressure acting on the solid ------------------------------------
+    def pressure_internal_force(self, patch, matls, old_dw, new_dw):
+        """interpolatePressCCToPressNC + interpolatePAndGradP: p - p_ref at the particles and its
+        share of the internal force, fint_i -= V_p (p_p - p_ref) grad S_ip (see kernels.py)."""
+        mpm, lv = self.mpm, patch.level
+        press = new_dw.get(I.press_CC, 0, patch)
+        cc_low = np.array(patch.low_index(CC), np.int64)
+        node_low = np.array(patch.low_index(NC), np.int64)
+        fn = K.pressure_force_gimp if mpm.kind == "gimp" else K.pressure_force_linear
+        for m in matls:
+            px = old_dw.get(M.pX, m, patch)
+            n = len(px)
+            own = old_dw.ghost_owned_mask(M.pX, m, patch)
+            own = np.zeros(0, np.bool_) if own is None else own
+            n_own = n if own.size == 0 else int(np.count_nonzero(own))
+            pp = np.empty(n_own)
+            fn(mpm.dim, px, old_dw.get(M.pVolume, m, patch), mpm._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
+               node_low, press, cc_low, self.dims_i, self.ice.reference_pressure,
+               new_dw.get_modifiable(M.gIntForce, m, patch), own, pp)
+            new_dw.put(MI.pPressure, m, patch, pp)
+
+    # -- steps 8-9: the solid's Lagrangian values at the cell centres --------------------------------
+    def lagrangian_values_mpm(self, patch, matls, old_dw, new_dw):
+        """computeLagrangianValuesMPM: m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p*
+        (eq. 33, ICE's kernel), (me)^L = m cv T (the solid temperature is held: no MPM
+        thermal model yet)."""
+        ice = self.ice
+        b = ice.boxes(patch)
+        dt = old_dw.get_reduction(FL.delT)
+        pf = ice._faces(new_dw, I.PRESS_FC, 0, patch)
+        press, delP = new_dw.get(I.press_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch)
+        shape = patch.alloc_shape(CC)
+        for m in matls:
+            cm = new_dw.get(MI.cMass, m, patch)
+            vstar = np.zeros(shape + (3,))
+            self._nc_to_cc(patch, m, new_dw.get(M.gMass, m, patch), new_dw.get(M.gVolume, m, patch),
+                           new_dw.get(M.gVelocityStar, m, patch), np.empty(shape), _NO1, vstar, _NO1)
+            self._extra_vector(patch, vstar, m, b)
+            mom_mpm = new_dw.allocate(MI.mom_mpm_CC, m, patch)
+            mom_mpm[...] = cm[..., None] * vstar
+            mass = new_dw.allocate(I.mass_L_CC, m, patch, fill=None)
+            mom = new_dw.allocate(I.mom_L_CC, m, patch, fill=None)
+            eng = new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None)
+            temp = new_dw.get(I.temp_CC, m, patch)
+            IK.lagrangian(cm / b.vol, vstar, temp, new_dw.get(I.vol_frac_CC, m, patch),
+                          new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), press, delP,
+                          pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], ice.dims, mass, mom, eng,
+                          b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, ice.cvs[m], ice.gravity,
+                          False, ice.codes[m], ice.params[m], ice.gammas[m])
+            eng[...] = mass * ice.cvs[m] * temp
+
+    # -- steps 10 -> 13: the exchange's change carried back to the nodes ------------------------------
+    def velocity_rates(self, patch, matls, old_dw, new_dw):
+        """computeCCVelAndTempRates: dV/dt of each solid cell (kernels.velocity_rates)."""
+        b = self.ice.boxes(patch)
+        dt = old_dw.get_reduction(FL.delT)
+        for m in matls:
+            out = new_dw.allocate(MI.dVdt_CC, m, patch)
+            K.velocity_rates(new_dw.get(I.mom_L_ME_CC, m, patch), new_dw.get(MI.mom_mpm_CC, m, patch),
+                             new_dw.get(I.mass_L_CC, m, patch), dt, b.lo, b.hi, out)
+            self._extra_vector(patch, out, m, b)
+
+    def interpolate_cc_to_nc(self, patch, matls, old_dw, new_dw):
+        """interpolateCCToNC: v*_i += dt <dV/dt>, a_i += <dV/dt> over the cells around node i."""
+        dt = old_dw.get_reduction(FL.delT)
+        lo, hi = patch.owned_local(NC)
+        lo, hi = np.array(lo, np.int64), np.array(hi, np.int64)
+        cc_low = np.array(patch.low_index(CC), np.int64)
+        node_low = np.array(patch.low_index(NC), np.int64)
+        for m in matls:
+            K.cc_to_nc_increment(new_dw.get(MI.dVdt_CC, m, patch), cc_low, node_low, lo, hi, self.dims_i, dt,
+                                 new_dw.get_modifiable(M.gVelocityStar, m, patch),
+                                 new_dw.get_modifiable(M.gAcceleration, m, patch))
+
+    # -- the stable timestep ------------------------------------------------------------------------
+    def stable_timestep(self, patch, matls, old_dw, new_dw):
+        """min(ICE's CFL step over the fluids, MPM's wave-speed step over the solids)."""
+        a, b = _Capture(new_dw), _Capture(new_dw)
+        self.ice.stable_timestep(patch, self.ice.ice_matls, old_dw, a)
+        self.mpm.compute_stable_timestep(patch, self.mpm_matls, old_dw, b)
+        new_dw.put_reduction(FL.delT, min(float(a.value), float(b.value)))
+
+
+def _spread(f, empty):
+    """Fill the cells marked `empty` with the mean of their non-empty face neighbours
+    (repeated until every cell has a value or nothing changes)."""
+    f = f.copy()
+    known = ~empty
+    for _ in range(64):
+        if known.all():
+            break
+        s = np.zeros_like(f)
+        n = np.zeros_like(f)
+        for d in range(f.ndim):
+            if f.shape[d] == 1:
+                continue
+            for sh in (1, -1):
+                s += np.roll(np.where(known, f, 0.0), sh, axis=d)
+                n += np.roll(known.astype(float), sh, axis=d)
+        new = ~known & (n > 0)
+        if not new.any():
+            break
+        f[new] = s[new] / n[new]
+        known = known | new
+    return f
