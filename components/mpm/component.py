@@ -114,8 +114,8 @@ class MPM(MPMTasks, Component):
             c.append((L.pColor, L.pColorPre))
         if any(m.increment_energy for m in self.materials):
             c.append((L.pStrainEnergy, L.pStrainEnergyPre))
-        if any(m.has_plastic_strain for m in self.materials):
-            c.append((L.pPlasticStrain, L.pPlasticStrainPre))
+        for name in dict.fromkeys(m.state for m in self.materials if m.state):
+            c.append(L.STATE[name])
         if self.pressure_bcs:
             c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
         self.carry = c
@@ -185,6 +185,10 @@ class MPM(MPMTasks, Component):
         t.computes(L.pXpre).computes(L.pVelocityPre)
         if self.musl:
             t.requires(NEW, L.gMass).requires(OLD, FL.delT).computes(L.gVelocityL)
+            if self.contact.needs_normals:
+                t.requires(NEW, L.gSurfNorm)
+            if self.contact.needs_time:
+                t.requires(OLD, FL.simTime)
         else:
             t.computes(L.pVelGrad)
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):

@@ -37,6 +37,8 @@ pTangent, pTangentPre = _pair("p.tangent", (3,))
 pThickness, pThicknessPre = _pair("p.thickness")
 pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
 pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
+STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model scalar state
+         "p.internalEnergy": (pIntEnergy, pIntEnergyPre)}
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 
 gMass = L.create("g.mass", NC)

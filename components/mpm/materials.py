@@ -24,7 +24,11 @@ MODELS = {
     "hypo_elastic": "hypo_elastic",
     "elastic_plastic": "elastic_plastic",
     "rigid": "rigid",
+    "ideal_gas_fluid": "ideal_gas_fluid",
 }
+
+# models with one scalar state per particle: the carried particle label holding it
+STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy"}
 
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)"),
@@ -61,18 +65,26 @@ class Material:
                            f"{', '.join(MODELS)}")
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
-        accepted = [f.name for f in dataclasses.fields(self.model.Params)]
+        fields = dataclasses.fields(self.model.Params)
+        accepted = [f.name for f in fields]
         values = {}
-        for tag in accepted:
-            c = cm.child(tag)
+        for f in fields:
+            c = cm.child(f.name)
             if c is not None:
-                values[tag] = c.text() if tag == "formulation" else str(c.value("float"))
+                kind_of = "bool" if f.type in (bool, "bool") else "float"
+                values[f.name] = c.text() if f.name == "formulation" else str(c.value(kind_of))
         try:
             self.params = self.model.Params.from_ups(values)
         except KeyError as e:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
-        self.has_plastic_strain = kind == "elastic_plastic"
+        self.state = STATE.get(kind)          # name of the model's scalar state label, or None
+        if kind == "ideal_gas_fluid":
+            # e0 = c_v T: the model's <specific_heat>, else the material's
+            self.cv = self.params.specific_heat or props["specific_heat"]
+            if self.cv <= 0:
+                raise cm.error("ideal_gas_fluid needs <specific_heat> > 0 (in the model or the material): "
+                               "the initial specific internal energy is specific_heat * <temperature>")
         self.objects = []
         for g in node.children("geom_object"):
             piece = geom_reader.read_object(g)
@@ -86,6 +98,13 @@ class Material:
             self.objects.append(spec)
         if not self.objects:
             raise node.error("a material needs at least one <geom_object>")
+
+    def initial_state(self, d):
+        """The model state of new particles: plastic strain 0; ideal gas: the specific
+        internal energy e = specific_heat * <temperature> of the geometry object."""
+        if self.model_name == "ideal_gas_fluid":
+            return self.cv * d["temp"]
+        return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------
     def create(self, patch, obj_base, pressure=None):
@@ -116,7 +135,7 @@ class Material:
             vol = float(np.prod(lv.dx / res))
             n = len(x)
             dxpp = lv.dx / res
-            out.append(dict(x=x, id=ids.astype(np.int64), vol=np.full(n, vol),
+            out.append(dict(x=x, id=ids.astype(np.int64), vol=np.full(n, vol), temp=np.full(n, obj["temperature"]),
                             lcid=pressure.flag(x, obj["piece"], dxpp) if pressure else np.zeros(n),
                             vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                             size=np.tile(0.5 * lv.dx / res, (n, 1)),

@@ -43,7 +43,7 @@ class MPMTasks:
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
                       old=None, new=None):
         """Call the material's model; `old`/`new` are its state arrays (plastic strain)."""
-        if mat.has_plastic_strain:
+        if mat.state:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new)
         return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy)
@@ -66,12 +66,14 @@ class MPMTasks:
             F[:, 0, 0] = F[:, 1, 1] = F[:, 2, 2] = 1.0
             stress = np.zeros((n, 3, 3))
             energy = np.zeros(n)
-            state = np.zeros(n)
+            state = mat.initial_state(d)
             ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
                                                    d["vel"], 0.0, stress, stress, energy, state, state))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
-                   L.pStrainEnergy: energy, L.pPlasticStrain: state}
+                   L.pStrainEnergy: energy}
+            for name, (lab, _) in L.STATE.items():
+                put[lab] = state if mat.state == name else np.zeros(n)
             new_dw.put(L.pX, m, patch, d["x"])
             for final, _ in self.carry:
                 if final in put:
@@ -229,13 +231,14 @@ class MPMTasks:
         low = np.array(patch.low_index(NC), np.int64)
         tot = np.zeros(8)
         f = self.flags
+        remapped = {}
         for m in matls:
             px = old_dw.get(L.pX, m, patch)
             n = len(px)
             if self.musl:
                 own = self._owned(old_dw, patch, m, px)
                 n_own = int(np.count_nonzero(own))
-                gvl = new_dw.allocate(L.gVelocityL, m, patch, 0.0)   # momentum, then velocity
+                gvl = remapped[m] = new_dw.allocate(L.gVelocityL, m, patch, 0.0)   # momentum, then velocity
                 Lg = _NOL
             else:
                 own, n_own, gvl = _NOOWN, n, _NOG
@@ -249,12 +252,26 @@ class MPMTasks:
                      f["minimum_particle_mass"], f["maximum_particle_velocity"])
             if self.musl:
                 kernels.velocity_from_momentum(new_dw.get(L.gMass, m, patch), gvl, gvl)
-                self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
+                if not self.contact.active:
+                    self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
             else:
                 new_dw.put(L.pVelGrad, m, patch, Lg)
             new_dw.put(L.pXpre, m, patch, x_new)
             new_dw.put(L.pVelocityPre, m, patch, v_new)
+        if self.musl and self.contact.active:
+            self._contact_remapped(patch, matls, old_dw, new_dw, dt, remapped)
         self._put_totals(new_dw, tot)
+
+    def _contact_remapped(self, patch, matls, old_dw, new_dw, dt, gvl):
+        """MUSL with contact: the remapped velocities v^L get the same contact as v*
+        (USL's L comes from the contacted v*), then the grid BCs."""
+        c = self.contact
+        gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
+        normals = {m: new_dw.get(L.gSurfNorm, m, patch) for m in c.materials} if c.needs_normals else None
+        t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
+        c.exchange(gm, gvl, None, None, dt, t=t, normals=normals, dx=self.level.dx)
+        for m in matls:
+            self.bcs.apply(patch, m, gvl[m], np.empty_like(gvl[m]), gvl[m], dt)
 
     def _owned(self, old_dw, patch, m, px):
         """Which of the owned + ghost particles the patch owns."""
@@ -296,13 +313,13 @@ class MPMTasks:
             s_new = new_dw.allocate(L.pStressPre, m, patch, None)
             energy = np.empty(n)
             old = new = None
-            if mat.has_plastic_strain:
-                old = old_dw.get(L.pPlasticStrain, m, patch)
-                new = np.empty(n)
-            elif any(f is L.pPlasticStrain for f, _ in self.carry):
-                old = new = old_dw.get(L.pPlasticStrain, m, patch)
-            if old is not None:
-                new_dw.put(L.pPlasticStrainPre, m, patch, new)
+            for final, pre in self.carry:
+                if final.name in L.STATE:
+                    if mat.state == final.name:
+                        old, new = old_dw.get(final, m, patch), np.empty(n)
+                        new_dw.put(pre, m, patch, new)
+                    else:
+                        new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
             ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
                                                    new_dw.get(L.pVelocityPre, m, patch), dt,
                                                    old_dw.get(L.pStress, m, patch), s_new, energy, old, new))

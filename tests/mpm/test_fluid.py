@@ -1,0 +1,56 @@
+"""MPM fluid material points (paper 004 eqs. 21-25) on Sod's shock tube against the exact
+Riemann solution (components/ice/exact_riemann.py): inputs/MPM/sod_fluid_points.ups.
+
+Measured at t = 0.143 (MUSL, 200 cells, 3 points per cell, 004's artificial viscosity):
+shock (mid-density crossing) at x = 0.7518, exact 0.7497; mean |rho - exact| 0.0153, |u - exact| 0.039,
+|p - exact| 0.0176; behind the shock u and p within 1 % and 2.2 % of u*, p*. Known
+deficit: the left gas next to the contact (x = 0.5 .. 0.6, the particles that started at
+the diaphragm) is 15-20 % under-dense (0.33-0.37 for 0.426), a start-up error of the
+sudden expansion that the paper's Figure 6 also shows as a dip at the contact.
+"""
+import numpy as np
+import pytest
+
+from components.ice.exact_riemann import exact_riemann, star_state
+
+from .helpers import MPM_INPUTS, run
+
+LEFT, RIGHT = (1.0, 0.0, 1.0), (0.125, 0.0, 0.1)
+
+
+@pytest.fixture(scope="module")
+def sod(tmp_path_factory):
+    ctl, da = run(open(MPM_INPUTS / "sod_fluid_points.ups").read(), tmp_path_factory.mktemp("sod"))
+    t = da.times[-1]
+    ps = [da.particles(m, -1) for m in (0, 1)]
+    x = np.concatenate([p["p.x"][:, 0] for p in ps])
+    rho = np.concatenate([p["p.mass"] / p["p.volume"] for p in ps])
+    u = np.concatenate([p["p.velocity"][:, 0] for p in ps])
+    pr = np.concatenate([-np.trace(p["p.stress"], axis1=1, axis2=2) / 3 for p in ps])
+    o = np.argsort(x)
+    return t, x[o], rho[o], u[o], pr[o], exact_riemann(LEFT, RIGHT, x[o], t, x0=0.5)
+
+
+def test_shock_position(sod):
+    t, x, rho, u, pr, ex = sod
+    assert abs(t - 0.143) < 0.002
+    post = ex["rho"][(x > 0.65) & (x < 0.7)].mean()                 # 0.2656
+    mid = 0.5 * (post + RIGHT[0])
+    x_mpm = x[np.flatnonzero(rho > mid)[-1]]
+    x_exact = x[np.flatnonzero(ex["rho"] > mid)[-1]]
+    assert abs(x_exact - 0.75) < 0.005                               # 0.5 + 1.752 t
+    assert abs(x_mpm - x_exact) < 0.01, (x_mpm, x_exact)            # two cells
+
+
+def test_profiles_against_exact(sod):
+    t, x, rho, u, pr, ex = sod
+    assert np.mean(np.abs(rho - ex["rho"])) < 0.02
+    assert np.mean(np.abs(u - ex["u"])) < 0.05
+    assert np.mean(np.abs(pr - ex["p"])) < 0.025
+    p_star, u_star = star_state(LEFT, RIGHT)
+    between = (x > 0.64) & (x < 0.72)                                # contact .. shock
+    assert abs(u[between].mean() / u_star - 1) < 0.02
+    assert abs(pr[between].mean() / p_star - 1) < 0.04
+    quiet = (x < 0.3) | (x > 0.83)                                  # the shock precursor ends by 0.82
+    assert np.allclose(rho[quiet], ex["rho"][quiet], rtol=2e-3)
+    assert np.allclose(pr[quiet], ex["p"][quiet], rtol=2e-3)
