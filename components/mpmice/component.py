@@ -88,6 +88,10 @@ class MPMICE(MPMICETasks, Component):
             raise root.child("CFD").child("ICE").error("MPMICE runs explicit ICE only (no <ImplicitSolver>)")
         if self.ice.conserve_energy:
             raise self.ice._conserve_node.error("<conserveTotalEnergy> is not available with MPMICE")
+        if self.ice.conduction:
+            node = next(n for n in ice_node.children("material")
+                        if n.get("thermal_conductivity", "float", 0.0) > 0).child("thermal_conductivity")
+            raise node.error("MPMICE does not couple ICE heat conduction yet; accepted here: 0")
         self.all_matls = list(range(n_all))
         self.materials = self.ice.materials
         self.dims_i = np.array(self.ice.dims, dtype=np.int64)
@@ -183,8 +187,6 @@ class MPMICE(MPMICETasks, Component):
             sched.add_task(Task("ICE::viscousShearStress", ice.viscous_source, fl)
                            .requires(OLD, FL.delT).requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
                            .computes(I.viscous_src_CC))
-        if ice.conduction:
-            raise NotImplementedError("MPMICE: ICE heat conduction is not coupled yet (set thermal_conductivity 0)")
 
     def _start_state(self, t, labels, ghost):
         """Requires of the start-of-step state: fluids from OLD, solids from step 1 (NEW)."""
