@@ -13,7 +13,7 @@ import pytest
 
 from components.ice.exact_riemann import exact_riemann, star_state
 
-from .helpers import MPM_INPUTS, run
+from .helpers import MPM_INPUTS, deck_text, run
 
 LEFT, RIGHT = (1.0, 0.0, 1.0), (0.125, 0.0, 0.1)
 
@@ -54,3 +54,30 @@ def test_profiles_against_exact(sod):
     quiet = (x < 0.3) | (x > 0.83)                                  # the shock precursor ends by 0.82
     assert np.allclose(rho[quiet], ex["rho"][quiet], rtol=2e-3)
     assert np.allclose(pr[quiet], ex["p"][quiet], rtol=2e-3)
+
+
+def piston_omega(m, K=100.0, L=20.0, A=1.0, rho=1e-4, beta=1.58e6):
+    """First root of 004 eq. 27, omega = sqrt((K + rho omega c A cot(omega L/c))/m), by
+    bisection below the first pole of the cot (omega L/c = pi)."""
+    c = np.sqrt(beta / rho)
+    f = lambda w: w - np.sqrt((K + rho * w * c * A / np.tan(w * L / c)) / m)
+    lo, hi = 1.0, 0.999 * np.pi * c / L
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(mid) < 0 else (lo, mid)
+    return lo
+
+
+@pytest.mark.parametrize("m,table_period,t_end", [(0.1, 0.00709, 0.0057), (1.0, 0.02234, 0.018)])
+def test_piston_container_period(tmp_path, m, table_period, t_end):
+    """004 Table I: piston mass m on a gas column and a spring (inputs/MPM/piston_container
+    .ups; the piston is one particle of density m / (dx A)). Eq. 27: 0.0070882 s and
+    0.0223479 s; measured 0.0070925 s (m = 0.1, +0.06 %) and 0.022350 s (m = 1.0, +0.01 %)."""
+    from .test_bar import period
+    T_exact = 2 * np.pi / piston_omega(m)
+    assert abs(T_exact / table_period - 1) < 0.002          # eq. 27 reproduces Table I
+    text = deck_text(MPM_INPUTS / "piston_container.ups", maxTime=t_end).replace(
+        "<density>0.05</density>", f"<density>{m / 2.0}</density>")
+    ctl, da = run(text, tmp_path)
+    T = period(da)
+    assert abs(T / T_exact - 1) < 0.02, (T, T_exact)

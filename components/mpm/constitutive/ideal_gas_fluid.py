@@ -15,7 +15,10 @@ over the particles passed in (one material on one patch).
 Tags: ``gamma``, ``viscosity`` (mu), optional ``specific_heat`` (not used
 here), ``artificial_viscosity`` (bool), ``av_g`` (g, e.g. sqrt(2) dx),
 ``av_lambda`` (lambda~, 0.75 in 004), ``artificial_viscosity_coeff1`` (c1),
-``artificial_viscosity_coeff2`` (c2).  State: specific internal energy e.
+``artificial_viscosity_coeff2`` (c2), ``reference_pressure`` (p_ref, default 0:
+pysus): the stress the grid sees is taken relative to an ambient p_ref, as for a gas
+whose container and pistons carry p_ref on their outer faces (004 eq. 26 uses the
+perturbation pressure); e and p stay absolute.  State: specific internal energy e.
 ``energy`` receives the internal energy INCREMENT m (e^{k+1} - e^k).
 Wave speed c = sqrt(gamma p / rho) (viscous limit not included).
 """
@@ -39,6 +42,7 @@ class Params:
     av_lambda: float = 0.75
     artificial_viscosity_coeff1: float = 1.0
     artificial_viscosity_coeff2: float = 1.0
+    reference_pressure: float = 0.0
 
     @classmethod
     def from_ups(cls, d):
@@ -46,12 +50,12 @@ class Params:
         return cls(_get(d, "gamma", 1.4), _get(d, "viscosity", 0.0),
                    _get(d, "specific_heat", 0.0), av, _get(d, "av_g", 0.0),
                    _get(d, "av_lambda", 0.75), _get(d, "artificial_viscosity_coeff1", 1.0),
-                   _get(d, "artificial_viscosity_coeff2", 1.0))
+                   _get(d, "artificial_viscosity_coeff2", 1.0), _get(d, "reference_pressure", 0.0))
 
 
 @njit(cache=True)
 def kernel(gamma, mu, use_av, g, lam, c1, c2, L, vol, mass, vel, dt, e_old, e_new,
-           stress_new, energy):
+           stress_new, energy, p_ref=0.0):
     n = L.shape[0]
     cmax = 0.0
     dmax = 0.0
@@ -78,7 +82,7 @@ def kernel(gamma, mu, use_av, g, lam, c1, c2, L, vol, mass, vel, dt, e_old, e_ne
         for i in range(3):
             for j in range(3):
                 Dij = 0.5 * (L[p, i, j] + L[p, j, i]) - (div / 3.0 if i == j else 0.0)
-                stress_new[p, i, j] = 2.0 * mu * Dij - (pr + q if i == j else 0.0)  # eq. 21
+                stress_new[p, i, j] = 2.0 * mu * Dij - (pr + q - p_ref if i == j else 0.0)  # eq. 21
         energy[p] = mass[p] * (en - e_old[p])
         max_wavespeed(ws, np.sqrt(max(gamma * pr / rho, 0.0)), vel, p)
     return ws
@@ -90,4 +94,4 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
     P = params
     return kernel(P.gamma, P.viscosity, bool(P.artificial_viscosity), P.av_g, P.av_lambda,
                   P.artificial_viscosity_coeff1, P.artificial_viscosity_coeff2, L, vol,
-                  mass, vel, dt, e_old, e_new, stress_new, energy)
+                  mass, vel, dt, e_old, e_new, stress_new, energy, P.reference_pressure)
