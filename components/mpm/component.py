@@ -189,8 +189,8 @@ class MPM(MPMTasks, Component):
                 t.requires(NEW, L.gSurfNorm)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
-        else:
-            t.computes(L.pVelGrad)
+        else:       # USL: F and V in the same pass (transfer.py)
+            t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
             t.computes(r)
         sched.add_task(t)
@@ -199,8 +199,8 @@ class MPM(MPMTasks, Component):
         if self.musl:
             t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng).requires(OLD, L.pX)
         else:
-            t.requires(NEW, L.pVelGrad)
-        moved = {L.pVelocity.name}
+            t.requires(NEW, L.pVelGrad).requires(NEW, L.pFPre).requires(NEW, L.pVolumePre).requires(OLD, L.pF)
+        moved = {L.pVelocity.name} | (set() if self.musl else {L.pF.name, L.pVolume.name})
         for final, pre in self.carry:
             if final.name not in moved:
                 t.requires(OLD, final).computes(pre)

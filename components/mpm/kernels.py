@@ -1,7 +1,7 @@
 """Numba kernels of the explicit MPM step (paper 000 sec. 3.2, paper 004 eqs. 5-17).
 
 Node arrays use local indices (global = local + node_low) as in shape.py. The particle<->grid
-transfers of the step are in transfer.py; here the grid update, contact, F and V,
+transfers of the step are in transfer.py; here the grid update, contact,
 totals and the output-only nodal stress.
 """
 import numpy as np
@@ -92,45 +92,6 @@ def single_velocity(gmass, gvel, gacc, gvel_old, dt):
 
 
 # ---- particles ----------------------------------------------------------------------
-@njit(cache=True, fastmath=FM)
-def deform(L, F_old, F_new, dt, mass, rho0, vol_new):
-    """F^{n+1} = (I + L dt) F^n (004 eq. 14), V = m/rho0 det F (004 eq. 17)."""
-    for p in range(L.shape[0]):
-        A00 = 1.0 + dt * L[p, 0, 0]
-        A01 = dt * L[p, 0, 1]
-        A02 = dt * L[p, 0, 2]
-        A10 = dt * L[p, 1, 0]
-        A11 = 1.0 + dt * L[p, 1, 1]
-        A12 = dt * L[p, 1, 2]
-        A20 = dt * L[p, 2, 0]
-        A21 = dt * L[p, 2, 1]
-        A22 = 1.0 + dt * L[p, 2, 2]
-        G00, G01, G02 = F_old[p, 0, 0], F_old[p, 0, 1], F_old[p, 0, 2]
-        G10, G11, G12 = F_old[p, 1, 0], F_old[p, 1, 1], F_old[p, 1, 2]
-        G20, G21, G22 = F_old[p, 2, 0], F_old[p, 2, 1], F_old[p, 2, 2]
-        F00 = A00 * G00 + A01 * G10 + A02 * G20
-        F01 = A00 * G01 + A01 * G11 + A02 * G21
-        F02 = A00 * G02 + A01 * G12 + A02 * G22
-        F10 = A10 * G00 + A11 * G10 + A12 * G20
-        F11 = A10 * G01 + A11 * G11 + A12 * G21
-        F12 = A10 * G02 + A11 * G12 + A12 * G22
-        F20 = A20 * G00 + A21 * G10 + A22 * G20
-        F21 = A20 * G01 + A21 * G11 + A22 * G21
-        F22 = A20 * G02 + A21 * G12 + A22 * G22
-        F_new[p, 0, 0] = F00
-        F_new[p, 0, 1] = F01
-        F_new[p, 0, 2] = F02
-        F_new[p, 1, 0] = F10
-        F_new[p, 1, 1] = F11
-        F_new[p, 1, 2] = F12
-        F_new[p, 2, 0] = F20
-        F_new[p, 2, 1] = F21
-        F_new[p, 2, 2] = F22
-        J = (F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20)
-             + F02 * (F10 * F21 - F11 * F20))
-        vol_new[p] = mass[p] / rho0 * J
-
-
 @njit(cache=True)
 def sums(pm, pv, px, out):
     """out += [sum m, sum m v^2/2, sum m v (3), sum m x (3)] over particles."""

@@ -27,6 +27,9 @@ MODELS = {
     "ideal_gas_fluid": "ideal_gas_fluid",
 }
 
+# models whose stress needs only F (their velocity gradient need not be stored)
+NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid")
+
 # models with one scalar state per particle: the carried particle label holding it
 STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy"}
 
@@ -78,6 +81,7 @@ class Material:
         except KeyError as e:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
+        self.uses_L = kind not in NO_L       # the model reads the velocity gradient
         self.state = STATE.get(kind)          # name of the model's scalar state label, or None
         if kind == "ideal_gas_fluid":
             # e0 = c_v T: the model's <specific_heat>, else the material's

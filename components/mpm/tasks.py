@@ -17,6 +17,11 @@ from . import labels as L
 NC = VarType.NC
 
 
+def _zeros33(n):
+    """A read-only (n, 3, 3) array of zeros that costs no memory."""
+    return np.broadcast_to(np.zeros((3, 3)), (n, 3, 3))
+
+
 def _zeros3(n):
     """A read-only (n, 3) array of zeros that costs no memory (stride 0)."""
     return np.broadcast_to(np.zeros(3), (n, 3))
@@ -27,6 +32,7 @@ _NOF = np.zeros((1, 3))            # no p.externalforce
 _NOL = np.zeros((1, 3, 3))         # MUSL: no L_p from the g2p kernel
 _NOG = np.zeros((1, 1, 1, 3))      # USL: no remapped momentum
 _NOOWN = np.zeros(0, np.bool_)     # USL: every particle given is owned
+_NOV = np.zeros(1)                 # MUSL: F and V come later (grad kernel)
 
 
 def matls_not_in(matls, chosen):
@@ -235,27 +241,32 @@ class MPMTasks:
         for m in matls:
             px = old_dw.get(L.pX, m, patch)
             n = len(px)
+            mat = self.materials[m]
             if self.musl:
                 own = self._owned(old_dw, patch, m, px)
                 n_own = int(np.count_nonzero(own))
                 gvl = remapped[m] = new_dw.allocate(L.gVelocityL, m, patch, 0.0)   # momentum, then velocity
-                Lg = _NOL
+                Lg, F_old, F_new, vol_new = _NOL, _NOL, _NOL, _NOV
             else:
                 own, n_own, gvl = _NOOWN, n, _NOG
-                Lg = np.empty((n, 3, 3))
+                Lg = np.empty((n, 3, 3)) if mat.uses_L else _NOL
+                F_old = old_dw.get(L.pF, m, patch)
+                F_new = new_dw.allocate(L.pFPre, m, patch, None)
+                vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
             x_new = np.empty((n_own, 3))
             v_new = np.empty((n_own, 3))
             pm = old_dw.get(L.pMass, m, patch)
             self.g2p(self.musl, px, old_dw.get(L.pVelocity, m, patch), pm, self._lp(old_dw, m, patch, n),
                      lv.anchor, lv.dx, low, new_dw.get(L.gVelocityStar, m, patch),
                      new_dw.get(L.gAcceleration, m, patch), dt, own, x_new, v_new, Lg, gvl, tot,
-                     f["minimum_particle_mass"], f["maximum_particle_velocity"])
+                     f["minimum_particle_mass"], f["maximum_particle_velocity"], mat.uses_L,
+                     F_old, F_new, vol_new, mat.density)
             if self.musl:
                 kernels.velocity_from_momentum(new_dw.get(L.gMass, m, patch), gvl, gvl)
                 if not self.contact.active:
                     self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
             else:
-                new_dw.put(L.pVelGrad, m, patch, Lg)
+                new_dw.put(L.pVelGrad, m, patch, Lg if mat.uses_L else _zeros33(n))
             new_dw.put(L.pXpre, m, patch, x_new)
             new_dw.put(L.pVelocityPre, m, patch, v_new)
         if self.musl and self.contact.active:
@@ -284,14 +295,17 @@ class MPMTasks:
                            np.array(self.dims), own)
         return own
 
-    def _velocity_gradient(self, patch, m, old_dw, new_dw):
-        """L_p = sum v^L_i (x) grad S_i(x_p) (004 eqs. 13-14) for the owned particles."""
+    def _velocity_gradient(self, patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new):
+        """MUSL: L_p = sum v^L_i (x) grad S_i(x_p) (004 eqs. 13-14) for the owned particles,
+        and F, V from it in the same pass; returns L_p (a stand-in if the model needs F only)."""
         lv = self.level
+        mat = self.materials[m]
         px = old_dw.get(L.pX, m, patch)
         n = len(px)
-        Lg = np.empty((n, 3, 3))
+        Lg = np.empty((n, 3, 3)) if mat.uses_L else _NOL
         self.grad(px, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
-                  np.array(patch.low_index(NC), np.int64), new_dw.get(L.gVelocityL, m, patch), Lg)
+                  np.array(patch.low_index(NC), np.int64), new_dw.get(L.gVelocityL, m, patch), Lg,
+                  mat.uses_L, dt, pm, mat.density, F_old, F_new, vol_new)
         return Lg
 
     def compute_stress_tensor(self, patch, matls, old_dw, new_dw):
@@ -302,14 +316,17 @@ class MPMTasks:
         se = 0.0
         for m in matls:
             mat = self.materials[m]
-            Lg = self._velocity_gradient(patch, m, old_dw, new_dw) if self.musl else \
-                new_dw.get(L.pVelGrad, m, patch)
-            n = len(Lg)
             pm = old_dw.get(L.pMass, m, patch)
             F_old = old_dw.get(L.pF, m, patch)
-            F_new = new_dw.allocate(L.pFPre, m, patch, None)
-            vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
-            kernels.deform(Lg, F_old, F_new, dt, pm, mat.density, vol_new)
+            n = len(F_old)
+            if self.musl:
+                F_new = new_dw.allocate(L.pFPre, m, patch, None)
+                vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
+                Lg = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new)
+            else:                                   # F and V were computed with L_p by g2p
+                Lg = new_dw.get(L.pVelGrad, m, patch)
+                F_new = new_dw.get(L.pFPre, m, patch)
+                vol_new = new_dw.get(L.pVolumePre, m, patch)
             s_new = new_dw.allocate(L.pStressPre, m, patch, None)
             energy = np.empty(n)
             old = new = None

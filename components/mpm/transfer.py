@@ -80,6 +80,58 @@ def _inv_dx(dx):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
+def _deform(p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0):
+    """F^{n+1} = (I + L dt) F^n (004 eq. 14) and V = m/rho0 det F (eq. 17) of particle p,
+    written at o (kernels.deform, fused)."""
+    A00 = 1.0 + dt * L00
+    A01 = dt * L01
+    A02 = dt * L02
+    A10 = dt * L10
+    A11 = 1.0 + dt * L11
+    A12 = dt * L12
+    A20 = dt * L20
+    A21 = dt * L21
+    A22 = 1.0 + dt * L22
+    G00, G01, G02 = F_old[p, 0, 0], F_old[p, 0, 1], F_old[p, 0, 2]
+    G10, G11, G12 = F_old[p, 1, 0], F_old[p, 1, 1], F_old[p, 1, 2]
+    G20, G21, G22 = F_old[p, 2, 0], F_old[p, 2, 1], F_old[p, 2, 2]
+    F00 = A00 * G00 + A01 * G10 + A02 * G20
+    F01 = A00 * G01 + A01 * G11 + A02 * G21
+    F02 = A00 * G02 + A01 * G12 + A02 * G22
+    F10 = A10 * G00 + A11 * G10 + A12 * G20
+    F11 = A10 * G01 + A11 * G11 + A12 * G21
+    F12 = A10 * G02 + A11 * G12 + A12 * G22
+    F20 = A20 * G00 + A21 * G10 + A22 * G20
+    F21 = A20 * G01 + A21 * G11 + A22 * G21
+    F22 = A20 * G02 + A21 * G12 + A22 * G22
+    F_out[o, 0, 0] = F00
+    F_out[o, 0, 1] = F01
+    F_out[o, 0, 2] = F02
+    F_out[o, 1, 0] = F10
+    F_out[o, 1, 1] = F11
+    F_out[o, 1, 2] = F12
+    F_out[o, 2, 0] = F20
+    F_out[o, 2, 1] = F21
+    F_out[o, 2, 2] = F22
+    J = (F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20)
+         + F02 * (F10 * F21 - F11 * F20))
+    vol_out[o] = m / rho0 * J
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22):
+    L_out[o, 0, 0] = L00
+    L_out[o, 0, 1] = L01
+    L_out[o, 0, 2] = L02
+    L_out[o, 1, 0] = L10
+    L_out[o, 1, 1] = L11
+    L_out[o, 1, 2] = L12
+    L_out[o, 2, 0] = L20
+    L_out[o, 2, 1] = L21
+    L_out[o, 2, 2] = L22
+
+
+@njit(cache=True, fastmath=FM, inline="always")
 def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx, node_low,
          gmass, gmom, gvol, gfext, gfint):
     """Accumulate (+=) m, mv, V, fext, fint of the particles on the node arrays."""
@@ -152,10 +204,10 @@ def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx
 
 @njit(cache=True, fastmath=FM, inline="always")
 def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, dt,
-         own, x_out, v_out, L_out, gmom, tot, min_mass, max_vel):
+         own, x_out, v_out, L_out, gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
     """Update every particle given; write the owned ones (own[p], or all when own is
-    empty) compacted to x_out / v_out (USL: L_out too); MUSL: += m v_new S on gmom.
-    Returns the number of particles deleted (x = NaN)."""
+    empty) compacted to x_out / v_out; USL: F_out, vol_out (and L_out if write_L);
+    MUSL: += m v_new S on gmom. Returns the number of particles deleted (x = NaN)."""
     sh0, sh1, sh2 = gvs.shape[:3]
     na, nb, nc = _counts(kind, dim)
     ih = _inv_dx(dx)
@@ -166,6 +218,7 @@ def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, 
     check = min_mass > 0.0 or max_vel < np.inf
     n_del = 0
     o = 0
+    t0 = t1 = t2 = t3 = t4 = t5 = t6 = t7 = 0.0
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
          wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
@@ -243,30 +296,33 @@ def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, 
         v_out[o, 1] = nv1
         v_out[o, 2] = nv2
         if not musl:
-            L_out[o, 0, 0] = L00
-            L_out[o, 0, 1] = L01
-            L_out[o, 0, 2] = L02
-            L_out[o, 1, 0] = L10
-            L_out[o, 1, 1] = L11
-            L_out[o, 1, 2] = L12
-            L_out[o, 2, 0] = L20
-            L_out[o, 2, 1] = L21
-            L_out[o, 2, 2] = L22
-        tot[0] += m
-        tot[1] += 0.5 * m * (nv0 ** 2 + nv1 ** 2 + nv2 ** 2)
-        tot[2] += m * nv0
-        tot[3] += m * nv1
-        tot[4] += m * nv2
-        tot[5] += m * x0
-        tot[6] += m * x1
-        tot[7] += m * x2
+            if write_L:
+                _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+            _deform(p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0)
+        t0 += m
+        t1 += 0.5 * m * (nv0 ** 2 + nv1 ** 2 + nv2 ** 2)
+        t2 += m * nv0
+        t3 += m * nv1
+        t4 += m * nv2
+        t5 += m * x0
+        t6 += m * x1
+        t7 += m * x2
         o += 1
+    tot[0] += t0
+    tot[1] += t1
+    tot[2] += t2
+    tot[3] += t3
+    tot[4] += t4
+    tot[5] += t5
+    tot[6] += t6
+    tot[7] += t7
     return n_del
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _grad(kind, dim, px, lp, anchor, dx, node_low, gvel, L_out):
-    """L_p = sum_i v_i (x) grad S_i(x_p)."""
+def _grad(kind, dim, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old,
+          F_out, vol_out):
+    """L_p = sum_i v_i (x) grad S_i(x_p) (stored if write_L), then F and V (_deform)."""
     sh0, sh1, sh2 = gvel.shape[:3]
     na, nb, nc = _counts(kind, dim)
     ih = _inv_dx(dx)
@@ -304,22 +360,16 @@ def _grad(kind, dim, px, lp, anchor, dx, node_low, gvel, L_out):
                         L02 += gv0 * G2
                         L12 += gv1 * G2
                         L22 += gv2 * G2
-        L_out[p, 0, 0] = L00
-        L_out[p, 0, 1] = L01
-        L_out[p, 0, 2] = L02
-        L_out[p, 1, 0] = L10
-        L_out[p, 1, 1] = L11
-        L_out[p, 1, 2] = L12
-        L_out[p, 2, 0] = L20
-        L_out[p, 2, 1] = L21
-        L_out[p, 2, 2] = L22
+        if write_L:
+            _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+        _deform(p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
 
 
 # ---- specialised entry points: (kind, dim) are compile-time constants -------------------
 # p2g(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
 # g2p(musl, px, pv, pm, lp, anchor, dx, node_low, gvs, gacc, dt, own, x_out, v_out, L_out,
-#     gmom, tot, min_mass, max_vel) -> number deleted
-# grad(px, lp, anchor, dx, node_low, gvel, L_out)
+#     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0) -> number deleted
+# grad(px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old, F_out, vol_out)
 
 @njit(cache=True, fastmath=FM)
 def p2g_l1(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
@@ -352,63 +402,69 @@ def p2g_g3(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
-    return _g2p(LINEAR, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+def g2p_l1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+                Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
-    return _g2p(LINEAR, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+def g2p_l2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+                Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
-    return _g2p(LINEAR, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+def g2p_l3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+                Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
-    return _g2p(GIMP, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+def g2p_g1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+                Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
-    return _g2p(GIMP, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+def g2p_g2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+                Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv):
-    return _g2p(GIMP, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv)
+def g2p_g3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+                Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_l1(px, lp, an, dx, lo, gv, Lo):
-    _grad(LINEAR, 1, px, lp, an, dx, lo, gv, Lo)
+def grad_l1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(LINEAR, 1, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_l2(px, lp, an, dx, lo, gv, Lo):
-    _grad(LINEAR, 2, px, lp, an, dx, lo, gv, Lo)
+def grad_l2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(LINEAR, 2, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_l3(px, lp, an, dx, lo, gv, Lo):
-    _grad(LINEAR, 3, px, lp, an, dx, lo, gv, Lo)
+def grad_l3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(LINEAR, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_g1(px, lp, an, dx, lo, gv, Lo):
-    _grad(GIMP, 1, px, lp, an, dx, lo, gv, Lo)
+def grad_g1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(GIMP, 1, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_g2(px, lp, an, dx, lo, gv, Lo):
-    _grad(GIMP, 2, px, lp, an, dx, lo, gv, Lo)
+def grad_g2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(GIMP, 2, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_g3(px, lp, an, dx, lo, gv, Lo):
-    _grad(GIMP, 3, px, lp, an, dx, lo, gv, Lo)
+def grad_g3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(GIMP, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 KERNELS = {
