@@ -11,11 +11,15 @@ error vs wall time when matplotlib is importable).
         --opt order=FirstOrder,SecondOrder --json wave1d.json --png wave1d.png
     .venv/bin/python scripts/accuracy_cost.py wave2d --res 16 32 64 \
         --opt transverse=false,true --opt cfl=0.4,0.1
+    .venv/bin/python scripts/accuracy_cost.py vortex --res 16 32 64 --opt scheme=explicit,implicit \
+        --opt mach=0.05
 
 A scene is a name -> (deck template taking the resolution and options, error function
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
 Toro's tests 1-5, and the smooth periodic entropy wave in 1D and along the diagonal in
-2D, from components/ice/scenes.py); nothing else here is component-specific.
+2D, from components/ice/scenes.py; the low-Mach Taylor-Green vortex, explicit against
+semi-implicit ICE, from components/ice/scene_vortex.py); nothing else here is
+component-specific.
 Wall time is the whole run (initialisation included: the 2D wave's per-cell geometry
 takes a noticeable part of it); step_s in the JSON is the time-stepping alone.
 """
@@ -61,9 +65,26 @@ def _wave_scene(dim):
                     "density vs the translated exact cell averages (order of accuracy on a smooth problem)"}
 
 
+def _vortex_scene():
+    from components.ice import scene_vortex as V
+    state = {"mach": 0.05}
+
+    def deck(n, scheme="explicit", cfl="0.4", mach="0.05", precond="pfmg"):
+        """scheme=explicit or implicit (<ImplicitSolver>: delT from the flow speed)."""
+        state["mach"] = float(mach)
+        return V.vortex_deck(n, mach=float(mach), implicit=scheme == "implicit", cfl=float(cfl), precond=precond)
+
+    def error(da):
+        return V.vortex_errors(da, mach=state["mach"])
+    return {"deck": deck, "error": error, "key": "u",
+            "what": "ICE Taylor-Green vortex at low Mach (steady Euler solution), periodic 2D, to 0.2 turnover "
+                    "times: L1 error of velocity and of p - mean(p); explicit vs semi-implicit ICE"}
+
+
 SCENES = {name: (lambda n=name: _ice_scene(n)) for name in ("sod", "toro1", "toro2", "toro3", "toro4", "toro5")}
 SCENES["wave1d"] = lambda: _wave_scene(1)
 SCENES["wave2d"] = lambda: _wave_scene(2)
+SCENES["vortex"] = _vortex_scene
 
 
 def run_case(scene, n, opts, workdir):
@@ -111,7 +132,7 @@ def main(argv=None):
             o = f"{row['order']:.2f}" if row["order"] is not None else "  - "
             errs = "  ".join(f"{k}={v:.3e}" for k, v in row["errors"].items())
             print(f"{' '.join(f'{k}={v}' for k, v in opts.items()):24s} cells={row['cells']:8d} steps={row['steps']:6d} "
-                  f"wall={row['wall_s']:8.3f}s  L1 {errs}  order({key})={o}", flush=True)
+                  f"wall={row['wall_s']:8.3f}s step={row['step_s']:8.3f}s  L1 {errs}  order({key})={o}", flush=True)
     out = {"scene": args.scene, "what": scene["what"], "rows": rows}
     if args.json:
         with open(args.json, "w") as f:

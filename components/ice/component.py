@@ -21,6 +21,7 @@ from framework.variables import Ghost
 from . import labels as I
 from .bc import BoundaryConditions, read_bcs
 from .eos import IDEAL_GAS, MAX_PARAMS, make_eos
+from .implicit import ImplicitICE
 from .tasks import IceTasks
 
 G = Ghost.AROUND_CELLS
@@ -58,7 +59,7 @@ class Material:
 
 
 @register("ice")
-class ICE(IceTasks, Component):
+class ICE(ImplicitICE, IceTasks, Component):
     """Uintah's ICE: equilibration pressure, face velocities, Lagrangian step, exchange, advection."""
 
     # MPMICE hook: number of (MPM) materials before ICE's in the global material index
@@ -110,6 +111,8 @@ class ICE(IceTasks, Component):
         self.viscous = any(m.viscosity > 0 for m in self.materials)
         self.conduction = any(m.conductivity > 0 for m in self.materials)
         self._geom_cache = {}
+        # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
+        self.read_implicit(ice, root)
 
     def material_names(self):
         return [m.name for m in self.materials]
@@ -167,7 +170,8 @@ class ICE(IceTasks, Component):
                        .computes(I.press_CC, matls=[0]))
 
     def schedule_compute_stable_timestep(self, level, sched):
-        sched.add_task(Task("ICE::computeStableTimestep", self.stable_timestep, self.matls)
+        fn = self.stable_timestep_implicit if self.implicit else self.stable_timestep
+        sched.add_task(Task("ICE::computeStableTimestep", fn, self.matls)
                        .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
                        .computes(L.delT))
 
@@ -189,28 +193,32 @@ class ICE(IceTasks, Component):
             .requires(NEW, I.sp_vol_CC, G, 1).requires(NEW, I.press_equil_CC, G, 1, matls=m0)
         for d in dirs:
             t.computes(I.FC_VEL[d])
-            if not self.exchange:
+            if not self.exchange and not self.implicit:
                 t.computes(I.FC_VEL_ME[d])
         sched.add_task(t)
 
-        if self.exchange:
+        if self.implicit:
+            # eqs. 28-30 with the pressure increment implicit: outer iteration around a PCG solve
+            self.schedule_implicit_pressure(sched, dirs)
+        elif self.exchange:
             t = Task("ICE::addExchangeContributionToFCVel", self.exchange_fc, self.matls) \
                 .requires(OLD, L.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
             for d in dirs:
                 t.requires(NEW, I.FC_VEL[d], G, 1).computes(I.FC_VEL_ME[d])
             sched.add_task(t)
 
-        t = Task("ICE::computeDelPressAndUpdatePressCC", self.delp_press, self.matls) \
-            .requires(OLD, L.delT).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
-            .requires(NEW, I.press_equil_CC, matls=m0) \
-            .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
-        if many:
-            t.requires(NEW, I.vol_frac_CC, G, 1)
-        else:
-            t.requires(NEW, I.vol_frac_CC)
-        for d in dirs:
-            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
-        sched.add_task(t)
+        if not self.implicit:
+            t = Task("ICE::computeDelPressAndUpdatePressCC", self.delp_press, self.matls) \
+                .requires(OLD, L.delT).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
+                .requires(NEW, I.press_equil_CC, matls=m0) \
+                .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
+            if many:
+                t.requires(NEW, I.vol_frac_CC, G, 1)
+            else:
+                t.requires(NEW, I.vol_frac_CC)
+            for d in dirs:
+                t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+            sched.add_task(t)
 
         t = Task("ICE::computePressFC", self.press_fc, self.matls) \
             .requires(NEW, I.press_CC, G, 1, matls=m0).requires(OLD, I.rho_CC, G, 1)

@@ -145,7 +145,7 @@ class IceTasks:
                 K.face_velocity(rho, vel, spv, peq, uf, b.sh[d], UNIT[d], d, b.flo[d], b.fhi[d], dt,
                                 patch.level.dx[d], self.gravity[d])
                 self.bcs.face_velocity(patch, uf, d, m, b.flo[d], b.fhi[d])
-                if not self.exchange:
+                if not self.exchange and not self.implicit:
                     new_dw.put(I.FC_VEL_ME[d], m, patch, uf)   # one material: the exchange is the identity
 
     def exchange_fc(self, patch, matls, old_dw, new_dw):

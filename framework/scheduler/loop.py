@@ -22,7 +22,10 @@ class Loop(Task):
     """A task whose body is a graph run repeatedly.
 
     init: {iteration label: timestep-new label} copied in before the first iteration.
-    results: {iteration label: timestep-new label} put after the last iteration.
+    results: {iteration label: timestep-new label} put after the last iteration; a value
+    may be (label, matls) when a result exists for fewer materials than the loop's.
+    A Loop may sit in another Loop's body: its PARENT warehouses are then the
+    enclosing iteration's (an outer Newton-type iteration around an inner solve).
     converged(dw, iteration, parent_new_dw) -> bool reads the iteration's (already reduced) values.
     """
 
@@ -31,7 +34,7 @@ class Loop(Task):
         super().__init__(name, None, matls)
         self.body = list(body)
         self.init = dict(init)
-        self.results = dict(results)
+        self.results = {k: (v if isinstance(v, tuple) else (v, None)) for k, v in results.items()}
         self.converged = converged
         self.max_iterations = int(max_iterations)
         self.fail = fail
@@ -39,8 +42,8 @@ class Loop(Task):
         self.body_graph = None
         for it_label, parent_label in self.init.items():
             self.requires(NEW, parent_label)
-        for it_label, parent_label in self.results.items():
-            self.computes(parent_label)
+        for it_label, (parent_label, rmatls) in self.results.items():
+            self.computes(parent_label, matls=rmatls)
         for t in self.body:
             for d in t.requires_:
                 if d.dw in (PARENT_OLD, PARENT_NEW):
@@ -83,7 +86,7 @@ def run_loop(sched, loop: Loop, old_dw, new_dw):
     if not converged and loop.fail == "error":
         raise LoopError(f"{loop.name} did not converge in {loop.max_iterations} iterations")
     loop.converged_last = converged
-    for it_name, parent_label in loop.results.items():
+    for it_name, (parent_label, rmatls) in loop.results.items():
         lab = L.find(it_name)
         if lab.vartype is VarType.REDUCTION:
             for (name, m), v in it_old.reductions.items():
@@ -91,5 +94,5 @@ def run_loop(sched, loop: Loop, old_dw, new_dw):
                     new_dw.reductions[(parent_label.name, m)] = v
             continue
         for p in sched.local_patches:
-            for m in loop.matls:
+            for m in (loop.matls if rmatls is None else rmatls):
                 new_dw.put(parent_label, m, p, it_old.get(lab, m, p))

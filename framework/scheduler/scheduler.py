@@ -80,6 +80,8 @@ class Scheduler:
     def _compile_loop(self, loop: Loop):
         for t in loop.body:
             self._add_implicit_particle_requires(t)
+            if isinstance(t, Loop):
+                self._compile_loop(t)           # a loop nested in a loop's body
         first = set(loop.init)
         for t in loop.body:
             for d in t.requires_:

@@ -1,0 +1,336 @@
+"""Semi-implicit ICE: the pressure increment solved implicitly (paper 000 sec. 3.3, end).
+
+`<CFD><ICE><ImplicitSolver>` switches it on. Instead of eq. 29-30's explicit
+delP = -dt div(theta u*) / kap, the face velocities are made to see the increment,
+u_m = u*_m - dt v_m,f grad delP (eq. 28 with p = p_eq + delP), which gives the
+Poisson-type equation (eq. P)
+
+    kap delP - dt^2 div(sum_m theta_m v_m,f grad delP) = -dt sum_m div(theta_m u*_m),
+
+symmetric positive definite, solved over the whole level by PCG (solver/). Outer
+iterations (Uintah's max_outer_iterations / outer_iteration_tolerance) repeat
+"solve, update P, recompute u_m(P) (with exchange), recompute the residual" until
+max |kap P + dt sum div(theta u)| (a relative volume) is below the tolerance; with
+one material and no exchange the linearisation is exact and one iteration suffices.
+The outer iteration is a framework Loop with the PCG Loop nested in its body. delT
+then comes from the flow speed: cfl dx / (|u| + knob_for_speedSound c), the knob at
+least 1e-4.
+
+Boundary faces: a fixed face velocity (Dirichlet, symmetry) or a zero-gradient
+pressure leaves delP decoupled there; a Dirichlet pressure holds delP = 0 outside.
+"""
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+
+from framework import labels as L
+from framework.scheduler.loop import Loop
+from framework.task import NEW, OLD, PARENT_NEW, PARENT_OLD, Task
+from framework.variables import Ghost, VarType
+
+from . import implicit_kernels as IK
+from . import kernels as K
+from . import labels as I
+from .bc import DIRICHLET, FACE_NAMES, SYMMETRY, bc_scalar
+from .solver import kernels as SK
+from .solver.pcg import PCG
+
+G = Ghost.AROUND_CELLS
+CC, X, Y, Z, R = VarType.CC, VarType.SFCX, VarType.SFCY, VarType.SFCZ, VarType.REDUCTION
+UNIT = np.eye(3, dtype=np.int64)
+KNOB_FLOOR = 1e-4       # smallest multiple of the sound speed in the implicit delT
+
+# labels named after Uintah's impICE where it has one
+matrix = L.create("matrix", CC, (7,))               # the stencil of eq. P, timestep level
+imp_A = L.create("imp.matrix", CC, (7,))            # the same arrays inside the outer iteration
+imp_P = L.create("imp.P", CC)                       # accumulated increment, outer iteration
+imp_P0 = L.create("imp.P0", CC)
+imp_delP = L.create("imp_delP", CC)                 # one outer iteration's increment
+rhs = L.create("rhs", CC)
+rhs0 = L.create("rhs0", CC)
+max_RHS = L.create("max_RHS", R, reduction="max")
+imp_UF = (L.create("imp.uvel_FC", X), L.create("imp.vvel_FC", Y), L.create("imp.wvel_FC", Z))
+
+SOLVERS = {"cg": "cg", "pcg": "cg", "conjugategradient": "cg", "conjugate_gradient": "cg",
+           "smg": "mg", "pfmg": "mg", "gmres": "cg", "hybrid": "cg", "jacobi": "cg", "automatic": "cg"}
+PRECONDS = {"pfmg": "mg", "smg": "mg", "mg": "mg", "multigrid": "mg", "spfmg": "mg", "sparsemsg": "mg",
+            "jacobi": "jacobi", "diagonal": "jacobi", "none": "none"}
+PRECOND_WORDS = {"mg": "geometric multigrid (fine level across patches, coarse levels gathered on every rank)",
+                 "jacobi": "Jacobi", "none": "no preconditioner"}
+NO_EFFECT = ("skip", "jump", "relax_type", "logging", "setupFrequency", "updateCoefFrequency",
+             "solveFrequency", "csolver", "initial_tolerance")
+
+
+class ImplicitSettings:
+    """What `<ImplicitSolver>`, its `<Parameters>` and `<Solver type>` ask for, and what runs."""
+
+    def __init__(self, node, root):
+        self.max_outer = node.get("max_outer_iterations", "int", 20)
+        self.outer_tol = node.get("outer_iteration_tolerance", "float", 1e-8)
+        self.restart_iters = node.get("iters_before_timestep_restart", "int", None)
+        solver = root.child("Solver")
+        self.package = solver.attr("type", default="hypre") if solver is not None else "none given"
+        if solver is not None:
+            solver.mark_used()
+        pars = node.children("Parameters")
+        p = None
+        for cand in pars:
+            if cand.attr("variable", default="implicitPressure") == "implicitPressure":
+                p = cand
+        if len(pars) > 1 and p is not None:
+            for cand in pars:
+                if cand is not p:
+                    cand.mark_used()
+        get = (lambda t, ty, d: p.get(t, ty, d)) if p is not None else (lambda t, ty, d: d)
+        self.solver_asked = get("solver", "str", "cg").strip()
+        self.precond_asked = get("preconditioner", "str", "pfmg").strip()
+        key = self.solver_asked.lower()
+        if key not in SOLVERS:
+            raise p.child("solver").error(f"solver '{self.solver_asked}' is not known; accepted: "
+                                          + ", ".join(sorted(SOLVERS)))
+        pkey = self.precond_asked.lower()
+        if pkey not in PRECONDS:
+            raise p.child("preconditioner").error(f"preconditioner '{self.precond_asked}' is not known; "
+                                                  "accepted: " + ", ".join(sorted(PRECONDS)))
+        # hypre run as a solver (smg, pfmg) becomes the preconditioner of our CG
+        self.precond = "mg" if SOLVERS[key] == "mg" else PRECONDS[pkey]
+        self.tolerance = get("tolerance", "float", 1e-10)
+        self.max_iterations = get("maxiterations", "int", 500)
+        self.npre = get("npre", "int", 1)
+        self.npost = get("npost", "int", 1)
+        self.norm = get("norm", "str", "L2")
+        if self.norm not in ("L2", "LInfinity"):
+            raise p.child("norm").error(f"norm '{self.norm}' is not accepted; accepted: L2, LInfinity")
+        self.criteria = get("criteria", "str", "Relative")
+        if self.criteria not in ("Relative", "Absolute"):
+            raise p.child("criteria").error(f"criteria '{self.criteria}' is not accepted; accepted: Relative, Absolute")
+        self.ignored = []
+        if p is not None:
+            for tag in NO_EFFECT:
+                if p.has(tag):
+                    p.child(tag).mark_used()
+                    self.ignored.append(tag)
+        if self.restart_iters is not None:
+            self.ignored.append("iters_before_timestep_restart")
+        self.sweeps = max(self.npre, self.npost, 1)
+
+    def describe(self, precond_running, note=""):
+        words = PRECOND_WORDS[precond_running]
+        s = (f"pysus: ICE implicit pressure: deck asks <Solver type=\"{self.package}\"> solver={self.solver_asked} "
+             f"preconditioner={self.precond_asked}; running pysus CG with {words}, "
+             f"{self.sweeps} smoothing sweep(s), tolerance {self.tolerance:g} ({self.criteria.lower()} "
+             f"{self.norm}), maxiterations {self.max_iterations}; outer iterations <= {self.max_outer} to "
+             f"max|rhs| {self.outer_tol:g}; delT from the flow speed")
+        if self.npre != self.npost:
+            s += f"; npre={self.npre} npost={self.npost} -> {self.sweeps} each (symmetric for CG)"
+        if self.ignored:
+            s += "; no effect here: " + ", ".join(self.ignored) + " (no timestep restart: a step that " \
+                 "misses the outer tolerance continues with a warning)"
+        return s + note
+
+
+class ImplicitICE:
+    """Tasks of the implicit pressure solve (mixed into the ICE component)."""
+
+    def read_implicit(self, ice, root):
+        node = ice.child("ImplicitSolver")
+        self.implicit = node is not None
+        if not self.implicit:
+            solver = root.child("Solver")
+            if solver is not None:
+                solver.mark_used()          # a <Solver> in an explicit deck: nothing to solve
+            return
+        self.imp = ImplicitSettings(node, root)
+        tsc = ice.child("TimeStepControl")
+        self.knob = 0.0
+        self.conservative_dt = False
+        if tsc is not None:
+            self.conservative_dt = tsc.get("Scheme_for_delT_calc", "str", "aggressive",
+                                           choices=("aggressive", "conservative")) == "conservative"
+            self.knob = tsc.get("knob_for_speedSound", "float", 0.0)
+        lv = self.level
+        precond = self.imp.precond
+        note = ""
+        if precond == "mg" and not PCG.mg_possible(lv):
+            precond, note = "jacobi", " (multigrid needs even patch extents: Jacobi instead)"
+        self.pcg = PCG("imp.cg", imp_A, lv, self.dims, precond, self.imp.tolerance, self.imp.max_iterations,
+                       self.imp.norm, self.imp.sweeps, self.imp.criteria == "Relative")
+        self.imp_banner = self.imp.describe(precond, note)
+        self.imp_logged = False
+        self.outer_iterations = []
+
+    # -- scheduling ------------------------------------------------------------------------------
+    def schedule_implicit_pressure(self, sched, dirs):
+        m0 = [0]
+        self._rank = sched.comm.rank
+        self._step_seen = None
+        if not self.imp_logged and sched.comm.rank == 0:
+            print(self.imp_banner, file=sys.stderr)
+            self.imp_logged = True
+        t = Task("ICE::setupMatrixAndRHS", self.imp_setup, self.matls) \
+            .requires(OLD, L.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1) \
+            .requires(NEW, I.speedSound_CC) \
+            .computes(matrix, matls=m0).computes(imp_P0, matls=m0).computes(rhs0, matls=m0)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL[d], G, 1)
+        if self.pcg.precond == "mg":
+            t.computes(self.pcg.OP)
+        sched.add_task(t)
+
+        seed = Task("ICE::implicitSolveSetup", self.imp_seed, m0).requires(OLD, rhs, matls=m0) \
+            .requires(PARENT_NEW, matrix, matls=m0).computes(imp_A, matls=m0)
+        if self.pcg.precond == "mg":
+            seed.requires(PARENT_NEW, self.pcg.OP)
+        self.pcg.seed_computes(seed)
+        inner = self.pcg.loop("ICE::implicitPressureSolve", imp_delP)
+        upd = Task("ICE::updatePressure", self.imp_update, m0).requires(OLD, imp_P, matls=m0) \
+            .requires(NEW, imp_delP, matls=m0).computes(imp_P, matls=m0)
+        fc = Task("ICE::updateVel_FC", self.imp_faces_rhs, self.matls) \
+            .requires(NEW, imp_P, G, 1, matls=m0).requires(NEW, imp_A, matls=m0).requires(PARENT_OLD, L.delT) \
+            .requires(PARENT_NEW, I.vol_frac_CC, G, 1).requires(PARENT_NEW, I.sp_vol_CC, G, 1) \
+            .computes(rhs, matls=m0).computes(max_RHS)
+        for d in dirs:
+            fc.requires(PARENT_NEW, I.FC_VEL[d], G, 1).computes(imp_UF[d])
+        results = {imp_P.name: (I.delP_Dilatate, m0)}
+        results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
+        tol = self.imp.outer_tol
+        self.outer = Loop("ICE::implicitPressureOuter", self.matls, [seed, inner, upd, fc],
+                          init={imp_P.name: imp_P0, rhs.name: rhs0}, results=results,
+                          converged=lambda dw, k, pn: dw.get_reduction(max_RHS) <= tol,
+                          max_iterations=self.imp.max_outer, fail="continue")
+        sched.add_task(self.outer)
+        sched.add_task(Task("ICE::updatePressCC", self.imp_press, m0)
+                       .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0)
+                       .computes(I.press_CC, matls=m0))
+
+    # -- task bodies -------------------------------------------------------------------------------
+    def _keep(self, m):
+        """Per boundary face: does material m's face velocity respond to delP there?"""
+        keep = np.zeros(6, dtype=np.int64)
+        for f, name in enumerate(FACE_NAMES):
+            tab = self.bcs.table.get(name)
+            if tab is None:
+                continue
+            vk = tab["Velocity"][m][0]
+            keep[f] = int(vk not in (DIRICHLET, SYMMETRY) and tab["Pressure"][0][0] == DIRICHLET)
+        return keep
+
+    def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces):
+        """Face velocities u_m(P) (exchange, BCs) and the residual of eq. P; returns (rhs, rr, max)."""
+        b = self.boxes(patch)
+        dx = patch.level.dx
+        one = len(matls) == 1
+        made = {}
+        alloc = out_faces
+        out_faces = lambda d, m: made[(d, m)] if (d, m) in made else made.setdefault((d, m), alloc(d, m))
+        div = np.zeros(patch.alloc_shape(CC))
+        for d in range(3):
+            if not self.dims[d]:
+                continue
+            pre = []
+            for m in matls:
+                u0 = get_fc(d, m)
+                uf = np.empty_like(u0) if self.exchange else out_faces(d, m)
+                IK.face_correct(u0, sps[m], P, uf, b.sh[d], UNIT[d], b.flo[d], b.fhi[d], dt, dx[d])
+                pre.append(uf)
+            outs = [out_faces(d, m) for m in matls] if self.exchange else pre
+            if self.exchange:
+                K.exchange_faces(tuple(pre), tuple(vfs), tuple(sps), tuple(outs), b.sh[d], UNIT[d], b.flo[d],
+                                 b.fhi[d], dt, self.K)
+            for m in matls:
+                self.bcs.face_velocity(patch, outs[m], d, m, b.flo[d], b.fhi[d])
+        dummy = np.zeros((1, 1, 1))
+        for m in matls:
+            uf = [out_faces(d, m) if self.dims[d] else dummy for d in range(3)]
+            K.div_theta_u(vfs[m], one, uf[0], uf[1], uf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, b.lo, b.hi,
+                          dt, dx, div)
+        r = np.zeros(patch.alloc_shape(CC))
+        rr, rmax = IK.pressure_rhs(A, P, div, r, b.lo, b.hi)
+        return r, rr, rmax
+
+    def _bc_increment(self, patch, P):
+        """Extra cells of an increment: 0 behind a Dirichlet pressure, else a copy (zero gradient)."""
+        b = self.boxes(patch)
+        for name in patch.boundary_faces:
+            f = FACE_NAMES.index(name)
+            d, s = f // 2, f % 2
+            kind = self.bcs.table[name]["Pressure"][0][0]
+            bc_scalar(P, d, s, 1 if kind == DIRICHLET else 0, 0.0, 0.0, b.lo, b.hi, b.olo, b.ohi)
+
+    def imp_setup(self, patch, matls, old_dw, new_dw):
+        b = self.boxes(patch)
+        dt = old_dw.get_reduction(L.delT)
+        dx = patch.level.dx
+        s = np.array([dt * dt / dx[d] ** 2 if self.dims[d] else 0.0 for d in range(3)])
+        atb = np.array([patch.at_low[0], patch.at_high[0], patch.at_low[1], patch.at_high[1],
+                        patch.at_low[2], patch.at_high[2]], dtype=np.int64)
+        A = new_dw.allocate(matrix, 0, patch)
+        vfs = [new_dw.get(I.vol_frac_CC, m, patch) for m in matls]
+        sps = [new_dw.get(I.sp_vol_CC, m, patch) for m in matls]
+        one = len(matls) == 1
+        for m in matls:
+            SK.add_material(A, vfs[m], sps[m], new_dw.get(I.speedSound_CC, m, patch), one, self.dims, b.lo, b.hi,
+                            s, self._keep(m), atb)
+        P = new_dw.allocate(imp_P0, 0, patch)
+        r, rr, rmax = self._faces_and_rhs(
+            patch, matls, P, A, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
+            lambda d, m: np.empty(patch.alloc_shape(I.FC_VEL[d].vartype)))
+        new_dw.put(rhs0, 0, patch, r)
+        if self.pcg.precond == "mg":
+            self.pcg.put_coarse_operator(patch, A, new_dw)
+
+    def imp_seed(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        new_dw.put(imp_A, 0, patch, parent_new.get(matrix, 0, patch))
+        if self.pcg.precond == "mg":
+            self.pcg.setup_hierarchy(parent_new.get_reduction(self.pcg.OP))
+        self.pcg.put_seeds(patch, old_dw.get(rhs, 0, patch), new_dw)
+
+    def imp_update(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        b = self.boxes(patch)
+        P = new_dw.allocate(imp_P, 0, patch)
+        IK.add_increment(old_dw.get(imp_P, 0, patch), new_dw.get(imp_delP, 0, patch), P, b.lo, b.hi)
+        self._bc_increment(patch, P)
+
+    def imp_faces_rhs(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        dt = parent_old.get_reduction(L.delT)
+        vfs = [parent_new.get(I.vol_frac_CC, m, patch) for m in matls]
+        sps = [parent_new.get(I.sp_vol_CC, m, patch) for m in matls]
+        r, rr, rmax = self._faces_and_rhs(
+            patch, matls, new_dw.get(imp_P, 0, patch), new_dw.get(imp_A, 0, patch),
+            lambda d, m: parent_new.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
+            lambda d, m: new_dw.allocate(imp_UF[d], m, patch, fill=None))
+        new_dw.put(rhs, 0, patch, r)
+        new_dw.put_reduction(max_RHS, rmax)
+
+    def imp_press(self, patch, matls, old_dw, new_dw):
+        """p = p_eq + delP (eq. 30) with the pressure boundary conditions; notes the outer count."""
+        b = self.boxes(patch)
+        press = new_dw.allocate(I.press_CC, 0, patch)
+        IK.add_increment(new_dw.get(I.press_equil_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch), press,
+                         b.lo, b.hi)
+        self.bcs.scalar(patch, press, "Pressure", 0, b)
+        if self._step_seen is not new_dw.dw:                # once per rank and step
+            self._step_seen = new_dw.dw
+            self.outer_iterations.append(self.outer.iterations)
+            if not self.outer.converged_last and self._rank == 0:
+                print(f"pysus: warning: ICE implicit pressure: max|rhs| above outer_iteration_tolerance "
+                      f"{self.imp.outer_tol:g} after {self.outer.iterations} outer iterations; continuing",
+                      file=sys.stderr)
+
+    # -- delT ------------------------------------------------------------------------------------
+    def stable_timestep_implicit(self, patch, matls, old_dw, new_dw):
+        """Convective CFL: delT = cfl dx / (|u| + max(knob, KNOB_FLOOR) c).
+
+        The floor keeps a fluid at rest (or a patch it reaches only below round-off of p)
+        from asking for an infinite step: at most 1 / KNOB_FLOOR acoustic CFLs per step.
+        """
+        b = self.boxes(patch)
+        dt = np.inf
+        for m in matls:
+            dt = min(dt, IK.stable_dt_flow(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
+                                           new_dw.get(I.sp_vol_CC, m, patch), *self._eos(m),
+                                           self.dims.astype(np.int64), patch.level.dx, b.lo, b.hi,
+                                           max(self.knob, KNOB_FLOOR), self.conservative_dt))
+        new_dw.put_reduction(L.delT, self.cfl * dt)
