@@ -18,7 +18,7 @@ A scene is a name -> (deck template taking the resolution and options, error fun
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
 Toro's tests 1-5, and the smooth periodic entropy wave in 1D and along the diagonal in
 2D, from components/ice/scenes.py; the low-Mach Taylor-Green vortex, explicit against
-semi-implicit ICE, from components/ice/scene_vortex.py); nothing else here is
+semi-implicit ICE, from components/ice/scene_lowmach.py); nothing else here is
 component-specific.
 Wall time is the whole run (initialisation included: the 2D wave's per-cell geometry
 takes a noticeable part of it); step_s in the JSON is the time-stepping alone.
@@ -66,7 +66,7 @@ def _wave_scene(dim):
 
 
 def _vortex_scene():
-    from components.ice import scene_vortex as V
+    from components.ice import scene_lowmach as V
     state = {"mach": 0.05}
 
     def deck(n, scheme="explicit", cfl="0.4", mach="0.05", precond="pfmg"):

@@ -4,9 +4,9 @@
     .venv/bin/python scripts/bench/implicit_ice.py [--res 64 128 256 512] [--precond pfmg jacobi]
                                                    [--steps 3] [--patch 64] [--json implicit_ice.json]
 
-Scene: a closed 2D box of air (symmetry walls) at rest with a hot cylinder (3x the
-temperature, so 1/3 the density: variable coefficients) moving at --mach; one
-material, second-order advection, delT from the flow speed (CFL 0.4). Patches of
+Scene (components/ice/scene_lowmach.py: blob_deck): a closed 2D box of air (symmetry
+walls) at rest with a hot cylinder (3x the temperature, so 1/3 the density: variable
+coefficients) moving at --mach; one material, second-order advection, delT from the flow speed (CFL 0.4). Patches of
 --patch^2 cells (the patch count grows with the resolution), one rank. The first
 step (numba compilation, the acoustic first delT) is not timed. With delT from the
 flow speed the acoustic CFL is 0.4 / Mach at every resolution, so eq. P's condition
@@ -27,32 +27,13 @@ import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 
+from components.ice.scene_lowmach import blob_deck  # noqa: E402
 from framework.controller import Controller  # noqa: E402
-
-FACES = "".join(f'<Face side="{s}"><BCType id="all" label="Symmetric" var="symmetry"/></Face>'
-                for s in ("x-", "x+", "y-", "y+"))
-OBJ = """<geom_object>{piece}<res>[2,2,2]</res><velocity>[{u},0,0]</velocity><temperature>{T}</temperature>
-<density>{rho}</density><pressure>101325</pressure></geom_object>"""
-DECK = """<Uintah_specification><SimulationComponent type="ice"/><Solver type="hypre"/>
-<Time><maxTime>100</maxTime><max_Timesteps>{steps}</max_Timesteps><delt_init>1</delt_init></Time>
-<Grid><BoundaryConditions>{faces}</BoundaryConditions><Level><Box label="1"><lower>[0,0,0]</lower>
-<upper>[1,1,0.01]</upper><extraCells>[1,1,0]</extraCells><patches>[{np},{np},1]</patches>
-<resolution>[{n},{n},1]</resolution></Box></Level></Grid>
-<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"/>
-<ImplicitSolver><max_outer_iterations>10</max_outer_iterations><outer_iteration_tolerance>1e-8</outer_iteration_tolerance>
-<Parameters variable="implicitPressure"><solver>cg</solver><preconditioner>{precond}</preconditioner>
-<tolerance>1e-10</tolerance><maxiterations>5000</maxiterations></Parameters></ImplicitSolver></ICE></CFD>
-<PhysicalConstants><gravity>[0,0,0]</gravity><reference_pressure>101325</reference_pressure></PhysicalConstants>
-<MaterialProperties><ICE><material><EOS type="ideal_gas"/><specific_heat>717.5</specific_heat><gamma>1.4</gamma>
-{objects}</material></ICE></MaterialProperties></Uintah_specification>"""
-CYL = '<cylinder label="c"><bottom>[0.35,0.5,-1]</bottom><top>[0.35,0.5,1]</top><radius>0.15</radius></cylinder>'
-REST = '<difference><box><min>[-1,-1,-1]</min><max>[2,2,2]</max></box><cylinder label="c"/></difference>'
 
 
 def deck(n, precond, steps, patch, mach):
-    u = mach * (1.4 * 101325 / 0.4) ** 0.5        # Mach number in the hot gas (rho 0.4)
-    objs = OBJ.format(piece=CYL, u=u, T=900.0, rho=0.4) + OBJ.format(piece=REST, u=0.0, T=300.0, rho=1.2)
-    return DECK.format(steps=steps, faces=FACES, np=max(1, n // patch), n=n, precond=precond, objects=objs)
+    return blob_deck(n, mach=mach, steps=steps, implicit=True, precond=precond,
+                     patches=f"[{max(1, n // patch)},{max(1, n // patch)},1]")
 
 
 def run(n, precond, steps, patch, mach):

@@ -18,8 +18,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-COARSEST = 256          # stop coarsening at this many cells
-DENSE_MAX = 4096        # dense inverse on the coarsest level up to this many cells
+COARSEST = 64           # stop coarsening at this many cells
+DENSE_MAX = 1024        # dense inverse on the coarsest level up to this many cells
 
 
 @njit(cache=True)

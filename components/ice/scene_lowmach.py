@@ -1,11 +1,14 @@
-"""Low-Mach scene: the 2D Taylor-Green vortex, a steady solution of the Euler equations.
+"""Low-Mach scenes for semi-implicit ICE: the Taylor-Green vortex and a moving warm blob.
 
+Taylor-Green: a steady solution of the Euler equations,
 u = U sin(2 pi x) cos(2 pi y), v = -U cos(2 pi x) sin(2 pi y),
 p = p0 + rho0 U^2 / 4 (cos 4 pi x + cos 4 pi y) on the periodic unit square, uniform
 density (T = p / ((gamma - 1) cv rho0)); U = Mach * c0. The exact solution is the
 initial state at every time, so the velocity error at the end is each scheme's error.
 Used by tests/ice/test_implicit.py, scripts/accuracy_cost.py (scene "vortex") and
-scripts/bench/implicit_ice.py; `implicit=None` gives explicit ICE.
+scripts/bench/implicit_ice.py; `implicit=None` gives explicit ICE. The blob (`blob_deck`):
+a hot cylinder moving through air at rest in a closed box, one material or two gases
+with exchange, for the solver benchmark and the multi-material tests.
 """
 from __future__ import annotations
 
@@ -136,3 +139,59 @@ def vortex_errors(da, timestep=-1, mach=0.05):
     pn = p[:, :, 0]
     return {"u": float(np.mean(np.abs(vel[:, :, 0, 0] - u)) + np.mean(np.abs(vel[:, :, 0, 1] - v))) / 2,
             "p": float(np.mean(np.abs((pn - pn.mean()) - (pe - pe.mean()))))}
+
+
+# -- a warm blob moving through air at rest in a closed box (variable coefficients) -------------------
+BLOB = """<Uintah_specification><SimulationComponent type="ice"/>{solver}
+<Time><maxTime>100</maxTime><max_Timesteps>{steps}</max_Timesteps>{delt}</Time>
+<Grid><BoundaryConditions>{faces}</BoundaryConditions><Level><Box label="1"><lower>[0,0,0]</lower>
+<upper>[1,1,0.01]</upper><extraCells>[1,1,0]</extraCells><patches>{patches}</patches>
+<resolution>[{n},{n},1]</resolution></Box></Level></Grid>
+<DataArchiver><filebase>blob.uda</filebase><outputTimestepInterval>{steps}</outputTimestepInterval>
+<save label="vel_CC"/><save label="press_CC"/><save label="rho_CC"/></DataArchiver>
+<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"/>{implicit}</ICE></CFD>
+<PhysicalConstants><gravity>[0,0,0]</gravity><reference_pressure>101325</reference_pressure></PhysicalConstants>
+<MaterialProperties><ICE>{materials}</ICE>{exchange}</MaterialProperties></Uintah_specification>"""
+BLOB_FACES = "".join(f'<Face side="{s}"><BCType id="all" label="Symmetric" var="symmetry"/></Face>'
+                     for s in ("x-", "x+", "y-", "y+"))
+BLOB_OBJ = """<geom_object>{piece}<res>[2,2,2]</res><velocity>[{u},0,0]</velocity><temperature>{T}</temperature>
+<density>{rho}</density><pressure>101325</pressure></geom_object>"""
+BLOB_MAT = """<material><EOS type="ideal_gas"/><specific_heat>{cv}</specific_heat><gamma>{gamma}</gamma>
+{objects}</material>"""
+CYL = '<cylinder label="c"><bottom>[0.35,0.5,-1]</bottom><top>[0.35,0.5,1]</top><radius>0.15</radius></cylinder>'
+REST = '<difference><box><min>[-1,-1,-1]</min><max>[2,2,2]</max></box><cylinder label="c"/></difference>'
+NOWHERE = '<box><min>[-2,-2,-2]</min><max>[-1,-1,-1]</max></box>'
+
+
+def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=None, tolerance=1e-10,
+              outer_tol=1e-8, materials=1, K=None, delt=None, knob=None, maxit=5000):
+    """A hot cylinder (3x T, 1/3 rho) moving at `mach` in air at rest, symmetry walls, `steps` steps.
+
+    materials=2: the blob is a second gas (cv 1000, gamma 1.3) with exchange coefficients K;
+    delt fixes delT (delt_min = delt_max); patches default to 64^2 cells each.
+    """
+    u = mach * np.sqrt(1.4 * 101325 / 0.4)
+    hot = BLOB_OBJ.format(piece=CYL, u=u, T=900.0, rho=0.4)
+    if materials == 1:
+        mats = BLOB_MAT.format(cv=717.5, gamma=1.4, objects=hot + BLOB_OBJ.format(piece=REST, u=0.0, T=300.0,
+                                                                                  rho=1.2))
+    else:
+        # the labelled cylinder is defined where it first appears (material 0's first object);
+        # the geometry fractions of the two materials add up to one in every cell
+        air = BLOB_OBJ.format(piece=f"<difference><box><min>[-1,-1,-1]</min><max>[2,2,2]</max></box>{CYL}"
+                                    "</difference>", u=0.0, T=300.0, rho=1.2)
+        gas = BLOB_OBJ.format(piece='<cylinder label="c"/>', u=u, T=900.0, rho=0.4)
+        mats = BLOB_MAT.format(cv=717.5, gamma=1.4, objects=air) + BLOB_MAT.format(cv=1000.0, gamma=1.3, objects=gas)
+    exch = "" if K is None else ("<exchange_properties><exchange_coefficients>"
+                                 f"<momentum>[{K}]</momentum><heat>[{K}]</heat></exchange_coefficients></exchange_properties>")
+    imp = ""
+    if implicit:
+        imp = IMPLICIT.format(outer=20, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit)
+        if knob is not None:
+            imp += f"<TimeStepControl><knob_for_speedSound> {knob} </knob_for_speedSound></TimeStepControl>"
+    np_ = max(1, n // 64)
+    dt = "<delt_init>1</delt_init>" if delt is None else \
+        f"<delt_init>{delt}</delt_init><delt_min>{delt}</delt_min><delt_max>{delt}</delt_max>"
+    return BLOB.format(steps=steps, delt=dt, faces=BLOB_FACES, patches=patches or f"[{np_},{np_},1]", n=n,
+                       implicit=imp, solver='<Solver type="hypre"/>' if implicit else "", materials=mats,
+                       exchange=exch)
