@@ -70,6 +70,7 @@ class PCG:
         self.hierarchy = None
         self._op_seen = None
         self._ec_key = None
+        self._rc_dw = None
         self.iterations = []               # per solve, for reporting
 
     @staticmethod
@@ -203,12 +204,17 @@ class PCG:
         return body
 
     def restrict(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        """Residual onto the coarse grid. One rank-local array per iteration takes every local
+        patch's part (each coarse cell has one contributor, so the order does not matter);
+        it is the rank's partial sum that the executor then reduces over ranks."""
         lo, hi = _box(patch)
-        rc = np.zeros(self.nc)
+        if self._rc_dw is not new_dw.dw:
+            self._rc_dw = new_dw.dw
+            self._rc = np.zeros(self.nc)
+            new_dw.put_reduction(self.RC, self._rc)
         K.restrict_residual(parent_new.get(self.A, 0, patch), old_dw.get(self.R, 0, patch),
-                            new_dw.get(self.ZS[-1], 0, patch), rc, np.array(patch.lo, dtype=np.int64) - lo,
+                            new_dw.get(self.ZS[-1], 0, patch), self._rc, np.array(patch.lo, dtype=np.int64) - lo,
                             self.dims, lo, hi)
-        new_dw.put_reduction(self.RC, rc)
 
     def coarse_correct(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
         rc = new_dw.get_reduction(self.RC)
