@@ -3,9 +3,16 @@
 `<SimulationComponent type="mpm">`. The deck blocks read here:
   <MPM>                 FLAGS below (interpolator linear|gimp, explicit only, ...)
   <PhysicalConstants>   <gravity>
-  <MaterialProperties><MPM>  <material> (materials.py) and <contact> (CONTACT)
+  <MaterialProperties><MPM>  <material> (materials.py; models incl. ideal_gas_fluid, the
+                        fluid points of paper 004) and <contact> null | single_velocity |
+                        friction | rigid (contact.py)
   <Grid><BoundaryConditions> velocity Dirichlet / symmetry faces (bc.py)
+  <PhysicalBC><MPM><pressure>  load-curve pressure on surface particles (pressure.py)
   <DataAnalysis>        <Module name="particleExtract"> (analysis.py)
+
+The particle<->grid transfers are fused numba kernels (transfer.py): p2g scatters into
+the warehouse's node arrays, g2p updates x, v (and with USL L, F, V) in one pass, MUSL
+remaps the new momentum in that pass and finds L, F, V in one more.
 
 One timestep (tasks.py), all MPM materials in each task:
   interpolateParticlesToGrid      m_i, v_i, V_i, fext_i, fint_i from the particles
@@ -14,8 +21,9 @@ One timestep (tasks.py), all MPM materials in each task:
   computeAndIntegrateAcceleration a_i, v*_i
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
-  interpolateToParticlesAndUpdate v_p, x_p, L_p; conserved totals
-  computeStressTensor             F_p, V_p, sigma_p, strain energy, wave speed
+  interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
+  computeStressTensor             (MUSL: L_p, F_p, V_p from v^L) sigma_p, strain energy,
+                                  wave speed
   relocateParticles, computeStableTimestep
 """
 from __future__ import annotations
