@@ -83,7 +83,7 @@ IMPLICIT = """<ImplicitSolver>
         <Parameters variable="implicitPressure">
           <solver> cg </solver>
           <preconditioner> {precond} </preconditioner>
-          <tolerance> {tol} </tolerance>
+          <tolerance> {tol} </tolerance>{norm}
           <maxiterations> {maxit} </maxiterations>
         </Parameters>
       </ImplicitSolver>"""
@@ -104,10 +104,11 @@ def exact(x, y, mach):
 
 
 def vortex_deck(n, mach=0.05, t=None, implicit=None, cfl=0.4, patches="[1,1,1]", precond="pfmg",
-                tolerance=1e-10, outer=20, outer_tol=1e-9, maxit=500, max_timesteps=None, knob=None):
+                tolerance=1e-10, outer=20, outer_tol=1e-9, maxit=500, max_timesteps=None, knob=None, norm=None):
     """Deck text; t defaults to 0.2 of the turnover time 1 / U; implicit=True for semi-implicit ICE.
 
-    knob: <TimeStepControl><knob_for_speedSound> (1 gives the implicit run explicit ICE's delT).
+    knob: <TimeStepControl><knob_for_speedSound> (1 gives the implicit run explicit ICE's delT);
+    norm: the solver's <norm> (L2, LInfinity).
     """
     g = GAS
     t = 0.2 / speed(mach) if t is None else t
@@ -119,7 +120,8 @@ def vortex_deck(n, mach=0.05, t=None, implicit=None, cfl=0.4, patches="[1,1,1]",
             u, v, p = exact(xc[i], xc[j], mach)
             objs.append(OBJECT.format(x0=i * h, x1=(i + 1) * h, y0=j * h, y1=(j + 1) * h, u=float(u), v=float(v),
                                       p=float(p), rho=g["rho0"], T=float(p / ((g["gamma"] - 1) * g["cv"] * g["rho0"]))))
-    imp = IMPLICIT.format(outer=outer, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit) \
+    imp = IMPLICIT.format(outer=outer, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit,
+                          norm=f"<norm> {norm} </norm>" if norm else "") \
         if implicit else ""
     if implicit and knob is not None:
         imp += ("<TimeStepControl><Scheme_for_delT_calc> aggressive </Scheme_for_delT_calc>"
@@ -186,7 +188,7 @@ def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=Non
                                  f"<momentum>[{K}]</momentum><heat>[{K}]</heat></exchange_coefficients></exchange_properties>")
     imp = ""
     if implicit:
-        imp = IMPLICIT.format(outer=20, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit)
+        imp = IMPLICIT.format(outer=20, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit, norm="")
         if knob is not None:
             imp += f"<TimeStepControl><knob_for_speedSound> {knob} </knob_for_speedSound></TimeStepControl>"
     np_ = max(1, n // 64)

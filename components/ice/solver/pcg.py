@@ -131,8 +131,10 @@ class PCG:
             Task(f"{name}::update", self.update, [0])
             .requires(OLD, self.X).requires(OLD, self.R).requires(NEW, self.P).requires(NEW, self.Q)
             .requires(NEW, self.RZ).requires(NEW, self.PQ)
-            .computes(self.X).computes(self.R).computes(self.RR).computes(self.RMAX),
+            .computes(self.X).computes(self.R).computes(self.RR),
         ]
+        if self.norm == "LInfinity":               # one reduction (one allreduce) less for L2
+            body[-1].computes(self.RMAX)
         self.solve = Loop(name, [0], body,
                           init={self.X.name: self.X0, self.R.name: self.R0, self.P.name: self.P0,
                                 self.RZ.name: self.RZ0},
@@ -248,4 +250,5 @@ class PCG:
         rr, rmax = K.cg_update(old_dw.get(self.X, 0, patch), old_dw.get(self.R, 0, patch),
                                new_dw.get(self.P, 0, patch), new_dw.get(self.Q, 0, patch), xn, rn, alpha, lo, hi)
         new_dw.put_reduction(self.RR, rr)
-        new_dw.put_reduction(self.RMAX, rmax)
+        if self.norm == "LInfinity":
+            new_dw.put_reduction(self.RMAX, rmax)
