@@ -67,8 +67,8 @@ class ImplicitSettings:
     """What `<ImplicitSolver>`, its `<Parameters>` and `<Solver type>` ask for, and what runs."""
 
     def __init__(self, node, root):
-        self.max_outer = node.get("max_outer_iterations", "int", 20)
-        self.outer_tol = node.get("outer_iteration_tolerance", "float", 1e-8)
+        self.max_outer = node.get("max_outer_iterations", "int")           # required, as in Uintah
+        self.outer_tol = node.get("outer_iteration_tolerance", "float")
         self.restart_iters = node.get("iters_before_timestep_restart", "int", None)
         solver = root.child("Solver")
         self.package = solver.attr("type", default="hypre") if solver is not None else "none given"
@@ -126,8 +126,9 @@ class ImplicitSettings:
         if self.npre != self.npost:
             s += f"; npre={self.npre} npost={self.npost} -> {self.sweeps} each (symmetric for CG)"
         if self.ignored:
-            s += "; no effect here: " + ", ".join(self.ignored) + " (no timestep restart: a step that " \
-                 "misses the outer tolerance continues with a warning)"
+            s += "; no effect here: " + ", ".join(self.ignored)
+        if "iters_before_timestep_restart" in self.ignored:
+            s += " (no timestep restart: a step that misses the outer tolerance continues with a warning)"
         return s + note
 
 
@@ -146,10 +147,15 @@ class ImplicitICE:
         tsc = ice.child("TimeStepControl")
         self.knob = 0.0
         self.conservative_dt = False
-        if tsc is not None:
-            self.conservative_dt = tsc.get("Scheme_for_delT_calc", "str", "aggressive",
+        if tsc is not None:                 # both tags required when the block is there (Uintah)
+            self.conservative_dt = tsc.get("Scheme_for_delT_calc", "str",
                                            choices=("aggressive", "conservative")) == "conservative"
-            self.knob = tsc.get("knob_for_speedSound", "float", 0.0)
+            self.knob = tsc.get("knob_for_speedSound", "float")
+            if not 0.0 <= self.knob <= 1.0:
+                raise tsc.child("knob_for_speedSound").error("knob_for_speedSound must be between 0 and 1")
+            if tsc.has("knob_for_diffusion"):
+                tsc.child("knob_for_diffusion").value("float")
+                self.imp.ignored.append("knob_for_diffusion")
         lv = self.level
         precond = self.imp.precond
         note = ""
@@ -321,7 +327,8 @@ class ImplicitICE:
 
     # -- delT ------------------------------------------------------------------------------------
     def stable_timestep_implicit(self, patch, matls, old_dw, new_dw):
-        """Convective CFL: delT = cfl dx / (|u| + max(knob, KNOB_FLOOR) c).
+        """Convective CFL: delT = cfl dx / (|u| + max(knob, KNOB_FLOOR) c), and the limit of the
+        (explicit) viscous and heat-conduction sources when the deck has them.
 
         The floor keeps a fluid at rest (or a patch it reaches only below round-off of p)
         from asking for an infinite step: at most 1 / KNOB_FLOOR acoustic CFLs per step.
@@ -333,4 +340,11 @@ class ImplicitICE:
                                            new_dw.get(I.sp_vol_CC, m, patch), *self._eos(m),
                                            self.dims.astype(np.int64), patch.level.dx, b.lo, b.hi,
                                            max(self.knob, KNOB_FLOOR), self.conservative_dt))
+            mat = self.materials[m]
+            nu = max(mat.viscosity, mat.conductivity / mat.cv)   # the explicit diffusion sources' limit
+            if nu > 0:
+                sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+                rho_min = 1.0 / float(new_dw.get(I.sp_vol_CC, m, patch)[sl].max())
+                inv = sum(1.0 / patch.level.dx[d] ** 2 for d in range(3) if self.dims[d])
+                dt = min(dt, 0.5 * max(rho_min, 1e-300) / (2.0 * nu * inv) / self.cfl)
         new_dw.put_reduction(L.delT, self.cfl * dt)

@@ -138,3 +138,9 @@ def test_unknown_preconditioner_is_an_input_error(tmp_path):
     (tmp_path / "u.ups").write_text(_uintah_deck("boomerang"))
     with pytest.raises(InputError, match="preconditioner 'boomerang' is not known"):
         Controller(str(tmp_path / "u.ups"), quiet=True, filebase=str(tmp_path / "u.uda"))
+
+
+def test_speed_of_sound_knob_outside_0_1_is_an_input_error(tmp_path):
+    (tmp_path / "k.ups").write_text(vortex_deck(8, implicit=True, knob=2.0))
+    with pytest.raises(InputError, match="knob_for_speedSound must be between 0 and 1"):
+        Controller(str(tmp_path / "k.ups"), quiet=True, filebase=str(tmp_path / "k.uda"))
