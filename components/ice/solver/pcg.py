@@ -212,8 +212,8 @@ class PCG:
         lo, hi = _box(patch)
         if self._rc_dw is not new_dw.dw:
             self._rc_dw = new_dw.dw
-            self._rc = np.zeros(self.nc)
-            new_dw.put_reduction(self.RC, self._rc)
+            new_dw.put_reduction(self.RC, np.zeros(self.nc))
+            self._rc = new_dw.dw.get_reduction(self.RC)        # accumulate into the stored array
         K.restrict_residual(parent_new.get(self.A, 0, patch), old_dw.get(self.R, 0, patch),
                             new_dw.get(self.ZS[-1], 0, patch), self._rc, np.array(patch.lo, dtype=np.int64) - lo,
                             self.dims, lo, hi)
