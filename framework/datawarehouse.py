@@ -37,6 +37,7 @@ class DataWarehouse:
         self.ghost_order: dict = {}     # (matl, patch, g) -> (ID order, owned mask) of owned+ghost
         self.ghost_select: dict = {}    # (matl, source patch, cell box) -> indices sent as ghosts
         self.ghost_seen: set = set()
+        self.ghost_candidates: dict = {}  # (matl, patch, g) -> particles near the faces and their cells
         self.halo_valid: dict = {}
 
     # -- grid and particle variables ---------------------------------------------

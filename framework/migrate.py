@@ -30,3 +30,4 @@ def migrate(dw, level, old_map, new_map, comm):
     dw.ghost_order.clear()
     dw.ghost_select.clear()
     dw.ghost_seen.clear()
+    dw.ghost_candidates.clear()

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..variables import VarType
+from .particle_kernels import gather_merged, near_faces
 
 
 class Comm:
@@ -177,7 +178,7 @@ class Exchange:
                 for q, shift, cbox in level.particle_ghost_sources(p, g):
                     rp, rq = rank_of[p.id], rank_of[q.id]
                     if rq == me:
-                        sel = self._select(dw, pos, m, q, cbox)
+                        sel = self._select(dw, pos, m, q, cbox, g)
                         data = {l.name: dw.get(l, m, q)[sel] for l in send_lbls}
                         if shift != (0, 0, 0) and pos.name in data:
                             data[pos.name] = data[pos.name] + np.asarray(shift) * level.dx
@@ -211,27 +212,37 @@ class Exchange:
                     dw.ghost_order[key] = (order, mask)
                 order = dw.ghost_order[key][0]
                 for l in dict.fromkeys(lbls):
+                    own = dw.get(l, m, p)
                     if not parts:
-                        a = dw.get(l, m, p)
+                        a = own
+                    elif order is None:
+                        a = np.concatenate([own] + [d[l.name] for d in parts])
                     else:
-                        a = np.concatenate([dw.get(l, m, p)] + [d[l.name] for d in parts])
-                        if order is not None:
-                            a = a[order]
+                        ghost = np.concatenate([d[l.name] for d in parts])
+                        a = np.empty((len(order),) + own.shape[1:], dtype=own.dtype)
+                        k = int(np.prod(own.shape[1:]))
+                        gather_merged(own.reshape(len(own), k), ghost.reshape(len(ghost), k), order,
+                                      a.reshape(len(order), k))
                     dw.ghost_particles[(l.name, m, p.id, g)] = a
 
     @staticmethod
-    def _select(dw, pos, m, q, cbox):
+    def _select(dw, pos, m, q, cbox, g):
+        """Indices of q's particles whose cell lies in cbox (a ghost region next to q's faces)."""
         key = (m, q.id, cbox)
         if key in dw.ghost_select:
             return dw.ghost_select[key]
-        x = dw.get(pos, m, q)
-        c = q.level.cells_of(x)
-        inside = np.ones(len(x), dtype=bool)
+        ckey = (m, q.id, g)
+        if ckey not in dw.ghost_candidates:
+            lv = q.level
+            dims = np.array([not c for c in lv.collapsed])
+            dw.ghost_candidates[ckey] = near_faces(dw.get(pos, m, q), lv.anchor, lv.dx, np.array(q.lo),
+                                                   np.array(q.hi), g, dims)
+        idx, c = dw.ghost_candidates[ckey]
+        inside = np.ones(len(idx), dtype=bool)
         for d in range(3):
             if q.level.collapsed[d]:
                 continue
             inside &= (c[:, d] >= cbox[0][d]) & (c[:, d] < cbox[1][d])
-        sel = np.nonzero(inside)[0]
+        sel = idx[inside]
         dw.ghost_select[key] = sel
         return sel
-

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..task import NEW, Task
+from .particle_kernels import leavers
 
 
 @dataclass
@@ -51,14 +52,24 @@ def relocate(ex, spec: RelocationSpec, dw):
             if len(x) == 0:
                 pieces.setdefault((m, p.id), []).append((p.id, None))
                 continue
-            x = level.wrap_positions(x.copy()) if any(level.periodic) else x
-            dest = level.patch_ids_of_cells(level.cells_of(np.nan_to_num(x, nan=-1e300)))
-            dest[np.isnan(x).any(axis=1)] = -1
-            lost += int(np.count_nonzero(dest < 0))
-            if np.all(dest == p.id):
-                data = {lf.name: (x if lp is spec.pos_pre else dw.get(lp, m, p)) for lp, lf in zip(pre, final)}
+            dims = np.array([not c for c in level.collapsed])
+            out = leavers(x, level.anchor, level.dx, np.array(p.lo), np.array(p.hi), dims)
+            if len(out) == 0:       # nobody left: hand the arrays on untouched
+                data = {lf.name: dw.get(lp, m, p) for lp, lf in zip(pre, final)}
                 pieces.setdefault((m, p.id), []).append((p.id, data))
                 continue
+            xo = x[out]
+            if any(level.periodic):
+                xo = level.wrap_positions(xo)
+            bad = np.isnan(xo).any(axis=1)
+            dest_out = level.patch_ids_of_cells(level.cells_of(np.where(bad[:, None], -1e300, xo)))
+            dest_out[bad] = -1
+            lost += int(np.count_nonzero(dest_out < 0))
+            dest = np.full(len(x), p.id, dtype=np.int64)
+            dest[out] = dest_out
+            if any(level.periodic):
+                x = x.copy()
+                x[out] = xo
             order = np.argsort(dest, kind="stable")
             ds = dest[order]
             bounds = np.searchsorted(ds, np.unique(ds[ds >= 0]), side="left")
