@@ -6,6 +6,10 @@ schedules one timestep as the tasks of paper 000 sec. 3.3, steps 2-12 (tasks.py)
 Physics a deck does not call for is not scheduled: the exchange tasks need two or
 more materials with a non-zero coefficient; the viscous and heat-conduction tasks a
 non-zero <dynamic_viscosity> / <thermal_conductivity>; gravity enters only when non-zero.
+The viscous task (ICE::viscousShearStress, kernels.viscous_stress_source) adds the
+divergence of the full Newtonian stress tau = mu (grad v + grad v^T) - 2/3 mu div v I,
+computed on the faces as Uintah's computeTauX/Y/Z, to the momentum; like Uintah's ICE it
+adds no viscous heating to the energy. Heat conduction: div(theta k grad T) (eq. 9).
 """
 from __future__ import annotations
 

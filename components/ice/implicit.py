@@ -341,7 +341,7 @@ class ImplicitICE:
                                            self.dims.astype(np.int64), patch.level.dx, b.lo, b.hi,
                                            max(self.knob, KNOB_FLOOR), self.conservative_dt))
             mat = self.materials[m]
-            nu = max(mat.viscosity, mat.conductivity / mat.cv)   # the explicit diffusion sources' limit
+            nu = max(4.0 / 3.0 * mat.viscosity, mat.conductivity / mat.cv)   # the explicit sources' limit
             if nu > 0:
                 sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
                 rho_min = 1.0 / float(new_dw.get(I.sp_vol_CC, m, patch)[sl].max())

@@ -442,6 +442,71 @@ def diffusion_source(q, vf, coef, out, dims, lo, hi, dx, dt, vol):
                     out[i, j, k, c] = dt * vol * s
 
 
+@njit(cache=True)
+def _dvdx(vel, c, e, i, j, k, d, dims, dx):
+    """d v_c / d x_e on the lower d-face of cell (i, j, k), second order.
+
+    Along the face normal (e == d) the difference of the two cells; across it the mean of
+    the two cells' central differences (uses the edge neighbours, one ghost layer).
+    """
+    if not dims[e]:
+        return 0.0
+    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    if e == d:
+        return (vel[i, j, k, c] - vel[i - di, j - dj, k - dk, c]) / dx[d]
+    ei, ej, ek = (1, 0, 0) if e == 0 else ((0, 1, 0) if e == 1 else (0, 0, 1))
+    return 0.25 * (vel[i + ei, j + ej, k + ek, c] - vel[i - ei, j - ej, k - ek, c]
+                   + vel[i - di + ei, j - dj + ej, k - dk + ek, c]
+                   - vel[i - di - ei, j - dj - ej, k - dk - ek, c]) / dx[e]
+
+
+@njit(cache=True)
+def _tau_face(vel, vf, mu, i, j, k, d, dims, dx, tau):
+    """tau[c] = tau_{d c} on the lower d-face of cell (i, j, k):
+    mu_f (dv_c/dx_d + dv_d/dx_c) - 2/3 mu_f div v delta_{cd}, mu_f the harmonic mean of theta mu."""
+    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    c0 = mu * vf[i, j, k]
+    c1 = mu * vf[i - di, j - dj, k - dk]
+    mf = 2.0 * c0 * c1 / (c0 + c1 + TINY)
+    div = 0.0
+    for e in range(3):
+        div += _dvdx(vel, e, e, i, j, k, d, dims, dx)
+    for c in range(3):
+        t = _dvdx(vel, c, d, i, j, k, d, dims, dx) + _dvdx(vel, d, c, i, j, k, d, dims, dx)
+        if c == d:
+            t -= 2.0 / 3.0 * div
+        tau[c] = mf * t
+
+
+@njit(cache=True)
+def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, dt, vol):
+    """Newtonian viscous momentum source out = dt V div(tau), tau = mu (grad v + grad v^T)
+    - 2/3 mu (div v) I evaluated on the cell faces (as Uintah's computeTauX/Y/Z); the face
+    stresses are differenced, so the momentum leaving a cell through a face enters its
+    neighbour (conservative). No bulk viscosity; no viscous heating (as Uintah's ICE).
+    """
+    tm = np.zeros(3)
+    tp = np.zeros(3)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                s0 = 0.0
+                s1 = 0.0
+                s2 = 0.0
+                for d in range(3):
+                    if not dims[d]:
+                        continue
+                    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+                    _tau_face(vel, vf, mu, i, j, k, d, dims, dx, tm)
+                    _tau_face(vel, vf, mu, i + di, j + dj, k + dk, d, dims, dx, tp)
+                    s0 += (tp[0] - tm[0]) / dx[d]
+                    s1 += (tp[1] - tm[1]) / dx[d]
+                    s2 += (tp[2] - tm[2]) / dx[d]
+                out[i, j, k, 0] = dt * vol * s0
+                out[i, j, k, 1] = dt * vol * s1
+                out[i, j, k, 2] = dt * vol * s2
+
+
 # -- optional conservative total energy (<conserveTotalEnergy>, a pysus extension) ---------------
 @njit(cache=True)
 def total_energy_lagrangian(rho, vel, temp, vf, one, px, py, pz, ux, uy, uz, shx, shy, shz, dims,

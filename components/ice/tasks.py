@@ -105,7 +105,8 @@ class IceTasks:
                                      new_dw.get(I.sp_vol_CC, m, patch), *self._eos(m), self.dims.astype(np.int64),
                                      patch.level.dx, b.lo, b.hi))
             mat = self.materials[m]
-            nu = max(mat.viscosity, mat.conductivity / mat.cv)       # diffusivity times density
+            # diffusivity times density; the normal stress diffuses with 4/3 mu
+            nu = max(4.0 / 3.0 * mat.viscosity, mat.conductivity / mat.cv)
             if nu > 0:
                 sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
                 rho_min = 1.0 / float(new_dw.get(I.sp_vol_CC, m, patch)[sl].max())     # rho_micro
@@ -201,8 +202,9 @@ class IceTasks:
         dt = old_dw.get_reduction(L.delT)
         for m in matls:
             out = new_dw.allocate(I.viscous_src_CC, m, patch)
-            K.diffusion_source(old_dw.get(I.vel_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
-                               self.materials[m].viscosity, out, self.dims, b.lo, b.hi, patch.level.dx, dt, b.vol)
+            K.viscous_stress_source(old_dw.get(I.vel_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
+                                    self.materials[m].viscosity, out, self.dims, b.lo, b.hi, patch.level.dx,
+                                    dt, b.vol)
 
     def conduction_source(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
