@@ -29,6 +29,7 @@ from components.ice import labels as I
 from components.mpm import labels as M
 from framework import labels as FL
 from framework.component import Component, register
+from components.models import read_models
 from framework.geometry import GeometryReader
 from framework.task import NEW, OLD, Task
 from framework.variables import Ghost
@@ -95,6 +96,7 @@ class MPMICE(MPMICETasks, Component):
         self.all_matls = list(range(n_all))
         self.materials = self.ice.materials
         self.dims_i = np.array(self.ice.dims, dtype=np.int64)
+        self.models = read_models(root, self)        # <Models> (components/models), else None
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
 
     def material_names(self):
@@ -117,6 +119,8 @@ class MPMICE(MPMICETasks, Component):
                        .requires(NEW, M.WaveSpeed).computes(FL.delT))
 
     def schedule_time_advance(self, level, sched):
+        if self.models is not None:                 # reaction tasks, after the tasks they follow
+            sched = self.models.hook(sched)
         rec = _Recorder(sched)
         self.mpm.schedule_time_advance(level, rec)
         names = [t.name for t in rec.tasks]

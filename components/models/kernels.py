@@ -1,0 +1,138 @@
+"""Numba kernels of the reaction models (paper 001 sec. 3, eqs. 5-9).
+
+Index conventions as in components/mpmice/kernels.py: `cc_low` / `node_low` are the
+global indices of entry [0, 0, 0] of a patch's CC / NC arrays; a collapsed direction
+(dims[d] == False) has one node layer (index 0).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True)
+def bin_particles(px, pmass, pvel, anchor, dx, cc_low, shape, cell, mass_c, mom_c):
+    """The cell (local flat index) of every particle, and per cell the particles' mass and
+    momentum (summed in particle order, so the result does not depend on the patch layout)."""
+    s1, s2 = shape[1], shape[2]
+    for p in range(px.shape[0]):
+        i = int(np.floor((px[p, 0] - anchor[0]) / dx[0])) - cc_low[0]
+        j = int(np.floor((px[p, 1] - anchor[1]) / dx[1])) - cc_low[1]
+        k = int(np.floor((px[p, 2] - anchor[2]) / dx[2])) - cc_low[2]
+        i = min(max(i, 0), shape[0] - 1)
+        j = min(max(j, 0), s1 - 1)
+        k = min(max(k, 0), s2 - 1)
+        c = (i * s1 + j) * s2 + k
+        cell[p] = c
+        mass_c[c] += pmass[p]
+        for d in range(3):
+            mom_c[c, d] += pmass[p] * pvel[p, d]
+
+
+@njit(cache=True)
+def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, temps, vfs, press, mass_c,
+               T_thresh, p_thresh, coeff, p_ref, dt, burned, area):
+    """Simple_Burn (001 eqs. 5-6): in a surface cell of the reactant whose hottest material
+    (volume fraction > 0.2) is above T_thresh, and where p > p_thresh,
+    m_burn = dt A K (p / p_ref)^0.778, at most the reactant's particle mass in the cell.
+
+    Surface cell: (max - min) / max of the reactant's node masses around the cell in
+    (0.4, 1). A: the area of a plane with the normal grad(m) through the cell,
+    V / sum_d |n_d| dx_d (dx_d for a face-aligned surface)."""
+    s1, s2 = burned.shape[1], burned.shape[2]
+    vol = dx[0] * dx[1] * dx[2]
+    nm = len(temps)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                gi, gj, gk = i + cc_low[0], j + cc_low[1], k + cc_low[2]
+                mx = 1e-100
+                mn = 1e100
+                g0 = 0.0
+                g1 = 0.0
+                g2 = 0.0
+                for a in range(2 if dims[0] else 1):
+                    for b in range(2 if dims[1] else 1):
+                        for c in range(2 if dims[2] else 1):
+                            x = gi + a - node_low[0] if dims[0] else 0
+                            y = gj + b - node_low[1] if dims[1] else 0
+                            z = gk + c - node_low[2] if dims[2] else 0
+                            m = gmass[x, y, z]
+                            mx = max(mx, m)
+                            mn = min(mn, m)
+                            g0 += m * (2 * a - 1) if dims[0] else 0.0
+                            g1 += m * (2 * b - 1) if dims[1] else 0.0
+                            g2 += m * (2 * c - 1) if dims[2] else 0.0
+                r = (mx - mn) / mx
+                if not (r > 0.4 and r < 1.0 and mx > 1e-12):
+                    continue
+                n0, n1, n2 = abs(g0) / dx[0], abs(g1) / dx[1], abs(g2) / dx[2]
+                nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+                if nn <= 0.0:
+                    continue
+                A = vol / ((n0 * dx[0] + n1 * dx[1] + n2 * dx[2]) / nn)
+                area[i, j, k] = A
+                T = 0.0
+                for m in range(nm):
+                    if vfs[m][i, j, k] > 0.2 and temps[m][i, j, k] > T:
+                        T = temps[m][i, j, k]
+                p = press[i, j, k]
+                if T > T_thresh and p > p_thresh:
+                    mb = dt * A * coeff * (p / p_ref) ** 0.778
+                    burned[i, j, k] = min(mb, mass_c[(i * s1 + j) * s2 + k])
+
+
+@njit(cache=True)
+def particle_fractions(cell, pmass, pvel, burned_flat, mass_c, tiny_mass, frac, gain_m, gain_mom):
+    """The fraction of its mass each particle gives to the product: burned / mass in its cell;
+    a particle left with less than tiny_mass gives all of it (and is deleted). gain_m and
+    gain_mom (per cell) collect exactly what the particles give, in particle order."""
+    for p in range(cell.shape[0]):
+        c = cell[p]
+        b = burned_flat[c]
+        if b <= 0.0:
+            frac[p] = 0.0
+            continue
+        f = b / mass_c[c]
+        if f >= 1.0 or pmass[p] * (1.0 - f) < tiny_mass:
+            f = 1.0
+        frac[p] = f
+        dm = f * pmass[p]
+        gain_m[c] += dm
+        for d in range(3):
+            gain_mom[c, d] += dm * pvel[p, d]
+
+
+@njit(cache=True)
+def burn_particles(frac, pmass, pvol, px):
+    """The particles' share of the burn: mass and volume scaled by (1 - f); f = 1: deleted
+    (position NaN, which relocation removes)."""
+    for p in range(frac.shape[0]):
+        f = frac[p]
+        if f <= 0.0:
+            continue
+        if f >= 1.0:
+            pmass[p] = 0.0
+            pvol[p] = 0.0
+            for d in range(3):
+                px[p, d] = np.nan
+        else:
+            pmass[p] *= 1.0 - f
+            pvol[p] *= 1.0 - f
+
+
+@njit(cache=True)
+def pressure_source(mass_src, v_prod, v_react, vfs, sps, css, lo, hi, vol, press):
+    """001 eq. 9's reaction term: p += sum_m (m_src,m v_m / V) / sum_m theta_m kappa_m,
+    m_src = +burned for the product, -burned for the reactant, kappa = v / c^2."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                ms = mass_src[i, j, k]
+                if ms == 0.0:
+                    continue
+                ks = 0.0
+                for m in range(len(vfs)):
+                    c = css[m][i, j, k]
+                    ks += vfs[m][i, j, k] * sps[m][i, j, k] / (c * c)
+                press[i, j, k] += ms * (v_prod[i, j, k] - v_react[i, j, k]) / vol / ks

@@ -1,0 +1,11 @@
+"""Labels of the reaction models (Uintah's ICELabel modelMass_src ... and Simple_Burn's own)."""
+from framework import labels as L
+from framework.variables import VarType
+
+CC, P = VarType.CC, VarType.PARTICLE
+
+modelMass_src = L.create("modelMass_src", CC)           # product: mass gained this step (kg per cell)
+modelMom_src = L.create("modelMom_src", CC, (3,))       # product: momentum gained
+modelEng_src = L.create("modelEng_src", CC)             # product: internal energy gained (J)
+burnArea = L.create("Simple_Burn::onSurface", CC)       # reactant: burning-surface area per cell (m^2)
+pBurnFraction = L.create("p.burnFraction", P)           # reactant: fraction of its mass a particle gives

@@ -1,0 +1,172 @@
+"""Uintah's Simple_Burn (paper 001 sec. 3): a solid reactant's surface burns into a product gas.
+
+Burn rate (per unit surface, eq. 5): m_dot'' = K (p / p_ref)^0.778 where the reactant's
+surface cell is hotter than ThresholdTemp and p > ThresholdPressure. The burned mass
+leaves the reactant's PARTICLES in that cell (each gives the same fraction of its mass;
+one left with next to nothing gives all and is deleted: p.x+ = NaN) and enters the
+product gas in the same cell with the particles' momentum and internal energy
+cv_s T_s plus the heat of reaction (Enthalpy), so the sums of mass, momentum and energy
+over all materials are unchanged (mass and momentum to round-off; the particle keeps its
+end-of-step velocity, so the momentum handed over is that at the start of the step).
+
+Tasks, each added right after the MPMICE task named (models/__init__.py):
+  MPMICE::computeEquilibrationPressure -> Simple_Burn::computeModelSources
+        surface cells from the reactant's node masses, burned mass per cell, each
+        particle's fraction (p.burnFraction) and the product's mass/momentum/energy sources
+  ICE::computeDelPressAndUpdatePressCC -> Simple_Burn::addPressureSource
+        p += sum_m m_src,m v_m / (V sum_m theta_m kappa_m) (001 eq. 9, Uintah's delP_MassX)
+  ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
+        the product's m^L, (m u)^L, (m e)^L += sources (eqs. 7-8); its Lagrangian volume
+        then holds the new mass at the product's specific volume (ICE's eq. 40 uses m^L)
+  MPM::computeStressTensor -> Simple_Burn::burnParticles
+        p.mass+, p.volume+ *= 1 - f; f = 1: p.x+ = NaN (removed at relocation)
+Uintah's Simple_Burn moves the volume burned * v_solid to the gas; here the gas's new
+volume is burned * v_gas, the volume the pressure source above assumes.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from components.ice import labels as I
+from components.mpm import labels as M
+from framework import labels as FL
+from framework.problemspec import Param
+from framework.task import NEW, OLD, Task
+from framework.variables import Ghost, VarType
+
+from . import kernels as K
+from . import labels as ML
+
+CC, NC = VarType.CC, VarType.NC
+TABLE = {
+    "ThresholdTemp": Param("float", doc="K"),
+    "ThresholdPressure": Param("float", doc="Pa"),
+    "Enthalpy": Param("float", doc="heat of reaction, J/kg"),
+    "BurnCoeff": Param("float", doc="K of eq. 5, kg/(m^2 s)"),
+    "refPressure": Param("float", doc="Pa"),
+}
+
+
+class SimpleBurn:
+    def __init__(self, node, comp, root):
+        self.comp = comp
+        sb = node.child("Simple_Burn", required=True)
+        names = comp.material_names()
+        self.react = _material(sb, "fromMaterial", names)
+        self.prod = _material(sb, "toMaterial", names)
+        if self.react not in comp.mpm_matls:
+            raise sb.child("fromMaterial").error("<fromMaterial> must be an MPM material (the solid reactant)")
+        if self.prod in comp.mpm_matls:
+            raise sb.child("toMaterial").error("<toMaterial> must be an ICE material (the product gas)")
+        p = sb.read(TABLE)
+        mat = root.child("MaterialProperties").child("MPM").children("material")[self.react]
+        self.cv_react = mat.get("specific_heat", "float", 0.0)
+        if self.cv_react <= 0:
+            raise mat.error("Simple_Burn's reactant needs <specific_heat> > 0 (the energy its burned mass carries)")
+        self.T_thresh, self.p_thresh = p["ThresholdTemp"], p["ThresholdPressure"]
+        self.enthalpy, self.coeff, self.p_ref = p["Enthalpy"], p["BurnCoeff"], p["refPressure"]
+        if self.p_ref <= 0:
+            raise sb.child("refPressure").error("<refPressure> must be positive")
+        if self.coeff < 0:
+            raise sb.child("BurnCoeff").error("<BurnCoeff> must be >= 0")
+
+    # -- scheduling ----------------------------------------------------------------------------
+    def tasks_after(self):
+        return [("MPMICE::computeEquilibrationPressure", self._sources_task),
+                ("ICE::computeDelPressAndUpdatePressCC", self._pressure_task),
+                ("ICE::computeLagrangianValues", self._lagrangian_task),
+                ("MPM::computeStressTensor", self._particles_task)]
+
+    def _sources_task(self):
+        c, r, g = self.comp, [self.react], [self.prod]
+        t = Task("Simple_Burn::computeModelSources", self.compute_sources, [self.react, self.prod]) \
+            .requires(OLD, FL.delT).requires(OLD, M.pX, matls=r).requires(OLD, M.pMass, matls=r) \
+            .requires(OLD, M.pVelocity, matls=r).requires(NEW, M.gMass, Ghost.AROUND_CELLS, 1, matls=r) \
+            .requires(NEW, I.press_equil_CC, matls=[0]).requires(NEW, I.vol_frac_CC, matls=c.all_matls) \
+            .requires(NEW, I.temp_CC, matls=c.mpm_matls).requires(OLD, I.temp_CC, matls=c.ice.ice_matls) \
+            .computes(ML.pBurnFraction, matls=r).computes(ML.burnArea, matls=r) \
+            .computes(ML.modelMass_src, matls=g).computes(ML.modelMom_src, matls=g) \
+            .computes(ML.modelEng_src, matls=g)
+        return t
+
+    def _pressure_task(self):
+        c = self.comp
+        return Task("Simple_Burn::addPressureSource", self.pressure_source, c.all_matls) \
+            .requires(NEW, ML.modelMass_src, matls=[self.prod]).requires(NEW, I.vol_frac_CC) \
+            .requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC).modifies(I.press_CC, matls=[0])
+
+    def _lagrangian_task(self):
+        g = [self.prod]
+        return Task("Simple_Burn::addLagrangianSources", self.lagrangian_sources, g) \
+            .requires(NEW, ML.modelMass_src).requires(NEW, ML.modelMom_src).requires(NEW, ML.modelEng_src) \
+            .modifies(I.mass_L_CC).modifies(I.mom_L_CC).modifies(I.int_eng_L_CC)
+
+    def _particles_task(self):
+        return Task("Simple_Burn::burnParticles", self.burn_particles, [self.react]) \
+            .requires(NEW, ML.pBurnFraction).modifies(M.pMassPre).modifies(M.pVolumePre).modifies(M.pXpre)
+
+    # -- task bodies -----------------------------------------------------------------------------
+    def compute_sources(self, patch, matls, old_dw, new_dw):
+        c, lv = self.comp, patch.level
+        b = c.ice.boxes(patch)
+        dt = old_dw.get_reduction(FL.delT)
+        r, g = self.react, self.prod
+        shape = patch.alloc_shape(CC)
+        px, pm, pv = old_dw.get(M.pX, r, patch), old_dw.get(M.pMass, r, patch), old_dw.get(M.pVelocity, r, patch)
+        n = len(px)
+        cc_low = np.array(patch.low_index(CC), np.int64)
+        ncell = int(np.prod(shape))
+        cell = np.empty(n, np.int64)
+        mass_c, mom_c = np.zeros(ncell), np.zeros((ncell, 3))
+        K.bin_particles(px, pm, pv, lv.anchor, lv.dx, cc_low, np.array(shape, np.int64), cell, mass_c, mom_c)
+        temps = tuple(new_dw.get(I.temp_CC, m, patch) if m in c.mpm_matls else old_dw.get(I.temp_CC, m, patch)
+                      for m in c.all_matls)
+        vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in c.all_matls)
+        burned = np.zeros(shape)
+        area = new_dw.allocate(ML.burnArea, r, patch)
+        K.burn_cells(new_dw.get(M.gMass, r, patch), np.array(patch.low_index(NC), np.int64), cc_low, b.lo, b.hi,
+                     c.dims_i, lv.dx, temps, vfs, new_dw.get(I.press_equil_CC, 0, patch), mass_c,
+                     self.T_thresh, self.p_thresh, self.coeff, self.p_ref, dt, burned, area)
+        frac = np.zeros(n)
+        gm, gmom = np.zeros(ncell), np.zeros((ncell, 3))
+        tiny = 1e-9 * c.mpm.materials[r].density * b.vol
+        K.particle_fractions(cell, pm, pv, burned.reshape(-1), mass_c, tiny, frac, gm, gmom)
+        new_dw.put(ML.pBurnFraction, r, patch, frac)
+        ms = new_dw.allocate(ML.modelMass_src, g, patch)
+        ms[...] = gm.reshape(shape)
+        new_dw.allocate(ML.modelMom_src, g, patch)[...] = gmom.reshape(shape + (3,))
+        e = new_dw.allocate(ML.modelEng_src, g, patch)
+        e[...] = ms * (self.cv_react * temps[r] + self.enthalpy)
+
+    def pressure_source(self, patch, matls, old_dw, new_dw):
+        c = self.comp
+        b = c.ice.boxes(patch)
+        get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
+        press = new_dw.get_modifiable(I.press_CC, 0, patch)
+        K.pressure_source(new_dw.get(ML.modelMass_src, self.prod, patch), new_dw.get(I.sp_vol_CC, self.prod, patch),
+                          new_dw.get(I.sp_vol_CC, self.react, patch), get(I.vol_frac_CC), get(I.sp_vol_CC),
+                          get(I.speedSound_CC), b.lo, b.hi, b.vol, press)
+        c.ice.bcs.scalar(patch, press, "Pressure", 0, b)
+
+    def lagrangian_sources(self, patch, matls, old_dw, new_dw):
+        b = self.comp.ice.boxes(patch)
+        sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+        for m in matls:
+            new_dw.get_modifiable(I.mass_L_CC, m, patch)[sl] += new_dw.get(ML.modelMass_src, m, patch)[sl]
+            new_dw.get_modifiable(I.mom_L_CC, m, patch)[sl] += new_dw.get(ML.modelMom_src, m, patch)[sl]
+            new_dw.get_modifiable(I.int_eng_L_CC, m, patch)[sl] += new_dw.get(ML.modelEng_src, m, patch)[sl]
+
+    def burn_particles(self, patch, matls, old_dw, new_dw):
+        for m in matls:
+            K.burn_particles(new_dw.get(ML.pBurnFraction, m, patch), new_dw.get_modifiable(M.pMassPre, m, patch),
+                             new_dw.get_modifiable(M.pVolumePre, m, patch), new_dw.get_modifiable(M.pXpre, m, patch))
+
+
+def _material(node, tag, names):
+    """A material named by its name attribute (as Uintah) or by its global index."""
+    raw = node.get(tag, "str")
+    if raw in names:
+        return names.index(raw)
+    if raw.isdigit() and int(raw) < len(names):
+        return int(raw)
+    raise node.child(tag).error(f"<{tag}> '{raw}' is not a material; accepted: {', '.join(names)}")

@@ -1,0 +1,107 @@
+"""Simple_Burn (components/models): a hot explosive slab burns into its product gas (1D).
+
+tests/models/burn1d.ups: 8 particles in cells 18-21 of 40, 600 K > ThresholdTemp, in
+product gas between closed ends; 160 steps. Measured: total mass (particles + gas)
+0.11283167663233 kg constant to 1e-15 relative at every output while 71 % of the solid
+burns; the outer two slab cells burn out (8 -> 4 particles, deleted at relocation);
+gas in the slab's cells 5.9e-13 -> 870 kg/m^3; pressure 1 atm -> 3.5e8 Pa.
+"""
+import os
+
+import numpy as np
+import pytest
+
+HERE = os.path.dirname(__file__)
+DECK = os.path.join(HERE, "burn1d.ups")
+V = 0.025 ** 3
+
+
+@pytest.fixture(scope="module")
+def archive(tmp_path_factory):
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    c = Controller(DECK, quiet=True, filebase=str(tmp_path_factory.mktemp("burn") / "burn1d.uda"))
+    c.run()
+    return DataArchive(c.archiver.dir)
+
+
+def _masses(a, i):
+    solid = float(a.particles(0, i)["p.mass"].sum())
+    rho, _ = a.read("rho_CC", 1, i)
+    return solid, float(rho.sum() * V)
+
+
+def test_total_mass_conserved_while_solid_burns(archive):
+    s0, g0 = _masses(archive, 0)
+    for i in range(1, len(archive.times)):
+        s, g = _masses(archive, i)
+        assert abs((s + g) - (s0 + g0)) < 1e-13 * (s0 + g0)
+    assert s < 0.5 * s0 and g > 100 * g0
+
+
+def test_burned_particles_deleted(archive):
+    n = [len(archive.particles(0, i)["p.mass"]) for i in range(len(archive.times))]
+    assert n[0] == 8 and n[-1] == 4
+    assert np.all(np.isfinite(archive.particles(0, -1)["p.x"]))
+
+
+def test_gas_appears_where_there_was_none(archive):
+    rho0 = archive.read("rho_CC", 1, 0)[0].ravel()
+    rho = archive.read("rho_CC", 1, -1)[0].ravel()
+    inside = slice(19, 21)           # cells 19, 20: no gas at the start
+    assert rho0[inside].max() < 1e-9
+    assert rho[inside].min() > 100.0
+
+
+def test_pressurizes(archive):
+    p0 = archive.read("press_CC", 0, 0)[0]
+    p = archive.read("press_CC", 0, -1)[0]
+    assert np.allclose(p0, 101325.0) and p.max() > 1e8 and np.all(np.isfinite(p))
+
+
+def test_particle_kernels_conserve_mass():
+    from components.models import kernels as K
+    cell = np.array([0, 0, 1, 1, 1])
+    pm = np.array([1.0, 3.0, 2.0, 2.0, 2.0])
+    pv = np.ones((5, 3))
+    mass_c = np.array([4.0, 6.0])
+    burned = np.array([1.0, 6.0])
+    frac = np.zeros(5)
+    gm, gmom = np.zeros(2), np.zeros((2, 3))
+    K.particle_fractions(cell, pm, pv, burned, mass_c, 1e-12, frac, gm, gmom)
+    assert np.allclose(frac, [0.25, 0.25, 1, 1, 1]) and np.allclose(gm, burned)
+    vol, x = pm / 1000, np.zeros((5, 3))
+    m = pm.copy()
+    K.burn_particles(frac, m, vol, x)
+    assert abs(m.sum() + gm.sum() - pm.sum()) < 1e-15 and np.isnan(x[2:]).all() and np.isfinite(x[:2]).all()
+
+
+def test_no_models_no_burn_tasks():
+    with open(DECK) as f:
+        text = f.read()
+    start, end = text.index("<Models>"), text.index("</Models>") + len("</Models>")
+    assert "Simple_Burn" not in _task_names(text[:start] + text[end:])
+    assert "Simple_Burn::computeModelSources" in _task_names(text)
+
+
+def _task_names(text):
+    import tempfile
+
+    from framework.controller import Controller
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "deck.ups")
+        with open(path, "w") as f:
+            f.write(text)
+        c = Controller(path, quiet=True, filebase=os.path.join(d, "x.uda"))
+        return " ".join(t.name for t in c.step_graph.tasks)
+
+
+def test_bad_material_is_an_input_error(tmp_path):
+    from framework.controller import Controller
+    from framework.problemspec import InputError
+    with open(DECK) as f:
+        text = f.read().replace("<toMaterial> product </toMaterial>", "<toMaterial> gas </toMaterial>")
+    path = tmp_path / "bad.ups"
+    path.write_text(text)
+    with pytest.raises(InputError, match="toMaterial"):
+        Controller(str(path), quiet=True, filebase=str(tmp_path / "bad.uda")).run()
