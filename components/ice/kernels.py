@@ -443,68 +443,64 @@ def diffusion_source(q, vf, coef, out, dims, lo, hi, dx, dt, vol):
 
 
 @njit(cache=True)
-def _dvdx(vel, c, e, i, j, k, d, dims, dx):
-    """d v_c / d x_e on the lower d-face of cell (i, j, k), second order.
-
-    Along the face normal (e == d) the difference of the two cells; across it the mean of
-    the two cells' central differences (uses the edge neighbours, one ghost layer).
-    """
-    if not dims[e]:
-        return 0.0
-    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
-    if e == d:
-        return (vel[i, j, k, c] - vel[i - di, j - dj, k - dk, c]) / dx[d]
-    ei, ej, ek = (1, 0, 0) if e == 0 else ((0, 1, 0) if e == 1 else (0, 0, 1))
-    return 0.25 * (vel[i + ei, j + ej, k + ek, c] - vel[i - ei, j - ej, k - ek, c]
-                   + vel[i - di + ei, j - dj + ej, k - dk + ek, c]
-                   - vel[i - di - ei, j - dj - ej, k - dk - ek, c]) / dx[e]
-
-
-@njit(cache=True)
-def _tau_face(vel, vf, mu, i, j, k, d, dims, dx, tau):
-    """tau[c] = tau_{d c} on the lower d-face of cell (i, j, k):
-    mu_f (dv_c/dx_d + dv_d/dx_c) - 2/3 mu_f div v delta_{cd}, mu_f the harmonic mean of theta mu."""
-    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
-    c0 = mu * vf[i, j, k]
-    c1 = mu * vf[i - di, j - dj, k - dk]
-    mf = 2.0 * c0 * c1 / (c0 + c1 + TINY)
-    div = 0.0
-    for e in range(3):
-        div += _dvdx(vel, e, e, i, j, k, d, dims, dx)
-    for c in range(3):
-        t = _dvdx(vel, c, d, i, j, k, d, dims, dx) + _dvdx(vel, d, c, i, j, k, d, dims, dx)
-        if c == d:
-            t -= 2.0 / 3.0 * div
-        tau[c] = mf * t
-
-
-@njit(cache=True)
 def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, dt, vol):
     """Newtonian viscous momentum source out = dt V div(tau), tau = mu (grad v + grad v^T)
-    - 2/3 mu (div v) I evaluated on the cell faces (as Uintah's computeTauX/Y/Z); the face
-    stresses are differenced, so the momentum leaving a cell through a face enters its
-    neighbour (conservative). No bulk viscosity; no viscous heating (as Uintah's ICE).
+    - 2/3 mu (div v) I evaluated on the cell faces (as Uintah's computeTauX/Y/Z).
+
+    On a d-face between cells L and R: dv_c/dx_d = (v_R - v_L) / dx_d; across the face
+    (e != d) the mean of the two cells' central differences (edge neighbours: one ghost
+    layer). Face viscosity: harmonic mean of theta mu of L and R. Each face stress is
+    computed once and leaves L as it enters R (conservative). No bulk viscosity; no
+    viscous heating (Uintah's ICE has none either).
     """
-    tm = np.zeros(3)
-    tp = np.zeros(3)
+    unit = np.zeros((3, 3), dtype=np.int64)
+    for d in range(3):
+        unit[d, d] = 1
+    g = np.zeros((3, 3))                       # g[c, e] = dv_c / dx_e on the face
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                s0 = 0.0
-                s1 = 0.0
-                s2 = 0.0
-                for d in range(3):
-                    if not dims[d]:
-                        continue
-                    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
-                    _tau_face(vel, vf, mu, i, j, k, d, dims, dx, tm)
-                    _tau_face(vel, vf, mu, i + di, j + dj, k + dk, d, dims, dx, tp)
-                    s0 += (tp[0] - tm[0]) / dx[d]
-                    s1 += (tp[1] - tm[1]) / dx[d]
-                    s2 += (tp[2] - tm[2]) / dx[d]
-                out[i, j, k, 0] = dt * vol * s0
-                out[i, j, k, 1] = dt * vol * s1
-                out[i, j, k, 2] = dt * vol * s2
+                out[i, j, k, 0] = 0.0
+                out[i, j, k, 1] = 0.0
+                out[i, j, k, 2] = 0.0
+    for d in range(3):
+        if not dims[d]:
+            continue
+        di, dj, dk = unit[d, 0], unit[d, 1], unit[d, 2]
+        f = dt * vol / dx[d]
+        for i in range(lo[0], hi[0] + di):
+            for j in range(lo[1], hi[1] + dj):
+                for k in range(lo[2], hi[2] + dk):
+                    il, jl, kl = i - di, j - dj, k - dk          # the cell below the face
+                    c0 = mu * vf[i, j, k]
+                    c1 = mu * vf[il, jl, kl]
+                    mf = 2.0 * c0 * c1 / (c0 + c1 + TINY)
+                    for e in range(3):
+                        if not dims[e]:
+                            for c in range(3):
+                                g[c, e] = 0.0
+                        elif e == d:
+                            for c in range(3):
+                                g[c, e] = (vel[i, j, k, c] - vel[il, jl, kl, c]) / dx[d]
+                        else:
+                            ei, ej, ek = unit[e, 0], unit[e, 1], unit[e, 2]
+                            q = 0.25 / dx[e]
+                            for c in range(3):
+                                g[c, e] = q * (vel[i + ei, j + ej, k + ek, c] - vel[i - ei, j - ej, k - ek, c]
+                                               + vel[il + ei, jl + ej, kl + ek, c]
+                                               - vel[il - ei, jl - ej, kl - ek, c])
+                    div = g[0, 0] + g[1, 1] + g[2, 2]
+                    up = i < hi[0] and j < hi[1] and k < hi[2]          # R is interior
+                    dn = il >= lo[0] and jl >= lo[1] and kl >= lo[2]    # L is interior
+                    for c in range(3):
+                        t = mf * (g[c, d] + g[d, c])
+                        if c == d:
+                            t -= 2.0 / 3.0 * mf * div
+                        t *= f
+                        if up:
+                            out[i, j, k, c] -= t
+                        if dn:
+                            out[il, jl, kl, c] += t
 
 
 # -- optional conservative total energy (<conserveTotalEnergy>, a pysus extension) ---------------
