@@ -38,7 +38,7 @@ mass_L_CC = L.create("mass_L_CC", CC)
 mom_L_CC = L.create("mom_L_CC", CC, (3,))
 int_eng_L_CC = L.create("int_eng_L_CC", CC)
 mom_L_ME_CC = L.create("mom_L_ME_CC", CC, (3,))
-int_eng_L_ME_CC = L.create("int_eng_L_ME_CC", CC)
+int_eng_L_ME_CC = L.create("eng_L_ME_CC", CC)       # Uintah's name
 sp_vol_L_CC = L.create("sp_vol_L_CC", CC)       # material volume m*v, advected
 # <conserveTotalEnergy> (pysus extension): Lagrangian total energy m (e + |u|^2/2)
 tot_eng_L_CC = L.create("tot_eng_L_CC", CC)

@@ -98,6 +98,7 @@ class MPMICE(MPMICETasks, Component):
         self.dims_i = np.array(self.ice.dims, dtype=np.int64)
         self.models = read_models(root, self)        # <Models> (components/models), else None
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
+        self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
 
     def material_names(self):
         return self.ice.material_names()
@@ -214,7 +215,7 @@ class MPMICE(MPMICETasks, Component):
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
         sched.add_task(t)
 
-        t = Task("ICE::computeLagrangianValues", ice.lagrangian_values, fl) \
+        t = Task("ICE::computeLagrangianValues", self.lagrangian_values_fluid, fl) \
             .requires(OLD, FL.delT).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(OLD, I.temp_CC) \
             .requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
             .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
@@ -223,6 +224,8 @@ class MPMICE(MPMICETasks, Component):
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
         if ice.viscous:
             t.requires(NEW, I.viscous_src_CC)
+        if self.add_heat is not None:
+            t.requires(OLD, FL.simTime)
         sched.add_task(t)
 
         sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", ice.exchange_cc, alls)
@@ -237,6 +240,8 @@ class MPMICE(MPMICETasks, Component):
         self._start_state(t, (I.temp_CC,), 0)
         sched.add_task(t)
 
+        self._schedule_diagnostics(sched)
+
         if not self.rigid:
             sched.add_task(Task("MPMICE::computeCCVelAndTempRates", self.velocity_rates, ms)
                            .requires(OLD, FL.delT).requires(NEW, I.mom_L_ME_CC).requires(NEW, MI.mom_mpm_CC)
@@ -244,6 +249,21 @@ class MPMICE(MPMICETasks, Component):
             sched.add_task(Task("MPMICE::interpolateCCToNC", self.interpolate_cc_to_nc, ms)
                            .requires(OLD, FL.delT).requires(NEW, MI.dVdt_CC, G, 1)
                            .modifies(M.gVelocityStar).modifies(M.gAcceleration))
+
+    def _schedule_diagnostics(self, sched):
+        """Uintah's source and rate labels (mom_source_CC, intE_source_CC, Tdot) for output only:
+        nothing downstream reads them, so the scheduler drops these tasks unless a <save> names them."""
+        alls = self.all_matls
+        t = Task("ICE::accumulateSourceSinks", self.source_sinks, alls) \
+            .requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC).requires(NEW, I.int_eng_L_CC) \
+            .computes(MI.mom_source_CC).computes(MI.intE_source_CC)
+        self._start_state(t, (I.vel_CC, I.temp_CC), 0)
+        sched.add_task(t)
+        t = Task("MPMICE::computeTdot", self.temperature_rate, alls) \
+            .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.int_eng_L_ME_CC) \
+            .computes(MI.Tdot)
+        self._start_state(t, (I.temp_CC,), 0)
+        sched.add_task(t)
 
     def _schedule_advection(self, sched):
         """Step 12 for the fluids, and the fluids' Mach number."""
@@ -268,6 +288,40 @@ class MPMICE(MPMICETasks, Component):
         return self.names_used == "rmpmice"
 
     names_used = "mpmice"
+
+
+def _read_add_heat(node, ice_matls):
+    """<ADD_HEAT> (Uintah's ICE): add_heat_coeff[i] W/kg heats material add_heat_matls[i]
+    (a global index: MPM materials first) in every cell where its volume fraction exceeds
+    0.001, for add_heat_t_start <= t <= add_heat_t_final. None when the deck has no <ADD_HEAT>."""
+    if node is None:
+        return None
+    node.mark_used(recursive=False)
+
+    def _list(tag, conv):
+        c = node.child(tag, required=True)
+        c.mark_used(recursive=False)
+        txt = c.text().strip()
+        try:
+            if not (txt.startswith("[") and txt.endswith("]")):
+                raise ValueError(txt)
+            vals = [conv(v) for v in txt[1:-1].replace(",", " ").split()]
+        except ValueError:
+            raise c.error(f"'{txt}' is not a list [a, b, ...] of {conv.__name__} values") from None
+        if not vals:
+            raise c.error("empty list")
+        return c, vals
+
+    mnode, matls = _list("add_heat_matls", int)
+    cnode, coeffs = _list("add_heat_coeff", float)
+    if len(matls) != len(coeffs):
+        raise cnode.error(f"{len(coeffs)} coefficients for {len(matls)} materials in <add_heat_matls>")
+    for m in matls:
+        if m not in ice_matls:
+            raise mnode.error(f"material {m} is not an ICE material; accepted: {ice_matls} "
+                              "(global indices, MPM materials first)")
+    t0, t1 = node.get("add_heat_t_start", "float"), node.get("add_heat_t_final", "float")
+    return dict(zip(matls, coeffs)), t0, t1
 
 
 def _bulk(mat):

@@ -15,3 +15,8 @@ sp_vol_mpm_CC = L.create("sp_vol_mpm_CC", CC)      # step 1: solid volume / soli
 mom_mpm_CC = L.create("mom_MPM_CC", CC, (3,))      # step 8: sum_w m_i v*_i (without the pressure source)
 dVdt_CC = L.create("dVdt_CC", CC, (3,))           # step 10 -> 13: solid velocity rate from exchange and grad p
 pPressure = L.create("p.pressure", P)             # step 7: p - p_ref at the particles (mean pressure)
+
+# Uintah's diagnostic labels (ICELabel / MPMICELabel), computed only when a <save> names them
+mom_source_CC = L.create("mom_source_CC", CC, (3,))   # steps 8-9: momentum sources (grad p, viscous) dt
+intE_source_CC = L.create("intE_source_CC", CC)       # steps 8-9: energy sources (p dV work, ADD_HEAT) dt
+Tdot = L.create("Tdot", CC)                           # step 10: (T after exchange - T start of step) / dt

@@ -57,6 +57,21 @@ class _Capture:
         self.value = value
 
 
+class _KeepAllocated:
+    """A new warehouse that remembers the arrays a task body allocates (to add to them after)."""
+
+    def __init__(self, dw):
+        self.dw, self.arrays = dw, {}
+
+    def __getattr__(self, name):
+        return getattr(self.dw, name)
+
+    def allocate(self, label, m, patch, fill=0.0):
+        a = self.dw.allocate(label, m, patch, fill=fill)
+        self.arrays[(label.name, m)] = a
+        return a
+
+
 class MPMICETasks:
     """Mixed into the MPMICE component: needs self.mpm, self.ice, self.mpm_matls, ..."""
 
@@ -242,6 +257,57 @@ class MPMICETasks:
                           b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, ice.cvs[m], ice.gravity,
                           False, ice.codes[m], ice.params[m], ice.gammas[m])
             eng[...] = mass * ice.cvs[m] * temp
+
+    def lagrangian_values_fluid(self, patch, matls, old_dw, new_dw):
+        """ICE::computeLagrangianValues for the fluids, plus <ADD_HEAT>: dt * coeff * rho_CC * V
+        added to int_eng_L_CC where the material's volume fraction exceeds 0.001, while
+        add_heat_t_start <= t <= add_heat_t_final (t: the time at the start of the step), as
+        Uintah's accumulateEnergySourceSinks does."""
+        if self.add_heat is None:
+            self.ice.lagrangian_values(patch, matls, old_dw, new_dw)
+            return
+        keep = _KeepAllocated(new_dw)
+        self.ice.lagrangian_values(patch, matls, old_dw, keep)
+        coeffs, t0, t1 = self.add_heat
+        t = float(old_dw.get_reduction(FL.simTime))
+        if not t0 <= t <= t1:
+            return
+        dt = old_dw.get_reduction(FL.delT)
+        b = self.ice.boxes(patch)
+        sl = tuple(slice(lo, hi) for lo, hi in zip(b.lo, b.hi))
+        for m in matls:
+            if m not in coeffs:
+                continue
+            eng = keep.arrays[(I.int_eng_L_CC.name, m)]          # this task's own output
+            rho = old_dw.get(I.rho_CC, m, patch)[sl]
+            vf = new_dw.get(I.vol_frac_CC, m, patch)[sl]
+            eng[sl] += np.where(vf > 0.001, (coeffs[m] * dt * b.vol) * rho, 0.0)
+
+    # -- diagnostics: Uintah's source and rate labels (scheduled only when saved) -----------------
+    def source_sinks(self, patch, matls, old_dw, new_dw):
+        """mom_source_CC = mom_L - m_L u and intE_source_CC = (m e)_L - m_L cv T: what steps 8-9
+        added to the start-of-step state (for a solid the momentum source holds all the nodal
+        forces of the step, stress divergence included, not only the pressure gradient)."""
+        start = StartOfStep(old_dw, new_dw, self.mpm_matls)
+        for m in matls:
+            mass = new_dw.get(I.mass_L_CC, m, patch)
+            ms = new_dw.allocate(MI.mom_source_CC, m, patch, fill=None)
+            np.subtract(new_dw.get(I.mom_L_CC, m, patch), mass[..., None] * start.get(I.vel_CC, m, patch), out=ms)
+            es = new_dw.allocate(MI.intE_source_CC, m, patch, fill=None)
+            np.subtract(new_dw.get(I.int_eng_L_CC, m, patch),
+                        (mass * self.ice.cvs[m]) * start.get(I.temp_CC, m, patch), out=es)
+
+    def temperature_rate(self, patch, matls, old_dw, new_dw):
+        """Tdot = (T after the exchange - T at the start of the step) / dt (0 in empty cells)."""
+        start = StartOfStep(old_dw, new_dw, self.mpm_matls)
+        dt = old_dw.get_reduction(FL.delT)
+        for m in matls:
+            mass = new_dw.get(I.mass_L_CC, m, patch)
+            mcv = mass * self.ice.cvs[m]
+            temp = np.divide(new_dw.get(I.int_eng_L_ME_CC, m, patch), mcv, out=np.zeros_like(mcv), where=mass > 0)
+            out = new_dw.allocate(MI.Tdot, m, patch, fill=None)
+            np.divide(temp - start.get(I.temp_CC, m, patch), dt, out=out)
+            out[mass <= 0] = 0.0
 
     # -- steps 10 -> 13: the exchange's change carried back to the nodes ------------------------------
     def velocity_rates(self, patch, matls, old_dw, new_dw):
