@@ -5,6 +5,11 @@ A piece answers `inside(points) -> bool array` for points of shape (n, 3). Piece
   <box>          <min> <max>                      axis-aligned box (closed)
   <sphere>       <origin> <radius>
   <cylinder>     <bottom> <top> <radius>          finite circular cylinder
+  <tri>          <name>                           closed triangulated surface from the files
+                                                  name.pts (x y z per line) and name.tri (three
+                                                  0-based point indices per line), as Uintah;
+                                                  a relative name is looked up in the working
+                                                  directory, then next to the deck
   <union>        two or more pieces               inside any
   <intersection> two or more pieces               inside all
   <difference>   exactly two pieces               inside the first, not the second
@@ -17,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-PRIMITIVES = ("box", "sphere", "cylinder")
+PRIMITIVES = ("box", "sphere", "cylinder", "tri")
 COMBINERS = ("union", "intersection", "difference")
 PIECE_TAGS = PRIMITIVES + COMBINERS
 
@@ -49,6 +54,38 @@ class Cylinder:
         s = rel @ self.axis / self.length2          # position along the axis, 0..1
         r2 = np.sum(rel ** 2, axis=1) - s ** 2 * self.length2
         return (s >= 0.0) & (s <= 1.0) & (r2 <= self.radius ** 2)
+
+
+class TriSurface:
+    """A closed surface of triangles; inside by ray casting (geometry_kernels.inside_surface)."""
+
+    def __init__(self, points, tris):
+        self.points = np.ascontiguousarray(points, float).reshape(-1, 3)
+        self.tris = np.ascontiguousarray(tris, np.int64).reshape(-1, 3)
+        p = self.points[self.tris]
+        self.v0 = np.ascontiguousarray(p[:, 0])
+        self.e1 = np.ascontiguousarray(p[:, 1] - p[:, 0])
+        self.e2 = np.ascontiguousarray(p[:, 2] - p[:, 0])
+        fudge = 1e-12 * max(1.0, float(np.abs(self.points).max()))
+        self.lo, self.hi = self.points.min(axis=0) - fudge, self.points.max(axis=0) + fudge
+
+    @classmethod
+    def from_files(cls, base):
+        """Uintah's <tri><name>base</name></tri>: base.pts and base.tri."""
+        pts = np.loadtxt(base + ".pts", ndmin=2)
+        tri = np.loadtxt(base + ".tri", ndmin=2)
+        if pts.shape[1] != 3 or tri.shape[1] != 3:
+            raise ValueError(f"{base}.pts / .tri need three numbers per line")
+        if np.any(tri != np.round(tri)) or tri.min() < 0 or tri.max() >= len(pts):
+            raise ValueError(f"{base}.tri: indices must be integers in 0..{len(pts) - 1} (points in {base}.pts)")
+        return cls(pts, tri.astype(np.int64))
+
+    def inside(self, x):
+        from .geometry_kernels import RAYS, inside_surface
+        x = np.ascontiguousarray(x, float).reshape(-1, 3)
+        out = np.empty(len(x), np.bool_)
+        inside_surface(x, self.v0, self.e1, self.e2, self.lo, self.hi, RAYS, out)
+        return out
 
 
 class Union:
@@ -129,6 +166,8 @@ class GeometryReader:
             if np.allclose(b, t):
                 raise node.error("<bottom> and <top> coincide")
             return Cylinder(b, t, r)
+        if tag == "tri":
+            return _read_tri(node)
         parts = [self.read(c) for c in self._piece_children(node)]
         if tag == "difference":
             if len(parts) != 2:
@@ -137,6 +176,20 @@ class GeometryReader:
         if len(parts) < 1:
             raise node.error(f"<{tag}> needs at least one piece")
         return Union(parts) if tag == "union" else Intersection(parts)
+
+
+def _read_tri(node):
+    import os
+    name = node.get("name", "str")
+    cands = [name] if os.path.isabs(name) else [name, os.path.join(os.path.dirname(os.path.abspath(node.filename)), name)]
+    for base in cands:
+        if os.path.exists(base + ".pts") and os.path.exists(base + ".tri"):
+            try:
+                return TriSurface.from_files(base)
+            except ValueError as e:
+                raise node.child("name").error(str(e)) from None
+    raise node.child("name").error(f"no files {name}.pts and {name}.tri (looked in "
+                                   + " and ".join(os.path.dirname(os.path.abspath(c + ".x")) for c in cands) + ")")
 
 
 def cell_fractions(piece, level, box, res):
