@@ -30,14 +30,16 @@ def bin_particles(px, pmass, pvel, anchor, dx, cc_low, shape, cell, mass_c, mom_
 
 
 @njit(cache=True)
-def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, temps, vfs, press, mass_c,
+def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, temps, vfs, press, mass_c,
                T_thresh, p_thresh, coeff, p_ref, dt, burned, area):
     """Simple_Burn (001 eqs. 5-6): in a surface cell of the reactant whose hottest material
     (volume fraction > 0.2) is above T_thresh, and where p > p_thresh,
     m_burn = dt A K (p / p_ref)^0.778, at most the reactant's particle mass in the cell.
 
     Surface cell: (max - min) / max of the reactant's node masses around the cell in
-    (0.4, 1). A: the area of a plane with the normal grad(m) through the cell,
+    (0.4, 1); a node on the domain boundary (first / last node n_lo / n_hi) counts
+    twice per boundary it lies on (as Uintah's NC_CCweight), so a reactant touching a
+    symmetry plane or wall is not burning there. A: the area of a plane with the normal grad(m) through the cell,
     V / sum_d |n_d| dx_d (dx_d for a face-aligned surface)."""
     s1, s2 = burned.shape[1], burned.shape[2]
     vol = dx[0] * dx[1] * dx[2]
@@ -58,6 +60,12 @@ def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, temps, vfs, press, mas
                             y = gj + b - node_low[1] if dims[1] else 0
                             z = gk + c - node_low[2] if dims[2] else 0
                             m = gmass[x, y, z]
+                            if dims[0] and (gi + a == n_lo[0] or gi + a == n_hi[0]):
+                                m *= 2.0
+                            if dims[1] and (gj + b == n_lo[1] or gj + b == n_hi[1]):
+                                m *= 2.0
+                            if dims[2] and (gk + c == n_lo[2] or gk + c == n_hi[2]):
+                                m *= 2.0
                             mx = max(mx, m)
                             mn = min(mn, m)
                             g0 += m * (2 * a - 1) if dims[0] else 0.0

@@ -124,8 +124,8 @@ class SimpleBurn:
         vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in c.all_matls)
         burned = np.zeros(shape)
         area = new_dw.allocate(ML.burnArea, r, patch)
-        K.burn_cells(new_dw.get(M.gMass, r, patch), np.array(patch.low_index(NC), np.int64), cc_low, b.lo, b.hi,
-                     c.dims_i, lv.dx, temps, vfs, new_dw.get(I.press_equil_CC, 0, patch), mass_c,
+        _, _, node_low, _, n_lo, n_hi = c._geom(patch)
+        K.burn_cells(new_dw.get(M.gMass, r, patch), node_low, cc_low, b.lo, b.hi, c.dims_i, lv.dx, n_lo, n_hi, temps, vfs, new_dw.get(I.press_equil_CC, 0, patch), mass_c,
                      self.T_thresh, self.p_thresh, self.coeff, self.p_ref, dt, burned, area)
         frac = np.zeros(n)
         gm, gmom = np.zeros(ncell), np.zeros((ncell, 3))
