@@ -1,0 +1,36 @@
+"""Simple_Burn (components/models) on 1 patch, on 4 patches and on 2 and 3 ranks: bitwise
+the same answer (the burned mass per cell sums the cell's particles in ID order, and
+every particle is burned on the patch that owns it)."""
+import numpy as np
+
+from framework.archiver import DataArchive
+from tests.conftest import ROOT, pysus
+
+DECK = ROOT / "inputs" / "MPMICE" / "burning_container2D.ups"
+
+
+def test_burning_container_ranks_and_patches_equal(tmp_path):
+    text = DECK.read_text().replace("<outputTimestepInterval> 100 </outputTimestepInterval>",
+                                    "<outputTimestepInterval> 60 </outputTimestepInterval>") \
+        .replace('<save label="p.x"/>', '<save label="p.x"/><save label="p.particleID"/>')
+    one = tmp_path / "one.ups"
+    one.write_text(text.replace("<patches> [2,2,1] </patches>", "<patches> [1,1,1] </patches>"))
+    four = tmp_path / "four.ups"
+    four.write_text(text)
+    runs = {}
+    for name, deck, n in (("p1", one, 1), ("p4", four, 1), ("r2", four, 2), ("r3", four, 3)):
+        uda = tmp_path / f"{name}.uda"
+        r = pysus(deck, "--filebase", uda, "--max-timesteps", 120, np_=n, timeout=600)
+        assert r.returncode == 0, r.stderr[-2000:]
+        runs[name] = DataArchive(uda)
+    base = runs["p1"]
+    for name in ("p4", "r2", "r3"):
+        other = runs[name]
+        assert np.array_equal(base.times, other.times)
+        for lab, m in (("press_CC", 0), ("rho_CC", 2), ("temp_CC", 2)):
+            assert np.array_equal(base.read(lab, m, -1)[0], other.read(lab, m, -1)[0]), (name, lab)
+        for m in (0, 1):
+            b, o = base.particles(m, -1), other.particles(m, -1)
+            ob, oo = np.argsort(b["p.particleID"]), np.argsort(o["p.particleID"])
+            for lab in ("p.x", "p.mass"):
+                assert np.array_equal(b[lab][ob], o[lab][oo]), (name, m, lab)
