@@ -2,10 +2,12 @@
 from framework import labels as L
 from framework.variables import VarType
 
-CC, P = VarType.CC, VarType.PARTICLE
+CC, P, R = VarType.CC, VarType.PARTICLE, VarType.REDUCTION
 
 modelMass_src = L.create("modelMass_src", CC)           # product: mass gained this step (kg per cell)
 modelMom_src = L.create("modelMom_src", CC, (3,))       # product: momentum gained
 modelEng_src = L.create("modelEng_src", CC)             # product: internal energy gained (J)
 burnArea = L.create("Simple_Burn::onSurface", CC)       # reactant: burning-surface area per cell (m^2)
 pBurnFraction = L.create("p.burnFraction", P)           # reactant: fraction of its mass a particle gives
+totalMassBurned = L.create("totalMassBurned", R, reduction="sum")       # this step, all patches (kg)
+totalHeatReleased = L.create("totalHeatReleased", R, reduction="sum")   # this step: burned * Enthalpy (J)

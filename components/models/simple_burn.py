@@ -12,7 +12,8 @@ end-of-step velocity, so the momentum handed over is that at the start of the st
 Tasks, each added right after the MPMICE task named (models/__init__.py):
   MPMICE::computeEquilibrationPressure -> Simple_Burn::computeModelSources
         surface cells from the reactant's node masses, burned mass per cell, each
-        particle's fraction (p.burnFraction) and the product's mass/momentum/energy sources
+        particle's fraction (p.burnFraction) and the product's mass/momentum/energy sources;
+        the reductions totalMassBurned and totalHeatReleased (this step; <save> them)
   ICE::computeDelPressAndUpdatePressCC -> Simple_Burn::addPressureSource
         p += sum_m m_src,m v_m / (V sum_m theta_m kappa_m) (001 eq. 9, Uintah's delP_MassX)
   ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
@@ -86,7 +87,7 @@ class SimpleBurn:
             .requires(NEW, I.temp_CC, matls=c.mpm_matls).requires(OLD, I.temp_CC, matls=c.ice.ice_matls) \
             .computes(ML.pBurnFraction, matls=r).computes(ML.burnArea, matls=r) \
             .computes(ML.modelMass_src, matls=g).computes(ML.modelMom_src, matls=g) \
-            .computes(ML.modelEng_src, matls=g)
+            .computes(ML.modelEng_src, matls=g).computes(ML.totalMassBurned).computes(ML.totalHeatReleased)
         return t
 
     def _pressure_task(self):
@@ -132,6 +133,9 @@ class SimpleBurn:
         tiny = 1e-9 * c.mpm.materials[r].density * b.vol
         K.particle_fractions(cell, pm, pv, burned.reshape(-1), mass_c, tiny, frac, gm, gmom)
         new_dw.put(ML.pBurnFraction, r, patch, frac)
+        burned_total = float(gm.sum())
+        new_dw.put_reduction(ML.totalMassBurned, burned_total)
+        new_dw.put_reduction(ML.totalHeatReleased, burned_total * self.enthalpy)
         ms = new_dw.allocate(ML.modelMass_src, g, patch)
         ms[...] = gm.reshape(shape)
         new_dw.allocate(ML.modelMom_src, g, patch)[...] = gmom.reshape(shape + (3,))

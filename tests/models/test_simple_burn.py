@@ -80,7 +80,8 @@ def test_no_models_no_burn_tasks():
     with open(DECK) as f:
         text = f.read()
     start, end = text.index("<Models>"), text.index("</Models>") + len("</Models>")
-    assert "Simple_Burn" not in _task_names(text[:start] + text[end:])
+    plain = (text[:start] + text[end:]).replace('<save label="totalMassBurned"/>', "")
+    assert "Simple_Burn" not in _task_names(plain)
     assert "Simple_Burn::computeModelSources" in _task_names(text)
 
 
@@ -105,3 +106,9 @@ def test_bad_material_is_an_input_error(tmp_path):
     path.write_text(text)
     with pytest.raises(InputError, match="toMaterial"):
         Controller(str(path), quiet=True, filebase=str(tmp_path / "bad.uda")).run()
+
+
+def test_total_mass_burned_reduction(archive):
+    """totalMassBurned (saved at the output steps) is the mass the gas gained in that step."""
+    t, burned = archive.reduction("totalMassBurned")
+    assert burned.max() > 0 and np.all(burned >= 0)
