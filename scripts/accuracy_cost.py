@@ -13,6 +13,7 @@ error vs wall time when matplotlib is importable).
         --opt transverse=false,true --opt cfl=0.4,0.1
     .venv/bin/python scripts/accuracy_cost.py vortex --res 16 32 64 --opt scheme=explicit,implicit \
         --opt mach=0.05
+    .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 24 36 48 --json cylinder.json
 
 A scene is a name -> (deck template taking the resolution and options, error function
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
@@ -85,6 +86,20 @@ SCENES = {name: (lambda n=name: _ice_scene(n)) for name in ("sod", "toro1", "tor
 SCENES["wave1d"] = lambda: _wave_scene(1)
 SCENES["wave2d"] = lambda: _wave_scene(2)
 SCENES["vortex"] = _vortex_scene
+
+
+def _cylinder_scene():
+    from components.mpmice import scene_cylinder as C
+
+    def deck(n, damping=None, patches="1,1,1"):
+        """n cells across the 1.2 m domain (dx = 1.2/n; the paper's 0.025 m: n = 48)."""
+        return C.deck(n, damping=damping, patches=patches)
+    return {"deck": deck, "error": C.errors, "key": "eq43",
+            "what": "MPMICE pressurized cylinder (paper 000 sec. 4.1): eq. 43 error of s_r + s_t over all particles, "
+                    "radial/hoop L1 error vs Lame (eq. 42) relative to the inner gauge pressure P"}
+
+
+SCENES["cylinder"] = _cylinder_scene
 
 
 def run_case(scene, n, opts, workdir):
