@@ -130,9 +130,9 @@ def burn_particles(frac, pmass, pvol, px):
 
 
 @njit(cache=True)
-def pressure_source(mass_src, v_prod, v_react, vfs, sps, css, lo, hi, vol, press):
-    """001 eq. 9's reaction term: p += sum_m (m_src,m v_m / V) / sum_m theta_m kappa_m,
-    m_src = +burned for the product, -burned for the reactant, kappa = v / c^2."""
+def pressure_source(mass_src, vol_src, v_react, vfs, sps, css, lo, hi, vol, press):
+    """001 eq. 9's reaction term: p += (V_created - m_burned v_reactant) / V / sum_m theta_m kappa_m,
+    kappa = v / c^2 (Uintah: sum_m m_src,m v_m, with the product's volume V_created)."""
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
@@ -143,4 +143,16 @@ def pressure_source(mass_src, v_prod, v_react, vfs, sps, css, lo, hi, vol, press
                 for m in range(len(vfs)):
                     c = css[m][i, j, k]
                     ks += vfs[m][i, j, k] * sps[m][i, j, k] / (c * c)
-                press[i, j, k] += ms * (v_prod[i, j, k] - v_react[i, j, k]) / vol / ks
+                press[i, j, k] += (vol_src[i, j, k] - ms * v_react[i, j, k]) / vol / ks
+
+
+@njit(cache=True)
+def volume_source(mass_src, vol_src, sp_vol, lo, hi, sp_vol_L):
+    """The product's Lagrangian volume holds its new mass at the specific volume it was
+    made with (vol_src), not at the cell's current one (ICE's eq. 40 used m^L v)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                ms = mass_src[i, j, k]
+                if ms != 0.0:
+                    sp_vol_L[i, j, k] = max(sp_vol_L[i, j, k] + vol_src[i, j, k] - ms * sp_vol[i, j, k], 1e-100)

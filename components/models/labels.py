@@ -7,6 +7,7 @@ CC, P, R = VarType.CC, VarType.PARTICLE, VarType.REDUCTION
 modelMass_src = L.create("modelMass_src", CC)           # product: mass gained this step (kg per cell)
 modelMom_src = L.create("modelMom_src", CC, (3,))       # product: momentum gained
 modelEng_src = L.create("modelEng_src", CC)             # product: internal energy gained (J)
+modelVol_src = L.create("modelVol_src", CC)             # product: volume created (m^3), at (p, T_product)
 burnArea = L.create("Simple_Burn::onSurface", CC)       # reactant: burning-surface area per cell (m^2)
 pBurnFraction = L.create("p.burnFraction", P)           # reactant: fraction of its mass a particle gives
 totalMassBurned = L.create("totalMassBurned", R, reduction="sum")       # this step, all patches (kg)
