@@ -4,7 +4,8 @@
   <MPM>                 FLAGS below (interpolator linear|gimp, explicit only, ...)
   <PhysicalConstants>   <gravity>
   <MaterialProperties><MPM>  <material> (materials.py; models incl. ideal_gas_fluid, the
-                        fluid points of paper 004) and <contact> null | single_velocity |
+                        fluid points of paper 004, and membrane, its membrane/string points
+                        laid along a <membrane_polygon>) and <contact> null | single_velocity |
                         friction | rigid (contact.py)
   <Grid><BoundaryConditions> velocity Dirichlet / symmetry faces (bc.py)
   <PhysicalBC><MPM><pressure>  load-curve pressure on surface particles (pressure.py)
@@ -105,6 +106,7 @@ class MPM(MPMTasks, Component):
         if not self.materials:
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
+        self.has_membrane = any(m.is_membrane for m in self.materials)
         self.contact = self.contact_class(mp, len(self.materials))
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
@@ -124,6 +126,8 @@ class MPM(MPMTasks, Component):
             c.append((L.pStrainEnergy, L.pStrainEnergyPre))
         for name in dict.fromkeys(m.state for m in self.materials if m.state):
             c.append(L.STATE[name])
+        if self.has_membrane:                 # 004 sec. 3.2: tangent and thickness per point
+            c += [(L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)]
         if self.pressure_bcs:
             c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
         self.carry = c
@@ -208,6 +212,8 @@ class MPM(MPMTasks, Component):
             t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng).requires(OLD, L.pX)
         else:
             t.requires(NEW, L.pVelGrad).requires(NEW, L.pFPre).requires(NEW, L.pVolumePre).requires(OLD, L.pF)
+            if self.has_membrane:
+                t.requires(OLD, L.pVolume)
         moved = {L.pVelocity.name} | (set() if self.musl else {L.pF.name, L.pVolume.name})
         for final, pre in self.carry:
             if final.name not in moved:

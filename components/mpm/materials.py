@@ -25,6 +25,7 @@ MODELS = {
     "elastic_plastic": "elastic_plastic",
     "rigid": "rigid",
     "ideal_gas_fluid": "ideal_gas_fluid",
+    "membrane": "membrane",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
@@ -90,7 +91,11 @@ class Material:
                 raise cm.error("ideal_gas_fluid needs <specific_heat> > 0 (in the model or the material): "
                                "the initial specific internal energy is specific_heat * <temperature>")
         self.objects = []
+        self.is_membrane = kind == "membrane"
         for g in node.children("geom_object"):
+            if self.is_membrane:
+                self.objects.append(read_membrane_object(g, with_color))
+                continue
             piece = geom_reader.read_object(g)
             spec = g.read(GEOM)
             if any(r < 1 for r in spec["res"]):
@@ -105,9 +110,12 @@ class Material:
 
     def initial_state(self, d):
         """The model state of new particles: plastic strain 0; ideal gas: the specific
-        internal energy e = specific_heat * <temperature> of the geometry object."""
+        internal energy e = specific_heat * <temperature> of the geometry object; membrane:
+        (unit tangent, thickness) from the chain."""
         if self.model_name == "ideal_gas_fluid":
             return self.cv * d["temp"]
+        if self.is_membrane:
+            return d["tangent"], d["thickness"]
         return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------
@@ -122,6 +130,9 @@ class Material:
         taken = None
         out = []
         for k, obj in enumerate(self.objects):
+            if "chain" in obj:
+                out.append(membrane_points(obj, patch, obj_base + k))
+                continue
             res = np.array([1 if lv.collapsed[d] else obj["res"][d] for d in range(3)])
             axes = []
             for d in range(3):
@@ -151,3 +162,65 @@ class Material:
         data = {key: np.ascontiguousarray(v[order]) for key, v in data.items()}
         data["mass"] = self.density * data["vol"]
         return data
+
+
+# -- membrane strings (004 sec. 3.2) ------------------------------------------------------
+MEMBRANE = {
+    "spacing": Param("float", doc="distance between consecutive membrane points (m)"),
+    "thickness": Param("float", doc="membrane thickness h (m): point volume = spacing * h * depth"),
+    "closed": Param("bool", True, doc="the last vertex joins the first"),
+}
+
+
+def read_membrane_object(g, with_color):
+    """A membrane material's <geom_object>: <membrane_polygon> with <vertex>[x,y,z]</vertex>
+    (two or more, in order along the membrane), <spacing>, <thickness>, <closed>; plus the
+    usual <velocity>, <temperature> (and <color>). The points are laid along the polygon at
+    the spacing (the polygon's length divided evenly), numbered consecutively: their IDs
+    follow the chain, and the unit tangent of each comes from its neighbours (004 sec. 3.2)."""
+    mp = g.child("membrane_polygon", required=True)
+    spec = mp.read(MEMBRANE)
+    verts = np.array([v.value("vector") for v in mp.children("vertex")], float)
+    if len(verts) < 2:
+        raise mp.error("a <membrane_polygon> needs at least two <vertex>")
+    if spec["spacing"] <= 0 or spec["thickness"] <= 0:
+        raise mp.error("<spacing> and <thickness> must be positive")
+    ring = np.vstack([verts, verts[:1]]) if spec["closed"] else verts
+    seg = np.linalg.norm(np.diff(ring, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    n = max(2, int(round(s[-1] / spec["spacing"])))
+    ds = s[-1] / n if spec["closed"] else s[-1] / (n - 1)
+    sp = (np.arange(n) + (0.5 if spec["closed"] else 0.0)) * ds
+    x = np.stack([np.interp(sp, s, ring[:, d]) for d in range(3)], axis=1)
+    from .constitutive.membrane import chain_tangents
+    t = np.empty_like(x)
+    chain_tangents(x, spec["closed"], t)
+    if g.has("res"):          # not used by membranes
+        g.child("res").mark_used()
+    return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"],
+                velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
+                temperature=g.get("temperature", "float", 294.0),
+                color=g.get("color", "float", 0.0) if with_color else None)
+
+
+def membrane_points(obj, patch, obj_id):
+    """The membrane points of one polygon that lie in the patch's cells (IDs: obj_id * 2^40 +
+    the index along the chain); volume = spacing * thickness * the cell depth in a collapsed
+    direction (2D: the membrane is a surface extruded out of the plane)."""
+    lv = patch.level
+    x = obj["chain"]
+    cell = np.floor((x - lv.anchor) / lv.dx).astype(np.int64)
+    inp = np.ones(len(x), bool)
+    for d in range(3):
+        if not lv.collapsed[d]:
+            inp &= (cell[:, d] >= patch.lo[d]) & (cell[:, d] < patch.hi[d])
+    idx = np.nonzero(inp)[0]
+    n = len(idx)
+    depth = float(np.prod([lv.dx[d] for d in range(3) if lv.collapsed[d]])) if any(lv.collapsed) else 1.0
+    vol = obj["ds"] * obj["thickness"] * depth
+    return dict(x=x[idx], id=(obj_id * (1 << 40) + idx).astype(np.int64), vol=np.full(n, vol),
+                temp=np.full(n, obj["temperature"]), lcid=np.zeros(n),
+                vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
+                size=np.tile(0.5 * lv.dx / 2, (n, 1)),
+                color=np.full(n, obj["color"] if obj["color"] is not None else 0.0),
+                tangent=obj["tangent"][idx], thickness=np.full(n, obj["thickness"]))

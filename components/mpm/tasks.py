@@ -48,7 +48,12 @@ class MPMTasks:
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
                       old=None, new=None):
-        """Call the material's model; `old`/`new` are its state arrays (plastic strain)."""
+        """Call the material's model; `old`/`new` are its state arrays (plastic strain);
+        membrane: (tangent, thickness, volume) before and after (the model sets the volume)."""
+        if mat.is_membrane:
+            (t_old, h_old, v_old), (t_new, h_new, v_new) = old, new
+            return mat.model.update(mat.params, Lg, F_old, F_new, v_old, mass, vel, dt, s_old, s_new,
+                                    energy, t_old, t_new, h_old, h_new, v_new)
         if mat.state:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new)
@@ -73,6 +78,8 @@ class MPMTasks:
             stress = np.zeros((n, 3, 3))
             energy = np.zeros(n)
             state = mat.initial_state(d)
+            if mat.is_membrane:
+                state = state + (d["vol"],)
             ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
                                                    d["vel"], 0.0, stress, stress, energy, state, state))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
@@ -80,6 +87,8 @@ class MPMTasks:
                    L.pStrainEnergy: energy}
             for name, (lab, _) in L.STATE.items():
                 put[lab] = state if mat.state == name else np.zeros(n)
+            put[L.pTangent] = state[0] if mat.is_membrane else np.zeros((n, 3))
+            put[L.pThickness] = state[1] if mat.is_membrane else np.zeros(n)
             new_dw.put(L.pX, m, patch, d["x"])
             for final, _ in self.carry:
                 if final in put:
@@ -337,6 +346,16 @@ class MPMTasks:
                         new_dw.put(pre, m, patch, new)
                     else:
                         new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            if mat.is_membrane:         # 004 sec. 3.2: the model convects t, h and sets V
+                t_new, h_new = np.empty((n, 3)), np.empty(n)
+                new_dw.put(L.pTangentPre, m, patch, t_new)
+                new_dw.put(L.pThicknessPre, m, patch, h_new)
+                old = (old_dw.get(L.pTangent, m, patch), old_dw.get(L.pThickness, m, patch),
+                       old_dw.get(L.pVolume, m, patch))
+                new = (t_new, h_new, vol_new)
+            elif self.has_membrane:
+                for final, pre in ((L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)):
+                    new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
             ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
                                                    new_dw.get(L.pVelocityPre, m, patch), dt,
                                                    old_dw.get(L.pStress, m, patch), s_new, energy, old, new))
