@@ -68,6 +68,29 @@ class TriSurface:
         self.e2 = np.ascontiguousarray(p[:, 2] - p[:, 0])
         fudge = 1e-12 * max(1.0, float(np.abs(self.points).max()))
         self.lo, self.hi = self.points.min(axis=0) - fudge, self.points.max(axis=0) + fudge
+        self._bins = None
+
+    def _binned(self):
+        """Per ray: the triangles binned across it (geometry_kernels.build_bins)."""
+        if self._bins is None:
+            from .geometry_kernels import CROSS, TILT, build_bins
+            ext = self.hi - self.lo
+            nside = max(1, min(512, int(np.sqrt(len(self.tris)))))
+            blo, bw, nb, offs, items = np.empty((3, 2)), np.empty((3, 2)), np.empty((3, 2), np.int64), [], []
+            for r in range(3):
+                for q in range(2):
+                    d = CROSS[r, q]
+                    blo[r, q], nb[r, q] = self.lo[d], nside
+                    bw[r, q] = max(ext[d], 1e-300) / nside
+                pad = 2.0 * TILT * float(ext.max()) + 1e-12 * float(ext.max())
+                off = np.zeros(nside * nside + 1, np.int64)
+                build_bins(self.v0, self.e1, self.e2, CROSS[r], blo[r], bw[r], nb[r], pad, off, np.empty(0, np.int64))
+                it = np.empty(int(off[-1]), np.int64)
+                build_bins(self.v0, self.e1, self.e2, CROSS[r], blo[r], bw[r], nb[r], pad, off, it)
+                offs.append(off)
+                items.append(it)
+            self._bins = (blo, bw, nb, tuple(offs), tuple(items))
+        return self._bins
 
     @classmethod
     def from_files(cls, base):
@@ -81,10 +104,11 @@ class TriSurface:
         return cls(pts, tri.astype(np.int64))
 
     def inside(self, x):
-        from .geometry_kernels import RAYS, inside_surface
+        from .geometry_kernels import CROSS, RAYS, inside_surface
         x = np.ascontiguousarray(x, float).reshape(-1, 3)
         out = np.empty(len(x), np.bool_)
-        inside_surface(x, self.v0, self.e1, self.e2, self.lo, self.hi, RAYS, out)
+        blo, bw, nb, offs, items = self._binned()
+        inside_surface(x, self.v0, self.e1, self.e2, self.lo, self.hi, RAYS, CROSS, blo, bw, nb, offs, items, out)
         return out
 
 

@@ -116,3 +116,42 @@ DECK = """<?xml version="1.0"?>
   </MaterialProperties>
 </Uintah_specification>
 """
+
+
+def _latlong_sphere(R, nlat, nlon):
+    """A closed lat-long triangulation of a sphere of radius R (poles as single points)."""
+    pts = [[0.0, 0.0, R]]
+    for i in range(1, nlat):
+        th = np.pi * i / nlat
+        for j in range(nlon):
+            ph = 2 * np.pi * j / nlon
+            pts.append([R * np.sin(th) * np.cos(ph), R * np.sin(th) * np.sin(ph), R * np.cos(th)])
+    pts.append([0.0, 0.0, -R])
+    ring = lambda i, j: 1 + (i - 1) * nlon + j % nlon
+    tri = [[0, ring(1, j), ring(1, j + 1)] for j in range(nlon)]
+    for i in range(1, nlat - 1):
+        for j in range(nlon):
+            tri += [[ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)], [ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)]]
+    s = len(pts) - 1
+    tri += [[s, ring(nlat - 1, j + 1), ring(nlat - 1, j)] for j in range(nlon)]
+    return np.array(pts), np.array(tri)
+
+
+def test_sphere_surface_many_triangles():
+    """6320 triangles, 200000 points: exact away from the facets' chord error (binned rays)."""
+    pts, tri = _latlong_sphere(1.0, 40, 80)
+    surf = TriSurface(pts, tri)
+    x = np.random.default_rng(2).uniform(-1.2, 1.2, (200000, 3))
+    r = np.linalg.norm(x, axis=1)
+    far = np.abs(r - 1.0) > 0.01          # chord error of the facets ~ 1 - cos(pi / 40) = 0.003
+    got = surf.inside(x)
+    assert np.array_equal(got[far], r[far] < 1.0)
+    # the same answer as testing every triangle (one bin per ray), on the first 20000 points
+    from framework.geometry_kernels import CROSS, RAYS, inside_surface
+    y = x[:20000]
+    one = tuple(np.array([0, len(tri)], np.int64) for _ in range(3))
+    every = tuple(np.arange(len(tri), dtype=np.int64) for _ in range(3))
+    out = np.empty(len(y), np.bool_)
+    inside_surface(y, surf.v0, surf.e1, surf.e2, surf.lo, surf.hi, RAYS, CROSS, np.zeros((3, 2)),
+                   np.full((3, 2), 10.0), np.ones((3, 2), np.int64), one, every, out)
+    assert np.array_equal(out, got[:20000])
