@@ -82,7 +82,9 @@ def test_no_models_no_burn_tasks():
     start, end = text.index("<Models>"), text.index("</Models>") + len("</Models>")
     plain = (text[:start] + text[end:]).replace('<save label="totalMassBurned"/>', "")
     assert "Simple_Burn" not in _task_names(plain)
-    assert "Simple_Burn::computeModelSources" in _task_names(text)
+    names = _task_names(text).split()
+    for t in ("computeModelSources", "addPressureSource", "addLagrangianSources", "addVolumeSource", "burnParticles"):
+        assert "Simple_Burn::" + t in names, t
 
 
 def _task_names(text):
