@@ -114,3 +114,18 @@ def test_total_mass_burned_reduction(archive):
     """totalMassBurned (saved at the output steps) is the mass the gas gained in that step."""
     t, burned = archive.reduction("totalMassBurned")
     assert burned.max() > 0 and np.all(burned >= 0)
+
+
+def test_first_step_follows_the_burn_law(tmp_path):
+    """Step 1 at p = refPressure: burned = dt K A (p / p_ref)^0.778 on each of the slab's two
+    faces, A = dy dz = 0.025^2 m^2, K = 300 kg/(m^2 s), dt = delt_init = 1e-7 s."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    text = open(DECK).read().replace("<outputTimestepInterval> 20 </outputTimestepInterval>",
+                                     "<outputTimestepInterval> 1 </outputTimestepInterval>")
+    deck = tmp_path / "one.ups"
+    deck.write_text(text)
+    c = Controller(str(deck), quiet=True, filebase=str(tmp_path / "one.uda"), max_timesteps=1)
+    c.run()
+    t, burned = DataArchive(c.archiver.dir).reduction("totalMassBurned")
+    assert abs(float(np.atleast_1d(burned)[0]) - 2 * 1e-7 * 300.0 * 0.025 ** 2) < 1e-12 * 3.75e-8
