@@ -107,6 +107,11 @@ class MPM(MPMTasks, Component):
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
         self.has_membrane = any(m.is_membrane for m in self.materials)
+        # fluid points with artificial viscosity: its scales are reduced over the level
+        self.av_matls = [i for i, m in enumerate(self.materials)
+                         if m.model_name == "ideal_gas_fluid" and m.params.artificial_viscosity]
+        if len(self.materials) > 16 and self.av_matls:
+            raise mp.error("artificial viscosity supports at most 16 MPM materials")
         self.contact = self.contact_class(mp, len(self.materials))
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
@@ -206,8 +211,21 @@ class MPM(MPMTasks, Component):
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
             t.computes(r)
         sched.add_task(t)
+        if self.av_matls:     # 004 eq. 24's c_max and max|div v| over the level, not a patch
+            t = (Task("MPM::artificialViscosityScale", self.artificial_viscosity_scale, ms)
+                 .requires(OLD, FL.delT).requires(OLD, L.pIntEnergy).computes(L.AVScale))
+            if self.musl:
+                for lab in [L.pX, L.pMass, L.pF] + ([L.pSize] if self.kind == "gimp" else []):
+                    t.requires(OLD, lab)
+                t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng)
+            else:
+                t.requires(NEW, L.pVelGrad)
+            sched.add_task(t)
+            self._av_level_wide = True
         t = (Task("MPM::computeStressTensor", self.compute_stress_tensor, ms)
              .requires(OLD, FL.delT).requires(NEW, L.pVelocityPre))
+        if self.av_matls:
+            t.requires(NEW, L.AVScale)
         if self.musl:
             t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng).requires(OLD, L.pX)
         else:

@@ -58,4 +58,7 @@ TotalMass = L.create("TotalMass", R, reduction="sum")
 TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")
 CenterOfMassPosition = L.create("CenterOfMassPosition", R, (3,), reduction="sum")
 WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")
+# fluid points' artificial viscosity (004 eq. 24): per material m, [2m] the largest sound
+# speed and [2m+1] the largest |div v| over the whole level (MPM materials <= 16)
+AVScale = L.create("MPM.artificialViscosityScale", R, (32,), reduction="max")
 PressureBCParticles = L.create("MPM.pressureBCParticles", R, (16,), reduction="sum")  # N per pressure BC

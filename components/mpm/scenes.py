@@ -115,10 +115,12 @@ def inside_polygon(pts, poly):
     return np.count_nonzero(cross, axis=1) % 2 == 1
 
 
-def measure(da, k=-1, L=4.0):
+def measure(da, k=-1, L=4.0, dx=None):
     """At output k: mean membrane radius (and its spread), mean gas pressure (-tr sigma/3,
     the viscous part being traceless), mean hoop stress t.sigma.t of the membrane points,
-    p r / h, the fraction of gas points outside the membrane polygon."""
+    p r / h, the number of gas points outside the membrane polygon ("gas_outside": gas
+    points ON the membrane count when they fall on its outer side) and of those farther
+    than dx/4 from every membrane point ("gas_escaped", with dx given)."""
     c = 0.5 * L
     gas, mem = da.particles(0, k), da.particles(1, k)
     o = np.argsort(mem["p.particleID"])
@@ -128,10 +130,16 @@ def measure(da, k=-1, L=4.0):
     hoop = np.einsum("pi,pij,pj->p", t, mem["p.stress"][o], t)
     p = -np.trace(gas["p.stress"], axis1=1, axis2=2) / 3.0
     h = float(mem["p.thickness"].mean())
-    out = inside_polygon(gas["p.x"][:, :2] - c, xm)
+    xg = gas["p.x"][:, :2] - c
+    out = inside_polygon(xg, xm)
+    escaped = 0
+    if dx is not None and np.any(~out):
+        far = np.linalg.norm(xg[~out][:, None, :] - xm[None, :, :], axis=2).min(axis=1) > 0.25 * dx
+        escaped = int(np.count_nonzero(far))
     # centroid radius of the membrane from its enclosed area (equal-area circle)
     r_area = np.sqrt(abs(polygon_area(xm)) / np.pi)
     return dict(time=float(da.times[k]), r_mean=float(r.mean()), r_min=float(r.min()), r_max=float(r.max()),
                 r_area=r_area, p_mean=float(p.mean()), hoop=float(hoop.mean()), h=h,
                 pr_over_t=float(p.mean() * r.mean() / h), gas_outside=int(np.count_nonzero(~out)),
+                gas_escaped=escaped,
                 n_gas=len(p), n_mem=len(r))

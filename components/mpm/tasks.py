@@ -47,13 +47,16 @@ class MPMTasks:
         return dw.get(L.pSize, m, patch) if self.kind == "gimp" else _zeros3(n)
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
-                      old=None, new=None):
+                      old=None, new=None, scale=None):
         """Call the material's model; `old`/`new` are its state arrays (plastic strain);
         membrane: (tangent, thickness, volume) before and after (the model sets the volume)."""
         if mat.is_membrane:
             (t_old, h_old, v_old), (t_new, h_new, v_new) = old, new
             return mat.model.update(mat.params, Lg, F_old, F_new, v_old, mass, vel, dt, s_old, s_new,
                                     energy, t_old, t_new, h_old, h_new, v_new)
+        if scale is not None:
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new, scale)
         if mat.state:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new)
@@ -317,6 +320,27 @@ class MPMTasks:
                   mat.uses_L, dt, pm, mat.density, F_old, F_new, vol_new)
         return Lg
 
+    def artificial_viscosity_scale(self, patch, matls, old_dw, new_dw):
+        """Per fluid material with artificial viscosity: the largest sound speed and |div v|
+        of its particles on this patch, max-reduced over the level (004 eq. 24 scales q with
+        them: a per-patch maximum would make the answer depend on the patch layout)."""
+        from .constitutive.ideal_gas_fluid import av_scale
+        dt = old_dw.get_reduction(FL.delT)
+        out = np.zeros(32)
+        for m in matls:
+            if m not in self.av_matls:
+                continue
+            if self.musl:
+                pm = old_dw.get(L.pMass, m, patch)
+                n = len(pm)
+                Lg = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, old_dw.get(L.pF, m, patch),
+                                             np.empty((n, 3, 3)), np.empty(n))
+            else:
+                Lg = new_dw.get(L.pVelGrad, m, patch)
+            out[2 * m], out[2 * m + 1] = av_scale(self.materials[m].params.gamma, Lg,
+                                                  old_dw.get(L.pIntEnergy, m, patch))
+        new_dw.put_reduction(L.AVScale, out)
+
     def compute_stress_tensor(self, patch, matls, old_dw, new_dw):
         """F, V (004 eqs. 14, 17) and the stress from the constitutive model; strain energy
         (the total: rate models accumulate their increments in p.strainEnergy); wave speed."""
@@ -356,9 +380,14 @@ class MPMTasks:
             elif self.has_membrane:
                 for final, pre in ((L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)):
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            scale = None
+            if m in getattr(self, "av_matls", ()) and getattr(self, "_av_level_wide", False):
+                sc = new_dw.get_reduction(L.AVScale)
+                scale = (float(sc[2 * m]), float(sc[2 * m + 1]))
             ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
                                                    new_dw.get(L.pVelocityPre, m, patch), dt,
-                                                   old_dw.get(L.pStress, m, patch), s_new, energy, old, new))
+                                                   old_dw.get(L.pStress, m, patch), s_new, energy, old, new,
+                                                   scale))
             if any(f is L.pStrainEnergy for f, _ in self.carry):
                 if mat.increment_energy:
                     energy = old_dw.get(L.pStrainEnergy, m, patch) + energy

@@ -10,7 +10,8 @@ Eq. 23 is solved exactly for e^{k+1} (p is linear in e):
     e^{k+1} = (e^k + dt/rho (2 mu D':D' - q div v)) / (1 + (gamma-1) dt div v).
 q is taken with the sign that raises the pressure in compression; c_max is
 the largest sound speed sqrt(gamma (gamma-1) e) and max|div v| the largest
-over the particles passed in (one material on one patch).
+over the material on the whole level (the component reduces them before the stress
+update: MPM::artificialViscosityScale); without them, over the particles passed in.
 
 Tags: ``gamma``, ``viscosity`` (mu), optional ``specific_heat`` (not used
 here), ``artificial_viscosity`` (bool), ``av_g`` (g, e.g. sqrt(2) dx),
@@ -55,11 +56,14 @@ class Params:
 
 @njit(cache=True)
 def kernel(gamma, mu, use_av, g, lam, c1, c2, L, vol, mass, vel, dt, e_old, e_new,
-           stress_new, energy, p_ref=0.0):
+           stress_new, energy, p_ref=0.0, cmax_in=-1.0, dmax_in=-1.0):
     n = L.shape[0]
     cmax = 0.0
     dmax = 0.0
-    if use_av:
+    if use_av and cmax_in >= 0.0:
+        cmax = cmax_in
+        dmax = dmax_in
+    elif use_av:
         for p in range(n):
             cmax = max(cmax, np.sqrt(max(gamma * (gamma - 1.0) * e_old[p], 0.0)))
             dmax = max(dmax, abs(L[p, 0, 0] + L[p, 1, 1] + L[p, 2, 2]))
@@ -88,10 +92,23 @@ def kernel(gamma, mu, use_av, g, lam, c1, c2, L, vol, mass, vel, dt, e_old, e_ne
     return ws
 
 
+@njit(cache=True)
+def av_scale(gamma, L, e_old):
+    """(largest sound speed, largest |div v|) of these particles (eq. 24's scales)."""
+    cmax = 0.0
+    dmax = 0.0
+    for p in range(L.shape[0]):
+        cmax = max(cmax, np.sqrt(max(gamma * (gamma - 1.0) * e_old[p], 0.0)))
+        dmax = max(dmax, abs(L[p, 0, 0] + L[p, 1, 1] + L[p, 2, 2]))
+    return cmax, dmax
+
+
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy,
-           e_old, e_new):
-    """Update stress and specific internal energy; returns wave speed (3,)."""
+           e_old, e_new, scale=None):
+    """Update stress and specific internal energy; returns wave speed (3,). `scale`:
+    the level-wide (c_max, max|div v|) of this material, else taken from these particles."""
     P = params
+    cm, dm = scale if scale is not None else (-1.0, -1.0)
     return kernel(P.gamma, P.viscosity, bool(P.artificial_viscosity), P.av_g, P.av_lambda,
                   P.artificial_viscosity_coeff1, P.artificial_viscosity_coeff2, L, vol,
-                  mass, vel, dt, e_old, e_new, stress_new, energy, P.reference_pressure)
+                  mass, vel, dt, e_old, e_new, stress_new, energy, P.reference_pressure, cm, dm)
