@@ -69,7 +69,9 @@ def main():
                    outputs=len(t), energy_err_max=float(np.max(np.abs(E / E[0] - 1))),
                    energy_err_end=float(E[-1] / E[0] - 1), ke_min_over_ke0=float(np.min(ke) / ke[0]),
                    mass_change=float(m[-1] / m[0] - 1), all_finite=bool(np.all(np.isfinite(E))),
-                   wall_s=round(wall, 1))
+                   wall_s=round(wall, 1),
+                   energy_err_history=[(round(float(a), 3), round(float(b / E[0] - 1), 5))
+                                       for a, b in zip(t[::max(1, len(t) // 12)], E[::max(1, len(t) // 12)])])
     print(json.dumps(out, indent=1))
     if a.json:
         Path(a.json).write_text(json.dumps(out, indent=1))

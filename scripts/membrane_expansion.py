@@ -41,16 +41,23 @@ def one(shape, dx, t_end, out, damping):
         ctl.run()
         wall = time.time() - t0
         da = DataArchive(ctl.archiver.dir)
-        m = measure(da, -1, dx=dx)
+        hist = []
+        for k in range(len(da.times)):
+            try:
+                hist.append(measure(da, k, dx=dx))
+            except ValueError:       # membrane points left the domain: the run blew up
+                break
+        m = dict(hist[-1])
+        m["blew_up_after"] = None if len(hist) == len(da.times) else hist[-1]["time"]
         _, ke = da.reduction("KineticEnergy")
         _, se = da.reduction("StrainEnergy")
         gas0 = da.particles(0, 0)
         e0 = float(gas0["p.mass"].sum() * GAS["e"])
         E = np.asarray(ke) + np.asarray(se)
-        hist = [measure(da, k, dx=dx) for k in range(len(da.times))]
+        k = len(hist) - 1
         m.update(dx=dx, hoop_over_prt=m["hoop"] / m["pr_over_t"],
                  gas_escaped_ever=max(h["gas_escaped"] for h in hist),
-                 energy_change_over_gas_e0=float((E[-1] - E[0]) / e0),
+                 energy_change_over_gas_e0=float((E[k] - E[0]) / e0),
                  steps=int(getattr(ctl, "timestep", -1)), wall_s=round(wall, 1),
                  radius_history=[(round(h["time"], 3), round(h["r_mean"], 4), round(h["r_max"] - h["r_min"], 4))
                                  for h in hist])
