@@ -211,6 +211,10 @@ class MPM(MPMTasks, Component):
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
             t.computes(r)
         sched.add_task(t)
+        if self.has_membrane:   # 004 sec. 3.2: tangents from the neighbours along the chain
+            sched.add_task(Task("MPM::membraneTangents", self.membrane_tangents, ms)
+                           .requires(OLD, L.pX, Ghost.AROUND_NODES, 1).requires(OLD, L.pID, Ghost.AROUND_NODES, 1)
+                           .computes(L.pTangentNbr))
         if self.av_matls:     # 004 eq. 24's c_max and max|div v| over the level, not a patch
             t = (Task("MPM::artificialViscosityScale", self.artificial_viscosity_scale, ms)
                  .requires(OLD, FL.delT).requires(OLD, L.pIntEnergy).computes(L.AVScale))
@@ -226,6 +230,8 @@ class MPM(MPMTasks, Component):
              .requires(OLD, FL.delT).requires(NEW, L.pVelocityPre))
         if self.av_matls:
             t.requires(NEW, L.AVScale)
+        if self.has_membrane:
+            t.requires(NEW, L.pTangentNbr)
         if self.musl:
             t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng).requires(OLD, L.pX)
         else:

@@ -40,6 +40,7 @@ pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
 STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model scalar state
          "p.internalEnergy": (pIntEnergy, pIntEnergyPre)}
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
+pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)
 
 gMass = L.create("g.mass", NC)
 gVolume = L.create("g.volume", NC)

@@ -197,7 +197,7 @@ def read_membrane_object(g, with_color):
     chain_tangents(x, spec["closed"], t)
     if g.has("res"):          # not used by membranes
         g.child("res").mark_used()
-    return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"],
+    return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"], closed=spec["closed"],
                 velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
                 temperature=g.get("temperature", "float", 294.0),
                 color=g.get("color", "float", 0.0) if with_color else None)

@@ -320,6 +320,37 @@ class MPMTasks:
                   mat.uses_L, dt, pm, mat.density, F_old, F_new, vol_new)
         return Lg
 
+    def membrane_tangents(self, patch, matls, old_dw, new_dw):
+        """004 sec. 3.2: the unit tangent of each owned membrane point from its neighbours
+        in the numbering (ID - 1, ID + 1; owned or ghost particles, one cell around), at the
+        positions this step starts from; zero where a neighbour is not found (the stress
+        update then keeps the convected tangent)."""
+        for m in matls:
+            mat = self.materials[m]
+            px = old_dw.get(L.pX, m, patch)
+            own = self._owned(old_dw, patch, m, px)
+            n_own = int(np.count_nonzero(own))
+            out = np.zeros((n_own, 3))
+            if mat.is_membrane and n_own:
+                ids = old_dw.get(L.pID, m, patch)
+                obj = ids >> 40
+                idx = ids & ((1 << 40) - 1)
+                k = obj - self._obj_base(m)
+                nlen = np.array([len(o["chain"]) for o in mat.objects])[k]
+                closed = np.array([o["closed"] for o in mat.objects])[k]
+                prev = np.where(closed, (idx - 1) % nlen, np.maximum(idx - 1, 0)) + (obj << 40)
+                nxt = np.where(closed, (idx + 1) % nlen, np.minimum(idx + 1, nlen - 1)) + (obj << 40)
+                ip = np.minimum(np.searchsorted(ids, prev), len(ids) - 1)
+                inx = np.minimum(np.searchsorted(ids, nxt), len(ids) - 1)
+                ok = (ids[ip] == prev) & (ids[inx] == nxt)
+                d = px[inx] - px[ip]
+                nrm = np.linalg.norm(d, axis=1)
+                ok &= nrm > 0
+                t = np.zeros_like(d)
+                t[ok] = d[ok] / nrm[ok, None]
+                out[:] = t[own]
+            new_dw.put(L.pTangentNbr, m, patch, out)
+
     def artificial_viscosity_scale(self, patch, matls, old_dw, new_dw):
         """Per fluid material with artificial viscosity: the largest sound speed and |div v|
         of its particles on this patch, max-reduced over the level (004 eq. 24 scales q with
@@ -374,7 +405,10 @@ class MPMTasks:
                 t_new, h_new = np.empty((n, 3)), np.empty(n)
                 new_dw.put(L.pTangentPre, m, patch, t_new)
                 new_dw.put(L.pThicknessPre, m, patch, h_new)
-                old = (old_dw.get(L.pTangent, m, patch), old_dw.get(L.pThickness, m, patch),
+                t_old = old_dw.get(L.pTangent, m, patch)
+                t_nbr = new_dw.get(L.pTangentNbr, m, patch)
+                t_old = np.where(np.any(t_nbr != 0.0, axis=1)[:, None], t_nbr, t_old)
+                old = (np.ascontiguousarray(t_old), old_dw.get(L.pThickness, m, patch),
                        old_dw.get(L.pVolume, m, patch))
                 new = (t_new, h_new, vol_new)
             elif self.has_membrane:

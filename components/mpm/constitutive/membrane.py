@@ -12,7 +12,9 @@ d_eps_tt), and the particle volume V_new = V |F_inc t| h_new/h.
 Tags (Uintah ``type="membrane"``): ``bulk_modulus``, ``shear_modulus``
 (E, nu derived), optional ``formulation`` ('uniaxial' | 'plane').
 ``energy`` receives the stress-work INCREMENT.  c = sqrt(E' V/m).
-Tangents from the consecutive numbering of the points: ``chain_tangents``.
+Tangents from the consecutive numbering of the points: ``chain_tangents`` at the start;
+in the component, each step's t_old is taken from the neighbours ID -+ 1 (owned or ghost
+particles, MPM::membraneTangents, 004 sec. 3.2), the convected one where none is found.
 """
 from dataclasses import dataclass
 
