@@ -20,6 +20,14 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
   12 ICE::advectAndAdvanceInTime (fluids)
 The ICE and MPM tasks are those components' own task bodies; this module only
 declares them over the right material sets and interleaves the coupling tasks.
+
+<CFD><ICE><ADD_HEAT> (add_heat_matls, add_heat_coeff, add_heat_t_start, add_heat_t_final)
+adds dt coeff rho_CC V to int_eng_L_CC of the named fluids where their volume fraction
+exceeds 0.001 (Uintah's accumulateEnergySourceSinks). Uintah's diagnostic labels
+mom_source_CC, intE_source_CC and Tdot are computed by tasks that only run when a <save>
+names them. Validation: inputs/MPMICE/ slab_rest, piston, pressurized_cylinder (paper
+sec. 4.1, scripts/accuracy_cost.py cylinder), wedge_mach3 (sec. 4.3,
+scripts/wedge_shock_angle.py); Uintah's symAnnulus.ups runs unchanged.
 """
 from __future__ import annotations
 
