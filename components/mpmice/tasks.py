@@ -184,7 +184,7 @@ class MPMICETasks:
             temp = new_dw.allocate(I.temp_CC, m, patch, self.solid_temp[m])
             self._nc_to_cc(patch, m, new_dw.get(M.gMass, m, patch), new_dw.get(M.gVolume, m, patch),
                            new_dw.get(M.gVelocity, m, patch), cm, spv, vel, rho)
-            self.ice.bcs.scalar(patch, rho, "Density", m, b)
+            self.ice.bcs.scalar(patch, rho, "Density", m, b, copy=True)   # mass from particles, never the deck
             self.ice.bcs.scalar(patch, spv, "Temperature", m, b, copy=True)
             self.ice.bcs.scalar(patch, cm, "Temperature", m, b, copy=True)
             self._extra_vector(patch, vel, m, b)
