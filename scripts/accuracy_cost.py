@@ -13,7 +13,7 @@ error vs wall time when matplotlib is importable).
         --opt transverse=false,true --opt cfl=0.4,0.1
     .venv/bin/python scripts/accuracy_cost.py vortex --res 16 32 64 --opt scheme=explicit,implicit \
         --opt mach=0.05
-    .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 24 36 48 --json cylinder.json
+    .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 24 36 48 72 --json cylinder.json
 
 A scene is a name -> (deck template taking the resolution and options, error function
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
