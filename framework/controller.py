@@ -39,6 +39,9 @@ TIME = {
     "clamp_timesteps_to_output": Param("bool", False),
 }
 
+RECOMPUTE_FACTOR = 0.5    # delT scale for a recomputed timestep
+MAX_RECOMPUTES = 10
+
 ARCHIVER = {
     "filebase": Param("str", "pysus_output.uda"),
     "outputInterval": Param("float", 0.0),
@@ -142,9 +145,13 @@ class Controller:
         except ValueError as e:
             raise InputError(str(e), self.root.filename) from None
         self.sched = Scheduler(level, self.lb, comm)
+        self.recomputes = 0
+        self.recompute_reason = None
         self.outputs = set(self.archive_spec["save"]) if self.archive_spec else set()
         self.sched.output_labels = set(self.outputs)
         self.compile()
+        # a component that may ask to redo a step needs the old warehouse intact until the end
+        self.sched.scrub_old = not getattr(self.component, "may_recompute", False)
         self.archiver = None
         if self.archive_spec is not None:
             base = self.archive_spec["filebase"]
@@ -265,15 +272,29 @@ class Controller:
             first = False
             if self.lb.due(self.timestep):
                 self._rebalance(dw)
-            old, dw = dw, DataWarehouse(self.timestep + 1)
-            old.set_reduction(L.delT, delt)
-            old.set_reduction(L.simTime, self.t)
-            writes = self.archiver is not None and self.archiver.output_due(self.timestep + 1, self.t + delt)
-            graph = self.step_graph if writes else self.quiet_step_graph
-            self._inject_fault()
-            s0 = time.perf_counter()
-            self.sched.execute(graph, old, dw, keep=self.outputs if writes else frozenset())
-            step_wall.append(time.perf_counter() - s0)
+            old = dw
+            retries = 0
+            while True:
+                dw = DataWarehouse(self.timestep + 1)
+                old.set_reduction(L.delT, delt)
+                old.set_reduction(L.simTime, self.t)
+                writes = self.archiver is not None and self.archiver.output_due(self.timestep + 1, self.t + delt)
+                graph = self.step_graph if writes else self.quiet_step_graph
+                self._inject_fault()
+                s0 = time.perf_counter()
+                self.sched.execute(graph, old, dw, keep=self.outputs if writes else frozenset())
+                step_wall.append(time.perf_counter() - s0)
+                if not self._recompute_requested():
+                    break
+                retries += 1
+                delt *= RECOMPUTE_FACTOR
+                if retries > MAX_RECOMPUTES or delt < self.time["delt_min"]:
+                    raise RuntimeError(f"timestep {self.timestep + 1}: recomputed {retries - 1} times and still "
+                                       f"asked to recompute ({self.recompute_reason})")
+                if self.comm.rank == 0 and not self.quiet:
+                    print(f"pysus: timestep {self.timestep + 1} recomputed with delT {delt:.4e} "
+                          f"({self.recompute_reason})", file=sys.stderr)
+                self.recomputes += 1
             del old
             self.t += delt
             self.timestep += 1
@@ -289,6 +310,20 @@ class Controller:
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw
+
+    def _recompute_requested(self) -> bool:
+        """True on every rank when any rank's component asked to redo the step."""
+        local = self.sched.recompute_reason
+        if not getattr(self.component, "may_recompute", False):
+            if local:
+                raise RuntimeError(f"component asked to recompute a timestep ({local}) without declaring "
+                                   "may_recompute = True")
+            return False
+        flag = self.comm.allreduce(1.0 if local else 0.0, "max")
+        if flag:
+            self.recompute_reason = local or "requested on another rank"
+        self.sched.recompute_reason = None
+        return bool(flag)
 
     def _inject_fault(self):
         """PYSUS_FAULT=rank:timestep raises on that rank before that step (to test failure handling)."""

@@ -112,8 +112,6 @@ class ImplicitSettings:
                 if p.has(tag):
                     p.child(tag).mark_used()
                     self.ignored.append(tag)
-        if self.restart_iters is not None:
-            self.ignored.append("iters_before_timestep_restart")
         self.sweeps = max(self.npre, self.npost, 1)
 
     def describe(self, precond_running, note=""):
@@ -127,8 +125,11 @@ class ImplicitSettings:
             s += f"; npre={self.npre} npost={self.npost} -> {self.sweeps} each (symmetric for CG)"
         if self.ignored:
             s += "; no effect here: " + ", ".join(self.ignored)
-        if "iters_before_timestep_restart" in self.ignored:
-            s += " (no timestep restart: a step that misses the outer tolerance continues with a warning)"
+        if self.restart_iters is not None:
+            s += (f"; a step that misses the outer tolerance, or needs more than {self.restart_iters} outer "
+                  "iterations, is recomputed with half the delT")
+        else:
+            s += " (no iters_before_timestep_restart: a step that misses the outer tolerance continues with a warning)"
         return s + note
 
 
@@ -144,6 +145,7 @@ class ImplicitICE:
                 solver.mark_used()          # a <Solver> in an explicit deck: nothing to solve
             return
         self.imp = ImplicitSettings(node, root)
+        self.may_recompute = self.imp.restart_iters is not None   # the controller keeps the old warehouse
         tsc = ice.child("TimeStepControl")
         self.knob = 0.0
         self.conservative_dt = False
@@ -171,6 +173,7 @@ class ImplicitICE:
     def schedule_implicit_pressure(self, sched, dirs):
         m0 = [0]
         self._rank = sched.comm.rank
+        self._sched = sched
         self._step_seen = None
         if not self.imp_logged and sched.comm.rank == 0:
             print(self.imp_banner, file=sys.stderr)
@@ -320,7 +323,13 @@ class ImplicitICE:
         if self._step_seen is not new_dw.dw:                # once per rank and step
             self._step_seen = new_dw.dw
             self.outer_iterations.append(self.outer.iterations)
-            if not self.outer.converged_last and self._rank == 0:
+            limit = self.imp.restart_iters
+            if limit is not None and (not self.outer.converged_last or self.outer.iterations > limit):
+                self._sched.request_recompute(
+                    f"ICE implicit pressure: {self.outer.iterations} outer iterations, "
+                    f"{'converged' if self.outer.converged_last else 'not converged'}; "
+                    f"iters_before_timestep_restart {limit}")
+            elif not self.outer.converged_last and self._rank == 0:
                 print(f"pysus: warning: ICE implicit pressure: max|rhs| above outer_iteration_tolerance "
                       f"{self.imp.outer_tol:g} after {self.outer.iterations} outer iterations; continuing",
                       file=sys.stderr)

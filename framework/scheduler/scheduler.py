@@ -36,6 +36,7 @@ class Scheduler:
         self.scrub_old = True
         self._plans: dict = {}
         self.min_halo: dict = {}
+        self.recompute_reason = None
         self.graph_name = ""
 
     # -- what components call ----------------------------------------------------------
@@ -49,6 +50,11 @@ class Scheduler:
             raise ValueError("relocation needs one final label per pre-relocation label")
         self.relocation = RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label)
         self.register_particle_labels(pos, id_label)
+
+    def request_recompute(self, reason: str):
+        """Ask the controller to redo this timestep with a smaller delT (Uintah's
+        recomputeTimestep), e.g. when an iterative solve did not converge. Any rank may ask."""
+        self.recompute_reason = reason
 
     def register_particle_labels(self, pos, id_label=None):
         """Position label (for ghost particles) and, optionally, the ID label that fixes their order."""

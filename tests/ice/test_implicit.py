@@ -130,7 +130,7 @@ def test_uintah_implicit_block_is_read_and_reported(tmp_path, capsys):
     line = [ln for ln in capsys.readouterr().err.splitlines() if "ICE implicit pressure" in ln]
     assert len(line) == 1
     assert 'type="hypre"' in line[0] and "preconditioner=pfmg" in line[0] and "geometric multigrid" in line[0]
-    assert "skip, jump, iters_before_timestep_restart" in line[0]
+    assert "skip, jump" in line[0] and "recomputed with half the delT" in line[0]
     assert c.component.imp.max_outer == 2 and c.component.imp.max_iterations == 7500
 
 
@@ -144,3 +144,24 @@ def test_speed_of_sound_knob_outside_0_1_is_an_input_error(tmp_path):
     (tmp_path / "k.ups").write_text(vortex_deck(8, implicit=True, knob=2.0))
     with pytest.raises(InputError, match="knob_for_speedSound must be between 0 and 1"):
         Controller(str(tmp_path / "k.ups"), quiet=True, filebase=str(tmp_path / "k.uda"))
+
+
+def _restart_deck(limit, outer_tol):
+    text = vortex_deck(8, implicit=True, max_timesteps=2, outer=3, outer_tol=outer_tol)
+    return text.replace("</max_outer_iterations>",
+                        f"</max_outer_iterations><iters_before_timestep_restart> {limit} "
+                        "</iters_before_timestep_restart>")
+
+
+def test_outer_iterations_beyond_the_limit_recompute_the_step(tmp_path):
+    """iters_before_timestep_restart: every step needs >= 1 outer iteration, so a limit of 0 makes
+    the controller halve delT ten times and then stop with ICE's reason; a loose limit never does."""
+    (tmp_path / "a.ups").write_text(_restart_deck(0, 1e-9))
+    c = Controller(str(tmp_path / "a.ups"), quiet=True, filebase=str(tmp_path / "a.uda"))
+    with pytest.raises(RuntimeError, match="recomputed 10 times.*ICE implicit pressure"):
+        c.run()
+    assert c.recomputes == 10
+    (tmp_path / "b.ups").write_text(_restart_deck(3, 1e-9))
+    c = Controller(str(tmp_path / "b.ups"), quiet=True, filebase=str(tmp_path / "b.uda"))
+    c.run()
+    assert c.recomputes == 0 and c.timestep == 2
