@@ -42,7 +42,6 @@ from .analysis import ParticleExtract
 from .bc import GridBCs
 from .contact import Contact
 from .materials import Material
-from .shape import get_interpolator
 from .transfer import KERNELS
 from .tasks import MPMTasks
 
@@ -93,7 +92,6 @@ class MPM(MPMTasks, Component):
                 raise root.child("Grid").error(
                     f"GIMP particles reach one node beyond the domain: <extraCells> must be at least 1 in "
                     f"{'xyz'[bad[0]]} (Uintah needs the same)")
-        self.interp = get_interpolator(self.kind, self.dim)
         self.p2g, self.g2p, self.grad = KERNELS[(self.kind, self.dim)]
         self.ng = 1 if self.kind == "linear" else 2
         mp = root.child("MaterialProperties", required=True).child("MPM", required=True)
