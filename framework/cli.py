@@ -13,6 +13,7 @@ import os
 import shutil
 import sys
 import traceback
+from pathlib import Path
 
 MPI_ENV = ("PMI_RANK", "PMI_SIZE", "PMIX_RANK", "OMPI_COMM_WORLD_SIZE", "MPI_LOCALNRANKS", "HYDI_CONTROL_FD")
 
@@ -111,7 +112,20 @@ def main(argv=None):
         prefix = f"[rank {comm.rank}] " if comm.size > 1 else ""
         msg = traceback.format_exc()
         sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
+        sys.stderr.write(prefix + failure_summary(sys.exc_info()[1], ctl if "ctl" in locals() else None) + "\n")
         return _exit(comm, 1)
+
+
+def failure_summary(exc, ctl) -> str:
+    """One line saying where the run failed and what is left to restart from."""
+    where = ", ".join(w for w in (getattr(exc, "pysus_when", None), getattr(exc, "pysus_where", None)) if w)
+    line = f"pysus: the run failed{' at ' + where if where else ''}: {type(exc).__name__}: {exc}"
+    arch = getattr(ctl, "archiver", None)
+    if arch is not None and getattr(arch, "dir", None):
+        cps = sorted(p.name for p in Path(arch.dir).glob("checkpoints/t*")) if Path(arch.dir).is_dir() else []
+        line += (f"; last checkpoint {arch.dir}/checkpoints/{cps[-1]} (pysus -restart {arch.dir})" if cps
+                 else f"; output so far in {arch.dir} (no checkpoint)")
+    return line
 
 
 def _exit(comm, code):

@@ -280,9 +280,13 @@ class Controller:
                 old.set_reduction(L.simTime, self.t)
                 writes = self.archiver is not None and self.archiver.output_due(self.timestep + 1, self.t + delt)
                 graph = self.step_graph if writes else self.quiet_step_graph
-                self._inject_fault()
                 s0 = time.perf_counter()
-                self.sched.execute(graph, old, dw, keep=self.outputs if writes else frozenset())
+                try:
+                    self._inject_fault()
+                    self.sched.execute(graph, old, dw, keep=self.outputs if writes else frozenset())
+                except Exception as e:
+                    e.pysus_when = f"timestep {self.timestep + 1} (t = {self.t:.6g} s, delT = {delt:.4g} s)"
+                    raise
                 step_wall.append(time.perf_counter() - s0)
                 if not self._recompute_requested():
                     break

@@ -184,7 +184,12 @@ class Scheduler:
                     new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
 
     def _call(self, task, patch, views, new_dw):
-        task.fn(patch, task.matls, *views)
+        try:
+            task.fn(patch, task.matls, *views)
+        except Exception as e:
+            if not hasattr(e, "pysus_where"):
+                e.pysus_where = f"task {task.name} on patch {patch.id}"
+            raise
         for dep in task.computes_:
             vt = dep.label.vartype
             if vt is VarType.REDUCTION:

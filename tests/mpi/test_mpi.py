@@ -87,6 +87,8 @@ def test_error_on_one_rank_ends_all_ranks_and_keeps_checkpoint(serial, tmp_path)
     r = pysus(serial / "deck.ups", "--filebase", uda, np_=3, env={"PYSUS_FAULT": "1:15"}, timeout=120)
     assert r.returncode != 0
     assert "[rank 1]" in r.stderr and "fault injected" in r.stderr
+    summary = [ln for ln in r.stderr.splitlines() if "pysus: the run failed" in ln]
+    assert summary and "timestep 16" in summary[0] and "checkpoints/t00010" in summary[0]
     cps = DataArchive(uda).index["checkpoints"]
     assert [c["timestep"] for c in cps] == [10]
     r = pysus("-restart", uda, "--filebase", tmp_path / "resumed.uda", np_=2)
