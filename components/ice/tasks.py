@@ -36,6 +36,7 @@ class Boxes:
             self.sh.append((f0 - cc0).astype(np.int64) if dims[d] else np.zeros(3, np.int64))
             self.flo.append((glo - f0).astype(np.int64))
             self.fhi.append((ghi - f0).astype(np.int64))
+        self.flo3, self.fhi3 = np.array(self.flo), np.array(self.fhi)
         self.vol = float(np.prod(lv.dx))
 
 
@@ -48,6 +49,14 @@ class IceTasks:
         if b is None:
             b = self._geom_cache[key] = Boxes(patch, self.dims)
         return b
+
+    def _scratch(self, shape):
+        """A work array of this shape, kept between calls (tasks run one at a time on a rank)."""
+        cache = self.__dict__.setdefault("_scratch_arrays", {})
+        a = cache.get(shape)
+        if a is None:
+            a = cache[shape] = np.empty(shape)
+        return a
 
     def _eos(self, m):
         return self.codes[m], self.params[m], self.cvs[m], self.gammas[m]
@@ -294,13 +303,10 @@ class IceTasks:
                 tot, tot_o = new_dw.get(I.tot_eng_L_ME_CC, m, patch), np.empty_like(mass)
             else:
                 tot = tot_o = mass                              # unused
-            A.advect_start(mass, mom, eng, volm, rho, vel, temp, spv, b.lo, b.hi, tot, tot_o, self.conserve_energy)
-            for d in range(3):
-                if self.dims[d]:
-                    A.advect_dir(mass, mom, eng, volm, new_dw.get(I.FC_VEL_ME[d], m, patch), b.sh[d], UNIT[d],
-                                 b.flo[d], b.fhi[d], b.lo, b.hi, dt, patch.level.dx[d], self.second_order,
-                                 rho, vel, temp, spv, self.transverse, self.dims, patch.level.dx,
-                                 tot, tot_o, self.conserve_energy)
+            uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
+            A.advect(mass, mom, eng, volm, tot, self.conserve_energy, uf[0], uf[1], uf[2], b.sh[0], b.sh[1],
+                     b.sh[2], b.flo3, b.fhi3, b.lo, b.hi, dt, patch.level.dx, self.dims, self.second_order,
+                     self.transverse, self._scratch(mass.shape + (A.NQ,)), rho, vel, temp, spv, tot_o)
             A.advect_finish(rho, vel, temp, spv, b.lo, b.hi, b.vol, self.cvs[m])
             if self.conserve_energy:
                 A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m])

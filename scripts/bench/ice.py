@@ -80,10 +80,14 @@ def bench(dim, nmat, cells, steps):
         tracemalloc.start()
         execute = c.sched.execute
 
+        state = {"steps": 0}
+
         def execute_and_reset(graph, old_dw, new_dw, **kw):   # peak of the steps, not of initialization
-            if old_dw is not None and not getattr(c, "_peak_reset", False):
-                tracemalloc.reset_peak()
-                c._peak_reset = True
+            if old_dw is not None:
+                state["steps"] += 1
+                if state["steps"] == 2:          # task timings and peak of steps 2.. (no compilation)
+                    tracemalloc.reset_peak()
+                    c.sched.timing.clear()
             return execute(graph, old_dw, new_dw, **kw)
         c.sched.execute = execute_and_reset
         c.run()
@@ -93,7 +97,7 @@ def bench(dim, nmat, cells, steps):
     t = sum(c.step_times[1:])
     return {"dim": dim, "materials": nmat, "cells": ncell, "steps": steps, "step_s": t / steps,
             "cell_steps_per_s": ncell * steps / t, "peak_bytes_per_cell": peak / ncell,
-            "task_s_per_step": {k: v / (steps + 1) for k, v in sorted(c.sched.timing.items(), key=lambda kv: -kv[1])}}
+            "task_s_per_step": {k: v / steps for k, v in sorted(c.sched.timing.items(), key=lambda kv: -kv[1])}}
 
 
 def main():
@@ -102,6 +106,7 @@ def main():
     ap.add_argument("--steps", type=int, default=5)
     ap.add_argument("--json", default="ice_bench.json")
     ap.add_argument("--only", default=None, help="e.g. 2D1 or 3D2")
+    ap.add_argument("--tasks", action="store_true", help="print seconds per step of every task")
     args = ap.parse_args()
     rows = []
     print(f"{'case':8s} {'cells':>9s} {'s/step':>8s} {'Mcell-steps/s/core':>19s} {'peak B/cell':>12s}")
@@ -114,6 +119,9 @@ def main():
             rows.append(r)
             print(f"{name:8s} {r['cells']:9d} {r['step_s']:8.3f} {r['cell_steps_per_s'] / 1e6:19.2f} "
                   f"{r['peak_bytes_per_cell']:12.0f}", flush=True)
+            if args.tasks:
+                for k, v in r["task_s_per_step"].items():
+                    print(f"    {k:40s} {v:8.4f} s/step  {v / r['step_s']:5.1%}")
     with open(args.json, "w") as f:
         json.dump(rows, f, indent=1)
 
