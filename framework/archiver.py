@@ -82,6 +82,9 @@ def _write_dw(h5, dw, level, patches, names, region):
     return meta
 
 
+TIMESTEPS_FILE = "timesteps.jsonl"
+
+
 class Archiver:
     """Writes output and checkpoints as the `<DataArchiver>` block asks."""
 
@@ -100,6 +103,9 @@ class Archiver:
                                "extra": list(level.extra), "periodic": list(level.periodic)}}
         self.next_output_time = None
         self.next_checkpoint_time = None
+        self._labels_written = -1
+        from .xdmf import XdmfWriter
+        self.xdmf = XdmfWriter(self.dir, level)
 
     # -- set-up ---------------------------------------------------------------------
     def setup(self, t0, restart_from=None):
@@ -109,6 +115,8 @@ class Archiver:
                 f.write(self.deck_text)
             if restart_from:
                 self.index["restarted_from"] = restart_from
+            open(os.path.join(self.dir, TIMESTEPS_FILE), "w").close()
+            self._write_index()
         self.comm.barrier()
         if self.spec["outputInterval"] > 0:
             self.next_output_time = t0
@@ -183,15 +191,21 @@ class Archiver:
                 with open(os.path.join(self.dir, f"{n}.dat"), "a") as f:
                     vals = " ".join(repr(float(x)) for x in np.atleast_1d(v))
                     f.write(f"{t!r} {vals}\n")
-            from .xdmf import write_xdmf
-            write_xdmf(self.dir, self.index, self.level)
-            self._write_index()
+            # one appended line per output: the cost of an output does not grow with the run
+            with open(os.path.join(self.dir, TIMESTEPS_FILE), "a") as f:
+                f.write(json.dumps(entry, separators=(",", ":")) + "\n")
+            self.xdmf.add(self.index)
+            if len(self.index["labels"]) != self._labels_written:
+                self._write_index()
 
     def _write_index(self):
+        """index.json: everything but the timesteps, which are in timesteps.jsonl."""
         tmp = os.path.join(self.dir, "index.json.tmp")
         with open(tmp, "w") as f:
-            json.dump(self.index, f, indent=1)
+            json.dump({**{k: v for k, v in self.index.items() if k != "timesteps"},
+                       "timesteps_file": TIMESTEPS_FILE}, f, indent=1)
         os.replace(tmp, os.path.join(self.dir, "index.json"))
+        self._labels_written = len(self.index["labels"])
 
     # -- checkpoints ---------------------------------------------------------------
     def checkpoint(self, dw, carried, timestep, t, state, local_patches):
@@ -299,6 +313,14 @@ class DataArchive:
         self.path = path
         with open(os.path.join(path, "index.json")) as f:
             self.index = json.load(f)
+        if "timesteps_file" in self.index:
+            self.index["timesteps"] = []
+            with open(os.path.join(path, self.index["timesteps_file"])) as f:
+                for line in f:
+                    try:
+                        self.index["timesteps"].append(json.loads(line))
+                    except json.JSONDecodeError:     # a line cut short by a crash: the outputs before it
+                        break
         g = self.index["grid"]
         self.anchor = np.array(g["anchor"])
         self.upper = np.array(g["upper"])

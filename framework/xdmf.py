@@ -92,16 +92,20 @@ def _document(body):
             '<Xdmf Version="2.0">\n<Domain>\n' + body + "\n</Domain>\n</Xdmf>\n")
 
 
-def write_xdmf(uda, index, level):
-    """Write the newest timestep's XDMF and rewrite the temporal `output.xdmf`."""
-    entry = index["timesteps"][-1]
-    with open(os.path.join(uda, entry["dir"], f'{entry["dir"]}.xdmf'), "w") as f:
-        f.write(_document(timestep_grids(entry, index, level)))
-    body = ['<Grid Name="TimeSeries" GridType="Collection" CollectionType="Temporal">']
-    for e in index["timesteps"]:
-        body.append(timestep_grids(e, index, level, prefix=f'{e["dir"]}/'))
-    body.append("</Grid>")
-    tmp = os.path.join(uda, "output.xdmf.tmp")
-    with open(tmp, "w") as f:
-        f.write(_document("\n".join(body)))
-    os.replace(tmp, os.path.join(uda, "output.xdmf"))
+class XdmfWriter:
+    """Writes each new timestep's XDMF and the temporal `output.xdmf`, rendering every
+    timestep once (the whole-run file is re-joined from the cached pieces)."""
+
+    def __init__(self, uda, level):
+        self.uda, self.level, self.parts = uda, level, []
+
+    def add(self, index):
+        entry = index["timesteps"][-1]
+        with open(os.path.join(self.uda, entry["dir"], f'{entry["dir"]}.xdmf'), "w") as f:
+            f.write(_document(timestep_grids(entry, index, self.level)))
+        self.parts.append(timestep_grids(entry, index, self.level, prefix=f'{entry["dir"]}/'))
+        body = ['<Grid Name="TimeSeries" GridType="Collection" CollectionType="Temporal">', *self.parts, "</Grid>"]
+        tmp = os.path.join(self.uda, "output.xdmf.tmp")
+        with open(tmp, "w") as f:
+            f.write(_document("\n".join(body)))
+        os.replace(tmp, os.path.join(self.uda, "output.xdmf"))
