@@ -1,7 +1,7 @@
 #!/usr/bin/env python
 """What accuracy costs: run a scene at several resolutions and options; print cells,
-steps, wall time, L1 error and observed order side by side; write JSON (and a PNG of
-error vs wall time when matplotlib is importable).
+steps, wall time, error and observed order side by side; write JSON (and a PNG of
+error vs cells and vs wall time when matplotlib is importable).
 
     .venv/bin/python scripts/accuracy_cost.py sod --res 50 100 200 400 \
         --opt order=FirstOrder,SecondOrder --json sod.json --png sod.png
@@ -14,12 +14,17 @@ error vs wall time when matplotlib is importable).
     .venv/bin/python scripts/accuracy_cost.py vortex --res 16 32 64 --opt scheme=explicit,implicit \
         --opt mach=0.05
     .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 24 36 48 72 --json cylinder.json
+    .venv/bin/python scripts/accuracy_cost.py bar --res 25 50 100 200 --opt interpolator=linear,gimp
+    .venv/bin/python scripts/accuracy_cost.py lame --res 11 22 44 --opt interpolator=linear,gimp
+    .venv/bin/python scripts/accuracy_cost.py disks --res 20 50 --opt interpolator=linear,gimp --opt update=musl,usl
 
 A scene is a name -> (deck template taking the resolution and options, error function
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
 Toro's tests 1-5, and the smooth periodic entropy wave in 1D and along the diagonal in
 2D, from components/ice/scenes.py; the low-Mach Taylor-Green vortex, explicit against
-semi-implicit ICE, from components/ice/scene_lowmach.py); nothing else here is
+semi-implicit ICE, from components/ice/scene_lowmach.py; MPM's bar, Lame cylinder and
+colliding disks with either interpolator and stress update, from
+components/mpm/scene_accuracy.py); nothing else here is
 component-specific.
 Wall time is the whole run (initialisation included: the 2D wave's per-cell geometry
 takes a noticeable part of it); step_s in the JSON is the time-stepping alone.
@@ -102,6 +107,16 @@ def _cylinder_scene():
 SCENES["cylinder"] = _cylinder_scene
 
 
+def _mpm_scene(name):
+    from components.mpm import scene_accuracy as A
+    deck, error, key, what = A.SCENES[name]
+    return {"deck": deck, "error": error, "key": key, "what": what}
+
+
+for _name in ("bar", "lame", "disks"):
+    SCENES[_name] = (lambda n=_name: _mpm_scene(n))
+
+
 def run_case(scene, n, opts, workdir):
     """Run one deck; returns a result row (cells, steps, wall time, errors)."""
     text = scene["deck"](n, **opts)
@@ -160,15 +175,17 @@ def main(argv=None):
         except ImportError:
             print("matplotlib not importable: no PNG", file=sys.stderr)
         else:
-            fig, ax = plt.subplots(figsize=(5, 4))
+            fig, axes = plt.subplots(1, 2, figsize=(10, 4))
             for combo in itertools.product(*values) if values else [()]:
                 sel = [r for r in rows if all(r.get(f"opt_{k}") == v for k, v in zip(names, combo))]
-                ax.loglog([r["wall_s"] for r in sel], [r["errors"][key] for r in sel], "o-",
-                          label=" ".join(combo) or args.scene)
-            ax.set_xlabel("wall time (s)")
-            ax.set_ylabel(f"L1 error ({key})")
-            ax.set_title(args.scene)
-            ax.legend()
+                for ax, x in zip(axes, ("cells", "wall_s")):
+                    ax.loglog([r[x] for r in sel], [r["errors"][key] for r in sel], "o-",
+                              label=" ".join(combo) or args.scene)
+            for ax, xlabel in zip(axes, ("cells", "wall time (s)")):
+                ax.set_xlabel(xlabel)
+                ax.set_ylabel(f"error ({key})")
+                ax.set_title(args.scene)
+                ax.legend()
             fig.tight_layout()
             fig.savefig(args.png, dpi=120)
     return rows
