@@ -2,7 +2,9 @@
 
 Layout of `<filebase>`:
   input.ups                the deck as run
-  index.json               timesteps, labels, materials, grid, checkpoints (rank 0)
+  index.json               labels, materials, grid, checkpoints (rank 0)
+  timesteps.jsonl          one line per output: time, delT, directory, patch boxes (appended,
+                           so an output costs the same at the end of a long run as at its start)
   t00012/rank0000.h5       one HDF5 file per rank per output timestep, group per patch
   t00012/t00012.xdmf       XDMF of that timestep; `output.xdmf` holds all of them
   checkpoints/t00012/      same per-rank files holding everything needed to continue
