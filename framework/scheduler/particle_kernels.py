@@ -36,6 +36,21 @@ def leavers(x, anchor, dx, lo, hi, dims):
 
 
 @njit(cache=True)
+def complement(idx, n):
+    """The indices in [0, n) that the sorted index array idx does not hold."""
+    out = np.empty(n - idx.shape[0], np.int64)
+    k = 0
+    j = 0
+    for p in range(n):
+        if j < idx.shape[0] and idx[j] == p:
+            j += 1
+        else:
+            out[k] = p
+            k += 1
+    return out
+
+
+@njit(cache=True)
 def near_faces(x, anchor, dx, lo, hi, g, dims):
     """Indices and cells of particles within g cells of the patch faces (ghost candidates)."""
     n = x.shape[0]

@@ -7,6 +7,10 @@ domain through a non-periodic face, or whose position is NaN (the way a componen
 deletes a particle), are removed. With a particle-ID label registered, each patch's
 particles are kept sorted by ID, so sums over particles do not depend on the patch
 layout.
+
+Cost: a patch nobody left or entered hands its arrays on untouched; otherwise only the
+leavers are packed, and each variable of the patch is written once, by one gather of
+its staying particles merged with the arrivals in their final order.
 """
 from __future__ import annotations
 
@@ -15,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..task import NEW, Task
-from .particle_kernels import leavers
+from .particle_kernels import complement, gather_merged, leavers
 
 
 @dataclass
@@ -38,47 +42,43 @@ def relocation_task(spec: RelocationSpec) -> Task:
     return t
 
 
+def _rows(a):
+    """a as a C-contiguous (n, k) view (a copy only if a is not contiguous)."""
+    return np.ascontiguousarray(a).reshape(len(a), int(np.prod(a.shape[1:])))
+
+
 def relocate(ex, spec: RelocationSpec, dw):
     """Move particles between patches (and ranks); puts the final labels in dw."""
     level, rank_of, comm = ex.level, ex.lb.rank_of, ex.comm
     pre = [spec.pos_pre] + spec.labels_pre
     final = [spec.pos] + spec.labels
-    pieces = {}
+    dims = np.array([not c for c in level.collapsed])
+    stay = {}       # (m, patch id) -> (particles before, indices of those staying or None: all)
+    arrivals = {}   # (m, patch id) -> [(source patch id, {final name: array})]
     outgoing = {}
     lost = 0
     for m in spec.matls:
         for p in ex.local_patches:
             x = dw.get(spec.pos_pre, m, p)
             if len(x) == 0:
-                pieces.setdefault((m, p.id), []).append((p.id, None))
                 continue
-            dims = np.array([not c for c in level.collapsed])
             out = leavers(x, level.anchor, level.dx, np.array(p.lo), np.array(p.hi), dims)
-            if len(out) == 0:       # nobody left: hand the arrays on untouched
-                data = {lf.name: dw.get(lp, m, p) for lp, lf in zip(pre, final)}
-                pieces.setdefault((m, p.id), []).append((p.id, data))
+            stay[(m, p.id)] = (len(x), complement(out, len(x)) if len(out) else None)
+            if len(out) == 0:
                 continue
             xo = x[out]
             if any(level.periodic):
                 xo = level.wrap_positions(xo)
             bad = np.isnan(xo).any(axis=1)
-            dest_out = level.patch_ids_of_cells(level.cells_of(np.where(bad[:, None], -1e300, xo)))
-            dest_out[bad] = -1
-            lost += int(np.count_nonzero(dest_out < 0))
-            dest = np.full(len(x), p.id, dtype=np.int64)
-            dest[out] = dest_out
-            if any(level.periodic):
-                x = x.copy()
-                x[out] = xo
-            order = np.argsort(dest, kind="stable")
-            ds = dest[order]
-            bounds = np.searchsorted(ds, np.unique(ds[ds >= 0]), side="left")
-            for q, b in zip(np.unique(ds[ds >= 0]), bounds):
-                idx = order[b:np.searchsorted(ds, q, side="right")]
-                data = {lf.name: (x[idx] if lp is spec.pos_pre else dw.get(lp, m, p)[idx])
+            dest = level.patch_ids_of_cells(level.cells_of(np.where(bad[:, None], -1e300, xo)))
+            dest[bad] = -1
+            lost += int(np.count_nonzero(dest < 0))
+            for q in np.unique(dest[dest >= 0]):
+                sel = np.flatnonzero(dest == q)
+                data = {lf.name: (xo[sel] if lp is spec.pos_pre else dw.get(lp, m, p)[out[sel]])
                         for lp, lf in zip(pre, final)}
                 if rank_of[q] == comm.rank:
-                    pieces.setdefault((m, int(q)), []).append((p.id, data))
+                    arrivals.setdefault((m, int(q)), []).append((p.id, data))
                 else:
                     outgoing.setdefault(rank_of[q], []).append(((m, int(q)), (p.id, data)))
     if comm.size > 1:
@@ -88,24 +88,49 @@ def relocate(ex, spec: RelocationSpec, dw):
         got = comm.exchange_objects(outgoing, sources)
         for r in sorted(got):
             for key, item in got[r]:
-                pieces.setdefault(key, []).append(item)
+                arrivals.setdefault(key, []).append(item)
         lost = comm.allreduce(lost, "sum")
     ex.particles_removed += int(lost)
     for m in spec.matls:
         for p in ex.local_patches:
-            items = sorted((it for it in pieces.get((m, p.id), []) if it[1] is not None), key=lambda it: it[0])
-            n = sum(len(it[1][spec.pos.name]) for it in items)
-            dw.create_particles(m, p, n)
-            arrived = any(src != p.id for src, _ in items)
-            order = None
-            if spec.id_label is not None and arrived:
-                ids = np.concatenate([it[1][spec.id_label.name] for it in items])
-                order = np.argsort(ids, kind="stable")
-            for lf in final:
-                if items:
-                    a = np.concatenate([it[1][lf.name] for it in items]) if len(items) > 1 else items[0][1][lf.name]
-                    if order is not None:
-                        a = a[order]
-                else:
-                    a = np.empty((0,) + lf.shape, dtype=lf.dtype)
-                dw.put(lf, m, p, a)
+            _assemble(spec, dw, m, p, pre, final, *stay.get((m, p.id), (0, None)), arrivals.get((m, p.id), []))
+
+
+def _assemble(spec, dw, m, p, pre, final, n_src, keep, came):
+    """Put the final labels of (m, p): the staying ones of its n_src particles (`keep`,
+    None: all) and the arrivals, in source-patch order, then (with an ID label) by ID."""
+    if not came and keep is None:            # nobody left or came: hand the arrays on untouched
+        dw.create_particles(m, p, n_src)
+        for lp, lf in zip(pre, final):
+            dw.put(lf, m, p, dw.get(lp, m, p) if n_src else np.empty((0,) + lf.shape, dtype=lf.dtype))
+        return
+    came = sorted(came, key=lambda it: it[0])
+    kept = np.arange(n_src) if keep is None else keep
+    # index of every final particle into [source arrays | arrivals], pieces in source-patch order
+    parts, off = [], n_src
+    for src, data in came:
+        k = len(data[spec.pos.name])
+        parts.append((src, np.arange(off, off + k)))
+        off += k
+    parts.append((p.id, kept))
+    parts.sort(key=lambda it: it[0])
+    index = np.concatenate([ix for _, ix in parts]) if parts else np.zeros(0, np.int64)
+    arrived = {lf.name: np.concatenate([d[lf.name] for _, d in came]) if came else np.empty((0,) + lf.shape, lf.dtype)
+               for lf in final}
+    if spec.id_label is not None and came:
+        lp = pre[[lf.name for lf in final].index(spec.id_label.name)]
+        ids = _gather(dw.get(lp, m, p) if n_src else arrived[spec.id_label.name][:0], arrived[spec.id_label.name],
+                      index)
+        index = index[np.argsort(ids, kind="stable")]
+    dw.create_particles(m, p, len(index))
+    for lp, lf in zip(pre, final):
+        src = dw.get(lp, m, p) if n_src else arrived[lf.name][:0]
+        dw.put(lf, m, p, _gather(src, arrived[lf.name], index))
+
+
+def _gather(src, arrived, index):
+    """out[i] = (src + arrived)[index[i]] without forming the concatenation."""
+    n = len(index)
+    out = np.empty((n,) + src.shape[1:], dtype=src.dtype)
+    gather_merged(_rows(src), _rows(arrived.astype(src.dtype, copy=False)), index, _rows(out))
+    return out
