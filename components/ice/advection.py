@@ -25,141 +25,216 @@ NQ = 7  # mass, velocity x/y/z, specific internal energy, specific volume, speci
 
 @njit(cache=True, error_model="numpy")
 def _van_leer(a, b):
-    if a * b <= 0.0:
-        return 0.0
-    return 2.0 * a * b / (a + b)
+    """Limited slope 2ab/(a+b) where a, b have the same sign, else 0 (branch-free: vectorizes)."""
+    p = a * b
+    return 2.0 * p / (a + b) if p > 0.0 else 0.0
 
 
 @njit(cache=True, error_model="numpy")
-def _specific_values(mass, mom, eng, volm, tot, with_e, q):
-    """q = (m, (mu)/m, (me)/m, (mv)/m, E/m) in every stored cell (unused halo corners may hold garbage)."""
-    nx, ny, nz = mass.shape
-    for i in range(nx):
-        for j in range(ny):
-            for k in range(nz):
+def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
+    """q = (m, (mu)/m, (me)/m, (mv)/m, E/m) in every stored cell (halo corners outside the
+    domain may hold garbage: never read); acc = the Lagrangian totals in the cells [lo, hi)."""
+    nq = q.shape[0]
+    n0, n1, n2 = mass.shape
+    for i in range(n0):
+        for j in range(n1):
+            for k in range(n2):
                 m = mass[i, j, k]
-                q[i, j, k, 0] = m
-                q[i, j, k, 1] = mom[i, j, k, 0] / m
-                q[i, j, k, 2] = mom[i, j, k, 1] / m
-                q[i, j, k, 3] = mom[i, j, k, 2] / m
-                q[i, j, k, 4] = eng[i, j, k] / m
-                q[i, j, k, 5] = volm[i, j, k] / m
-                q[i, j, k, 6] = tot[i, j, k] / m if with_e else 0.0
+                q[0, i, j, k] = m
+                q[1, i, j, k] = mom[i, j, k, 0] / m
+                q[2, i, j, k] = mom[i, j, k, 1] / m
+                q[3, i, j, k] = mom[i, j, k, 2] / m
+                q[4, i, j, k] = eng[i, j, k] / m
+                q[5, i, j, k] = volm[i, j, k] / m
+                if with_e:
+                    q[6, i, j, k] = tot[i, j, k] / m
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                acc[0, i, j, k] = mass[i, j, k]
+                acc[1, i, j, k] = mom[i, j, k, 0]
+                acc[2, i, j, k] = mom[i, j, k, 1]
+                acc[3, i, j, k] = mom[i, j, k, 2]
+                acc[4, i, j, k] = eng[i, j, k]
+                acc[5, i, j, k] = volm[i, j, k]
+                if with_e:
+                    acc[6, i, j, k] = tot[i, j, k]
 
 
 @njit(cache=True, error_model="numpy")
-def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, second, transverse, nq,
-           rho_o, vel_o, temp_o, spv_o, tot_o):
+def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl):
     """Add the fluxes through the d-faces [flo, fhi) to the cells [lo, hi).
 
+    Arrays are views whose last axis is the longest unit-stride one: each row of faces
+    along it is done in a few simple loops (face values of all quantities, fluxes,
+    sums into both cells) that the compiler vectorizes; both candidate donors' slopes
+    are computed and the upwind one selected, which is cheaper than a branch per face.
     `transverse` (second order only): the face value is also moved half a step back
     along the donor cell's velocity in the other directions, q -= dt/2 v_t dq/dx_t
     (limited slopes), which supplies the cross terms u v dt d2q/dxdy that a purely
     normal reconstruction lacks; without them oblique flow is first order in time.
+    `comp[t]`: the velocity component along view axis t.
     """
-    face = np.empty(NQ)
-    n = q.shape[d]
+    nq = q.shape[0]
+    n = q.shape[1 + d]
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     dx = dxs[d]
+    k0, k1 = flo[2], fhi[2]
+    nk = k1 - k0
+    s2 = sh[2]
+    base = k0 + s2                              # the R cell of the row's first face
     for i in range(flo[0], fhi[0]):
         for j in range(flo[1], fhi[1]):
-            for k in range(flo[2], fhi[2]):
-                u = uf[i, j, k]
-                if u == 0.0:
-                    continue
-                r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
-                l0, l1, l2 = r0 - e0, r1 - e1, r2 - e2
-                if u > 0.0:
-                    d0, d1, d2, s = l0, l1, l2, 1.0
-                else:
-                    d0, d1, d2, s = r0, r1, r2, -1.0
-                cfl = abs(u) * dt / dx
+            r0, r1 = i + sh[0], j + sh[1]
+            u = uf[i, j, k0:k1]
+            if d == 2:
+                _row_values_inner(q, u, r0, r1, base, dt, dx, second, sl, buf)
+            else:
+                l0, l1 = r0 - e0, r1 - e1
+                rd = r0 * e0 + r1 * e1              # R's index along d; L's is rd - 1
+                a = max(rd - 2, 0)                  # L's lower neighbour (clamped: unused then)
+                b = min(rd + 1, n - 1)              # R's upper neighbour
+                _row_values_outer(q, u, l0, l1, r0, r1, l0 - e0 * (rd - 1 - a), l1 - e1 * (rd - 1 - a),
+                                  r0 + e0 * (b - rd), r1 + e1 * (b - rd), rd >= 2, rd + 1 < n,
+                                  base, dt, dx, second, buf)
+            if second and transverse:
+                _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf)
+            fm = buf[0]
+            for kk in range(nk):                # mass flux m_face |u| dt / dx, signed L -> R
+                s = 1.0 if u[kk] > 0.0 else -1.0
+                fm[kk] = abs(u[kk]) * dt / dx * s * fm[kk] if u[kk] != 0.0 else 0.0
+            for c in range(1, nq):              # the other fluxes: mass flux times face value
+                f = buf[c]
+                for kk in range(nk):
+                    f[kk] = fm[kk] * f[kk] if u[kk] != 0.0 else 0.0
+            if d == 2:                          # each cell: + its lower face, - its upper face
+                c0, c1 = max(lo[2], base), min(hi[2], base + nk - 1)
                 for c in range(nq):
-                    face[c] = q[d0, d1, d2, c]
-                if second:
-                    dn = d0 * e0 + d1 * e1 + d2 * e2          # the donor's index along d
-                    if dn >= 1 and dn + 1 < n:
-                        w = 0.5 * s * (1.0 - cfl)
-                        for c in range(nq):
-                            qd = q[d0, d1, d2, c]
-                            face[c] += w * _van_leer(qd - q[d0 - e0, d1 - e1, d2 - e2, c],
-                                                     q[d0 + e0, d1 + e1, d2 + e2, c] - qd)
-                    if transverse:
-                        for t in range(3):
-                            if not dims[t] or t == d:
-                                continue
-                            f0, f1, f2 = (1, 0, 0) if t == 0 else ((0, 1, 0) if t == 1 else (0, 0, 1))
-                            tn = d0 * f0 + d1 * f1 + d2 * f2
-                            if tn >= 1 and tn + 1 < q.shape[t]:
-                                wt = -0.5 * dt * q[d0, d1, d2, 1 + t] / dxs[t]
-                                for c in range(nq):
-                                    qd = q[d0, d1, d2, c]
-                                    face[c] += wt * _van_leer(qd - q[d0 - f0, d1 - f1, d2 - f2, c],
-                                                              q[d0 + f0, d1 + f1, d2 + f2, c] - qd)
-                fm = cfl * s * face[0]              # signed mass leaving L for R
-                if l0 * e0 + l1 * e1 + l2 * e2 >= lo[d]:
-                    rho_o[l0, l1, l2] -= fm
-                    vel_o[l0, l1, l2, 0] -= fm * face[1]
-                    vel_o[l0, l1, l2, 1] -= fm * face[2]
-                    vel_o[l0, l1, l2, 2] -= fm * face[3]
-                    temp_o[l0, l1, l2] -= fm * face[4]
-                    spv_o[l0, l1, l2] -= fm * face[5]
-                    if nq == NQ:
-                        tot_o[l0, l1, l2] -= fm * face[6]
-                if r0 * e0 + r1 * e1 + r2 * e2 < hi[d]:
-                    rho_o[r0, r1, r2] += fm
-                    vel_o[r0, r1, r2, 0] += fm * face[1]
-                    vel_o[r0, r1, r2, 1] += fm * face[2]
-                    vel_o[r0, r1, r2, 2] += fm * face[3]
-                    temp_o[r0, r1, r2] += fm * face[4]
-                    spv_o[r0, r1, r2] += fm * face[5]
-                    if nq == NQ:
-                        tot_o[r0, r1, r2] += fm * face[6]
+                    row = acc[c, r0, r1, c0:c1]
+                    f = buf[c, c0 - base:]
+                    for kk in range(c1 - c0):
+                        row[kk] = (row[kk] + f[kk]) - f[kk + 1]
+            else:
+                if r0 * e0 + r1 * e1 - 1 >= lo[d]:
+                    for c in range(nq):
+                        row = acc[c, r0 - e0, r1 - e1, base:base + nk]
+                        f = buf[c]
+                        for kk in range(nk):
+                            row[kk] -= f[kk]
+                if r0 * e0 + r1 * e1 < hi[d]:
+                    for c in range(nq):
+                        row = acc[c, r0, r1, base:base + nk]
+                        f = buf[c]
+                        for kk in range(nk):
+                            row[kk] += f[kk]
 
 
 @njit(cache=True, error_model="numpy")
-def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shx, shy, shz, flo, fhi, lo, hi, dt, dxs, dims,
-           second, transverse, q, rho_o, vel_o, temp_o, spv_o, tot_o):
-    """Advect one material's Lagrangian totals (m, m u, m e, m v, E) over one step into the cells [lo, hi).
+def _row_values_inner(q, u, r0, r1, base, dt, dx, second, sl, buf):
+    """Face values of a row of faces normal to the last axis (face kk between cells base+kk-1
+    and base+kk): limited slopes once per cell, then the upwind pick."""
+    nq = q.shape[0]
+    n = q.shape[3]
+    nk = u.shape[0]
+    for c in range(nq):
+        row = q[c, r0, r1]
+        f = buf[c]
+        if second:
+            sl[0] = 0.0
+            sl[n - 1] = 0.0
+            for k in range(n - 2):
+                qk = row[k + 1]
+                sl[k + 1] = _van_leer(qk - row[k], row[k + 2] - qk)
+            qb = row[base - 1:]
+            sb = sl[base - 1:]
+            for kk in range(nk):
+                w = 0.5 * (1.0 - abs(u[kk]) * dt / dx)
+                f[kk] = qb[kk] + w * sb[kk] if u[kk] > 0.0 else qb[kk + 1] + (-w) * sb[kk + 1]
+        else:
+            qb = row[base - 1:]
+            for kk in range(nk):
+                f[kk] = qb[kk] if u[kk] > 0.0 else qb[kk + 1]
 
-    flo, fhi: (3, 3) face ranges per direction; q: scratch of shape mass.shape + (NQ,).
-    The outputs hold the advected totals (advect_finish turns them into primitives).
+
+@njit(cache=True, error_model="numpy")
+def _row_values_outer(q, u, l0, l1, r0, r1, a0, a1, b0, b1, okL, okR, base, dt, dx, second, buf):
+    """Face values of a row of faces normal to an outer axis: L = (l0, l1, .), R = (r0, r1, .), their
+    outer neighbours A, B; okL/okR: whether L/R has both neighbours (else no slope)."""
+    nq = q.shape[0]
+    nk = u.shape[0]
+    for c in range(nq):
+        qL = q[c, l0, l1, base:base + nk]
+        qR = q[c, r0, r1, base:base + nk]
+        f = buf[c]
+        if second:
+            qA = q[c, a0, a1, base:base + nk]
+            qB = q[c, b0, b1, base:base + nk]
+            for kk in range(nk):
+                w = 0.5 * (1.0 - abs(u[kk]) * dt / dx)
+                sL = _van_leer(qL[kk] - qA[kk], qR[kk] - qL[kk]) if okL else 0.0
+                sR = _van_leer(qR[kk] - qL[kk], qB[kk] - qR[kk]) if okR else 0.0
+                f[kk] = qL[kk] + w * sL if u[kk] > 0.0 else qR[kk] + (-w) * sR
+        else:
+            for kk in range(nk):
+                f[kk] = qL[kk] if u[kk] > 0.0 else qR[kk]
+
+
+@njit(cache=True, error_model="numpy")
+def _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf):
+    """Add the transverse correction -dt/2 v_t (limited dq/dx_t) of the donor cell to a row of face values."""
+    nq = q.shape[0]
+    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    for k in range(k0, k1):
+        u = uf[i, j, k]
+        if u == 0.0:
+            continue
+        r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
+        if u > 0.0:
+            d0, d1, d2 = r0 - e0, r1 - e1, r2 - e2
+        else:
+            d0, d1, d2 = r0, r1, r2
+        for t in range(3):
+            if not dims[t] or t == d:
+                continue
+            f0, f1, f2 = (1, 0, 0) if t == 0 else ((0, 1, 0) if t == 1 else (0, 0, 1))
+            tn = d0 * f0 + d1 * f1 + d2 * f2
+            if tn >= 1 and tn + 1 < q.shape[1 + t]:
+                wt = -0.5 * dt * q[1 + comp[t], d0, d1, d2] / dxs[t]
+                for c in range(nq):
+                    qd = q[c, d0, d1, d2]
+                    buf[c, k - k0] += wt * _van_leer(qd - q[c, d0 - f0, d1 - f1, d2 - f2],
+                                                q[c, d0 + f0, d1 + f1, d2 + f2] - qd)
+
+
+@njit(cache=True, error_model="numpy")
+def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
+           second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+    """Advect one material's Lagrangian totals (m, m u, m e, m v, E) over one step into the
+    cells [lo, hi) and return the new primitives rho = m/V, u = (mu)/m, T = (me)/(m cv),
+    v = (mv)/m (and the advected E in tot_o).
+
+    All arrays are views with the collapsed axes first (a 2D run has a unit first axis),
+    `comp` maps view axes to velocity components; shs, flo, fhi: (3, 3) per view axis.
+    q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6; buf: (nq, row length).
     """
-    _specific_values(mass, mom, eng, volm, tot, with_e, q)
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                if with_e:
-                    tot_o[i, j, k] = tot[i, j, k]
-                rho_o[i, j, k] = mass[i, j, k]
-                temp_o[i, j, k] = eng[i, j, k]
-                spv_o[i, j, k] = volm[i, j, k]
-                for c in range(3):
-                    vel_o[i, j, k, c] = mom[i, j, k, c]
-    nq = NQ if with_e else NQ - 1
+    _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi)
     if dims[0]:
-        _sweep(q, ux, 0, shx, flo[0], fhi[0], lo, hi, dt, dxs, dims, second, transverse, nq,
-               rho_o, vel_o, temp_o, spv_o, tot_o)
+        _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     if dims[1]:
-        _sweep(q, uy, 1, shy, flo[1], fhi[1], lo, hi, dt, dxs, dims, second, transverse, nq,
-               rho_o, vel_o, temp_o, spv_o, tot_o)
+        _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     if dims[2]:
-        _sweep(q, uz, 2, shz, flo[2], fhi[2], lo, hi, dt, dxs, dims, second, transverse, nq,
-               rho_o, vel_o, temp_o, spv_o, tot_o)
-
-
-@njit(cache=True)
-def advect_finish(rho_o, vel_o, temp_o, spv_o, lo, hi, vol, cv):
-    """Advected totals -> primitives: rho = m/V, u = (mu)/m, T = (me)/(m cv), v = (mv)/m."""
+        _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                m = max(rho_o[i, j, k], 1e-300)
+                m = max(acc[0, i, j, k], 1e-300)
                 rho_o[i, j, k] = m / vol
-                temp_o[i, j, k] = temp_o[i, j, k] / (m * cv)
-                spv_o[i, j, k] = spv_o[i, j, k] / m
+                temp_o[i, j, k] = acc[4, i, j, k] / (m * cv)
+                spv_o[i, j, k] = acc[5, i, j, k] / m
                 for c in range(3):
-                    vel_o[i, j, k, c] = vel_o[i, j, k, c] / m
+                    vel_o[i, j, k, c] = acc[1 + c, i, j, k] / m
+                if with_e:
+                    tot_o[i, j, k] = acc[6, i, j, k]
 
 
 @njit(cache=True)

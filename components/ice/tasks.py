@@ -36,8 +36,23 @@ class Boxes:
             self.sh.append((f0 - cc0).astype(np.int64) if dims[d] else np.zeros(3, np.int64))
             self.flo.append((glo - f0).astype(np.int64))
             self.fhi.append((ghi - f0).astype(np.int64))
-        self.flo3, self.fhi3 = np.array(self.flo), np.array(self.fhi)
         self.vol = float(np.prod(lv.dx))
+        # advection works on views with the collapsed axes first, so that the last axis
+        # (unit stride) is a long one: a 2D run's arrays (nx, ny, 1) are seen as (1, nx, ny)
+        self.perm = np.array([d for d in range(3) if not dims[d]] + [d for d in range(3) if dims[d]],
+                             dtype=np.int64)
+        p = self.perm
+        self.v_lo, self.v_hi = self.lo[p], self.hi[p]
+        self.v_sh = np.array([self.sh[d][p] for d in p])
+        self.v_flo = np.array([self.flo[d][p] for d in p])
+        self.v_fhi = np.array([self.fhi[d][p] for d in p])
+
+    def view(self, a):
+        """a (a stored array) with its axes in the order perm: free, collapsed axes have length 1
+        (setting .shape raises rather than copy, so writes always reach the stored array)."""
+        r = a.view()
+        r.shape = tuple(a.shape[d] for d in self.perm) + a.shape[3:]
+        return r
 
 
 class IceTasks:
@@ -50,13 +65,15 @@ class IceTasks:
             b = self._geom_cache[key] = Boxes(patch, self.dims)
         return b
 
-    def _scratch(self, shape):
-        """A work array of this shape, kept between calls (tasks run one at a time on a rank)."""
+    def _scratch(self, name, shape):
+        """A work array of this shape: a view of one buffer per name, kept between calls and
+        grown when a larger patch needs it (tasks run one at a time on a rank)."""
         cache = self.__dict__.setdefault("_scratch_arrays", {})
-        a = cache.get(shape)
-        if a is None:
-            a = cache[shape] = np.empty(shape)
-        return a
+        size = int(np.prod(shape))
+        a = cache.get(name)
+        if a is None or a.size < size:
+            a = cache[name] = np.empty(size)
+        return a[:size].reshape(shape)
 
     def _eos(self, m):
         return self.codes[m], self.params[m], self.cvs[m], self.gammas[m]
@@ -304,10 +321,15 @@ class IceTasks:
             else:
                 tot = tot_o = mass                              # unused
             uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
-            A.advect(mass, mom, eng, volm, tot, self.conserve_energy, uf[0], uf[1], uf[2], b.sh[0], b.sh[1],
-                     b.sh[2], b.flo3, b.fhi3, b.lo, b.hi, dt, patch.level.dx, self.dims, self.second_order,
-                     self.transverse, self._scratch(mass.shape + (A.NQ,)), rho, vel, temp, spv, tot_o)
-            A.advect_finish(rho, vel, temp, spv, b.lo, b.hi, b.vol, self.cvs[m])
+            v = b.view
+            nq = A.NQ if self.conserve_energy else A.NQ - 1
+            shape = v(mass).shape
+            A.advect(v(mass), v(mom), v(eng), v(volm), v(tot), self.conserve_energy, *(v(uf[p]) for p in b.perm),
+                     b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm],
+                     b.perm, self.second_order, self.transverse, self._scratch("q", (nq,) + shape),
+                     self._scratch("acc", (nq,) + shape), self._scratch("buf", (nq, shape[2] + 1)),
+                     self._scratch("sl", (shape[2],)), b.vol,
+                     self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o))
             if self.conserve_energy:
                 A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m])
             self.bcs.scalar(patch, rho, "Density", m, b)
