@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from .labels import VarLabel
 from .variables import Ghost, VarType
 
@@ -121,8 +123,19 @@ class TaskView:
         """The variable; grid arrays include the halo, particles include declared ghosts."""
         self._check_read(label, matl)
         if label.vartype is VarType.PARTICLE and label.name in self.ghosted:
-            return self.dw.ghost_particles[(label.name, matl, patch.id, self.ghosted[label.name])]
+            a = self.dw.ghost_particles[(label.name, matl, patch.id, self.ghosted[label.name])]
+            return a if isinstance(a, np.ndarray) else a.merged()
         return self.dw.get(label, matl, patch)
+
+    def get_split(self, label: VarLabel, matl: int, patch):
+        """A ghosted particle variable as (owned, ghost, order) with get() equal to
+        (owned + ghost)[order], or to owned + ghost where order is None, without forming it."""
+        self._check_read(label, matl)
+        a = self.dw.ghost_particles[(label.name, matl, patch.id, self.ghosted[label.name])]
+        if isinstance(a, np.ndarray):
+            own = self.dw.get(label, matl, patch)
+            return own, a[len(own):], None
+        return a.owned, a.ghost, a.order
 
     def get_reduction(self, label: VarLabel, matl: int = -1):
         self._check_read(label, matl)

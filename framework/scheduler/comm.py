@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..variables import VarType
-from .particle_kernels import gather_merged, near_faces
+from .particle_kernels import GhostMerge, near_faces
 
 
 class Comm:
@@ -217,12 +217,8 @@ class Exchange:
                         a = own
                     elif order is None:
                         a = np.concatenate([own] + [d[l.name] for d in parts])
-                    else:
-                        ghost = np.concatenate([d[l.name] for d in parts])
-                        a = np.empty((len(order),) + own.shape[1:], dtype=own.dtype)
-                        k = int(np.prod(own.shape[1:]))
-                        gather_merged(own.reshape(len(own), k), ghost.reshape(len(ghost), k), order,
-                                      a.reshape(len(order), k))
+                    else:           # merged in ID order when a task asks (TaskView.get)
+                        a = GhostMerge(own, np.concatenate([d[l.name] for d in parts]), order)
                     dw.ghost_particles[(l.name, m, p.id, g)] = a
 
     @staticmethod

@@ -127,3 +127,51 @@ def gather_merged(owned, ghost, order, out):
         else:
             for c in range(owned.shape[1]):
                 out[i, c] = ghost[j - n_own, c]
+
+
+@njit(cache=True)
+def runs(order, n_own):
+    """(source, first, end) rows of the runs of `order` that read one source consecutively:
+    source 0 = owned rows [first, end), 1 = ghost rows (order over owned + ghost)."""
+    n = order.shape[0]
+    out = np.empty((n, 3), np.int64)
+    r = 0
+    i = 0
+    while i < n:
+        j = order[i]
+        src = 0 if j < n_own else 1
+        e = i + 1
+        while e < n and order[e] == j + (e - i) and (order[e] < n_own) == (src == 0):
+            e += 1
+        first = j if src == 0 else j - n_own
+        out[r, 0] = src
+        out[r, 1] = first
+        out[r, 2] = first + e - i
+        r += 1
+        i = e
+    return out[:r]
+
+
+class GhostMerge:
+    """One ghosted particle variable of a patch: its owned and ghost rows and their ID order.
+    The merged array (owned + ghost)[order] is formed only when a task asks for it;
+    kernels that can read the two parts run by run (`runs`) never need it."""
+
+    __slots__ = ("owned", "ghost", "order", "_merged")
+
+    def __init__(self, owned, ghost, order):
+        self.owned, self.ghost, self.order = owned, ghost, order
+        self._merged = None
+
+    @property
+    def nbytes(self):
+        return self.ghost.nbytes + (0 if self._merged is None else self._merged.nbytes)
+
+    def merged(self):
+        if self._merged is None:
+            n, k = len(self.order), int(np.prod(self.owned.shape[1:]))
+            a = np.empty((n,) + self.owned.shape[1:], dtype=self.owned.dtype)
+            gather_merged(np.ascontiguousarray(self.owned).reshape(len(self.owned), k),
+                          self.ghost.reshape(len(self.ghost), k), self.order, a.reshape(n, k))
+            self._merged = a
+        return self._merged
