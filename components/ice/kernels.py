@@ -199,14 +199,17 @@ def _vflux(vf, u, i, j, k, di, dj, dk, one):
 
 
 @njit(cache=True)
-def update_pressure(press_eq, div, kap_sum, delP, press, lo, hi):
-    """Eqs. 29-30: delP = -sum dt div(theta u*) / sum theta kappa; p = p_eq + delP."""
+def update_pressure(press_eq, div, kap_sum, delP, press, lo, hi, p_floor):
+    """Eqs. 29-30: delP = -sum dt div(theta u*) / sum theta kappa; p = max(p_eq + delP, p_floor).
+
+    p_floor: -inf in ICE; 1e-12 in MPMICE (Uintah's clamp), where a solid in tension drives
+    p_eq + delP negative and V theta kappa p delP would then heat the expanding trace gas."""
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
                 d = -div[i, j, k] / kap_sum[i, j, k]
                 delP[i, j, k] = d
-                press[i, j, k] = press_eq[i, j, k] + d
+                press[i, j, k] = max(press_eq[i, j, k] + d, p_floor)
 
 
 @njit(cache=True)

@@ -58,6 +58,8 @@ class Boxes:
 class IceTasks:
     """Task callbacks of the ICE component (mixed into the component class)."""
 
+    press_floor = -np.inf       # lowest press_CC (eq. 30); MPMICE clamps at 1e-12 as Uintah does
+
     def boxes(self, patch) -> Boxes:
         key = (patch.id, tuple(sorted((k.value, v) for k, v in patch.level.halo.items())))
         b = self._geom_cache.get(key)
@@ -205,7 +207,8 @@ class IceTasks:
                               ksum, b.lo, b.hi)
         delP = new_dw.allocate(I.delP_Dilatate, 0, patch)
         press = new_dw.allocate(I.press_CC, 0, patch)
-        K.update_pressure(new_dw.get(I.press_equil_CC, 0, patch), div, ksum, delP, press, b.lo, b.hi)
+        K.update_pressure(new_dw.get(I.press_equil_CC, 0, patch), div, ksum, delP, press, b.lo, b.hi,
+                          self.press_floor)
         self.bcs.scalar(patch, press, "Pressure", 0, b)
 
     # -- step 6: face pressure (eq. 31) -------------------------------------------------------------

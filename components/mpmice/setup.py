@@ -94,6 +94,8 @@ class _SolidStub:
 class ICEinMPMICE(ICE):
     """ICE over the global material index space (see the module docstring)."""
 
+    press_floor = 1.0e-12       # Uintah's clamp of press_CC: solids in tension (tests/mpmice/test_hard_cases.py)
+
     def __init__(self, mpm_materials, solid_cv, p_ref_bulk):
         super().__init__()
         self.n_before = len(mpm_materials)
