@@ -17,6 +17,17 @@ radius a joined by a neck of half-height b; 004 Fig. 10's exact shape is not giv
 text: this one has the perimeter 2 pi 1.36 of the paper's final circle, the membrane being
 nearly inextensible, and area 2.0, so the final pressure is near 004 Table III's).
 
+Resolution (what keeps the gas in and the pressure right; scripts/membrane_expansion.py):
+- membrane points dx/8 apart (`spacing`). At dx/4 an undamped pressurized ring creeps
+  outward (its points drift apart with no strain: the grid sees only each cell's sum of
+  the points' stresses) and bursts by t ~ 0.9; at dx/2 it leaks at once; at dx/8 and dx/16
+  it stays round with bounded kinetic energy.
+- gas points 4 x 4 per cell (`gas_ppc`): the dog-bone's gas fills 2.8 times its first area.
+- the gas points' volumes from the mass in their cell (ideal_gas_fluid
+  <density_from_cells>, `cells`): with V = V0 det F alone the summed gas volume reaches
+  2-2.5 times the enclosed area by t = 4 and the points' mean pressure falls to 24 while
+  the membrane carries the hoop stress of p = 32; with it the sum stays within 2 %.
+
     from components.mpm.scenes import membrane_deck, measure
 """
 from __future__ import annotations
@@ -49,8 +60,10 @@ def polygon_area(P):
 
 
 def membrane_deck(shape="ring", dx=0.2, R=1.36, L=4.0, t_end=0.05, out=0.01, spacing=None,
-                  cfl=0.5, patches=(1, 1), formulation="plane", damping=0.0, update="musl", areal=True):
-    """Deck text: the shape centred in an L x L box of cells dx (2D, depth dx);
+                  cfl=0.5, patches=(1, 1), formulation="plane", damping=0.0, update="musl", areal=True,
+                  gas_ppc=4, cells=True):
+    """Deck text: the shape centred in an L x L box of cells dx (2D, depth dx); membrane
+    points `spacing` apart (default dx/8), gas_ppc x gas_ppc gas points per cell;
     `damping` (1/s): <artificial_damping_coeff>, to reach the equilibrium sooner."""
     c = 0.5 * L
     n = int(round(L / dx))
@@ -66,7 +79,7 @@ def membrane_deck(shape="ring", dx=0.2, R=1.36, L=4.0, t_end=0.05, out=0.01, spa
     verts = "".join(f"<vertex>[{float(c + x)!r},{float(c + y)!r},{0.5 * dx!r}]</vertex>" for x, y in poly)
     E, nu = MEM["E"], MEM["nu"]
     K, G = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
-    sp = spacing or 0.25 * dx
+    sp = spacing or 0.125 * dx
     return f"""<?xml version="1.0" encoding="ISO-8859-1"?>
 <Uintah_specification>
   <Meta><title>gas in a membrane ({shape}, 004 sec. 4.3)</title></Meta>
@@ -90,8 +103,9 @@ def membrane_deck(shape="ring", dx=0.2, R=1.36, L=4.0, t_end=0.05, out=0.01, spa
   <MaterialProperties><MPM>
     <material name="gas"><density>{GAS["rho"]}</density>
       <constitutive_model type="ideal_gas_fluid"><gamma>{GAS["gamma"]}</gamma>
-        <viscosity>{GAS["mu"]}</viscosity><specific_heat>1.0</specific_heat></constitutive_model>
-      <geom_object>{gas}<res>[2,2,1]</res><velocity>[0,0,0]</velocity>
+        <viscosity>{GAS["mu"]}</viscosity><specific_heat>1.0</specific_heat>
+        <density_from_cells>{str(cells).lower()}</density_from_cells></constitutive_model>
+      <geom_object>{gas}<res>[{gas_ppc},{gas_ppc},1]</res><velocity>[0,0,0]</velocity>
         <temperature>{GAS["e"]}</temperature></geom_object>
     </material>
     <material name="membrane"><density>{MEM["rho"] / (MEM["h"] if areal else 1.0)}</density>
@@ -116,11 +130,14 @@ def inside_polygon(pts, poly):
 
 
 def measure(da, k=-1, L=4.0, dx=None):
-    """At output k: mean membrane radius (and its spread), mean gas pressure (-tr sigma/3,
-    the viscous part being traceless), mean hoop stress t.sigma.t of the membrane points,
-    p r / h, the number of gas points outside the membrane polygon ("gas_outside": gas
-    points ON the membrane count when they fall on its outer side) and of those farther
-    than dx/4 from every membrane point ("gas_escaped", with dx given)."""
+    """At output k: mean membrane radius (and its spread), gas pressure (-tr sigma/3, the
+    viscous part being traceless) as the plain mean over the points ("p_mean", 004
+    Table III) and weighted by their volumes ("p_vol": the gas's mean pressure), mean hoop
+    stress t.sigma.t of the membrane points, p_vol r / h and p_mean r / h, the number of
+    gas points outside the membrane polygon ("gas_outside": points ON the membrane count
+    when they fall on its outer side) and of those farther than dx/4 from every membrane
+    point ("gas_escaped"), and, with dx (the depth), the summed gas point volume over the
+    enclosed area."""
     c = 0.5 * L
     gas, mem = da.particles(0, k), da.particles(1, k)
     o = np.argsort(mem["p.particleID"])
@@ -129,17 +146,20 @@ def measure(da, k=-1, L=4.0, dx=None):
     t = mem["p.tangent"][o]
     hoop = np.einsum("pi,pij,pj->p", t, mem["p.stress"][o], t)
     p = -np.trace(gas["p.stress"], axis1=1, axis2=2) / 3.0
+    vol = gas["p.volume"]
+    p_vol = float(np.sum(p * vol) / np.sum(vol))
     h = float(mem["p.thickness"].mean())
     xg = gas["p.x"][:, :2] - c
-    out = inside_polygon(xg, xm)
+    inside = inside_polygon(xg, xm)
     escaped = 0
-    if dx is not None and np.any(~out):
-        far = np.linalg.norm(xg[~out][:, None, :] - xm[None, :, :], axis=2).min(axis=1) > 0.25 * dx
+    if dx is not None and not inside.all():
+        far = np.linalg.norm(xg[~inside][:, None, :] - xm[None, :, :], axis=2).min(axis=1) > 0.25 * dx
         escaped = int(np.count_nonzero(far))
-    # centroid radius of the membrane from its enclosed area (equal-area circle)
-    r_area = np.sqrt(abs(polygon_area(xm)) / np.pi)
+    area = abs(polygon_area(xm))
     return dict(time=float(da.times[k]), r_mean=float(r.mean()), r_min=float(r.min()), r_max=float(r.max()),
-                r_area=r_area, p_mean=float(p.mean()), hoop=float(hoop.mean()), h=h,
-                pr_over_t=float(p.mean() * r.mean() / h), gas_outside=int(np.count_nonzero(~out)),
-                gas_escaped=escaped,
+                r_area=float(np.sqrt(area / np.pi)), p_mean=float(p.mean()), p_vol=p_vol,
+                hoop=float(hoop.mean()), h=h, pr_over_t=p_vol * float(r.mean()) / h,
+                pmean_r_over_t=float(p.mean() * r.mean()) / h,
+                gas_outside=int(np.count_nonzero(~inside)), gas_escaped=escaped,
+                gas_volume_over_area=float(vol.sum() / (area * dx)) if dx is not None else float("nan"),
                 n_gas=len(p), n_mem=len(r))

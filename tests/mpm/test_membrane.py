@@ -4,10 +4,14 @@ closed membrane (004 sec. 4.3, Table II properties; components/mpm/scenes.py).
 A pressurized circular ring (R = 1.36, the final radius of 004 Table III; p = 100) is the
 equilibrium of the dog-bone expansion: the membrane must carry the hoop stress p r / t
 (t = 0.1), keep the gas inside and stay round. Damped (artificial_damping_coeff 300/s) so
-that the stress settles in 0.1 s. Measured (mean over outputs 0.05..0.1 s):
-dx = 0.2: hoop / (p r/t) = 0.990, r = 1.363, out-of-round 0.0080;  dx = 0.1: 0.978,
-r = 1.362, 0.0032. Tangents: from the neighbours in the numbering each step (004 sec. 3.2).
-The dog-bone itself: scripts/membrane_expansion.py.
+that the stress settles in 0.1 s. Membrane points dx/8 apart, 4 x 4 gas points per cell,
+gas volumes from the mass in their cells (scenes.py). Measured (mean over outputs
+0.05..0.1 s): dx = 0.2: hoop / (p r/t) = 0.993, r = 1.362, out-of-round 0.0013;
+dx = 0.1: 0.991, 1.362, 0.0015 (with membrane points dx/4 apart, 2 x 2 gas points:
+0.990, 0.978 and out-of-round 0.0080, 0.0032). Tangents: from the neighbours in the
+numbering each step (004 sec. 3.2), within 0.8 degrees of the ring's.
+The dog-bone: test_dogbone_expands_gas_stays_in (to t = 1) and, to t = 4 at two
+resolutions, scripts/membrane_expansion.py.
 """
 import numpy as np
 import pytest
@@ -29,16 +33,41 @@ def test_pressurized_ring_hoop_stress(tmp_path, dx):
     for m in ms:
         assert m["gas_outside"] == 0                       # 004 criterion (1)
         assert abs(m["r_mean"] / 1.36 - 1) < 0.01           # nearly inextensible: p r/(t E') ~ 1e-3
-        assert m["r_max"] - m["r_min"] < 0.015              # stays round within 1 % (criterion 2)
+        assert m["r_max"] - m["r_min"] < 0.005              # stays round within 0.4 % (criterion 2)
     # the membrane points carry stress only along their tangent
     mem = da.particles(1, -1)
     t = mem["p.tangent"]
     assert np.allclose(np.linalg.norm(t, axis=1), 1.0)
     s = mem["p.stress"]
     assert np.abs(s - np.einsum("p,pi,pj->pij", np.einsum("pi,pij,pj->p", t, s, t), t, t)).max() < 1e-9 * np.abs(s).max()
-    # the convected tangents stay within 6 degrees of the ring's (measured 3.1 degrees at dx = 0.2)
+    # the tangents stay within 2 degrees of the ring's (measured 0.7 degrees at dx = 0.2)
     r = mem["p.x"][:, :2] - 2.0
-    assert np.abs(np.einsum("pi,pi->p", r, t[:, :2]) / np.linalg.norm(r, axis=1)).max() < 0.1
+    assert np.abs(np.einsum("pi,pi->p", r, t[:, :2]) / np.linalg.norm(r, axis=1)).max() < 0.035
+
+
+def test_dogbone_expands_gas_stays_in(tmp_path):
+    """004 sec. 4.3 at dx = 0.2 (Table III simulation 2) to t = 1: the dog-bone (enclosed
+    area 2.0, equal-area radius 0.80) opens towards its circle (004: final radius 1.33 at
+    this dx; measured r_area 1.322 at t = 1, 1.334 at t = 4); no gas point ever leaves the
+    membrane (criterion 1); the membrane points stay dx/8 apart (no gap opens: at dx/4 apart
+    the membrane crept and burst); the gas point volumes keep summing to the enclosed area
+    (measured within 1.7 %; with V = V0 det F alone 1.5 at t = 1 and 2.1 at t = 4); the
+    total energy is kept (measured -0.15 %, 004: -1.5 % at dx = 0.4)."""
+    ctl, da = run(membrane_deck("dogbone", dx=0.2, t_end=1.0, out=0.1), tmp_path)
+    ms = [measure(da, k, dx=0.2) for k in range(len(da.times))]
+    assert ms[-1]["time"] > 0.99 and ms[0]["r_area"] < 0.81
+    assert ms[-1]["r_area"] > 1.30
+    for m in ms:
+        assert m["gas_escaped"] == 0
+        assert m["gas_outside"] <= 0.01 * m["n_gas"]
+        assert abs(m["gas_volume_over_area"] - 1.0) < 0.03, m
+    mem = da.particles(1, -1)
+    x = mem["p.x"][np.argsort(mem["p.particleID"]), :2]
+    assert np.linalg.norm(np.roll(x, -1, 0) - x, axis=1).max() < 2 * 0.025
+    _, ke = da.reduction("KineticEnergy")
+    _, se = da.reduction("StrainEnergy")
+    e0 = da.particles(0, 0)["p.mass"].sum() * 250.0
+    assert abs(ke[-1] + se[-1] - ke[0] - se[0]) < 0.01 * e0
 
 
 def test_membrane_deck_errors(tmp_path):
