@@ -20,6 +20,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .eos import IDEAL_GAS, eos_cold_energy
+
 NQ = 7  # mass, velocity x/y/z, specific internal energy, specific volume, specific total energy
 
 
@@ -238,9 +240,12 @@ def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi,
 
 
 @njit(cache=True)
-def energy_finish(rho_o, vel_o, temp_o, tot_o, lo, hi, vol, cv):
-    """Conservative total energy -> temperature: e = E/m - |u|^2/2 where that is positive
-    (elsewhere the advected internal energy stays). Returns the number of such cells."""
+def energy_finish(rho_o, vel_o, temp_o, tot_o, lo, hi, vol, cv, code, params):
+    """Conservative total energy -> temperature: cv T = E/m - |u|^2/2 - e_c(rho) where that
+    is positive (elsewhere the advected internal energy stays). e_c (eos_cold_energy) is
+    evaluated at rho = m/V, the material density of a single material; with several
+    materials the option allows ideal gases only (e_c = 0). Returns the number of cells
+    where the advected internal energy was kept."""
     bad = 0
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -248,6 +253,8 @@ def energy_finish(rho_o, vel_o, temp_o, tot_o, lo, hi, vol, cv):
                 m = rho_o[i, j, k] * vol
                 u0, u1, u2 = vel_o[i, j, k, 0], vel_o[i, j, k, 1], vel_o[i, j, k, 2]
                 e = tot_o[i, j, k] / m - 0.5 * (u0 * u0 + u1 * u1 + u2 * u2)
+                if code != IDEAL_GAS:
+                    e -= eos_cold_energy(code, params, rho_o[i, j, k])
                 if e > 0.0:
                     temp_o[i, j, k] = e / cv
                 else:

@@ -103,11 +103,12 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
         self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n), level)
         self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)
-        if self.conserve_energy and (n > 1 or self.codes[0] != IDEAL_GAS):
-            # with e = cv T the flow work of a stiffened gas is (p + Pinf) dv, not the p dv of
-            # the face work p* u*; for several materials the face work is not split the way
-            # eq. 37 splits the compression: both would need more than this correction
-            raise self._conserve_node.error("<conserveTotalEnergy> is implemented for one ideal-gas material only")
+        if self.conserve_energy and n > 1 and np.any(self.codes != IDEAL_GAS):
+            # the equilibration (eq. 13) changes each material's rho_micro at fixed T; with
+            # e = cv T + e_c(rho_micro) that changes the cold energy e_c, so total energy would
+            # not be conserved: several materials must all be ideal gases (e_c = 0)
+            raise self._conserve_node.error("<conserveTotalEnergy> with several materials needs ideal gases "
+                                            "only (any EOS is accepted for one material)")
         self.params = np.array([m.eos.params() for m in self.materials]).reshape(n, MAX_PARAMS)
         self.cvs = np.array([m.cv for m in self.materials])
         self.gammas = np.array([m.gamma for m in self.materials])
@@ -249,7 +250,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         if not self.exchange:
             t.computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
         if self.conserve_energy:
-            t.computes(I.tot_eng_L_CC).computes(I.tot_eng_L_ME_CC)
+            t.computes(I.tot_eng_L_CC)
+            if not self.exchange:
+                t.computes(I.tot_eng_L_ME_CC)
             for d in dirs:
                 t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         if self.viscous:
@@ -263,6 +266,8 @@ class ICE(ImplicitICE, IceTasks, Component):
                 .requires(OLD, L.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC) \
                 .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC) \
                 .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+            if self.conserve_energy:
+                t.requires(NEW, I.tot_eng_L_CC).computes(I.tot_eng_L_ME_CC)
             sched.add_task(t)
 
         t = Task("ICE::computeLagrangianSpecificVolume", self.lagrangian_sp_vol, self.matls) \

@@ -177,6 +177,37 @@ def eos_dp_de(code, params, rho_micro, temp, cv, gamma):
 
 
 @njit(cache=True)
+def eos_cold_energy(code, params, rho_micro):
+    """e_c(rho): the part of the specific internal energy that is not cv T, with
+    de_c/drho = (p - T (dp/dT)_rho) / rho^2 (first law; every EOS here is p_c(rho) + T f(rho)),
+    so that e = cv T + e_c(rho) is the energy whose conservation the Euler equations state.
+    Ideal gas 0; stiffened gas Pinf/rho; JWL/JWLC A/(R1 rho0) exp(-R1 V) + B/(R2 rho0) exp(-R2 V)
+    (+ C rho^om / (om rho0^(1+om)) for JWLC); Murnaghan the integral of p/rho^2 from rho0."""
+    if code == IDEAL_GAS:
+        return 0.0
+    elif code == STIFFENED_GAS:
+        return params[0] / rho_micro
+    elif code == MURNAGHAN:
+        K, n, rho0, P0 = params[0], params[1], params[2], params[3]
+        x = rho_micro / rho0
+        if rho_micro >= rho0:
+            return (P0 - 1.0 / (n * K)) * (1.0 - 1.0 / x) / rho0 + (x ** (n - 1.0) - 1.0) / (n * K * rho0 * (n - 1.0))
+        m = 1.0 / (K * P0)
+        return P0 / rho0 * (x ** (m - 1.0) - 1.0) / (m - 1.0)
+    elif code == JWL or code == JWLC:
+        rho0 = params[5] if code == JWL else params[6]
+        A, B = params[0], params[1]
+        R1, R2 = (params[2], params[3]) if code == JWL else (params[3], params[4])
+        v = rho0 / rho_micro
+        e = A / (R1 * rho0) * math.exp(-R1 * v) + B / (R2 * rho0) * math.exp(-R2 * v)
+        if code == JWLC:
+            om = params[5]
+            e += params[2] * (rho_micro / rho0) ** om / (om * rho0)
+        return e
+    return math.nan
+
+
+@njit(cache=True)
 def _dp_dtemp(code, params, rho_micro, temp, cv, gamma):
     """(dp/dT)_rho; every EOS here is linear in T (or T-independent)."""
     if code == IDEAL_GAS or code == STIFFENED_GAS:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .eos import eos_alpha, eos_press_eos, eos_rho_micro, eos_sound_speed2
+from .eos import IDEAL_GAS, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro, eos_sound_speed2
 
 TINY = 1.0e-100
 
@@ -508,20 +508,24 @@ def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, dt, vol):
 
 # -- optional conservative total energy (<conserveTotalEnergy>, a pysus extension) ---------------
 @njit(cache=True)
-def total_energy_lagrangian(rho, vel, temp, vf, one, px, py, pz, ux, uy, uz, shx, shy, shz, dims,
-                            out, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g):
-    """E^L = m (e + |u|^2/2) - dt sum_faces A theta* p* u* (+ dt m u.g) of one material.
+def total_energy_lagrangian(rho, vel, temp, vf, sp_vol, one, px, py, pz, ux, uy, uz, shx, shy, shz, dims,
+                            out, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g, code, params):
+    """E^L = m (cv T + e_c(rho_micro) + |u|^2/2) - dt sum_faces A theta* p* u* (+ dt m u.g) of one material.
 
     The face work p* u* (face pressure of eq. 31 times the exchanged face velocity,
     donor-cell theta as in eq. 29) leaves one cell and enters its neighbour, so the
     sum over a closed domain (u* = 0 on its walls) is unchanged to round-off.
+    e_c: the EOS's cold energy (eos_cold_energy; 0 for an ideal gas).
     """
     for i in range(olo[0], ohi[0]):
         for j in range(olo[1], ohi[1]):
             for k in range(olo[2], ohi[2]):
                 m = rho[i, j, k] * vol
                 u0, u1, u2 = vel[i, j, k, 0], vel[i, j, k, 1], vel[i, j, k, 2]
-                out[i, j, k] = m * (cv * temp[i, j, k] + 0.5 * (u0 * u0 + u1 * u1 + u2 * u2))
+                e = cv * temp[i, j, k]
+                if code != IDEAL_GAS:
+                    e += eos_cold_energy(code, params, 1.0 / sp_vol[i, j, k])
+                out[i, j, k] = m * (e + 0.5 * (u0 * u0 + u1 * u1 + u2 * u2))
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
@@ -543,3 +547,33 @@ def total_energy_lagrangian(rho, vel, temp, vf, one, px, py, pz, ux, uy, uz, shx
                     m = rho[i, j, k] * vol
                     out[i, j, k] += dt * m * (vel[i, j, k, 0] * g[0] + vel[i, j, k, 1] * g[1] + vel[i, j, k, 2] * g[2])
 
+
+@njit(cache=True)
+def share_total_energy(masses, moms, engs, cvs, tots_in, tots_out, olo, ohi, lo, hi):
+    """Several materials: each material's total energy is its own m (e + |u|^2/2) (ICE's
+    internal energy and momentum: eqs. 35-39 decide how energy splits among materials),
+    plus a share m_m cv_m / sum(m cv) of the cell's difference between the conserved
+    mixture total sum(tots_in) and sum of m (e + |u|^2/2). The difference (what the
+    internal-energy form loses: kinetic energy destroyed by exchange and advection, work
+    not matching p dV) thus heats every material of the cell by the same dT, and the sum
+    over materials equals sum(tots_in) to round-off. Extra cells: no share."""
+    n = len(masses)
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                inner = lo[0] <= i < hi[0] and lo[1] <= j < hi[1] and lo[2] <= k < hi[2]
+                target = 0.0
+                have = 0.0
+                heat = 0.0
+                for m in range(n):
+                    ms = masses[m][i, j, k]
+                    p0, p1, p2 = moms[m][i, j, k, 0], moms[m][i, j, k, 1], moms[m][i, j, k, 2]
+                    own = engs[m][i, j, k] + 0.5 * (p0 * p0 + p1 * p1 + p2 * p2) / ms
+                    tots_out[m][i, j, k] = own
+                    target += tots_in[m][i, j, k]
+                    have += own
+                    heat += ms * cvs[m]
+                if inner:
+                    dT = (target - have) / heat
+                    for m in range(n):
+                        tots_out[m][i, j, k] += dT * masses[m][i, j, k] * cvs[m]

@@ -250,10 +250,12 @@ class IceTasks:
         dt = old_dw.get_reduction(L.delT)
         pf = self._faces(new_dw, I.PRESS_FC, 0, patch)
         press, delP = new_dw.get(I.press_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch)
+        masses, moms, engs, tots = [], [], [], []
         for m in matls:
             mass = new_dw.allocate(I.mass_L_CC, m, patch, fill=None)
             mom = new_dw.allocate(I.mom_L_CC, m, patch, fill=None)
             eng = new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None)
+            masses.append(mass), moms.append(mom), engs.append(eng)
             K.lagrangian(old_dw.get(I.rho_CC, m, patch), old_dw.get(I.vel_CC, m, patch),
                          old_dw.get(I.temp_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
                          new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), press, delP,
@@ -273,12 +275,25 @@ class IceTasks:
                 uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
                 K.total_energy_lagrangian(old_dw.get(I.rho_CC, m, patch), old_dw.get(I.vel_CC, m, patch),
                                           old_dw.get(I.temp_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
-                                          len(matls) == 1, pf[0], pf[1], pf[2], uf[0], uf[1], uf[2],
+                                          new_dw.get(I.sp_vol_CC, m, patch), len(matls) == 1,
+                                          pf[0], pf[1], pf[2], uf[0], uf[1], uf[2],
                                           b.sh[0], b.sh[1], b.sh[2], self.dims, tot, b.olo, b.ohi, b.lo, b.hi,
-                                          b.vol, patch.level.dx, dt, self.cvs[m], self.gravity, self.use_gravity)
+                                          b.vol, patch.level.dx, dt, self.cvs[m], self.gravity, self.use_gravity,
+                                          self.codes[m], self.params[m])
                 if self.conduction:
                     tot[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
-                new_dw.put(I.tot_eng_L_ME_CC, m, patch, tot)       # one material: no exchange
+                tots.append(tot)
+                if len(matls) == 1:
+                    new_dw.put(I.tot_eng_L_ME_CC, m, patch, tot)       # one material: no exchange
+        if self.conserve_energy and len(matls) > 1 and not self.exchange:
+            self._share_total_energy(patch, matls, new_dw, tuple(masses), tuple(moms), tuple(engs), tuple(tots))
+
+    def _share_total_energy(self, patch, matls, new_dw, masses, moms, engs, tots):
+        """tot_eng_L_ME_CC of several materials: each one's m (e + |u|^2/2) after the exchange plus
+        its m cv share of what the mixture's conserved total energy (tots) says is missing."""
+        b = self.boxes(patch)
+        out = tuple(new_dw.allocate(I.tot_eng_L_ME_CC, m, patch, fill=None) for m in matls)
+        K.share_total_energy(masses, moms, engs, self.cvs[list(matls)], tots, out, b.olo, b.ohi, b.lo, b.hi)
 
     # -- step 10: momentum and heat exchange (eqs. 38-39) ---------------------------------------
     def exchange_cc(self, patch, matls, old_dw, new_dw):
@@ -289,7 +304,8 @@ class IceTasks:
         eng_out = tuple(new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None) for m in matls)
         K.exchange_cells(get(I.mass_L_CC), get(I.mom_L_CC), get(I.int_eng_L_CC), get(I.vol_frac_CC),
                          get(I.sp_vol_CC), self.cvs, mom_out, eng_out, b.olo, b.ohi, dt, self.K, self.H)
-
+        if self.conserve_energy:
+            self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
 
     # -- step 11: specific volume (eq. 40) --------------------------------------------------------
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
@@ -334,7 +350,7 @@ class IceTasks:
                      self._scratch("sl", (shape[2],)), b.vol,
                      self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o))
             if self.conserve_energy:
-                A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m])
+                A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m], self.codes[m], self.params[m])
             self.bcs.scalar(patch, rho, "Density", m, b)
             self.bcs.scalar(patch, temp, "Temperature", m, b)
             self.bcs.velocity(patch, vel, m, b)

@@ -87,6 +87,26 @@ def test_dp_drho_and_dp_de_finite_differences(name):
         assert E.eos_dp_de(m.code, pr, rho, T, cv, g) == pytest.approx(fdT, rel=1e-6, abs=1e-12 * rho)
 
 
+@pytest.mark.parametrize("name", list(CASES))
+def test_cold_energy_obeys_the_first_law(name):
+    """de_c/drho = (p - T (dp/dT)_rho) / rho^2: with e = cv T + e_c the Euler energy equation holds
+    (what <conserveTotalEnergy> relies on); checked by central differences of eos_cold_energy."""
+    m, cv, g, rhos, T = CASES[name]
+    pr = m.params()
+    for rho in rhos:
+        p = E.eos_press(m.code, pr, rho, T, cv, g)
+        dpdT = E.eos_dp_de(m.code, pr, rho, T, cv, g) * cv
+        exact = (p - T * dpdT) / rho ** 2
+        dpdrho = E.eos_dp_drho(m.code, pr, rho, T, cv, g)
+        h = 1e-4 * rho * min(1.0, abs(p) / (rho * dpdrho)) if dpdrho > 0 else 1e-4 * rho
+        fd = (E.eos_cold_energy(m.code, pr, rho + h) - E.eos_cold_energy(m.code, pr, rho - h)) / (2 * h)
+        assert fd == pytest.approx(exact, rel=1e-5, abs=1e-9 * abs(p) / rho ** 2 + 1e-300)
+    if m.code == E.STIFFENED_GAS:
+        assert E.eos_cold_energy(m.code, pr, 1000.0) == 6.0e8 / 1000.0      # Pinf / rho
+    if m.code == E.IDEAL_GAS:
+        assert E.eos_cold_energy(m.code, pr, 1.2) == 0.0
+
+
 def test_air_sound_speed_300K():
     pr = IDEAL.params()
     rho = E.eos_rho_micro(E.IDEAL_GAS, pr, 101325.0, 300.0, AIR["cv"], AIR["gamma"], 1.0)
