@@ -26,7 +26,7 @@ DECK = """<Uintah_specification><SimulationComponent type="ice"/>
 <Grid>{bcs}<Level><Box label="1"><lower>[0,0,0]</lower><upper>[2,2,0.01]</upper>
 <extraCells>{extra}</extraCells><patches>[2,2,1]</patches><resolution>[24,24,1]</resolution></Box>{periodic}</Level></Grid>
 <DataArchiver><filebase>c.uda</filebase><outputTimestepInterval>{every}</outputTimestepInterval>
-<save label="TotalMass"/><save label="TotalIntEng"/><save label="KineticEnergy"/></DataArchiver>
+<save label="TotalMass"/><save label="TotalIntEng"/><save label="KineticEnergy"/>{saves}</DataArchiver>
 <CFD><cfl>0.4</cfl><ICE>{option}<advection type="SecondOrder"/></ICE></CFD>
 <PhysicalConstants><gravity>[0,0,0]</gravity></PhysicalConstants>
 <MaterialProperties><ICE>{materials}</ICE>{exchange}</MaterialProperties></Uintah_specification>"""
@@ -39,7 +39,7 @@ REST = f'<difference><box><min>[-1,-1,-1]</min><max>[3,3,3]</max></box>{CHARGE}<
 PINF = 0.5
 
 
-def deck(nmat, exchange=None, periodic=False, conserve=True, stiffened=False, steps=40, every=1):
+def deck(nmat, exchange=None, periodic=False, conserve=True, stiffened=False, steps=40, every=1, saves=()):
     """The scene as deck text (see the module docstring)."""
     eos, tags = ("Stiffened_gas", f"<Pinf>{PINF}</Pinf>") if stiffened else ("ideal_gas", "")
     inside = OBJ.format(piece='<cylinder label="c"/>', T=1.0, rho=1.0, p=1.0)
@@ -56,7 +56,7 @@ def deck(nmat, exchange=None, periodic=False, conserve=True, stiffened=False, st
                        extra="[0,0,1]" if periodic else "[1,1,1]",
                        periodic="<periodic>[1,1,0]</periodic>" if periodic else "",
                        option="<conserveTotalEnergy>true</conserveTotalEnergy>" if conserve else "",
-                       materials=mats, exchange=exch)
+                       materials=mats, exchange=exch, saves="".join(f'<save label="{s}"/>' for s in saves))
 
 
 def totals(da):

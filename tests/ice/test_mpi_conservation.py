@@ -1,0 +1,27 @@
+"""<conserveTotalEnergy> with two ideal gases and stiff exchange (the closed 2D blast of
+test_conservation.py, 4 patches, 20 steps) on 2 and 3 ranks: bitwise the one-rank answer,
+and total energy conserved to round-off on every rank count."""
+import numpy as np
+
+from framework.archiver import DataArchive
+from tests.conftest import pysus
+
+from .test_conservation import deck, totals
+
+LABELS = ("rho_CC", "temp_CC", "vel_CC", "sp_vol_CC")
+
+
+def test_two_gases_conserving_energy_ranks_equal_one_rank(tmp_path):
+    path = tmp_path / "blast2.ups"
+    path.write_text(deck(2, 1e10, steps=20, every=20, saves=LABELS))
+    runs = {}
+    for n in (1, 2, 3):
+        uda = tmp_path / f"r{n}.uda"
+        r = pysus(path, "--filebase", uda, np_=n)
+        assert r.returncode == 0, r.stderr[-2000:]
+        runs[n] = DataArchive(uda)
+    for n in (2, 3):
+        for lab in LABELS:
+            for m in (0, 1):
+                assert np.array_equal(runs[1].read(lab, m, -1)[0], runs[n].read(lab, m, -1)[0]), (n, lab, m)
+        assert np.array_equal(totals(runs[1])[1], totals(runs[n])[1])
