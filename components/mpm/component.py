@@ -1,7 +1,8 @@
 """Explicit MPM (Uintah's SerialMPM, paper 000 sec. 3.2, paper 004 eqs. 5-17).
 
 `<SimulationComponent type="mpm">`. The deck blocks read here:
-  <MPM>                 FLAGS below (interpolator linear|gimp, explicit only, ...)
+  <MPM>                 FLAGS below (interpolator linear|gimp, explicit only,
+                        DoExplicitHeatConduction: p.temperature and conduction, thermal.py)
   <PhysicalConstants>   <gravity>
   <MaterialProperties><MPM>  <material> (materials.py; models incl. ideal_gas_fluid, the
                         fluid points of paper 004, and membrane, its membrane/string points
@@ -44,6 +45,7 @@ from .contact import Contact
 from .materials import Material
 from .transfer import KERNELS
 from .tasks import MPMTasks
+from .thermal import ThermalTasks
 
 FLAGS = {
     "time_integrator": Param("str", "explicit", ("explicit",), "only explicit MPM is implemented"),
@@ -54,7 +56,7 @@ FLAGS = {
     "maximum_particle_velocity": Param("float", np.inf, doc="faster particles are deleted"),
     "minimum_mass_for_acc": Param("float", 0.0, doc="nodes this light get no force acceleration"),
     "do_grid_reset": Param("bool", True, (True,), doc="the grid is always reset"),
-    "DoExplicitHeatConduction": Param("bool", False, (False,), doc="heat conduction is not implemented"),
+    "DoExplicitHeatConduction": Param("bool", False, doc="particle temperature and explicit heat conduction (thermal.py)"),
     "axisymmetric": Param("bool", False, (False,), doc="axisymmetry is not implemented"),
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
@@ -64,7 +66,7 @@ FLAGS = {
 
 
 @register("mpm")
-class MPM(MPMTasks, Component):
+class MPM(ThermalTasks, MPMTasks, Component):
     """Explicit single-grid MPM with Uintah's deck tags and variable names."""
 
     # MPMICE hooks: the <MPM> flag table, grid-BC reader and contact reader it may extend
@@ -115,6 +117,7 @@ class MPM(MPMTasks, Component):
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure> (pressure.py)
+        self.thermal_setup()
         self._carried()
 
     def _carried(self):
@@ -134,6 +137,7 @@ class MPM(MPMTasks, Component):
         if self.pressure_bcs:
             c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
         self.carry = c
+        self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
 
     # -- scheduling ---------------------------------------------------------------------
     def schedule_initialize(self, level, sched):
@@ -146,6 +150,7 @@ class MPM(MPMTasks, Component):
         if self.pressure_bcs:
             t.computes(L.PressureBCParticles)
         sched.add_task(t)
+        self.schedule_thermal_initialize(sched)
         sched.register_particle_labels(L.pX, L.pID)
 
     def schedule_compute_stable_timestep(self, level, sched):
@@ -166,6 +171,7 @@ class MPM(MPMTasks, Component):
         for lab in [L.pX, L.pMass, L.pStress] + ([L.pSize] if self.kind == "gimp" else []):
             t.requires(OLD, lab, g, ng)
         sched.add_task(t.computes(L.gStressFS))       # pruned unless g.stressFS is saved
+        self.schedule_heat_conduction(sched)
         if self.contact.interpolated:
             t = Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms) \
                 .requires(NEW, L.gMass).modifies(L.gVelocity).requires(OLD, FL.delT)
@@ -209,6 +215,7 @@ class MPM(MPMTasks, Component):
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
             t.computes(r)
         sched.add_task(t)
+        self.schedule_temperature_update(sched)
         if self.has_membrane:   # 004 sec. 3.2: tangents from the neighbours along the chain
             sched.add_task(Task("MPM::membraneTangents", self.membrane_tangents, ms)
                            .requires(OLD, L.pX, Ghost.AROUND_NODES, 1).requires(OLD, L.pID, Ghost.AROUND_NODES, 1)
@@ -248,8 +255,9 @@ class MPM(MPMTasks, Component):
         sched.add_task(t)
         if self.analysis.active:
             self.analysis.schedule(sched)
-        sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in self.carry], L.pX,
-                                           [final for final, _ in self.carry], ms, id_label=L.pID)
+        carry = self.carry + self.carry_thermal
+        sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in carry], L.pX,
+                                           [final for final, _ in carry], ms, id_label=L.pID)
 
     def _p2g_labels(self):
         labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]

@@ -4,9 +4,10 @@ Particle state carried between steps: p.x, p.velocity, p.mass, p.volume, p.stres
 p.deformationMeasure (F), p.particleID, p.externalforce (pressure BCs only), p.size
 (uGIMP half-widths, GIMP only), p.color (withColor only) and per-model state
 (plastic strain, internal energy, membrane tangent/thickness, accumulated strain
-energy of rate models). Each has a "+" twin written by the update before relocation.
+energy of rate models), p.temperature (with heat conduction or MPMICE heat
+exchange, thermal.py). Each has a "+" twin written by the update before relocation.
 Grid: g.mass, g.velocity, g.volume, g.externalforce, g.internalforce,
-g.velocity_star, g.acceleration. Reductions as in Uintah.
+g.velocity_star, g.acceleration, g.temperature, g.temperatureRate. Reductions as in Uintah.
 """
 import numpy as np
 
@@ -37,6 +38,7 @@ pTangent, pTangentPre = _pair("p.tangent", (3,))
 pThickness, pThicknessPre = _pair("p.thickness")
 pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
 pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
+pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / MPMICE (thermal.py)
 STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model scalar state
          "p.internalEnergy": (pIntEnergy, pIntEnergyPre)}
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
@@ -52,12 +54,15 @@ gVelocityL = L.create("g.velocity_L", NC, (3,))     # remapped updated velocity 
 gSurfNorm = L.create("g.surfNorm", NC, (3,))       # outward unit normal (friction contact)
 gVelocityStar = L.create("g.velocity_star", NC, (3,))
 gAcceleration = L.create("g.acceleration", NC, (3,))
+gTemperature = L.create("g.temperature", NC)            # mass-weighted nodal temperature (thermal.py)
+gTemperatureRate = L.create("g.temperatureRate", NC)    # conduction dT/dt at the nodes (thermal.py)
 
 KineticEnergy = L.create("KineticEnergy", R, reduction="sum")
 StrainEnergy = L.create("StrainEnergy", R, reduction="sum")
 TotalMass = L.create("TotalMass", R, reduction="sum")
 TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")
 CenterOfMassPosition = L.create("CenterOfMassPosition", R, (3,), reduction="sum")
+ThermalEnergy = L.create("ThermalEnergy", R, reduction="sum")   # sum m_p cv T_p (thermal.py)
 WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")
 # fluid points' artificial viscosity (004 eq. 24): per material m, [2m] the largest sound
 # speed and [2m+1] the largest |div v| over the whole level (MPM materials <= 16)

@@ -1,8 +1,8 @@
 """MPM materials from `<MaterialProperties><MPM><material>` and their particles.
 
 A material has a density, a constitutive model (one of MODELS), thermal properties
-(read and checked; MPM heat conduction is not implemented, so they only matter to a
-deck that asks for it, which is refused) and geometry objects that fill it with
+(conductivity and specific heat: used by heat conduction and the MPMICE heat exchange,
+thermal.py) and geometry objects that fill it with
 particles: `res` particles per cell per direction (one in a collapsed direction),
 `velocity`, `temperature` and, with `<withColor>`, `color`. Where two objects of one
 material overlap, the first one listed owns the point.
@@ -36,8 +36,8 @@ STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEne
 
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)"),
-    "thermal_conductivity": Param("float", 0.0, doc="W/(m K); read, heat conduction not modelled"),
-    "specific_heat": Param("float", 0.0, doc="J/(kg K); read, heat conduction not modelled"),
+    "thermal_conductivity": Param("float", 0.0, doc="W/(m K) (thermal.py)"),
+    "specific_heat": Param("float", 0.0, doc="J/(kg K) (thermal.py, MPMICE exchange)"),
     "room_temp": Param("float", 294.0, doc="K; read, no thermal model uses it"),
     "melt_temp": Param("float", 1e30, doc="K; read, no thermal model uses it"),
     "is_rigid": Param("bool", False, doc="rigid body for <contact type=rigid>"),
@@ -47,7 +47,7 @@ MATERIAL = {
 GEOM = {
     "res": Param("ivector", doc="particles per cell in each direction"),
     "velocity": Param("vector", (0.0, 0.0, 0.0)),
-    "temperature": Param("float", 294.0, doc="K; carried only as an input, no thermal model"),
+    "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py)"),
 }
 
 
@@ -56,12 +56,17 @@ class Material:
 
     def __init__(self, node, index, geom_reader, with_color):
         self.index = index
+        self.node = node
         self.name = node.attr("name", default=f"mpm{index}")
         props = node.read(MATERIAL)
         self.density = props["density"]
         if self.density <= 0:
             raise node.child("density").error("density must be positive")
         self.is_rigid = props["is_rigid"]
+        self.conductivity = props["thermal_conductivity"]
+        self.specific_heat = props["specific_heat"]
+        if self.conductivity < 0 or self.specific_heat < 0:
+            raise node.error("<thermal_conductivity> and <specific_heat> must not be negative")
         cm = node.child("constitutive_model", required=True)
         kind = cm.attr("type")
         if kind not in MODELS:

@@ -1,0 +1,336 @@
+"""Heat in the MPM solids: particle temperature and explicit heat conduction on the grid.
+
+Uintah's MPM HeatConduction (explicit), written as three tasks per timestep:
+
+  MPM::interpolateTemperatureToGrid   g.temperature = sum S m T_p / m_i (mass-weighted)
+  MPM::computeInternalHeatRate        g.temperatureRate: m_i cv dT_i/dt = -sum_p V_p k
+                                      grad S_ip . grad T_p, grad T_p = sum_j T_j grad S_jp
+                                      (the Galerkin weak form of rho cv dT/dt = div(k grad T)
+                                      with particle quadrature; no flux leaves a free surface)
+  MPM::updateParticleTemperature      T_p += dt sum S_ip (dT/dt)_i, plus MPMICE's exchange
+                                      rate (dTdt_NC) when the solid is coupled to fluids
+
+Since sum_i grad S_ip = 0, the conduction rates conserve sum_i m_i cv T_i exactly and the
+particle update hands every node's heat to its particles in proportion to S m: an
+insulated body keeps its heat to round-off. A particle near a nearly empty node takes
+S_ip dT_i/dt from it, whose 1/m_i the small S_ip cancels, so such nodes do not limit the
+step. The grad T of a ghost particle needs g.temperature at nodes one stencil beyond the
+patch: they come from the neighbours (AroundCells 2 ng), so every patch computes its own
+nodes in particle-ID order and 1, 2, 3 ranks agree bitwise.
+
+The tasks run only when `<MPM><DoExplicitHeatConduction>` is true or MPMICE needs the
+solid temperature (heat exchange with a fluid); the conduction task only for materials
+with thermal_conductivity > 0. The explicit step is stable for
+dt <= rho cv / (2 k sum_d 1/dx_d^2) (the finite-difference limit, which the lumped-mass
+linear element shares); the stable timestep takes it into account.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from framework import labels as FL
+from framework.task import NEW, OLD, Task
+from framework.variables import Ghost, VarType
+
+from . import labels as L
+from .shape import LINEAR, _gimp1
+
+FM = {'contract'}
+NC = VarType.NC
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _axis(kind, active, x, a0, ih, l):
+    """One axis of a particle's stencil: base node (global), three weights and d/dx.
+    An inactive (collapsed) axis has one node, weight 1, gradient 0."""
+    if not active:
+        return 0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    xi = (x - a0) * ih
+    if kind == LINEAR:
+        i = int(np.floor(xi))
+        f = xi - i
+        return i, 1.0 - f, f, 0.0, -ih, ih, 0.0
+    i = int(np.floor(xi + 0.5)) - 1
+    lc = l * ih
+    inv = 0.5 / lc
+    s0, d0 = _gimp1(xi - i, lc, inv)
+    s1, d1 = _gimp1(xi - (i + 1), lc, inv)
+    s2, d2 = _gimp1(xi - (i + 2), lc, inv)
+    return i, s0, s1, s2, d0 * ih, d1 * ih, d2 * ih
+
+
+@njit(cache=True, inline="always")
+def _pick(a, x0, x1, x2):
+    return x0 if a == 0 else (x1 if a == 1 else x2)
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _stencil(kind, act, px, lp, p, anchor, ih, node_low):
+    """Local base indices, weights and gradients of particle p on the three axes (act: bit d
+    set when axis d is active)."""
+    i, wx0, wx1, wx2, gx0, gx1, gx2 = _axis(kind, act & 1 != 0, px[p, 0], anchor[0], ih[0], lp[p, 0])
+    j, wy0, wy1, wy2, gy0, gy1, gy2 = _axis(kind, act & 2 != 0, px[p, 1], anchor[1], ih[1], lp[p, 1])
+    k, wz0, wz1, wz2, gz0, gz1, gz2 = _axis(kind, act & 4 != 0, px[p, 2], anchor[2], ih[2], lp[p, 2])
+    if act & 1:
+        i -= node_low[0]
+    if act & 2:
+        j -= node_low[1]
+    if act & 4:
+        k -= node_low[2]
+    return (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+            wz0, wz1, wz2, gz0, gz1, gz2)
+
+
+@njit(cache=True, inline="always")
+def _sizes(kind, act):
+    n = 2 if kind == LINEAR else 3
+    return (n if act & 1 else 1), (n if act & 2 else 1), (n if act & 4 else 1)
+
+
+@njit(cache=True, inline="always")
+def _inv(dx, act):
+    return (1.0 / dx[0] if act & 1 else 0.0), (1.0 / dx[1] if act & 2 else 0.0), (1.0 / dx[2] if act & 4 else 0.0)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_heat(kind, act, px, pm, pT, lp, anchor, dx, node_low, gmT):
+    """gmT_i += sum_p S_ip m_p T_p (shares beyond the node array dropped)."""
+    sh0, sh1, sh2 = gmT.shape
+    na, nb, nc = _sizes(kind, act)
+    ih = _inv(dx, act)
+    f = gmT.reshape(-1)
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+        mT = pm[p] * pT[p]
+        for a in range(na):
+            wa = _pick(a, wx0, wx1, wx2)
+            for b in range(nb):
+                wb = _pick(b, wy0, wy1, wy2)
+                for c in range(nc):
+                    if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
+                        continue
+                    f[((i + a) * sh1 + j + b) * sh2 + k + c] += mT * wa * wb * _pick(c, wz0, wz1, wz2)
+
+
+@njit(cache=True, fastmath=FM)
+def heat_rate(kind, act, px, pvol, lp, anchor, dx, node_low, gT, kcv, acc):
+    """acc_i -= (k/cv) V_p grad S_ip . grad T_p with grad T_p = sum_j T_j grad S_jp
+    (Uintah's computeInternalHeatRate, the gradient taken from this step's g.temperature)."""
+    sh0, sh1, sh2 = gT.shape
+    na, nb, nc = _sizes(kind, act)
+    ih = _inv(dx, act)
+    ft = gT.reshape(-1)
+    fa = acc.reshape(-1)
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+            raise IndexError("particle's nodes lie outside the patch node arrays")
+        t0 = t1 = t2 = 0.0
+        for a in range(na):
+            wa = _pick(a, wx0, wx1, wx2)
+            ga = _pick(a, gx0, gx1, gx2)
+            for b in range(nb):
+                wb = _pick(b, wy0, wy1, wy2)
+                gb = _pick(b, gy0, gy1, gy2)
+                for c in range(nc):
+                    wc = _pick(c, wz0, wz1, wz2)
+                    gc = _pick(c, gz0, gz1, gz2)
+                    T = ft[((i + a) * sh1 + j + b) * sh2 + k + c]
+                    t0 += T * ga * wb * wc
+                    t1 += T * wa * gb * wc
+                    t2 += T * wa * wb * gc
+        s = kcv * pvol[p]
+        for a in range(na):
+            wa = _pick(a, wx0, wx1, wx2)
+            ga = _pick(a, gx0, gx1, gx2)
+            for b in range(nb):
+                wb = _pick(b, wy0, wy1, wy2)
+                gb = _pick(b, gy0, gy1, gy2)
+                for c in range(nc):
+                    wc = _pick(c, wz0, wz1, wz2)
+                    gc = _pick(c, gz0, gz1, gz2)
+                    q = ga * wb * wc * t0 + wa * gb * wc * t1 + wa * wb * gc * t2
+                    fa[((i + a) * sh1 + j + b) * sh2 + k + c] -= s * q
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_heat(kind, act, px, pT, pm, lp, anchor, dx, node_low, rate, dt, T_out, cv):
+    """T_p += dt sum S_ip rate_i; returns sum m_p cv T_p of the updated particles."""
+    sh0, sh1, sh2 = rate.shape
+    na, nb, nc = _sizes(kind, act)
+    ih = _inv(dx, act)
+    fr = rate.reshape(-1)
+    e = 0.0
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+            raise IndexError("particle's nodes lie outside the patch node arrays")
+        r = 0.0
+        for a in range(na):
+            wa = _pick(a, wx0, wx1, wx2)
+            for b in range(nb):
+                wb = _pick(b, wy0, wy1, wy2)
+                for c in range(nc):
+                    r += wa * wb * _pick(c, wz0, wz1, wz2) * fr[((i + a) * sh1 + j + b) * sh2 + k + c]
+        T = pT[p] + dt * r
+        T_out[p] = T
+        e += pm[p] * cv * T
+    return e
+
+
+@njit(cache=True)
+def divide_by_mass(gm, q, out):
+    """out_i = q_i / m_i where m_i > 0, else 0 (g.temperature, g.temperatureRate)."""
+    f, fm, fo = q.reshape(-1), gm.reshape(-1), out.reshape(-1)
+    for n in range(f.shape[0]):
+        fo[n] = f[n] / fm[n] if fm[n] > 0.0 else 0.0
+
+
+class _Keep:
+    """A new warehouse whose put_reduction is kept (to combine two stable timesteps)."""
+
+    def __init__(self, dw):
+        self.dw, self.value = dw, None
+
+    def __getattr__(self, name):
+        return getattr(self.dw, name)
+
+    def put_reduction(self, label, value, m=-1):
+        self.value = value
+
+
+class ThermalTasks:
+    """Mixed into the MPM component (before MPMTasks): the heat tasks and their scheduling.
+
+    `thermal_rates` lists extra NC rate labels (MPMICE: dTdt_NC) that the particle update
+    adds to the conduction rate; `thermal_needed` turns the model on without the flag."""
+
+    thermal_needed = False
+    thermal_rates = ()
+
+    def thermal_setup(self):
+        """After the materials are read: which tasks this deck needs."""
+        self.thermal = bool(self.flags["DoExplicitHeatConduction"]) or self.thermal_needed
+        self.conducting = [m for m, mat in enumerate(self.materials) if self.thermal and mat.conductivity > 0]
+        for m in self.conducting:
+            if self.materials[m].specific_heat <= 0:
+                raise self.materials[m].node.error(
+                    "heat conduction needs <specific_heat> > 0 (thermal_conductivity is positive)")
+        self.th_act = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask of the kernels
+        self.dt_thermal = np.inf
+        ih2 = sum(1.0 / self.level.dx[d] ** 2 for d in range(3) if self.dims[d])
+        for m in self.conducting:
+            mat = self.materials[m]
+            self.dt_thermal = min(self.dt_thermal, mat.density * mat.specific_heat / (2.0 * mat.conductivity * ih2))
+
+    # -- scheduling ---------------------------------------------------------------------------
+    def schedule_thermal_initialize(self, sched):
+        if self.thermal:
+            sched.add_task(Task("MPM::initializeTemperature", self.initialize_temperature, self.matls)
+                           .requires(NEW, L.pID).requires(NEW, L.pMass).computes(L.pTemperature)
+                           .computes(L.ThermalEnergy))
+
+    def schedule_heat_conduction(self, sched):
+        """g.temperature and (with conduction) g.temperatureRate, after particles -> grid."""
+        if not self.thermal:
+            return
+        ms, g, ng = self.matls, Ghost.AROUND_NODES, self.ng
+        lp = [L.pSize] if self.kind == "gimp" else []
+        t = Task("MPM::interpolateTemperatureToGrid", self.interpolate_temperature, ms).requires(NEW, L.gMass)
+        for lab in [L.pX, L.pMass, L.pTemperature] + lp:
+            t.requires(OLD, lab, g, ng)
+        sched.add_task(t.computes(L.gTemperature))
+        if self.conducting:
+            t = (Task("MPM::computeInternalHeatRate", self.internal_heat_rate, self.conducting)
+                 .requires(NEW, L.gMass).requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, 2 * ng))
+            for lab in [L.pX, L.pVolume] + lp:
+                t.requires(OLD, lab, g, ng)
+            sched.add_task(t.computes(L.gTemperatureRate))
+
+    def schedule_temperature_update(self, sched):
+        """p.temperature+ from the nodal rates, after the exchange has added its own."""
+        if not self.thermal:
+            return
+        t = Task("MPM::updateParticleTemperature", self.update_particle_temperature, self.matls)
+        t.requires(OLD, FL.delT)
+        for lab in [L.pX, L.pMass, L.pTemperature] + ([L.pSize] if self.kind == "gimp" else []):
+            t.requires(OLD, lab)
+        if self.conducting:
+            t.requires(NEW, L.gTemperatureRate, Ghost.AROUND_CELLS, self.ng, matls=self.conducting)
+        for lab in self.thermal_rates:
+            t.requires(NEW, lab, Ghost.AROUND_CELLS, self.ng)
+        sched.add_task(t.computes(L.pTemperaturePre).computes(L.ThermalEnergy))
+
+    # -- task bodies ----------------------------------------------------------------------------
+    def initialize_temperature(self, patch, matls, old_dw, new_dw):
+        """p.temperature = the <temperature> of the geometry object that made the particle
+        (object number = p.particleID >> 40, see Material.create)."""
+        e = 0.0
+        for m in matls:
+            mat = self.materials[m]
+            temps = np.array([o["temperature"] for o in mat.objects], float)
+            ids = new_dw.get(L.pID, m, patch)
+            T = temps[(ids >> 40) - self._obj_base(m)] if len(ids) else np.zeros(0)
+            new_dw.put(L.pTemperature, m, patch, np.ascontiguousarray(T))
+            e += mat.specific_heat * float(np.dot(new_dw.get(L.pMass, m, patch), T)) if len(ids) else 0.0
+        new_dw.put_reduction(L.ThermalEnergy, e)
+
+    def interpolate_temperature(self, patch, matls, old_dw, new_dw):
+        """g.temperature = sum S m T / m_i from the owned and ghost particles."""
+        lv = self.level
+        low = np.array(patch.low_index(NC), np.int64)
+        kind = 0 if self.kind == "linear" else 1
+        for m in matls:
+            px = old_dw.get(L.pX, m, patch)
+            gmT = np.zeros(patch.alloc_shape(NC))
+            p2g_heat(kind, self.th_act, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pTemperature, m, patch),
+                     self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, gmT)
+            divide_by_mass(new_dw.get(L.gMass, m, patch), gmT, new_dw.allocate(L.gTemperature, m, patch, None))
+
+    def internal_heat_rate(self, patch, matls, old_dw, new_dw):
+        """g.temperatureRate = -sum_p (k/cv) V_p grad S_ip . grad T_p / m_i (Uintah's
+        computeInternalHeatRate and solveHeatEquations, no external heat)."""
+        lv = self.level
+        low = np.array(patch.low_index(NC), np.int64)
+        kind = 0 if self.kind == "linear" else 1
+        for m in matls:
+            mat = self.materials[m]
+            px = old_dw.get(L.pX, m, patch)
+            acc = np.zeros(patch.alloc_shape(NC))
+            heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch), self._lp(old_dw, m, patch, len(px)),
+                      lv.anchor, lv.dx, low, new_dw.get(L.gTemperature, m, patch),
+                      mat.conductivity / mat.specific_heat, acc)
+            divide_by_mass(new_dw.get(L.gMass, m, patch), acc, new_dw.allocate(L.gTemperatureRate, m, patch, None))
+
+    def update_particle_temperature(self, patch, matls, old_dw, new_dw):
+        """T_p^{n+1} = T_p^n + dt sum S_ip (conduction + exchange rates)_i; ThermalEnergy."""
+        lv = self.level
+        dt = old_dw.get_reduction(FL.delT)
+        low = np.array(patch.low_index(NC), np.int64)
+        kind = 0 if self.kind == "linear" else 1
+        e = 0.0
+        for m in matls:
+            mat = self.materials[m]
+            rates = [new_dw.get(lab, m, patch) for lab in self.thermal_rates]
+            if m in self.conducting:
+                rates.append(new_dw.get(L.gTemperatureRate, m, patch))
+            rate = rates[0] if len(rates) == 1 else (sum(rates) if rates else np.zeros(patch.alloc_shape(NC)))
+            px = old_dw.get(L.pX, m, patch)
+            T_new = np.empty(len(px))
+            e += g2p_heat(kind, self.th_act, px, old_dw.get(L.pTemperature, m, patch), old_dw.get(L.pMass, m, patch),
+                          self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, np.ascontiguousarray(rate), dt,
+                          T_new, mat.specific_heat)
+            new_dw.put(L.pTemperaturePre, m, patch, T_new)
+        new_dw.put_reduction(L.ThermalEnergy, e)
+
+    def compute_stable_timestep(self, patch, matls, old_dw, new_dw):
+        """The mechanical step (MPMTasks) and, with conduction, the explicit diffusion limit."""
+        if not self.conducting:
+            return super().compute_stable_timestep(patch, matls, old_dw, new_dw)
+        keep = _Keep(new_dw)
+        super().compute_stable_timestep(patch, matls, old_dw, keep)
+        new_dw.put_reduction(FL.delT, min(float(keep.value), self.dt_thermal))

@@ -1,0 +1,102 @@
+"""MPM particle temperature and explicit heat conduction (components/mpm/thermal.py).
+
+Exact solution: in an insulated bar with diffusivity alpha the amplitude of the mode
+cos(pi x / L) decays as exp(-pi^2 alpha t / L^2), and sum m cv T is constant. The
+conduction tasks must not depend on the patch layout or the rank count, and must not
+run at all in a deck that does not ask for them.
+"""
+import numpy as np
+import pytest
+
+from framework.archiver import DataArchive
+from framework.problemspec import InputError
+from tests.conftest import pysus, run_deck
+
+from .helpers import MPM_INPUTS, deck_text
+
+BAR = MPM_INPUTS / "heat_conduction_bar.ups"
+
+
+def _mode(p):
+    """Amplitude of cos(pi x) in T - 300 (mass-weighted quadrature over the particles)."""
+    x, T, m = p["p.x"][:, 0], p["p.temperature"], p["p.mass"]
+    return 2.0 * np.sum(m * (T - 300.0) * np.cos(np.pi * x)) / np.sum(m)
+
+
+def test_cosine_mode_decays_at_the_exact_rate(tmp_path):
+    ctl = run_deck(deck_text(BAR), tmp_path)
+    da = DataArchive(ctl.archiver.dir)
+    a0 = _mode(da.particles(0, 0))
+    assert abs(a0 - 10.0) < 0.02                     # the 16 slabs lay the mode
+    for i in range(1, len(da.times)):
+        exact = a0 * np.exp(-np.pi ** 2 * da.times[i])
+        assert abs(_mode(da.particles(0, i)) / exact - 1.0) < 2e-3, da.times[i]
+    assert da.times[-1] > 0.099
+    t, e = da.reduction("ThermalEnergy")
+    assert np.all(np.abs(np.asarray(e) / e[0] - 1.0) < 1e-12)
+
+
+def _square(patches, gimp=False):
+    """2D: a square plate [0,1]^2 in four quadrants at 280, 320, 310, 290 K, insulated."""
+    quads = [((0, 0), 280.0), ((0.5, 0), 320.0), ((0, 0.5), 310.0), ((0.5, 0.5), 290.0)]
+    objs = "".join(f"""<geom_object><box label="q{k}"><min>[{x},{y},0]</min><max>[{x + 0.5},{y + 0.5},0.01]</max></box>
+        <res>[2,2,1]</res><velocity>[0,0,0]</velocity><temperature>{T}</temperature></geom_object>"""
+                   for k, ((x, y), T) in enumerate(quads))
+    text = deck_text(BAR, maxTime="0.02", resolution="[16,16,1]", patches=patches,
+                     outputInterval="0.01", interpolator="gimp" if gimp else "linear",
+                     extraCells="[1,1,0]" if gimp else "[0,0,0]")
+    text = text.replace("<upper>[1.0,0.01,0.01]</upper>", "<upper>[1.0,1.0,0.01]</upper>")
+    start, end = text.index("<geom_object>"), text.rindex("</geom_object>") + len("</geom_object>")
+    return text[:start] + objs + text[end:]
+
+
+@pytest.mark.parametrize("gimp", [False, True])
+def test_plate_conserves_heat_and_is_independent_of_patches(tmp_path, gimp):
+    runs = {}
+    for patches in ("[1,1,1]", "[2,3,1]"):
+        ctl = run_deck(_square(patches, gimp), tmp_path, f"p{patches[1]}{patches[3]}")
+        runs[patches] = DataArchive(ctl.archiver.dir)
+    a, b = (runs[k].particles(0, -1) for k in ("[1,1,1]", "[2,3,1]"))
+    oa, ob = np.argsort(a["p.particleID"]), np.argsort(b["p.particleID"])
+    assert np.array_equal(a["p.temperature"][oa], b["p.temperature"][ob])
+    T = a["p.temperature"]
+    assert 280.0 < T.min() and T.max() < 320.0 and T.max() - T.min() < 39.0   # heat flowed, no overshoot
+    t, e = runs["[1,1,1]"].reduction("ThermalEnergy")
+    assert abs(e[-1] / e[0] - 1.0) < 1e-12
+    assert abs(e[0] - 300.0 * 1.0 * 1.0 * 0.01) < 1e-9      # sum m cv T = rho V cv <T>
+
+
+def test_two_ranks_bitwise(tmp_path):
+    path = tmp_path / "plate.ups"
+    path.write_text(_square("[2,2,1]"))
+    out = {}
+    for n in (1, 2):
+        uda = tmp_path / f"r{n}.uda"
+        r = pysus(path, "--filebase", uda, np_=n, timeout=300)
+        assert r.returncode == 0, r.stderr[-2000:]
+        out[n] = DataArchive(uda).particles(0, -1)
+    oa, ob = (np.argsort(out[n]["p.particleID"]) for n in (1, 2))
+    assert np.array_equal(out[1]["p.temperature"][oa], out[2]["p.temperature"][ob])
+
+
+def _graph(tmp_path, text):
+    path = tmp_path / "g.ups"
+    path.write_text(text)
+    r = pysus("--graph", path)
+    assert r.returncode == 0, r.stderr
+    return r.stdout
+
+
+def test_tasks_only_when_asked(tmp_path):
+    off = deck_text(BAR, DoExplicitHeatConduction="false")
+    off = _graph(tmp_path, off.replace('<save label="p.temperature"/>', "").replace('<save label="ThermalEnergy"/>', ""))
+    assert "Temperature" not in off and "HeatRate" not in off
+    no_k = _graph(tmp_path, deck_text(BAR, thermal_conductivity="0.0"))
+    assert "MPM::updateParticleTemperature" in no_k and "computeInternalHeatRate" not in no_k
+    on = _graph(tmp_path, deck_text(BAR))
+    assert "MPM::computeInternalHeatRate" in on
+
+
+def test_conduction_needs_a_specific_heat(tmp_path):
+    with pytest.raises(InputError, match="specific_heat"):
+        run_deck(deck_text(BAR, specific_heat="0.0"), tmp_path)
