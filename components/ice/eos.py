@@ -80,6 +80,15 @@ def ideal_gas_press_eos(rho, temp, cv, gamma):
 
 
 @njit(cache=True)
+def ideal_gas_sound_speed2(rho, temp, cv, gamma):
+    """eos_sound_speed2 of an ideal gas, the same operations (kernels call it in loops that
+    then vectorize, without the EOS dispatch)."""
+    dpdrho = (gamma - 1.0) * cv * temp
+    dpdt = (gamma - 1.0) * rho * cv
+    return dpdrho + temp * dpdt * dpdt / (rho * rho * cv)
+
+
+@njit(cache=True)
 def ideal_gas_rho_micro(press, temp, cv, gamma):
     return press / ((gamma - 1.0) * cv * temp)
 

@@ -13,24 +13,38 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .eos import IDEAL_GAS, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro, eos_sound_speed2
+from .eos import (IDEAL_GAS, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro, eos_sound_speed2,
+                  ideal_gas_press_eos, ideal_gas_sound_speed2)
 
 TINY = 1.0e-100
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def equilibrate_one(rho, temp, sp_vol, press, vol_frac, cs, code, params, cv, gamma, lo, hi):
-    """Eq. 13 for one material: theta = 1, rho_micro = rho; p and c from the EOS."""
+    """Eq. 13 for one material: theta = 1, rho_micro = rho; p and c from the EOS.
+
+    Kernels here loop over rows along the last axis through row slices indexed from 0
+    (no negative-index wraparound: the loops vectorize); ICE's tasks pass arrays with the
+    collapsed axes first (Boxes.view), so a 2D row is a long one."""
+    n = hi[2] - lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                r = rho[i, j, k]
-                p, dpdr, dpde = eos_press_eos(code, params, r, temp[i, j, k], cv, gamma)
-                press[i, j, k] = p
-                sp_vol[i, j, k] = 1.0 / r
-                vol_frac[i, j, k] = 1.0
-                cs[i, j, k] = np.sqrt(max(eos_sound_speed2(code, params, r, temp[i, j, k], cv, gamma), TINY))
-
+            r, t = rho[i, j, lo[2]:hi[2]], temp[i, j, lo[2]:hi[2]]
+            p_, v_, f_, c_ = press[i, j, lo[2]:hi[2]], sp_vol[i, j, lo[2]:hi[2]], \
+                vol_frac[i, j, lo[2]:hi[2]], cs[i, j, lo[2]:hi[2]]
+            if code == IDEAL_GAS:          # the same operations without the EOS dispatch: vectorizes
+                for k in range(n):
+                    p_[k] = ideal_gas_press_eos(r[k], t[k], cv, gamma)[0]
+                    v_[k] = 1.0 / r[k]
+                    f_[k] = 1.0
+                    c_[k] = np.sqrt(max(ideal_gas_sound_speed2(r[k], t[k], cv, gamma), TINY))
+                continue
+            for k in range(n):
+                p, dpdr, dpde = eos_press_eos(code, params, r[k], t[k], cv, gamma)
+                p_[k] = p
+                v_[k] = 1.0 / r[k]
+                f_[k] = 1.0
+                c_[k] = np.sqrt(max(eos_sound_speed2(code, params, r[k], t[k], cv, gamma), TINY))
 
 @njit(cache=True)
 def equilibrate_many(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, params, cvs, gammas,
@@ -88,22 +102,25 @@ def equilibrate_many(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, code
     return worst
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def face_velocity(rho, vel, sp_vol, press, uf, sh, dd, comp, flo, fhi, dt, dx, g):
     """Eq. 28: mass-weighted average minus dt * harmonic specific volume * dp/dx (+ dt g)."""
+    k0, k1 = flo[2], fhi[2]
+    n = k1 - k0
     for i in range(flo[0], fhi[0]):
         for j in range(flo[1], fhi[1]):
-            for k in range(flo[2], fhi[2]):
-                a, b, c = i + sh[0], j + sh[1], k + sh[2]
-                l0, l1, l2 = a - dd[0], b - dd[1], c - dd[2]
-                rL = rho[l0, l1, l2]
-                rR = rho[a, b, c]
-                vL = sp_vol[l0, l1, l2]
-                vR = sp_vol[a, b, c]
-                avg = (rL * vel[l0, l1, l2, comp] + rR * vel[a, b, c, comp]) / (rL + rR)
-                uf[i, j, k] = avg - dt * (2.0 * vL * vR / (vL + vR)) * (press[a, b, c] - press[l0, l1, l2]) / dx \
-                    + dt * g
-
+            a, b = i + sh[0], j + sh[1]
+            l0, l1 = a - dd[0], b - dd[1]
+            r0 = k0 + sh[2]
+            q0 = r0 - dd[2]
+            rR, rL = rho[a, b, r0:r0 + n], rho[l0, l1, q0:q0 + n]
+            uR, uL = vel[a, b, r0:r0 + n, comp], vel[l0, l1, q0:q0 + n, comp]
+            vR, vL = sp_vol[a, b, r0:r0 + n], sp_vol[l0, l1, q0:q0 + n]
+            pR, pL = press[a, b, r0:r0 + n], press[l0, l1, q0:q0 + n]
+            out = uf[i, j, k0:k1]
+            for k in range(n):
+                avg = (rL[k] * uL[k] + rR[k] * uR[k]) / (rL[k] + rR[k])
+                out[k] = avg - dt * (2.0 * vL[k] * vR[k] / (vL[k] + vR[k])) * (pR[k] - pL[k]) / dx + dt * g
 
 @njit(cache=True)
 def solve_small(a, b, n):
@@ -163,30 +180,47 @@ def _exchange_matrix(a, th, sv, K, dt, n, cv):
         a[m, m] = diag
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def div_theta_u(vf, one, ux, uy, uz, shx, shy, shz, dims, lo, hi, dt, dx, out):
     """Adds dt * div(theta u*) (donor-cell theta on faces) of one material to `out` (eq. 29).
 
     `one`: a single material, theta = 1 and the divergence is that of u*.
     """
+    n = hi[2] - lo[2]
+    k0 = lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
+            o = out[i, j, k0:k0 + n]
+            th = vf[i, j, k0:k0 + n]
+            # the three directions' lower (a) and upper (b) faces of the row, and the neighbour thetas
+            xa = ux[i - shx[0], j - shx[1], k0 - shx[2]:k0 - shx[2] + n] if dims[0] else ux[0, 0, 0:0]
+            xb = ux[i - shx[0] + 1, j - shx[1], k0 - shx[2]:k0 - shx[2] + n] if dims[0] else ux[0, 0, 0:0]
+            ya = uy[i - shy[0], j - shy[1], k0 - shy[2]:k0 - shy[2] + n] if dims[1] else uy[0, 0, 0:0]
+            yb = uy[i - shy[0], j - shy[1] + 1, k0 - shy[2]:k0 - shy[2] + n] if dims[1] else uy[0, 0, 0:0]
+            za = uz[i - shz[0], j - shz[1], k0 - shz[2]:k0 - shz[2] + n] if dims[2] else uz[0, 0, 0:0]
+            zb = uz[i - shz[0], j - shz[1], k0 - shz[2] + 1:k0 - shz[2] + 1 + n] if dims[2] else uz[0, 0, 0:0]
+            tx0 = vf[i - 1, j, k0:k0 + n] if dims[0] else vf[0, 0, 0:0]
+            tx1 = vf[i + 1, j, k0:k0 + n] if dims[0] else vf[0, 0, 0:0]
+            ty0 = vf[i, j - 1, k0:k0 + n] if dims[1] else vf[0, 0, 0:0]
+            ty1 = vf[i, j + 1, k0:k0 + n] if dims[1] else vf[0, 0, 0:0]
+            tz = vf[i, j, k0 - 1:k0 + n + 1] if dims[2] else vf[0, 0, 0:0]
+            for k in range(n):
                 s = 0.0
                 if dims[0]:
-                    a, b, c = i - shx[0], j - shx[1], k - shx[2]
-                    s += (_vflux(vf, ux[a + 1, b, c], i, j, k, 1, 0, 0, one)
-                          - _vflux(vf, ux[a, b, c], i - 1, j, k, 1, 0, 0, one)) / dx[0]
+                    s += (_upwind(xb[k], th[k], tx1[k], one) - _upwind(xa[k], tx0[k], th[k], one)) / dx[0]
                 if dims[1]:
-                    a, b, c = i - shy[0], j - shy[1], k - shy[2]
-                    s += (_vflux(vf, uy[a, b + 1, c], i, j, k, 0, 1, 0, one)
-                          - _vflux(vf, uy[a, b, c], i, j - 1, k, 0, 1, 0, one)) / dx[1]
+                    s += (_upwind(yb[k], th[k], ty1[k], one) - _upwind(ya[k], ty0[k], th[k], one)) / dx[1]
                 if dims[2]:
-                    a, b, c = i - shz[0], j - shz[1], k - shz[2]
-                    s += (_vflux(vf, uz[a, b, c + 1], i, j, k, 0, 0, 1, one)
-                          - _vflux(vf, uz[a, b, c], i, j, k - 1, 0, 0, 1, one)) / dx[2]
-                out[i, j, k] += dt * s
+                    s += (_upwind(zb[k], th[k], tz[k + 2], one) - _upwind(za[k], tz[k], th[k], one)) / dx[2]
+                o[k] += dt * s
 
+
+@njit(cache=True, error_model="numpy")
+def _upwind(u, below, above, one):
+    """u * theta of the donor cell of a face with theta `below` / `above` on its two sides."""
+    if one:
+        return u
+    return u * below if u >= 0.0 else u * above
 
 @njit(cache=True)
 def _vflux(vf, u, i, j, k, di, dj, dk, one):
@@ -198,84 +232,107 @@ def _vflux(vf, u, i, j, k, di, dj, dk, one):
     return u * vf[i + di, j + dj, k + dk]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def update_pressure(press_eq, div, kap_sum, delP, press, lo, hi, p_floor):
     """Eqs. 29-30: delP = -sum dt div(theta u*) / sum theta kappa; p = max(p_eq + delP, p_floor).
 
     p_floor: -inf in ICE; 1e-12 in MPMICE (Uintah's clamp), where a solid in tension drives
     p_eq + delP negative and V theta kappa p delP would then heat the expanding trace gas."""
+    n = hi[2] - lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                d = -div[i, j, k] / kap_sum[i, j, k]
-                delP[i, j, k] = d
-                press[i, j, k] = max(press_eq[i, j, k] + d, p_floor)
+            pe, dv, ks = press_eq[i, j, lo[2]:hi[2]], div[i, j, lo[2]:hi[2]], kap_sum[i, j, lo[2]:hi[2]]
+            dp, p = delP[i, j, lo[2]:hi[2]], press[i, j, lo[2]:hi[2]]
+            for k in range(n):
+                d = -dv[k] / ks[k]
+                dp[k] = d
+                p[k] = max(pe[k] + d, p_floor)
 
-
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def add_theta_kappa(vf, sp_vol, cs, out, lo, hi):
     """out += theta kappa, kappa = v / c^2 (isothermal compressibility of eq. 47, as Uintah)."""
+    n = hi[2] - lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                c = cs[i, j, k]
-                out[i, j, k] += vf[i, j, k] * sp_vol[i, j, k] / (c * c)
+            f, v, c_, o = vf[i, j, lo[2]:hi[2]], sp_vol[i, j, lo[2]:hi[2]], cs[i, j, lo[2]:hi[2]], out[i, j, lo[2]:hi[2]]
+            for k in range(n):
+                c = c_[k]
+                o[k] += f[k] * v[k] / (c * c)
 
-
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def face_pressure(press, rho_sum, pf, sh, dd, flo, fhi):
     """Eq. 31: p* = (pL/rhoL + pR/rhoR) / (1/rhoL + 1/rhoR), rho summed over materials."""
+    k0, k1 = flo[2], fhi[2]
+    n = k1 - k0
     for i in range(flo[0], fhi[0]):
         for j in range(flo[1], fhi[1]):
-            for k in range(flo[2], fhi[2]):
-                a, b, c = i + sh[0], j + sh[1], k + sh[2]
-                l0, l1, l2 = a - dd[0], b - dd[1], c - dd[2]
-                rL = rho_sum[l0, l1, l2]
-                rR = rho_sum[a, b, c]
-                pf[i, j, k] = (press[l0, l1, l2] * rR + press[a, b, c] * rL) / (rL + rR)
+            a, b = i + sh[0], j + sh[1]
+            l0, l1 = a - dd[0], b - dd[1]
+            r0 = k0 + sh[2]
+            q0 = r0 - dd[2]
+            rR, rL = rho_sum[a, b, r0:r0 + n], rho_sum[l0, l1, q0:q0 + n]
+            pR, pL = press[a, b, r0:r0 + n], press[l0, l1, q0:q0 + n]
+            out = pf[i, j, k0:k1]
+            for k in range(n):
+                out[k] = (pL[k] * rR[k] + pR[k] * rL[k]) / (rL[k] + rR[k])
 
-
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy, shz, dims,
-               mass_L, mom_L, eng_L, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g, code, params, gamma):
+               mass_L, mom_L, eng_L, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g, code, params, gamma, comp=None):
     """Eqs. 33-37 for one material: m, m u, m e plus pressure-gradient and flow-work sources.
 
     Everywhere (extra cells included) m u and m e start from the current state; the
     sources act on interior cells: -dt V theta grad p* (+ dt m g), V theta kappa p_w delP.
     ICE carries e = cv T, so the flow work uses p_w = p + (T (dp/dT)_v - p_eos): for an
     ideal gas p_w = p exactly (as Uintah); for a stiffened gas it is p + Pinf, which
-    keeps cv dT = -T (dp/dT)_v dv consistent with the EOS.
+    keeps cv dT = -T (dp/dT)_v dv consistent with the EOS. comp[d]: the momentum
+    component along axis d (arrays seen with permuted axes; None = the identity).
     """
+    c0, c1, c2 = (0, 1, 2) if comp is None else (comp[0], comp[1], comp[2])
+    n = ohi[2] - olo[2]
     for i in range(olo[0], ohi[0]):
         for j in range(olo[1], ohi[1]):
-            for k in range(olo[2], ohi[2]):
-                m = rho[i, j, k] * vol
-                mass_L[i, j, k] = m
-                eng_L[i, j, k] = m * cv * temp[i, j, k]
+            r, t, u = rho[i, j, olo[2]:ohi[2]], temp[i, j, olo[2]:ohi[2]], vel[i, j, olo[2]:ohi[2]]
+            ms, es, mu = mass_L[i, j, olo[2]:ohi[2]], eng_L[i, j, olo[2]:ohi[2]], mom_L[i, j, olo[2]:ohi[2]]
+            for k in range(n):
+                m = r[k] * vol
+                ms[k] = m
+                es[k] = m * cv * t[k]
                 for c in range(3):
-                    mom_L[i, j, k, c] = m * vel[i, j, k, c]
+                    mu[k, c] = m * u[k, c]
+    n = hi[2] - lo[2]
+    k0 = lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                th = vf[i, j, k]
+            xa = px[i - shx[0], j - shx[1], k0 - shx[2]:k0 - shx[2] + n] if dims[0] else px[0, 0, 0:0]
+            xb = px[i - shx[0] + 1, j - shx[1], k0 - shx[2]:k0 - shx[2] + n] if dims[0] else px[0, 0, 0:0]
+            ya = py[i - shy[0], j - shy[1], k0 - shy[2]:k0 - shy[2] + n] if dims[1] else py[0, 0, 0:0]
+            yb = py[i - shy[0], j - shy[1] + 1, k0 - shy[2]:k0 - shy[2] + n] if dims[1] else py[0, 0, 0:0]
+            za = pz[i - shz[0], j - shz[1], k0 - shz[2]:k0 - shz[2] + n] if dims[2] else pz[0, 0, 0:0]
+            zb = pz[i - shz[0], j - shz[1], k0 - shz[2] + 1:k0 - shz[2] + 1 + n] if dims[2] else pz[0, 0, 0:0]
+            th_, v_, cs_ = vf[i, j, k0:k0 + n], sp_vol[i, j, k0:k0 + n], cs[i, j, k0:k0 + n]
+            t_, p_, d_ = temp[i, j, k0:k0 + n], press[i, j, k0:k0 + n], delP[i, j, k0:k0 + n]
+            ms, es, mu = mass_L[i, j, k0:k0 + n], eng_L[i, j, k0:k0 + n], mom_L[i, j, k0:k0 + n]
+            for k in range(n):
+                th = th_[k]
                 f = -dt * vol * th
                 if dims[0]:
-                    mom_L[i, j, k, 0] += f * (px[i - shx[0] + 1, j - shx[1], k - shx[2]]
-                                              - px[i - shx[0], j - shx[1], k - shx[2]]) / dx[0]
+                    mu[k, c0] += f * (xb[k] - xa[k]) / dx[0]
                 if dims[1]:
-                    mom_L[i, j, k, 1] += f * (py[i - shy[0], j - shy[1] + 1, k - shy[2]]
-                                              - py[i - shy[0], j - shy[1], k - shy[2]]) / dx[1]
+                    mu[k, c1] += f * (yb[k] - ya[k]) / dx[1]
                 if dims[2]:
-                    mom_L[i, j, k, 2] += f * (pz[i - shz[0], j - shz[1], k - shz[2] + 1]
-                                              - pz[i - shz[0], j - shz[1], k - shz[2]]) / dx[2]
+                    mu[k, c2] += f * (zb[k] - za[k]) / dx[2]
                 if use_g:
                     for c in range(3):
-                        mom_L[i, j, k, c] += dt * mass_L[i, j, k] * g[c]
-                c2 = cs[i, j, k] ** 2
-                t = temp[i, j, k]
-                pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / sp_vol[i, j, k], t, cv, gamma)
-                pw = press[i, j, k] + (dpde * cv * t - pe)
-                eng_L[i, j, k] += vol * th * sp_vol[i, j, k] / c2 * pw * delP[i, j, k]
+                        mu[k, c] += dt * ms[k] * g[c]
+                cc = cs_[k] ** 2
+                t = t_[k]
+                if code == IDEAL_GAS:
+                    pe, dpdr, dpde = ideal_gas_press_eos(1.0 / v_[k], t, cv, gamma)
+                else:
+                    pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / v_[k], t, cv, gamma)
+                pw = p_[k] + (dpde * cv * t - pe)
+                es[k] += vol * th * v_[k] / cc * pw * d_[k]
 
 
 @njit(cache=True)
@@ -369,20 +426,29 @@ def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, 
                     outs[m][i, j, k] = max(masses[m][i, j, k] * v + vol * src, TINY)
 
 
-@njit(cache=True)
-def stable_dt(vel, temp, sp_vol, code, params, cv, gamma, dims, dx, lo, hi):
-    """CFL limit min over cells and directions of dx / (c + |u|) for one material."""
+@njit(cache=True, error_model="numpy")
+def stable_dt(vel, temp, sp_vol, code, params, cv, gamma, dims, dx, lo, hi, comp=None):
+    """CFL limit min over cells and directions of dx / (c + |u|) for one material.
+    comp[d]: the velocity component along axis d (arrays seen with permuted axes)."""
     best = np.inf
+    n = hi[2] - lo[2]
+    c0, c1, c2 = (0, 1, 2) if comp is None else (comp[0], comp[1], comp[2])
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                r = 1.0 / sp_vol[i, j, k]
-                c = np.sqrt(max(eos_sound_speed2(code, params, r, temp[i, j, k], cv, gamma), TINY))
-                for d in range(3):
-                    if dims[d]:
-                        best = min(best, dx[d] / (c + abs(vel[i, j, k, d])))
+            t, v = temp[i, j, lo[2]:hi[2]], sp_vol[i, j, lo[2]:hi[2]]
+            u = vel[i, j, lo[2]:hi[2]]
+            for k in range(n):
+                if code == IDEAL_GAS:
+                    c = np.sqrt(max(ideal_gas_sound_speed2(1.0 / v[k], t[k], cv, gamma), TINY))
+                else:
+                    c = np.sqrt(max(eos_sound_speed2(code, params, 1.0 / v[k], t[k], cv, gamma), TINY))
+                if dims[0]:
+                    best = min(best, dx[0] / (c + abs(u[k, c0])))
+                if dims[1]:
+                    best = min(best, dx[1] / (c + abs(u[k, c1])))
+                if dims[2]:
+                    best = min(best, dx[2] / (c + abs(u[k, c2])))
     return best
-
 
 @njit(cache=True)
 def mach_number(vel, temp, sp_vol, out, code, params, cv, gamma, lo, hi):

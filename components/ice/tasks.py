@@ -43,6 +43,10 @@ class Boxes:
                              dtype=np.int64)
         p = self.perm
         self.v_lo, self.v_hi = self.lo[p], self.hi[p]
+        self.v_olo, self.v_ohi = self.olo[p], self.ohi[p]
+        self.axis = np.argsort(p)                           # the view axis of each direction
+        self.v_dims = np.asarray(dims)[p]
+        self.v_dx = np.asarray(lv.dx, dtype=np.float64)[p]
         self.v_sh = np.array([self.sh[d][p] for d in p])
         self.v_flo = np.array([self.flo[d][p] for d in p])
         self.v_fhi = np.array([self.fhi[d][p] for d in p])
@@ -129,9 +133,10 @@ class IceTasks:
         b = self.boxes(patch)
         dt = np.inf
         for m in matls:
-            dt = min(dt, K.stable_dt(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
-                                     new_dw.get(I.sp_vol_CC, m, patch), *self._eos(m), self.dims.astype(np.int64),
-                                     patch.level.dx, b.lo, b.hi))
+            v = b.view
+            dt = min(dt, K.stable_dt(v(new_dw.get(I.vel_CC, m, patch)), v(new_dw.get(I.temp_CC, m, patch)),
+                                     v(new_dw.get(I.sp_vol_CC, m, patch)), *self._eos(m), b.v_dims, b.v_dx,
+                                     b.v_lo, b.v_hi, b.perm))
             mat = self.materials[m]
             # diffusivity times density; the normal stress diffuses with 4/3 mu
             nu = max(4.0 / 3.0 * mat.viscosity, mat.conductivity / mat.cv)
@@ -148,8 +153,9 @@ class IceTasks:
         peq = new_dw.allocate(I.press_equil_CC, 0, patch)
         if len(matls) == 1:
             out = [new_dw.allocate(lab, 0, patch) for lab in (I.sp_vol_CC, I.vol_frac_CC, I.speedSound_CC)]
-            K.equilibrate_one(old_dw.get(I.rho_CC, 0, patch), old_dw.get(I.temp_CC, 0, patch), out[0], peq,
-                              out[1], out[2], *self._eos(0), b.olo, b.ohi)
+            v = b.view
+            K.equilibrate_one(v(old_dw.get(I.rho_CC, 0, patch)), v(old_dw.get(I.temp_CC, 0, patch)), v(out[0]),
+                              v(peq), v(out[1]), v(out[2]), *self._eos(0), b.v_olo, b.v_ohi)
         else:
             get = lambda lab: tuple(old_dw.get(lab, m, patch) for m in matls)
             new = lambda lab: tuple(new_dw.allocate(lab, m, patch) for m in matls)
@@ -171,8 +177,9 @@ class IceTasks:
                 if not self.dims[d]:
                     continue
                 uf = new_dw.allocate(I.FC_VEL[d], m, patch)
-                K.face_velocity(rho, vel, spv, peq, uf, b.sh[d], UNIT[d], d, b.flo[d], b.fhi[d], dt,
-                                patch.level.dx[d], self.gravity[d])
+                a, v = b.axis[d], b.view
+                K.face_velocity(v(rho), v(vel), v(spv), v(peq), v(uf), b.v_sh[a], UNIT[a], d, b.v_flo[a], b.v_fhi[a],
+                                dt, patch.level.dx[d], self.gravity[d])
                 self.bcs.face_velocity(patch, uf, d, m, b.flo[d], b.fhi[d])
                 if not self.exchange and not self.implicit:
                     new_dw.put(I.FC_VEL_ME[d], m, patch, uf)   # one material: the exchange is the identity
@@ -198,17 +205,18 @@ class IceTasks:
         shape = patch.alloc_shape(VarType.CC)
         div, ksum = np.zeros(shape), np.zeros(shape)
         one = len(matls) == 1
+        v = b.view
         for m in matls:
             vf = new_dw.get(I.vol_frac_CC, m, patch)
             uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
-            K.div_theta_u(vf, one, uf[0], uf[1], uf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, b.lo, b.hi,
-                          dt, patch.level.dx, div)
-            K.add_theta_kappa(vf, new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch),
-                              ksum, b.lo, b.hi)
+            K.div_theta_u(v(vf), one, *(v(uf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
+                          b.v_lo, b.v_hi, dt, b.v_dx, v(div))
+            K.add_theta_kappa(v(vf), v(new_dw.get(I.sp_vol_CC, m, patch)), v(new_dw.get(I.speedSound_CC, m, patch)),
+                              v(ksum), b.v_lo, b.v_hi)
         delP = new_dw.allocate(I.delP_Dilatate, 0, patch)
         press = new_dw.allocate(I.press_CC, 0, patch)
-        K.update_pressure(new_dw.get(I.press_equil_CC, 0, patch), div, ksum, delP, press, b.lo, b.hi,
-                          self.press_floor)
+        K.update_pressure(v(new_dw.get(I.press_equil_CC, 0, patch)), v(div), v(ksum), v(delP), v(press),
+                          b.v_lo, b.v_hi, self.press_floor)
         self.bcs.scalar(patch, press, "Pressure", 0, b)
 
     # -- step 6: face pressure (eq. 31) -------------------------------------------------------------
@@ -223,7 +231,8 @@ class IceTasks:
         for d in range(3):
             if self.dims[d]:
                 pf = new_dw.allocate(I.PRESS_FC[d], 0, patch)
-                K.face_pressure(press, rho, pf, b.sh[d], UNIT[d], b.flo[d], b.fhi[d])
+                a, v = b.axis[d], b.view
+                K.face_pressure(v(press), v(rho), v(pf), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a])
 
     # -- step 7: fluid stresses and heat flux (only when the deck has them) -----------------------
     def viscous_source(self, patch, matls, old_dw, new_dw):
@@ -256,12 +265,13 @@ class IceTasks:
             mom = new_dw.allocate(I.mom_L_CC, m, patch, fill=None)
             eng = new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None)
             masses.append(mass), moms.append(mom), engs.append(eng)
-            K.lagrangian(old_dw.get(I.rho_CC, m, patch), old_dw.get(I.vel_CC, m, patch),
-                         old_dw.get(I.temp_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
-                         new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), press, delP,
-                         pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, mass, mom, eng,
-                         b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, self.cvs[m], self.gravity,
-                         self.use_gravity, self.codes[m], self.params[m], self.gammas[m])
+            v = b.view
+            K.lagrangian(v(old_dw.get(I.rho_CC, m, patch)), v(old_dw.get(I.vel_CC, m, patch)),
+                         v(old_dw.get(I.temp_CC, m, patch)), v(new_dw.get(I.vol_frac_CC, m, patch)),
+                         v(new_dw.get(I.sp_vol_CC, m, patch)), v(new_dw.get(I.speedSound_CC, m, patch)), v(press),
+                         v(delP), *(v(pf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
+                         v(mass), v(mom), v(eng), b.v_olo, b.v_ohi, b.v_lo, b.v_hi, b.vol, b.v_dx, dt, self.cvs[m],
+                         self.gravity, self.use_gravity, self.codes[m], self.params[m], self.gammas[m], b.perm)
             sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
             if self.viscous:
                 mom[sl] += new_dw.get(I.viscous_src_CC, m, patch)[sl]
