@@ -15,7 +15,11 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
      MPM::computeAndIntegrateAcceleration; ICE viscous stress (fluids)
   8-9  MPMICE::computeLagrangianValuesMPM, ICE::computeLagrangianValues (fluids)
   10 ICE::addExchangeToMomentumAndEnergy (all), 11 computeLagrangianSpecificVolume (all)
-  -> MPMICE::computeCCVelAndTempRates, interpolateCCToNC (the solid's change to the nodes)
+  -> MPMICE::computeCCVelAndTempRates, interpolateCCToNC (the solid's change to the nodes);
+     a solid with a nonzero <heat> coefficient to a fluid carries p.temperature (MPM's
+     thermal.py) and takes part in the energy exchange like a fluid: computeCCTempRates,
+     interpolateCCToNC_T carry its dT/dt back to the nodes and particles (tasks.py).
+     Fluids with thermal_conductivity > 0 conduct (ICE::computeHeatFlux).
   13 MPM grid BCs, interpolateToParticlesAndUpdate, computeStressTensor, relocation
   12 ICE::advectAndAdvanceInTime (fluids)
 The ICE and MPM tasks are those components' own task bodies; this module only
@@ -97,10 +101,7 @@ class MPMICE(MPMICETasks, Component):
             raise root.child("CFD").child("ICE").error("MPMICE runs explicit ICE only (no <ImplicitSolver>)")
         if self.ice.conserve_energy:
             raise self.ice._conserve_node.error("<conserveTotalEnergy> is not available with MPMICE")
-        if self.ice.conduction:
-            node = next(n for n in ice_node.children("material")
-                        if n.get("thermal_conductivity", "float", 0.0) > 0).child("thermal_conductivity")
-            raise node.error("MPMICE does not couple ICE heat conduction yet; accepted here: 0")
+        self.setup_solid_heat()           # p.temperature and the solid's heat exchange (tasks.py)
         self.all_matls = list(range(n_all))
         self.materials = self.ice.materials
         self.dims_i = np.array(self.ice.dims, dtype=np.int64)
@@ -153,7 +154,7 @@ class MPMICE(MPMICETasks, Component):
             .computes(I.temp_CC)
         for lab in (M.gMass, M.gVolume, M.gVelocity):
             t.requires(NEW, lab, G, 1)
-        sched.add_task(t)
+        sched.add_task(self.thermal_requires(t, "nc_to_cc"))
 
         t = Task("MPMICE::computeEquilibrationPressure", self.equilibration_pressure, alls) \
             .requires(OLD, I.press_CC, matls=m0).requires(NEW, MI.sp_vol_mpm_CC, matls=ms) \
@@ -200,6 +201,10 @@ class MPMICE(MPMICETasks, Component):
             sched.add_task(Task("ICE::viscousShearStress", ice.viscous_source, fl)
                            .requires(OLD, FL.delT).requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
                            .computes(I.viscous_src_CC))
+        if ice.conduction:          # the fluids' own conduction; solid-fluid heat goes through the exchange
+            sched.add_task(Task("ICE::computeHeatFlux", ice.conduction_source, fl)
+                           .requires(OLD, FL.delT).requires(OLD, I.temp_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
+                           .computes(I.heatCond_src_CC))
 
     def _start_state(self, t, labels, ghost):
         """Requires of the start-of-step state: fluids from OLD, solids from step 1 (NEW)."""
@@ -221,7 +226,7 @@ class MPMICE(MPMICETasks, Component):
             .computes(MI.mom_mpm_CC).computes(I.mass_L_CC).computes(I.mom_L_CC).computes(I.int_eng_L_CC)
         for d in dirs:
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
-        sched.add_task(t)
+        sched.add_task(self.thermal_requires(t, "lagrangian"))
 
         t = Task("ICE::computeLagrangianValues", self.lagrangian_values_fluid, fl) \
             .requires(OLD, FL.delT).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(OLD, I.temp_CC) \
@@ -232,6 +237,8 @@ class MPMICE(MPMICETasks, Component):
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
         if ice.viscous:
             t.requires(NEW, I.viscous_src_CC)
+        if ice.conduction:
+            t.requires(NEW, I.heatCond_src_CC)
         if self.add_heat is not None:
             t.requires(OLD, FL.simTime)
         sched.add_task(t)
@@ -257,6 +264,7 @@ class MPMICE(MPMICETasks, Component):
             sched.add_task(Task("MPMICE::interpolateCCToNC", self.interpolate_cc_to_nc, ms)
                            .requires(OLD, FL.delT).requires(NEW, MI.dVdt_CC, G, 1)
                            .modifies(M.gVelocityStar).modifies(M.gAcceleration))
+        self.schedule_solid_heat(sched)
 
     def _schedule_diagnostics(self, sched):
         """Uintah's source and rate labels (mom_source_CC, intE_source_CC, Tdot) for output only:

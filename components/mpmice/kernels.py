@@ -1,4 +1,6 @@
-"""Numba kernels of the MPMICE coupling (paper 000 sec. 3.3, steps 1, 7, 8 and 13).
+"""Numba kernels of the MPMICE coupling (paper 000 sec. 3.3, steps 1, 7, 8, 10 and 13):
+the solid's state at cell centres, its pressure force, the exchange's change of its
+velocity and temperature carried back to the nodes.
 
 Index conventions as in the ICE and MPM kernels: arrays are a patch's stored arrays,
 `cc_low` / `node_low` the global index of their entry [0, 0, 0]. A cell (i, j, k)
@@ -208,3 +210,63 @@ def pressure_force_gimp(dim, px, pvol, lp, anchor, dx, node_low, press, cc_low, 
         _pressure_force(1, 2, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
     else:
         _pressure_force(1, 3, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+
+
+@njit(cache=True)
+def nc_to_cc_scalar(gmass, gq, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n_lo, n_hi, tiny_mass,
+                    empty, out):
+    """Step 1 for a nodal scalar (interpolateNCToCC_0's Temp_CC): out = sum_w m_i q_i / sum_w m_i
+    with the weights of nc_to_cc; `empty` where the cell holds less than tiny_mass of solid."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                gi, gj, gk = i + cc_low[0], j + cc_low[1], k + cc_low[2]
+                m = 0.0
+                s = 0.0
+                for a in range(2 if dims[0] else 1):
+                    wa = _node_weight(gi + a, 0, dims, sym_lo, sym_hi, n_lo, n_hi)
+                    for b in range(2 if dims[1] else 1):
+                        wb = _node_weight(gj + b, 1, dims, sym_lo, sym_hi, n_lo, n_hi)
+                        for c in range(2 if dims[2] else 1):
+                            wc = _node_weight(gk + c, 2, dims, sym_lo, sym_hi, n_lo, n_hi)
+                            x = gi + a - node_low[0] if dims[0] else 0
+                            y = gj + b - node_low[1] if dims[1] else 0
+                            z = gk + c - node_low[2] if dims[2] else 0
+                            mw = wa * wb * wc * gmass[x, y, z]
+                            m += mw
+                            s += mw * gq[x, y, z]
+                out[i, j, k] = s / m if m >= tiny_mass else empty
+
+
+@njit(cache=True)
+def temperature_rates(eng_me, eng_L, mass_L, cv, dt, lo, hi, out):
+    """Step 10 -> 13 (computeCCVelAndTempRates): dT/dt = ((me)^L_ME - (me)^L) / (m^L cv dt),
+    the solid's temperature change from the heat exchange (eq. 39)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                out[i, j, k] = (eng_me[i, j, k] - eng_L[i, j, k]) / (mass_L[i, j, k] * cv * dt)
+
+
+@njit(cache=True)
+def cc_to_nc_scalar(q, cc_low, node_low, nlo, nhi, dims, out):
+    """Step 13 for a scalar rate (interpolateCCToNC's dTdt_NC): every node [nlo, nhi) takes
+    the mean of the cells around it. With the cell mass sum_w m_i of step 1 this hands
+    each node sum_c w m_i dT_c: the nodes receive exactly the heat the cells exchanged."""
+    sh = q.shape
+    for x in range(nlo[0], nhi[0]):
+        for y in range(nlo[1], nhi[1]):
+            for z in range(nlo[2], nhi[2]):
+                gx, gy, gz = x + node_low[0], y + node_low[1], z + node_low[2]
+                s = 0.0
+                n = 0
+                for a in range(2 if dims[0] else 1):
+                    for b in range(2 if dims[1] else 1):
+                        for c in range(2 if dims[2] else 1):
+                            i = min(max(gx - a - cc_low[0], 0), sh[0] - 1) if dims[0] else 0
+                            j = min(max(gy - b - cc_low[1], 0), sh[1] - 1) if dims[1] else 0
+                            k = min(max(gz - c - cc_low[2], 0), sh[2] - 1) if dims[2] else 0
+                            s += q[i, j, k]
+                            n += 1
+                out[x, y, z] = s / n
+

@@ -20,3 +20,7 @@ pPressure = L.create("p.pressure", P)             # step 7: p - p_ref at the par
 mom_source_CC = L.create("mom_source_CC", CC, (3,))   # steps 8-9: momentum sources (grad p, viscous) dt
 intE_source_CC = L.create("intE_source_CC", CC)       # steps 8-9: energy sources (p dV work, ADD_HEAT) dt
 Tdot = L.create("Tdot", CC)                           # step 10: (T after exchange - T start of step) / dt
+
+# the solid's heat exchange (step 10 -> 13), only when a solid exchanges heat with a fluid
+dTdt_CC = L.create("dTdt_CC", CC)                     # step 10: solid temperature rate from the exchange
+dTdt_NC = L.create("dTdt_NC", VarType.NC)             # step 13: its mean over the cells around a node

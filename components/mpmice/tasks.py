@@ -5,6 +5,13 @@ ICE's bodies read the start-of-step state (rho_CC, vel_CC, temp_CC, sp_vol_CC) f
 the OLD warehouse; for an MPM material that state is this step's interpolation of
 its particles (step 1) in the NEW warehouse. `StartOfStep` wraps the old warehouse
 and sends those reads of MPM materials to the new one (sp_vol_CC to sp_vol_mpm_CC).
+
+Heat: a solid with a nonzero heat-exchange coefficient to a fluid carries p.temperature
+(components/mpm/thermal.py). Its temp_CC is the mass-weighted cell mean of g.temperature,
+its Lagrangian energy m cv T* holds this step's conduction, the exchange (eq. 39) changes
+it as it does a fluid's, and dT/dt = (change) / (m cv dt) goes to the nodes (dTdt_NC, the
+mean over the cells around a node, which hands the nodes exactly the heat the cells
+exchanged) and from there to the particles with their conduction rate.
 """
 from __future__ import annotations
 
@@ -17,7 +24,8 @@ from components.ice.tasks import _rho_micro_array
 from components.mpm import labels as M
 from framework import labels as FL
 from framework.geometry import cell_fractions
-from framework.variables import VarType
+from framework.task import NEW, OLD, Task
+from framework.variables import Ghost, VarType
 
 from . import kernels as K
 from . import labels as MI
@@ -99,6 +107,13 @@ class MPMICETasks:
         mat = self.mpm.materials[m]
         K.nc_to_cc(gmass, gvol, gvel, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
                    self.tiny * mat.density * b.vol, mat.density, b.vol, cmass, spv, vel, rho)
+
+    def _scalar_to_cc(self, patch, m, gmass, gq, out):
+        """Mass-weighted cell mean of a nodal scalar of solid m (cells without solid keep `out`)."""
+        b, cc_low, node_low, dims, n_lo, n_hi = self._geom(patch)
+        sym_lo, sym_hi = self._sym(m)
+        K.nc_to_cc_scalar(gmass, gq, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
+                          self.tiny * self.mpm.materials[m].density * b.vol, self.solid_temp[m], out)
 
     def _extra_vector(self, patch, q, m, b):
         """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere."""
@@ -184,11 +199,14 @@ class MPMICETasks:
             temp = new_dw.allocate(I.temp_CC, m, patch, self.solid_temp[m])
             self._nc_to_cc(patch, m, new_dw.get(M.gMass, m, patch), new_dw.get(M.gVolume, m, patch),
                            new_dw.get(M.gVelocity, m, patch), cm, spv, vel, rho)
+            if self.mpm.thermal:
+                self._scalar_to_cc(patch, m, new_dw.get(M.gMass, m, patch), new_dw.get(M.gTemperature, m, patch),
+                                   temp)
+                self.ice.bcs.scalar(patch, temp, "Temperature", m, b, copy=True)
             self.ice.bcs.scalar(patch, rho, "Density", m, b, copy=True)   # mass from particles, never the deck
             self.ice.bcs.scalar(patch, spv, "Temperature", m, b, copy=True)
             self.ice.bcs.scalar(patch, cm, "Temperature", m, b, copy=True)
             self._extra_vector(patch, vel, m, b)
-            del temp
 
     # -- steps 2-6: ICE's multi-material tasks over all materials ----------------------------------
     def equilibration_pressure(self, patch, matls, old_dw, new_dw):
@@ -231,8 +249,9 @@ class MPMICETasks:
     # -- steps 8-9: the solid's Lagrangian values at the cell centres --------------------------------
     def lagrangian_values_mpm(self, patch, matls, old_dw, new_dw):
         """computeLagrangianValuesMPM: m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p*
-        (eq. 33, ICE's kernel), (me)^L = m cv T (the solid temperature is held: no MPM
-        thermal model yet)."""
+        (eq. 33, ICE's kernel), (me)^L = m cv T* with T* the cell mean of the nodal
+        temperature advanced by this step's conduction, g.temperature + dt g.temperatureRate
+        (Uintah's gTemperatureStar; without a thermal model the solid's T is held)."""
         ice = self.ice
         b = ice.boxes(patch)
         dt = old_dw.get_reduction(FL.delT)
@@ -250,13 +269,23 @@ class MPMICETasks:
             mass = new_dw.allocate(I.mass_L_CC, m, patch, fill=None)
             mom = new_dw.allocate(I.mom_L_CC, m, patch, fill=None)
             eng = new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None)
-            temp = new_dw.get(I.temp_CC, m, patch)
+            temp = self._temperature_star(patch, m, new_dw, dt)
             IK.lagrangian(cm / b.vol, vstar, temp, new_dw.get(I.vol_frac_CC, m, patch),
                           new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), press, delP,
                           pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], ice.dims, mass, mom, eng,
                           b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, ice.cvs[m], ice.gravity,
                           False, ice.codes[m], ice.params[m], ice.gammas[m])
             eng[...] = mass * ice.cvs[m] * temp
+
+    def _temperature_star(self, patch, m, new_dw, dt):
+        """The solid's cell temperature after this step's conduction (temp_CC without it)."""
+        temp = new_dw.get(I.temp_CC, m, patch)
+        if m not in self.mpm.conducting:
+            return temp
+        tstar = temp.copy()
+        gT = new_dw.get(M.gTemperature, m, patch) + dt * new_dw.get(M.gTemperatureRate, m, patch)
+        self._scalar_to_cc(patch, m, new_dw.get(M.gMass, m, patch), gT, tstar)
+        return tstar
 
     def lagrangian_values_fluid(self, patch, matls, old_dw, new_dw):
         """ICE::computeLagrangianValues for the fluids, plus <ADD_HEAT>: dt * coeff * rho_CC * V
@@ -331,6 +360,66 @@ class MPMICETasks:
             K.cc_to_nc_increment(new_dw.get(MI.dVdt_CC, m, patch), cc_low, node_low, lo, hi, self.dims_i, dt,
                                  new_dw.get_modifiable(M.gVelocityStar, m, patch),
                                  new_dw.get_modifiable(M.gAcceleration, m, patch))
+
+    # -- the solid's heat exchange: step 10 -> 13 for the temperature -------------------------------
+    def setup_solid_heat(self):
+        """After ICE is read: a solid that exchanges heat with a fluid (a nonzero <heat>
+        coefficient) carries p.temperature, and the exchange's change of its cell
+        temperature goes back to the nodes (dTdt_NC) and particles like dV/dt does."""
+        H, fl = self.ice.H, self.ice.ice_matls
+        self.solid_heat = [m for m in self.mpm_matls if any(H[m, f] > 0 or H[f, m] > 0 for f in fl)]
+        for m in self.solid_heat:
+            mat = self.mpm.materials[m]
+            if mat.specific_heat <= 0:
+                raise mat.node.error("a solid that exchanges heat (<heat> coefficient > 0) needs <specific_heat> > 0")
+        if self.solid_heat and not self.mpm.thermal:
+            self.mpm.thermal_needed = True
+        if self.solid_heat:
+            self.mpm.thermal_rates = (MI.dTdt_NC,)
+        self.mpm.thermal_setup()
+        self.mpm._carried()
+
+    def thermal_requires(self, t, step):
+        """What the solid's temperature adds to the requires of step 1 ("nc_to_cc") or 8 ("lagrangian")."""
+        if not self.mpm.thermal:
+            return t
+        t.requires(NEW, M.gTemperature, Ghost.AROUND_CELLS, 1)
+        if step == "lagrangian" and self.mpm.conducting:
+            t.requires(NEW, M.gTemperatureRate, Ghost.AROUND_CELLS, 1, matls=self.mpm.conducting)
+        return t
+
+    def schedule_solid_heat(self, sched):
+        """computeCCVelAndTempRates and interpolateCCToNC for the temperature."""
+        if not self.solid_heat:
+            return
+        ms = self.mpm_matls
+        sched.add_task(Task("MPMICE::computeCCTempRates", self.temperature_rates, ms)
+                       .requires(OLD, FL.delT).requires(NEW, I.int_eng_L_ME_CC).requires(NEW, I.int_eng_L_CC)
+                       .requires(NEW, I.mass_L_CC).computes(MI.dTdt_CC))
+        sched.add_task(Task("MPMICE::interpolateCCToNC_T", self.interpolate_temperature_rate, ms)
+                       .requires(NEW, MI.dTdt_CC, Ghost.AROUND_CELLS, 1).computes(MI.dTdt_NC))
+
+    def temperature_rates(self, patch, matls, old_dw, new_dw):
+        """dTdt_CC = ((me)^L_ME - (me)^L) / (m^L cv dt) per solid cell (zero-gradient extra cells)."""
+        b = self.ice.boxes(patch)
+        dt = old_dw.get_reduction(FL.delT)
+        for m in matls:
+            out = new_dw.allocate(MI.dTdt_CC, m, patch)
+            if m in self.solid_heat:
+                K.temperature_rates(new_dw.get(I.int_eng_L_ME_CC, m, patch), new_dw.get(I.int_eng_L_CC, m, patch),
+                                    new_dw.get(I.mass_L_CC, m, patch), self.ice.cvs[m], dt, b.lo, b.hi, out)
+                self.ice.bcs.scalar(patch, out, "Temperature", m, b, copy=True)
+
+    def interpolate_temperature_rate(self, patch, matls, old_dw, new_dw):
+        """dTdt_NC: the mean dTdt_CC of the cells around each node (added to the particles'
+        temperature rate by MPM::updateParticleTemperature)."""
+        lo, hi = patch.owned_local(NC)
+        lo, hi = np.array(lo, np.int64), np.array(hi, np.int64)
+        cc_low = np.array(patch.low_index(CC), np.int64)
+        node_low = np.array(patch.low_index(NC), np.int64)
+        for m in matls:
+            K.cc_to_nc_scalar(new_dw.get(MI.dTdt_CC, m, patch), cc_low, node_low, lo, hi, self.dims_i,
+                              new_dw.allocate(MI.dTdt_NC, m, patch))
 
     # -- the stable timestep ------------------------------------------------------------------------
     def stable_timestep(self, patch, matls, old_dw, new_dw):

@@ -1,11 +1,15 @@
 """Pressurized cylinder (paper 000 sec. 4.1, inputs/MPMICE/pressurized_cylinder.ups) at two
 coarse resolutions: the stresses approach Lame's solution (eq. 42) and the eq. 43 error drops.
 
-Measured (scripts/accuracy_cost.py cylinder, t = 2.5 ms, inner gauge pressure 18.9-19.2 MPa):
-  n = 12 (dx = 0.1 m):  eq. 43 error 0.231, radial 0.085 P, hoop 0.116 P
-  n = 18 (dx = 0.067):  eq. 43 error 0.153, radial 0.053 P, hoop 0.069 P   (order 1.03)
-  ... n = 48 (dx = 0.025, the paper's): 0.065; n = 72: 0.046; slope over n = 12..72: 0.89 (paper: 0.89)
-Quasi-static by 2.5 ms: at n = 24 the eq. 43 error is 0.123, 0.116, 0.116 at t = 2.0, 2.5, 3.5 ms.
+Measured (scripts/accuracy_cost.py cylinder, t = 2.5 ms, inner gauge pressure 18.9-19.2 MPa),
+with the steel's own heat capacity (cv = 716 J/(kg K)) in the exchange and its temperature
+evolving (the deck's <heat> 1e6 between steel and air: the steel takes heat from the hot air
+in the wall cells, which cools the air there):
+  n = 12 (dx = 0.1 m):  eq. 43 error 0.261, radial 0.109 P, hoop 0.095 P
+  n = 18 (dx = 0.067):  eq. 43 error 0.181, radial 0.070 P, hoop 0.062 P   (order 0.90)
+Before the solid's temperature took part (steel held at 300 K, cv taken as 1): 0.231 and 0.153,
+and n = 48 (the paper's dx): 0.065; n = 72: 0.046; slope over n = 12..72: 0.89 (paper: 0.89);
+the finer resolutions have not been re-measured with the steel's heat capacity.
 """
 import pytest
 
@@ -29,7 +33,7 @@ def test_pressure_reached(errs):
 
 
 def test_error_drops(errs):
-    assert errs[12]["eq43"] < 0.26 and errs[18]["eq43"] < 0.17
+    assert errs[12]["eq43"] < 0.28 and errs[18]["eq43"] < 0.20
     assert errs[18]["eq43"] < 0.75 * errs[12]["eq43"]
     for k in ("radial", "hoop"):
         assert errs[18][k] < errs[12][k] < 0.13
