@@ -243,7 +243,7 @@ class MPMICE(MPMICETasks, Component):
             t.requires(OLD, FL.simTime)
         sched.add_task(t)
 
-        sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", ice.exchange_cc, alls)
+        sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", self.exchange, alls)
                        .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC)
                        .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC)
                        .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC))

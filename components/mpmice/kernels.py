@@ -1,6 +1,6 @@
 """Numba kernels of the MPMICE coupling (paper 000 sec. 3.3, steps 1, 7, 8, 10 and 13):
 the solid's state at cell centres, its pressure force, the exchange's change of its
-velocity and temperature carried back to the nodes.
+velocity and temperature carried back to the nodes, the fluid slivers in solid cells.
 
 Index conventions as in the ICE and MPM kernels: arrays are a patch's stored arrays,
 `cc_low` / `node_low` the global index of their entry [0, 0, 0]. A cell (i, j, k)
@@ -270,3 +270,41 @@ def cc_to_nc_scalar(q, cc_low, node_low, nlo, nhi, dims, out):
                             n += 1
                 out[x, y, z] = s / n
 
+
+@njit(cache=True)
+def trace_temperatures(masses, engs, vfs, cvs, is_fluid, theta_trace, lo, hi):
+    """After the exchange (eq. 39), in the cells the solids fill (every fluid's volume
+    fraction below theta_trace): the fluids take the cell's temperature, the m cv-weighted
+    mean of the solids there, which give or take that heat in proportion to their m cv
+    (energy conserved exactly).
+
+    Such a gas sliver has no temperature of its own: with a zero heat-exchange coefficient
+    its Lagrangian energy follows the p dV work of the solid's pressure swings, linearised
+    over steps whose relative pressure change is large, and it ran to thousands of K (and
+    to overflow in the diagnostics that divide by its mass)."""
+    n = len(masses)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                mc_solid = 0.0
+                e_solid = 0.0
+                filled = True
+                for m in range(n):
+                    if is_fluid[m]:
+                        if vfs[m][i, j, k] >= theta_trace:
+                            filled = False
+                    else:
+                        mc_solid += masses[m][i, j, k] * cvs[m]
+                        e_solid += engs[m][i, j, k]
+                if not filled or mc_solid <= 0.0:
+                    continue
+                t_mix = e_solid / mc_solid
+                de = 0.0
+                for m in range(n):
+                    if is_fluid[m]:
+                        e_new = masses[m][i, j, k] * cvs[m] * t_mix
+                        de += e_new - engs[m][i, j, k]
+                        engs[m][i, j, k] = e_new
+                for m in range(n):
+                    if not is_fluid[m]:
+                        engs[m][i, j, k] -= de * (masses[m][i, j, k] * cvs[m] / mc_solid)

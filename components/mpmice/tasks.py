@@ -33,6 +33,7 @@ from . import labels as MI
 NC, CC = VarType.NC, VarType.CC
 _REDIRECT = {I.rho_CC.name: I.rho_CC, I.vel_CC.name: I.vel_CC, I.temp_CC.name: I.temp_CC,
              I.sp_vol_CC.name: MI.sp_vol_mpm_CC}
+THETA_TRACE = 1e-6      # fluids all below this volume fraction take the solids' temperature (step 10)
 _NO3 = np.zeros((1, 1, 1, 3))
 _NO1 = np.zeros((1, 1, 1))
 
@@ -246,6 +247,19 @@ class MPMICETasks:
                new_dw.get_modifiable(M.gIntForce, m, patch), own, pp)
             new_dw.put(MI.pPressure, m, patch, pp)
 
+    # -- step 10: the exchange, trace materials at the cell's temperature --------------------------
+    def exchange(self, patch, matls, old_dw, new_dw):
+        """ICE's addExchangeToMomentumAndEnergy over solids and fluids (eqs. 38-39); then, in
+        cells where every fluid's volume fraction is below THETA_TRACE, the fluids take the
+        solids' temperature (kernels.trace_temperatures)."""
+        keep = _KeepAllocated(new_dw)
+        self.ice.exchange_cc(patch, matls, old_dw, keep)
+        b = self.ice.boxes(patch)
+        get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
+        K.trace_temperatures(get(I.mass_L_CC), tuple(keep.arrays[(I.int_eng_L_ME_CC.name, m)] for m in matls),
+                             get(I.vol_frac_CC), self.ice.cvs[np.array(matls)],
+                             np.array([m in self.ice.ice_matls for m in matls]), THETA_TRACE, b.olo, b.ohi)
+
     # -- steps 8-9: the solid's Lagrangian values at the cell centres --------------------------------
     def lagrangian_values_mpm(self, patch, matls, old_dw, new_dw):
         """computeLagrangianValuesMPM: m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p*
@@ -275,7 +289,8 @@ class MPMICETasks:
                           pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], ice.dims, mass, mom, eng,
                           b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, ice.cvs[m], ice.gravity,
                           False, ice.codes[m], ice.params[m], ice.gammas[m])
-            eng[...] = mass * ice.cvs[m] * temp
+            o = _owned(b)                      # IK.lagrangian fills the owned cells only
+            eng[o] = mass[o] * ice.cvs[m] * temp[o]
 
     def _temperature_star(self, patch, m, new_dw, dt):
         """The solid's cell temperature after this step's conduction (temp_CC without it)."""
@@ -318,25 +333,26 @@ class MPMICETasks:
         added to the start-of-step state (for a solid the momentum source holds all the nodal
         forces of the step, stress divergence included, not only the pressure gradient)."""
         start = StartOfStep(old_dw, new_dw, self.mpm_matls)
+        o = _owned(self.ice.boxes(patch))
         for m in matls:
-            mass = new_dw.get(I.mass_L_CC, m, patch)
-            ms = new_dw.allocate(MI.mom_source_CC, m, patch, fill=None)
-            np.subtract(new_dw.get(I.mom_L_CC, m, patch), mass[..., None] * start.get(I.vel_CC, m, patch), out=ms)
-            es = new_dw.allocate(MI.intE_source_CC, m, patch, fill=None)
-            np.subtract(new_dw.get(I.int_eng_L_CC, m, patch),
-                        (mass * self.ice.cvs[m]) * start.get(I.temp_CC, m, patch), out=es)
+            mass = new_dw.get(I.mass_L_CC, m, patch)[o]
+            ms = new_dw.allocate(MI.mom_source_CC, m, patch)
+            ms[o] = new_dw.get(I.mom_L_CC, m, patch)[o] - mass[..., None] * start.get(I.vel_CC, m, patch)[o]
+            es = new_dw.allocate(MI.intE_source_CC, m, patch)
+            es[o] = new_dw.get(I.int_eng_L_CC, m, patch)[o] - (mass * self.ice.cvs[m]) * start.get(I.temp_CC, m, patch)[o]
 
     def temperature_rate(self, patch, matls, old_dw, new_dw):
-        """Tdot = (T after the exchange - T at the start of the step) / dt (0 in empty cells)."""
+        """Tdot = (T after the exchange - T at the start of the step) / dt over the owned cells
+        (0 in empty cells; the halo of the Lagrangian arrays is never written, so it is not read)."""
         start = StartOfStep(old_dw, new_dw, self.mpm_matls)
         dt = old_dw.get_reduction(FL.delT)
+        o = _owned(self.ice.boxes(patch))
         for m in matls:
-            mass = new_dw.get(I.mass_L_CC, m, patch)
+            mass = new_dw.get(I.mass_L_CC, m, patch)[o]
             mcv = mass * self.ice.cvs[m]
-            temp = np.divide(new_dw.get(I.int_eng_L_ME_CC, m, patch), mcv, out=np.zeros_like(mcv), where=mass > 0)
-            out = new_dw.allocate(MI.Tdot, m, patch, fill=None)
-            np.divide(temp - start.get(I.temp_CC, m, patch), dt, out=out)
-            out[mass <= 0] = 0.0
+            temp = np.divide(new_dw.get(I.int_eng_L_ME_CC, m, patch)[o], mcv, out=np.zeros_like(mcv), where=mass > 0)
+            out = new_dw.allocate(MI.Tdot, m, patch)
+            out[o] = np.where(mass > 0, (temp - start.get(I.temp_CC, m, patch)[o]) / dt, 0.0)
 
     # -- steps 10 -> 13: the exchange's change carried back to the nodes ------------------------------
     def velocity_rates(self, patch, matls, old_dw, new_dw):
@@ -428,6 +444,11 @@ class MPMICETasks:
         self.ice.stable_timestep(patch, self.ice.ice_matls, old_dw, a)
         self.mpm.compute_stable_timestep(patch, self.mpm_matls, old_dw, b)
         new_dw.put_reduction(FL.delT, min(float(a.value), float(b.value)))
+
+
+def _owned(b):
+    """Slices of a patch's owned cells (interior + extra) in its stored CC arrays."""
+    return tuple(slice(lo, hi) for lo, hi in zip(b.olo, b.ohi))
 
 
 def _spread(f, empty):
