@@ -111,6 +111,8 @@ class ICE(ImplicitICE, IceTasks, Component):
                                             "only (any EOS is accepted for one material)")
         self.params = np.array([m.eos.params() for m in self.materials]).reshape(n, MAX_PARAMS)
         self.cvs = np.array([m.cv for m in self.materials])
+        # ICE alone with ideal gases only: eq. 13 has a closed form (kernels.equilibrate_ideal)
+        self.all_ideal = self.n_before == 0 and n > 1 and bool(np.all(self.codes == IDEAL_GAS))
         self.gammas = np.array([m.gamma for m in self.materials])
         self.matls = list(range(n))
         self.viscous = any(m.viscosity > 0 for m in self.materials)

@@ -89,6 +89,15 @@ def ideal_gas_sound_speed2(rho, temp, cv, gamma):
 
 
 @njit(cache=True)
+def ideal_gas_alpha(rho, temp, cv, gamma):
+    """eos_alpha of an ideal gas (1/T), the same operations."""
+    dpdt = (gamma - 1.0) * rho * cv
+    if dpdt == 0.0:
+        return 0.0
+    return dpdt / (rho * ((gamma - 1.0) * cv * temp))
+
+
+@njit(cache=True)
 def ideal_gas_rho_micro(press, temp, cv, gamma):
     return press / ((gamma - 1.0) * cv * temp)
 

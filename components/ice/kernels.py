@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from .eos import (IDEAL_GAS, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro, eos_sound_speed2,
-                  ideal_gas_press_eos, ideal_gas_sound_speed2)
+                  ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2)
 
 TINY = 1.0e-100
 
@@ -100,6 +100,35 @@ def equilibrate_many(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, code
                     css[m][i, j, k] = np.sqrt(max(eos_sound_speed2(codes[m], params[m], rm[m], temps[m][i, j, k],
                                                                    cvs[m], gammas[m]), TINY))
     return worst
+
+
+@njit(cache=True, error_model="numpy")
+def equilibrate_ideal(rhos, temps, sp_new, vfs, css, press, cvs, gammas, lo, hi):
+    """Eq. 13 for ideal gases, solved exactly: theta_m = rho_m (gamma_m - 1) cv_m T_m / p, so
+    sum theta = 1 gives p = sum rho_m (gamma_m - 1) cv_m T_m; then rho_micro_m, theta_m, c_m.
+    (equilibrate_many's Newton iteration converges to the same p within its tolerance.)"""
+    n = len(rhos)
+    nk = hi[2] - lo[2]
+    k0 = lo[2]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            p = press[i, j, k0:k0 + nk]
+            for k in range(nk):
+                p[k] = 0.0
+            for m in range(n):
+                r, t = rhos[m][i, j, k0:k0 + nk], temps[m][i, j, k0:k0 + nk]
+                f = (gammas[m] - 1.0) * cvs[m]
+                for k in range(nk):
+                    p[k] += r[k] * f * t[k]
+            for m in range(n):
+                r, t = rhos[m][i, j, k0:k0 + nk], temps[m][i, j, k0:k0 + nk]
+                v, th, c = sp_new[m][i, j, k0:k0 + nk], vfs[m][i, j, k0:k0 + nk], css[m][i, j, k0:k0 + nk]
+                cv, g = cvs[m], gammas[m]
+                for k in range(nk):
+                    rm = p[k] / ((g - 1.0) * cv * t[k])
+                    v[k] = 1.0 / rm
+                    th[k] = r[k] / rm
+                    c[k] = np.sqrt(max(ideal_gas_sound_speed2(rm, t[k], cv, g), TINY))
 
 
 @njit(cache=True, error_model="numpy")
@@ -254,7 +283,8 @@ def add_theta_kappa(vf, sp_vol, cs, out, lo, hi):
     n = hi[2] - lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            f, v, c_, o = vf[i, j, lo[2]:hi[2]], sp_vol[i, j, lo[2]:hi[2]], cs[i, j, lo[2]:hi[2]], out[i, j, lo[2]:hi[2]]
+            f, v = vf[i, j, lo[2]:hi[2]], sp_vol[i, j, lo[2]:hi[2]]
+            c_, o = cs[i, j, lo[2]:hi[2]], out[i, j, lo[2]:hi[2]]
             for k in range(n):
                 c = c_[k]
                 o[k] += f[k] * v[k] / (c * c)
@@ -398,32 +428,44 @@ def sp_vol_lagrangian_one(mass_L, sp_vol, vf, cs, delP, out, lo, hi, vol):
                 out[i, j, k] = max(mass_L[i, j, k] * v - vol * vf[i, j, k] * kap * delP[i, j, k], TINY)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, params, cvs, gammas,
                            outs, lo, hi, vol, dt):
     """Eq. 40: (m v)^L = m v + V [-theta kappa delP + dt (theta beta Tdot - f_theta sum theta beta Tdot)]."""
     n = len(masses)
-    tb = np.empty(n)
-    fth = np.empty(n)
+    nk = hi[2] - lo[2]
+    k0 = lo[2]
+    tb = np.empty((n, nk))
+    fth = np.empty((n, nk))
+    ksum = np.empty(nk)
+    bsum = np.empty(nk)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                ksum = 0.0
-                bsum = 0.0
-                for m in range(n):
-                    v = sps[m][i, j, k]
-                    th = vfs[m][i, j, k]
-                    fth[m] = th * v / css[m][i, j, k] ** 2
-                    ksum += fth[m]
-                    t_old = temps_old[m][i, j, k]
-                    t_L = engs[m][i, j, k] / (masses[m][i, j, k] * cvs[m])
-                    beta = eos_alpha(codes[m], params[m], 1.0 / v, t_L, cvs[m], gammas[m])
-                    tb[m] = th * beta * (t_L - t_old) / dt
-                    bsum += tb[m]
-                for m in range(n):
-                    v = sps[m][i, j, k]
-                    src = -fth[m] * delP[i, j, k] + dt * (tb[m] - fth[m] / ksum * bsum)
-                    outs[m][i, j, k] = max(masses[m][i, j, k] * v + vol * src, TINY)
+            for k in range(nk):
+                ksum[k] = 0.0
+                bsum[k] = 0.0
+            for m in range(n):
+                sp, vf, cs = sps[m][i, j, k0:k0 + nk], vfs[m][i, j, k0:k0 + nk], css[m][i, j, k0:k0 + nk]
+                to, en, ms = temps_old[m][i, j, k0:k0 + nk], engs[m][i, j, k0:k0 + nk], masses[m][i, j, k0:k0 + nk]
+                cv, g, ideal = cvs[m], gammas[m], codes[m] == IDEAL_GAS
+                for k in range(nk):
+                    v = sp[k]
+                    th = vf[k]
+                    fth[m, k] = th * v / cs[k] ** 2
+                    ksum[k] += fth[m, k]
+                    t_L = en[k] / (ms[k] * cv)
+                    if ideal:
+                        beta = ideal_gas_alpha(1.0 / v, t_L, cv, g)
+                    else:
+                        beta = eos_alpha(codes[m], params[m], 1.0 / v, t_L, cv, g)
+                    tb[m, k] = th * beta * (t_L - to[k]) / dt
+                    bsum[k] += tb[m, k]
+            dp = delP[i, j, k0:k0 + nk]
+            for m in range(n):
+                sp, ms, out = sps[m][i, j, k0:k0 + nk], masses[m][i, j, k0:k0 + nk], outs[m][i, j, k0:k0 + nk]
+                for k in range(nk):
+                    src = -fth[m, k] * dp[k] + dt * (tb[m, k] - fth[m, k] / ksum[k] * bsum[k])
+                    out[k] = max(ms[k] * sp[k] + vol * src, TINY)
 
 
 @njit(cache=True, error_model="numpy")

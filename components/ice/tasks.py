@@ -160,9 +160,15 @@ class IceTasks:
             get = lambda lab: tuple(old_dw.get(lab, m, patch) for m in matls)
             new = lambda lab: tuple(new_dw.allocate(lab, m, patch) for m in matls)
             spv, vfs, css = new(I.sp_vol_CC), new(I.vol_frac_CC), new(I.speedSound_CC)
-            K.equilibrate_many(get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC), old_dw.get(I.press_CC, 0, patch),
-                               spv, vfs, css, peq, self.codes, self.params, self.cvs, self.gammas,
-                               b.olo, b.ohi, 1e-11, self.max_iter)
+            if self.all_ideal:
+                v = b.view
+                K.equilibrate_ideal(tuple(v(a) for a in get(I.rho_CC)), tuple(v(a) for a in get(I.temp_CC)),
+                                    tuple(v(a) for a in spv), tuple(v(a) for a in vfs), tuple(v(a) for a in css),
+                                    v(peq), self.cvs, self.gammas, b.v_olo, b.v_ohi)
+            else:
+                K.equilibrate_many(get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC), old_dw.get(I.press_CC, 0, patch),
+                                   spv, vfs, css, peq, self.codes, self.params, self.cvs, self.gammas,
+                                   b.olo, b.ohi, 1e-11, self.max_iter)
         self.bcs.scalar(patch, peq, "Pressure", 0, b)
 
     # -- step 3: face velocities (eq. 28) and their exchange --------------------------------------
@@ -328,11 +334,13 @@ class IceTasks:
                                     delP, out, b.olo, b.ohi, b.vol)
             return
         dt = old_dw.get_reduction(L.delT)
-        get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
-        outs = tuple(new_dw.allocate(I.sp_vol_L_CC, m, patch, fill=None) for m in matls)
+        v = b.view
+        get = lambda lab: tuple(v(new_dw.get(lab, m, patch)) for m in matls)
+        outs = tuple(v(new_dw.allocate(I.sp_vol_L_CC, m, patch, fill=None)) for m in matls)
         K.sp_vol_lagrangian_many(get(I.mass_L_CC), get(I.sp_vol_CC), get(I.vol_frac_CC), get(I.speedSound_CC),
-                                 delP, get(I.int_eng_L_ME_CC), tuple(old_dw.get(I.temp_CC, m, patch) for m in matls),
-                                 self.codes, self.params, self.cvs, self.gammas, outs, b.olo, b.ohi, b.vol, dt)
+                                 v(delP), get(I.int_eng_L_ME_CC),
+                                 tuple(v(old_dw.get(I.temp_CC, m, patch)) for m in matls),
+                                 self.codes, self.params, self.cvs, self.gammas, outs, b.v_olo, b.v_ohi, b.vol, dt)
 
     # -- step 12: advection and the new state ----------------------------------------------------
     def advect_and_advance(self, patch, matls, old_dw, new_dw):

@@ -24,7 +24,8 @@ FACES = "".join(f'<Face side="{s}"><BCType id="all" label="Symmetric" var="symme
 DECK = """<Uintah_specification><SimulationComponent type="ice"/>
 <Time><maxTime>100</maxTime><max_Timesteps>{steps}</max_Timesteps><delt_init>1e-4</delt_init></Time>
 <Grid>{bcs}<Level><Box label="1"><lower>[0,0,0]</lower><upper>[2,2,0.01]</upper>
-<extraCells>{extra}</extraCells><patches>[2,2,1]</patches><resolution>[24,24,1]</resolution></Box>{periodic}</Level></Grid>
+<extraCells>{extra}</extraCells><patches>[2,2,1]</patches><resolution>[24,24,1]</resolution></Box>{periodic}
+</Level></Grid>
 <DataArchiver><filebase>c.uda</filebase><outputTimestepInterval>{every}</outputTimestepInterval>
 <save label="TotalMass"/><save label="TotalIntEng"/><save label="KineticEnergy"/>{saves}</DataArchiver>
 <CFD><cfl>0.4</cfl><ICE>{option}<advection type="SecondOrder"/></ICE></CFD>
@@ -52,7 +53,8 @@ def deck(nmat, exchange=None, periodic=False, conserve=True, stiffened=False, st
     exch = "" if exchange is None else (
         f"<exchange_properties><exchange_coefficients><momentum>[{exchange}]</momentum><heat>[{exchange}]</heat>"
         "</exchange_coefficients></exchange_properties>")
-    return DECK.format(steps=steps, every=every, bcs="" if periodic else f"<BoundaryConditions>{FACES}</BoundaryConditions>",
+    bcs = "" if periodic else f"<BoundaryConditions>{FACES}</BoundaryConditions>"
+    return DECK.format(steps=steps, every=every, bcs=bcs,
                        extra="[0,0,1]" if periodic else "[1,1,1]",
                        periodic="<periodic>[1,1,0]</periodic>" if periodic else "",
                        option="<conserveTotalEnergy>true</conserveTotalEnergy>" if conserve else "",
