@@ -44,7 +44,7 @@ from components.mpm.scenes import GAS, membrane_deck, measure  # noqa: E402
 def one(dx, t_end, out, legacy=False):
     from framework.archiver import DataArchive
     from framework.controller import Controller
-    kw = dict(spacing=0.25 * dx, gas_ppc=2, cells=False) if legacy else {}
+    kw = dict(spacing=0.25 * dx, gas_ppc=2, grid_density=False) if legacy else {}
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.time()
         ctl = Controller(str(Path(tmp) / "m.ups"),

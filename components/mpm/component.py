@@ -237,6 +237,10 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(NEW, L.AVScale)
         if self.has_membrane:
             t.requires(NEW, L.pTangentNbr)
+        if any(getattr(mt.params, "density_from_grid", False) for mt in self.materials):
+            if not self.musl or self.kind != "linear":     # ideal_gas_fluid.grid_volumes
+                raise ValueError("<density_from_grid> needs <stress_update>musl and <interpolator>linear")
+            t.requires(NEW, L.gMass, Ghost.AROUND_CELLS, ng).requires(NEW, L.gVolume, Ghost.AROUND_CELLS, ng)
         if self.musl:
             t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng).requires(OLD, L.pX)
         else:

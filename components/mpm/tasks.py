@@ -391,13 +391,13 @@ class MPMTasks:
                 Lg = new_dw.get(L.pVelGrad, m, patch)
                 F_new = new_dw.get(L.pFPre, m, patch)
                 vol_new = new_dw.get(L.pVolumePre, m, patch)
-            if getattr(mat.params, "density_from_cells", False):    # fluid points (ideal_gas_fluid)
-                if not self.musl:
-                    raise ValueError(f"material {m}: <density_from_cells> needs <stress_update>musl")
-                others = [old_dw.get(L.pX, k, patch) for k in matls if k != m] or [np.empty((0, 3))]
-                mat.model.cell_volumes(old_dw.get(L.pX, m, patch), old_dw.get(L.pID, m, patch),
-                                       np.asarray(self.level.anchor, float), np.asarray(self.level.dx, float),
-                                       pm, vol_new, np.concatenate(others))
+            if getattr(mat.params, "density_from_grid", False):    # fluid points (ideal_gas_fluid)
+                lv = self.level
+                gvol = {k: new_dw.get(L.gVolume, k, patch) for k in matls     # membranes: no area
+                        if k == m or not self.materials[k].is_membrane}
+                mat.model.grid_volumes(old_dw.get(L.pX, m, patch), lv.anchor, lv.dx, np.array(lv.ncells),
+                                       np.array(lv.periodic), np.array(patch.low_index(NC), np.int64),
+                                       new_dw.get(L.gMass, m, patch), gvol[m], sum(gvol.values()), pm, vol_new)
             s_new = new_dw.allocate(L.pStressPre, m, patch, None)
             energy = np.empty(n)
             old = new = None

@@ -16,7 +16,9 @@ update: MPM::artificialViscosityScale); without them, over the particles passed 
 Tags: ``gamma``, ``viscosity`` (mu), optional ``specific_heat`` (not used
 here), ``artificial_viscosity`` (bool), ``av_g`` (g, e.g. sqrt(2) dx),
 ``av_lambda`` (lambda~, 0.75 in 004), ``artificial_viscosity_coeff1`` (c1),
-``artificial_viscosity_coeff2`` (c2), ``reference_pressure`` (p_ref, default 0:
+``artificial_viscosity_coeff2`` (c2), ``density_from_grid`` (pysus, default false: the
+points' volumes from the nodal mass each step, ``grid_volumes``; MUSL, linear
+interpolation), ``reference_pressure`` (p_ref, default 0:
 pysus): the stress the grid sees is taken relative to an ambient p_ref, as for a gas
 whose container and pistons carry p_ref on their outer faces (004 eq. 26 uses the
 perturbation pressure); e and p stay absolute.  State: specific internal energy e.
@@ -44,7 +46,7 @@ class Params:
     artificial_viscosity_coeff1: float = 1.0
     artificial_viscosity_coeff2: float = 1.0
     reference_pressure: float = 0.0
-    density_from_cells: bool = False
+    density_from_grid: bool = False
 
     @classmethod
     def from_ups(cls, d):
@@ -54,7 +56,7 @@ class Params:
                    _get(d, "specific_heat", 0.0), flag("artificial_viscosity"), _get(d, "av_g", 0.0),
                    _get(d, "av_lambda", 0.75), _get(d, "artificial_viscosity_coeff1", 1.0),
                    _get(d, "artificial_viscosity_coeff2", 1.0), _get(d, "reference_pressure", 0.0),
-                   flag("density_from_cells"))
+                   flag("density_from_grid"))
 
 
 @njit(cache=True)
@@ -106,67 +108,63 @@ def av_scale(gamma, L, e_old):
     return cmax, dmax
 
 
+FULL = 0.9   # a node whose support the points claim to >= 90 % counts as full
+
+
 @njit(cache=True)
-def _cell_keys(px, anchor, dx, lo, ext, out):
-    """Flat index of each point's cell in the box lo + [0, ext); -1 outside it."""
+def grid_volumes(px, anchor, dx, ncells, periodic, node_low, gmass, gvol, gvol_all, mass, vol):
+    """Fluid point volumes V_p = m_p / rho_p from the nodal densities (linear shape
+    functions), in place: rho_p = sum_i S_ip rho_i over the nodes that carry this fluid.
+    rho_i = m_i / (V_i f_i) at a node whose support is full (the points of all materials
+    claim at least FULL V_i, V_i the integral of S_i over the domain: dx dy dz, halved per
+    domain face it lies on), f_i = this fluid's share of the claimed volume; a node only
+    partly covered (a free or membrane boundary) contributes the point's own V0 det F
+    density instead.
+    Why: V = V0 det F drifts point by point (the grid sees neither how a node's volume is
+    split among the points nor by how much their sum exceeds it), so Sigma V outgrows the
+    region the fluid fills; the nodal mass says where the points are, as the density of
+    PIC/FLIP. For an ideal gas V p = (gamma-1) m e is unchanged, so are the step's forces.
+    Collapsed directions (ncells 1) carry one node layer of weight 1."""
+    idx = np.zeros(3, np.int64)
+    frac = np.zeros(3)
+    node = np.zeros(3, np.int64)
     for p in range(px.shape[0]):
-        k = 0
         for d in range(3):
-            c = int(np.floor((px[p, d] - anchor[d]) / dx[d])) - lo[d]
-            if c < 0 or c >= ext[d]:
-                k = -1
-                break
-            k = k * ext[d] + c
-        out[p] = k
-
-
-@njit(cache=True)
-def cell_volumes(px, pid, anchor, dx, mass, vol, other_px):
-    """Fluid point volumes from the cells they lie in, in place. A cell that holds no point
-    of another material is full of this fluid: its points get the density (their mass) /
-    (cell volume). A cell shared with another material (a membrane through it) keeps the
-    sum of its points' V0 det F and shares it at one density. V = V0 det F drifts point by
-    point (the grid sees neither how a cell's volume is split among its points nor the
-    excess of their sum over the cell, so nothing restores it) until Sigma V outgrows the
-    region the fluid fills; taking the density from the mass in the cell, as PIC/FLIP do
-    on their grid, ties it to where the points are. For an ideal gas V p = (gamma-1) m e
-    is unchanged, so the grid forces of the step are too. Sums in particle-ID order within
-    a cell: the same on any patch layout (a cell's points all live on one patch)."""
-    n = px.shape[0]
-    if n == 0:
-        return
-    lo = np.full(3, np.iinfo(np.int64).max)
-    hi = np.full(3, np.iinfo(np.int64).min)
-    for p in range(n):
-        for d in range(3):
-            c = int(np.floor((px[p, d] - anchor[d]) / dx[d]))
-            lo[d] = min(lo[d], c)
-            hi[d] = max(hi[d], c)
-    ext = hi - lo + 1
-    key = np.empty(n, np.int64)
-    _cell_keys(px, anchor, dx, lo, ext, key)
-    okey = np.empty(other_px.shape[0], np.int64)
-    _cell_keys(other_px, anchor, dx, lo, ext, okey)
-    okey = np.sort(okey)
-    vcell = dx[0] * dx[1] * dx[2]
-    by_id = np.argsort(pid, kind="mergesort")
-    order = by_id[np.argsort(key[by_id], kind="mergesort")]
-    a = 0
-    while a < n:
-        kk = key[order[a]]
-        b = a
-        sm = 0.0
-        sv = 0.0
-        while b < n and key[order[b]] == kk:
-            sm += mass[order[b]]
-            sv += vol[order[b]]
-            b += 1
-        j = np.searchsorted(okey, kk)
-        if j >= okey.shape[0] or okey[j] != kk:
-            sv = vcell
-        for i in range(a, b):
-            vol[order[i]] = mass[order[i]] * sv / sm
-        a = b
+            if ncells[d] > 1:
+                s = (px[p, d] - anchor[d]) / dx[d]
+                idx[d] = int(np.floor(s))
+                frac[d] = s - idx[d]
+        rho = 0.0
+        wsum = 0.0
+        for c in range(8):
+            w = 1.0
+            vi = 1.0
+            skip = False
+            for d in range(3):
+                hi = (c >> d) & 1
+                if ncells[d] == 1:
+                    if hi:
+                        skip = True
+                    vi *= dx[d]
+                    continue
+                node[d] = idx[d] + hi
+                w *= frac[d] if hi else 1.0 - frac[d]
+                half = not periodic[d] and (node[d] == 0 or node[d] == ncells[d])
+                vi *= 0.5 * dx[d] if half else dx[d]
+            if skip or w <= 0.0:
+                continue
+            a, b, k = node[0] - node_low[0], node[1] - node_low[1], node[2] - node_low[2]
+            gm = gmass[a, b, k]
+            if gm <= 0.0:
+                continue
+            va = gvol_all[a, b, k]
+            if va >= FULL * vi:
+                rho += w * gm * va / (vi * gvol[a, b, k])
+            else:
+                rho += w * mass[p] / vol[p]
+            wsum += w
+        if rho > 0.0:
+            vol[p] = mass[p] * wsum / rho
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy,
