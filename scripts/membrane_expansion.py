@@ -20,7 +20,13 @@ grid spacing and prints one JSON line per resolution:
 
     .venv/bin/python scripts/membrane_expansion.py --dx 0.2 0.1 --t-end 4.0
 
-About 1.5 min at dx = 0.2 and 15 min at dx = 0.1 on one core. Not a test;
+Measured (t_end 4, on a shared 2-core machine under load):
+  dx 0.2: r_final 1.342, gas_inside 1.0, hoop_over_prt 0.992 (0.965 with the plain mean),
+          p_vol 32.8, gas_volume_over_area 1.013, energy -0.3 %, 19,028 steps, 118 s;
+  dx 0.1: r_final 1.355, gas_inside 0.9991 (3 points on the membrane, none escaped),
+          hoop_over_prt 1.021 (1.009), p_vol 32.8, 1.024, -0.5 %, 37,964 steps, 450 s.
+  --legacy at dx 0.2: the summed gas volume is 12.6 times the enclosed area by t = 1.4 and
+  the membrane bursts at t = 1.5. Not a test;
 tests/mpm/test_membrane.py runs the coarse one to t = 1. --legacy runs the old set-up
 (membrane points dx/4 apart, 2 x 2 gas points per cell, V = V0 det F) for comparison.
 """
