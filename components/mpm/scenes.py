@@ -26,7 +26,10 @@ Resolution (what keeps the gas in and the pressure right; scripts/membrane_expan
 - the gas points' volumes from the nodal mass (ideal_gas_fluid <density_from_grid>,
   `grid_density`): with V = V0 det F alone the summed gas volume reaches 2-2.5 times the
   enclosed area by t = 4 and the points' mean pressure falls to 24 while the membrane
-  carries the hoop stress of p = 32; with it the sum stays within 3 %.
+  carries the hoop stress of p = 32; with it the sum stays within 5 % (1-2 % at t = 4).
+Left over: about 5 % (dx 0.2) and 2 % (dx 0.1) of the gas's energy stays at t = 4 as
+velocity differences between points of one cell, which the grid (FLIP update, 004 eq. 12)
+neither sees nor damps; the pressure is that much below p0 A0 / A.
 
     from components.mpm.scenes import membrane_deck, measure
 """
@@ -63,8 +66,9 @@ def membrane_deck(shape="ring", dx=0.2, R=1.36, L=4.0, t_end=0.05, out=0.01, spa
                   cfl=0.5, patches=(1, 1), formulation="plane", damping=0.0, update="musl", areal=True,
                   gas_ppc=4, grid_density=True):
     """Deck text: the shape centred in an L x L box of cells dx (2D, depth dx); membrane
-    points `spacing` apart (default dx/8), gas_ppc x gas_ppc gas points per cell;
-    `damping` (1/s): <artificial_damping_coeff>, to reach the equilibrium sooner."""
+    points `spacing` apart (default dx/8), gas_ppc x gas_ppc gas points per cell, gas
+    volumes from the nodal mass unless grid_density=False; `damping` (1/s):
+    <artificial_damping_coeff>, to reach the equilibrium sooner."""
     c = 0.5 * L
     n = int(round(L / dx))
     if shape == "ring":
