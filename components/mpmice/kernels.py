@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from components.mpm.transfer import _counts, _inv_dx, _sel, _stencil
+from components.mpm.thermal import _inv, _pick, _sizes, _stencil
 
 
 @njit(cache=True)
@@ -149,21 +149,22 @@ def _pressure_force(kind, dim, px, pvol, lp, anchor, dx, node_low, press, cc_low
     solid's stress in the internal force is sigma + (p - p_ref) I (the bulk part the
     equilibration pressure carries, eq. 33's sigma_r - sigma). Owned p_p go to `ppress`."""
     sh0, sh1, sh2 = gfint.shape[:3]
-    na, nb, nc = _counts(kind, dim)
-    ih = _inv_dx(dx)
+    act = (1 << dim) - 1                 # the leading `dim` axes are active
+    na, nb, nc = _sizes(kind, act)
+    ih = _inv(dx, act)
     fi = gfint.reshape(-1)
     o = 0
     all_own = own.shape[0] == 0
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
         pr = 0.0
         for a in range(na):
-            wa = _sel(a, wx0, wx1, wx2)
+            wa = _pick(a, wx0, wx1, wx2)
             for b in range(nb):
-                wb = _sel(b, wy0, wy1, wy2)
+                wb = _pick(b, wy0, wy1, wy2)
                 for c in range(nc):
-                    S = wa * wb * _sel(c, wz0, wz1, wz2)
+                    S = wa * wb * _pick(c, wz0, wz1, wz2)
                     if S != 0.0:
                         pr += S * _node_pressure(press, i + a + node_low[0], j + b + node_low[1],
                                                  k + c + node_low[2], cc_low, dims)
@@ -173,14 +174,14 @@ def _pressure_force(kind, dim, px, pvol, lp, anchor, dx, node_low, press, cc_low
             o += 1
         s = pvol[p] * pr
         for a in range(na):
-            wa = _sel(a, wx0, wx1, wx2)
-            ga = _sel(a, gx0, gx1, gx2)
+            wa = _pick(a, wx0, wx1, wx2)
+            ga = _pick(a, gx0, gx1, gx2)
             for b in range(nb):
-                wb = _sel(b, wy0, wy1, wy2)
-                gb = _sel(b, gy0, gy1, gy2)
+                wb = _pick(b, wy0, wy1, wy2)
+                gb = _pick(b, gy0, gy1, gy2)
                 for c in range(nc):
-                    wc = _sel(c, wz0, wz1, wz2)
-                    gc = _sel(c, gz0, gz1, gz2)
+                    wc = _pick(c, wz0, wz1, wz2)
+                    gc = _pick(c, gz0, gz1, gz2)
                     x, y, z = i + a, j + b, k + c
                     if not (0 <= x < sh0 and 0 <= y < sh1 and 0 <= z < sh2):
                         continue
