@@ -100,3 +100,18 @@ def test_tasks_only_when_asked(tmp_path):
 def test_conduction_needs_a_specific_heat(tmp_path):
     with pytest.raises(InputError, match="specific_heat"):
         run_deck(deck_text(BAR, specific_heat="0.0"), tmp_path)
+
+
+def test_restart_carries_the_temperature(tmp_path):
+    path = tmp_path / "bar.ups"
+    path.write_text(deck_text(BAR).replace('<save label="ThermalEnergy"/>',
+                                           '<save label="ThermalEnergy"/><checkpoint timestepInterval="100"/>'))
+    r = pysus(path, "--filebase", tmp_path / "a.uda")
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = pysus("-restart", tmp_path / "a.uda", "--filebase", tmp_path / "b.uda")
+    assert r.returncode == 0, r.stderr[-2000:]
+    a, b = DataArchive(tmp_path / "a.uda"), DataArchive(tmp_path / "b.uda")
+    assert b.times[-1] == a.times[-1]
+    pa, pb = a.particles(0, -1), b.particles(0, -1)
+    oa, ob = np.argsort(pa["p.particleID"]), np.argsort(pb["p.particleID"])
+    assert np.array_equal(pa["p.temperature"][oa], pb["p.temperature"][ob])
