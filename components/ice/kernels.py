@@ -167,13 +167,34 @@ def solve_small(a, b, n):
         b[r] = s / a[r, r]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
     """Eqs. 28+38 on faces: implicit momentum exchange of the face velocities of all materials.
 
     With face-averaged theta and v: u_m - u_m* = sum_n dt theta_n K_mn v_m (u_n - u_m).
+    Two materials: rows of faces with the 2 x 2 solve written out (the same operations).
     """
     n = len(ufs)
+    if n == 2:
+        k0, k1 = flo[2], fhi[2]
+        nk = k1 - k0
+        for i in range(flo[0], fhi[0]):
+            for j in range(flo[1], fhi[1]):
+                x, y = i + sh[0], j + sh[1]
+                l0, l1 = x - dd[0], y - dd[1]
+                z0 = k0 + sh[2]
+                q0 = z0 - dd[2]
+                fR0, fL0 = vfs[0][x, y, z0:z0 + nk], vfs[0][l0, l1, q0:q0 + nk]
+                fR1, fL1 = vfs[1][x, y, z0:z0 + nk], vfs[1][l0, l1, q0:q0 + nk]
+                sR0, sL0 = sps[0][x, y, z0:z0 + nk], sps[0][l0, l1, q0:q0 + nk]
+                sR1, sL1 = sps[1][x, y, z0:z0 + nk], sps[1][l0, l1, q0:q0 + nk]
+                u0, u1 = ufs[0][i, j, k0:k1], ufs[1][i, j, k0:k1]
+                o0, o1 = out[0][i, j, k0:k1], out[1][i, j, k0:k1]
+                for k in range(nk):
+                    o0[k], o1[k] = _solve2(u0[k], u1[k], 0.5 * (fR0[k] + fL0[k]), 0.5 * (fR1[k] + fL1[k]),
+                                           0.5 * (sR0[k] + sL0[k]), 0.5 * (sR1[k] + sL1[k]),
+                                           K[0, 1], K[1, 0], dt, 1.0, 1.0, False)
+        return
     a = np.empty((n, n))
     b = np.empty(n)
     th = np.empty(n)
@@ -191,6 +212,26 @@ def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
                 solve_small(a, b, n)
                 for m in range(n):
                     out[m][i, j, k] = b[m]
+
+
+@njit(cache=True, error_model="numpy")
+def _solve2(b0, b1, th0, th1, sv0, sv1, K01, K10, dt, cv0, cv1, heat):
+    """(I + B) x = b for two materials: _exchange_matrix then solve_small, operation for operation."""
+    beta01 = dt * th1 * K01 * sv0
+    beta10 = dt * th0 * K10 * sv1
+    if heat:
+        beta01 /= cv0
+        beta10 /= cv1
+    a00 = 1.0 + beta01
+    a01 = -beta01
+    a10 = -beta10
+    a11 = 1.0 + beta10
+    f = a10 / a00
+    a11 -= f * a01
+    b1 -= f * b0
+    x1 = b1 / a11
+    x0 = (b0 - a01 * x1) / a00
+    return x0, x1
 
 
 @njit(cache=True)
@@ -376,6 +417,9 @@ def exchange_cells(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, 
     even when K = 1e15 makes the matrix badly conditioned.
     """
     n = len(masses)
+    if n == 2:
+        _exchange_cells2(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H)
+        return
     a = np.empty((n, n))
     b = np.empty(n)
     th = np.empty(n)
@@ -415,6 +459,37 @@ def exchange_cells(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, 
                 solve_small(a, b, n)
                 for m in range(n):
                     eng_out[m][i, j, k] = (tbar + b[m]) * masses[m][i, j, k] * cvv[m]
+
+
+@njit(cache=True, error_model="numpy")
+def _exchange_cells2(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H):
+    """exchange_cells for two materials over rows, the 2 x 2 solves written out (same operations)."""
+    nk = hi[2] - lo[2]
+    k0 = lo[2]
+    cv0, cv1 = cvs[0], cvs[1]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            m0, m1 = masses[0][i, j, k0:k0 + nk], masses[1][i, j, k0:k0 + nk]
+            p0, p1 = moms[0][i, j, k0:k0 + nk], moms[1][i, j, k0:k0 + nk]
+            e0, e1 = engs[0][i, j, k0:k0 + nk], engs[1][i, j, k0:k0 + nk]
+            f0, f1 = vfs[0][i, j, k0:k0 + nk], vfs[1][i, j, k0:k0 + nk]
+            s0, s1 = sps[0][i, j, k0:k0 + nk], sps[1][i, j, k0:k0 + nk]
+            q0, q1 = mom_out[0][i, j, k0:k0 + nk], mom_out[1][i, j, k0:k0 + nk]
+            g0, g1 = eng_out[0][i, j, k0:k0 + nk], eng_out[1][i, j, k0:k0 + nk]
+            for k in range(nk):
+                msum = m0[k] + m1[k]
+                esum = m0[k] * cv0 + m1[k] * cv1
+                for c in range(3):
+                    ubar = (p0[k, c] + p1[k, c]) / msum
+                    x0, x1 = _solve2(p0[k, c] / m0[k] - ubar, p1[k, c] / m1[k] - ubar, f0[k], f1[k], s0[k], s1[k],
+                                     K[0, 1], K[1, 0], dt, 1.0, 1.0, False)
+                    q0[k, c] = (ubar + x0) * m0[k]
+                    q1[k, c] = (ubar + x1) * m1[k]
+                tbar = (e0[k] + e1[k]) / esum
+                x0, x1 = _solve2(e0[k] / (m0[k] * cv0) - tbar, e1[k] / (m1[k] * cv1) - tbar, f0[k], f1[k], s0[k],
+                                 s1[k], H[0, 1], H[1, 0], dt, cv0, cv1, True)
+                g0[k] = (tbar + x0) * m0[k] * cv0
+                g1[k] = (tbar + x1) * m1[k] * cv1
 
 
 @njit(cache=True)

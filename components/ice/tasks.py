@@ -200,7 +200,9 @@ class IceTasks:
                 continue
             ufs = tuple(new_dw.get(I.FC_VEL[d], m, patch) for m in matls)
             out = tuple(new_dw.allocate(I.FC_VEL_ME[d], m, patch) for m in matls)
-            K.exchange_faces(ufs, vfs, sps, out, b.sh[d], UNIT[d], b.flo[d], b.fhi[d], dt, self.K)
+            a, v = b.axis[d], b.view
+            K.exchange_faces(tuple(v(x) for x in ufs), tuple(v(x) for x in vfs), tuple(v(x) for x in sps),
+                             tuple(v(x) for x in out), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a], dt, self.K)
             for m in matls:
                 self.bcs.face_velocity(patch, out[m], d, m, b.flo[d], b.fhi[d])
 
@@ -318,8 +320,10 @@ class IceTasks:
         get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
         mom_out = tuple(new_dw.allocate(I.mom_L_ME_CC, m, patch, fill=None) for m in matls)
         eng_out = tuple(new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None) for m in matls)
-        K.exchange_cells(get(I.mass_L_CC), get(I.mom_L_CC), get(I.int_eng_L_CC), get(I.vol_frac_CC),
-                         get(I.sp_vol_CC), self.cvs, mom_out, eng_out, b.olo, b.ohi, dt, self.K, self.H)
+        v = b.view
+        vs = lambda arrs: tuple(v(x) for x in arrs)
+        K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
+                         vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
         if self.conserve_energy:
             self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
 
