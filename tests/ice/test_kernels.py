@@ -56,3 +56,48 @@ def test_exchange_conserves_and_is_stable(Kc):
     if Kc == 1e15:
         ubar = sum(m[0, 0, 0] * v for m, v in zip(masses, vel)) / sum(m[0, 0, 0] for m in masses)
         assert np.allclose(u, ubar, rtol=1e-9)
+
+
+def test_ideal_gas_equilibration_closed_form_matches_newton():
+    """Three ideal gases in 64 random cells: equilibrate_ideal (p = sum rho (gamma-1) cv T, exact)
+    and the Newton iteration of equilibrate_many give the same p, theta, v, c within the
+    Newton tolerance; the closed form's sum of theta is 1 to round-off."""
+    rng = np.random.default_rng(7)
+    n, shape = 3, (4, 4, 4)
+    cvs, gammas = np.array([717.5, 3116.0, 1000.0]), np.array([1.4, 1.66, 1.3])
+    rhos = tuple(rng.uniform(1e-6, 2.0, shape) for _ in range(n))
+    temps = tuple(rng.uniform(200.0, 3000.0, shape) for _ in range(n))
+    lo, hi = np.zeros(3, np.int64), np.array(shape, np.int64)
+    outs = {}
+    for name in ("ideal", "newton"):
+        sp, vf, cs = (tuple(np.zeros(shape) for _ in range(n)) for _ in range(3))
+        p = np.zeros(shape)
+        if name == "ideal":
+            K.equilibrate_ideal(rhos, temps, sp, vf, cs, p, cvs, gammas, lo, hi)
+        else:
+            K.equilibrate_many(rhos, temps, tuple(np.full(shape, 1.0) for _ in range(n)), np.full(shape, 1e5),
+                               sp, vf, cs, p, np.full(n, IDEAL_GAS), np.zeros((n, MAX_PARAMS)), cvs, gammas,
+                               lo, hi, 1e-13, 100)
+        outs[name] = (p, sp, vf, cs)
+    exact = sum(r * (g - 1) * c * t for r, t, g, c in zip(rhos, temps, gammas, cvs))
+    np.testing.assert_allclose(outs["ideal"][0], exact, rtol=1e-15)
+    np.testing.assert_allclose(sum(outs["ideal"][2]), 1.0, rtol=1e-14)
+    for a, b in zip(outs["ideal"], outs["newton"]):
+        np.testing.assert_allclose(np.array(a), np.array(b), rtol=1e-9)
+
+
+def test_two_material_solve_is_the_general_solve():
+    """_solve2 (the two-material exchange, written out) against _exchange_matrix + solve_small:
+    bitwise equal, for momentum and for heat (divided by cv), stiff and soft coefficients."""
+    rng = np.random.default_rng(3)
+    a, b = np.empty((2, 2)), np.empty(2)
+    for _ in range(200):
+        th, sv, cv = rng.uniform(1e-8, 1, 2), rng.uniform(0.1, 10, 2), rng.uniform(500, 4000, 2)
+        Km = np.array([[0.0, 1.0], [1.0, 0.0]]) * 10.0 ** rng.uniform(-2, 15)
+        rhs, dt = rng.normal(size=2), 10.0 ** rng.uniform(-8, -3)
+        for heat in (False, True):
+            b[:] = rhs
+            K._exchange_matrix(a, th, sv, Km, dt, 2, cv if heat else None)
+            K.solve_small(a, b, 2)
+            x = K._solve2(rhs[0], rhs[1], th[0], th[1], sv[0], sv[1], Km[0, 1], Km[1, 0], dt, cv[0], cv[1], heat)
+            assert x[0] == b[0] and x[1] == b[1]
