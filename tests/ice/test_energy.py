@@ -12,8 +12,8 @@ m (e + |u|^2/2) changes by the face work -dt A p* u* (face pressure, exchanged f
 velocity), is advected with the same compatible mass fluxes as everything else, and
 e = E/m - |u|^2/2. Mass, momentum and total energy are then conserved to round-off on
 closed domains (measured 1e-14); Toro 3 peaks at 6.41 and its L1 density error drops
-from 27.5 % to 5.7 % (Toro 4: 24.5 -> 5.7 %, Toro 5: 22 -> 2.4 %). One ideal-gas
-material (any EOS) or any number of ideal gases (tests/ice/test_conservation.py); it
+from 27.5 % to 5.7 % (Toro 4: 24.5 -> 5.7 %, Toro 5: 22 -> 2.4 %). Available for one
+material of any EOS or any number of ideal gases (tests/ice/test_conservation.py); it
 changes results, so it is off by default.
 """
 import numpy as np
