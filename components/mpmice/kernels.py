@@ -273,16 +273,16 @@ def cc_to_nc_scalar(q, cc_low, node_low, nlo, nhi, dims, out):
 
 
 @njit(cache=True)
-def trace_temperatures(masses, engs, vfs, cvs, is_fluid, theta_trace, lo, hi):
+def trace_temperatures(masses, engs, vfs, cvs, role, theta_trace, lo, hi):
     """After the exchange (eq. 39), in the cells the solids fill (every fluid's volume
-    fraction below theta_trace): the fluids take the cell's temperature, the m cv-weighted
-    mean of the solids there, which give or take that heat in proportion to their m cv
-    (energy conserved exactly).
+    fraction below theta_trace): the fluids (role 1) take the m cv-weighted temperature of
+    the solids whose temperature evolves (role 2), which give or take that heat in
+    proportion to their m cv (energy conserved exactly); role 0: left out.
 
-    Such a gas sliver has no temperature of its own: with a zero heat-exchange coefficient
-    its Lagrangian energy follows the p dV work of the solid's pressure swings, linearised
-    over steps whose relative pressure change is large, and it ran to thousands of K (and
-    to overflow in the diagnostics that divide by its mass)."""
+    Such a gas sliver has no temperature of its own: its Lagrangian energy follows the p dV
+    work of the solid's pressure swings, linearised over steps whose relative pressure
+    change is large, and the exchange with a solid of large m cv cannot hold it when the
+    swing is large (thousands of K)."""
     n = len(masses)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -291,10 +291,10 @@ def trace_temperatures(masses, engs, vfs, cvs, is_fluid, theta_trace, lo, hi):
                 e_solid = 0.0
                 filled = True
                 for m in range(n):
-                    if is_fluid[m]:
+                    if role[m] == 1:
                         if vfs[m][i, j, k] >= theta_trace:
                             filled = False
-                    else:
+                    elif role[m] == 2:
                         mc_solid += masses[m][i, j, k] * cvs[m]
                         e_solid += engs[m][i, j, k]
                 if not filled or mc_solid <= 0.0:
@@ -302,10 +302,10 @@ def trace_temperatures(masses, engs, vfs, cvs, is_fluid, theta_trace, lo, hi):
                 t_mix = e_solid / mc_solid
                 de = 0.0
                 for m in range(n):
-                    if is_fluid[m]:
+                    if role[m] == 1:
                         e_new = masses[m][i, j, k] * cvs[m] * t_mix
                         de += e_new - engs[m][i, j, k]
                         engs[m][i, j, k] = e_new
                 for m in range(n):
-                    if not is_fluid[m]:
+                    if role[m] == 2:
                         engs[m][i, j, k] -= de * (masses[m][i, j, k] * cvs[m] / mc_solid)

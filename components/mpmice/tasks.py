@@ -33,7 +33,7 @@ from . import labels as MI
 NC, CC = VarType.NC, VarType.CC
 _REDIRECT = {I.rho_CC.name: I.rho_CC, I.vel_CC.name: I.vel_CC, I.temp_CC.name: I.temp_CC,
              I.sp_vol_CC.name: MI.sp_vol_mpm_CC}
-THETA_TRACE = 1e-6      # fluids all below this volume fraction take the solids' temperature (step 10)
+THETA_TRACE = 1e-6      # fluids all below this: they take the heat-exchanging solids' temperature (step 10)
 _NO3 = np.zeros((1, 1, 1, 3))
 _NO1 = np.zeros((1, 1, 1))
 
@@ -251,14 +251,18 @@ class MPMICETasks:
     def exchange(self, patch, matls, old_dw, new_dw):
         """ICE's addExchangeToMomentumAndEnergy over solids and fluids (eqs. 38-39); then, in
         cells where every fluid's volume fraction is below THETA_TRACE, the fluids take the
-        solids' temperature (kernels.trace_temperatures)."""
+        temperature of the solids that exchange heat (kernels.trace_temperatures): those
+        solids' temperature evolves, so the heat they give is carried to their particles.
+        A deck whose solids exchange no heat (<heat> 0) keeps its slivers adiabatic."""
         keep = _KeepAllocated(new_dw)
         self.ice.exchange_cc(patch, matls, old_dw, keep)
+        if not self.solid_heat:
+            return
         b = self.ice.boxes(patch)
         get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
+        role = np.array([1 if m in self.ice.ice_matls else (2 if m in self.solid_heat else 0) for m in matls])
         K.trace_temperatures(get(I.mass_L_CC), tuple(keep.arrays[(I.int_eng_L_ME_CC.name, m)] for m in matls),
-                             get(I.vol_frac_CC), self.ice.cvs[np.array(matls)],
-                             np.array([m in self.ice.ice_matls for m in matls]), THETA_TRACE, b.olo, b.ohi)
+                             get(I.vol_frac_CC), self.ice.cvs[np.array(matls)], role, THETA_TRACE, b.olo, b.ohi)
 
     # -- steps 8-9: the solid's Lagrangian values at the cell centres --------------------------------
     def lagrangian_values_mpm(self, patch, matls, old_dw, new_dw):

@@ -1,6 +1,6 @@
 """kernels.trace_temperatures: in cells the solids fill (every fluid's volume fraction below
-the threshold) the fluids take the solids' m cv-weighted temperature after the exchange,
-and the solids pay for it; other cells are untouched; energy is conserved exactly."""
+the threshold) the fluids take the m cv-weighted temperature of the solids that exchange
+heat, and those solids pay for it; other cells are untouched; energy is conserved exactly."""
 import numpy as np
 
 from components.mpmice.kernels import trace_temperatures
@@ -14,7 +14,7 @@ def test_fluid_slivers_take_the_solid_temperature():
     eng = tuple((m * cv * t.reshape(shape)).copy() for m, cv, t in zip(mass, cvs, T))
     vf = (np.array([1.0 - 1e-9, 0.5, 1e-12]).reshape(shape), np.array([1e-9, 0.5, 1.0]).reshape(shape))
     e0 = sum(e.copy() for e in eng)
-    trace_temperatures(mass, eng, vf, cvs, np.array([False, True]), 1e-6, np.zeros(3, np.int64),
+    trace_temperatures(mass, eng, vf, cvs, np.array([2, 1]), 1e-6, np.zeros(3, np.int64),
                        np.array(shape, np.int64))
     assert np.allclose(sum(eng), e0, rtol=1e-15, atol=0)            # energy conserved per cell
     t_gas = eng[1] / (mass[1] * cvs[1])
