@@ -170,15 +170,20 @@ class ImplicitICE:
         self.outer_iterations = []
 
     # -- scheduling ------------------------------------------------------------------------------
-    def schedule_implicit_pressure(self, sched, dirs):
+    def schedule_implicit_pressure(self, sched, dirs, matls=None):
+        """The implicit pressure tasks over `matls` (default this component's; MPMICE passes
+        every material, solids included: their volume fractions, specific volumes and face
+        velocities enter eq. P as the fluids' do). Material indices must be 0..N-1."""
         m0 = [0]
+        matls = list(self.matls if matls is None else matls)
+        assert matls == list(range(len(matls))), matls
         self._rank = sched.comm.rank
         self._sched = sched
         self._step_seen = None
         if not self.imp_logged and sched.comm.rank == 0:
             print(self.imp_banner, file=sys.stderr)
             self.imp_logged = True
-        t = Task("ICE::setupMatrixAndRHS", self.imp_setup, self.matls) \
+        t = Task("ICE::setupMatrixAndRHS", self.imp_setup, matls) \
             .requires(OLD, L.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1) \
             .requires(NEW, I.speedSound_CC) \
             .computes(matrix, matls=m0).computes(imp_P0, matls=m0).computes(rhs0, matls=m0)
@@ -196,7 +201,7 @@ class ImplicitICE:
         inner = self.pcg.loop("ICE::implicitPressureSolve", imp_delP)
         upd = Task("ICE::updatePressure", self.imp_update, m0).requires(OLD, imp_P, matls=m0) \
             .requires(NEW, imp_delP, matls=m0).computes(imp_P, matls=m0)
-        fc = Task("ICE::updateVel_FC", self.imp_faces_rhs, self.matls) \
+        fc = Task("ICE::updateVel_FC", self.imp_faces_rhs, matls) \
             .requires(NEW, imp_P, G, 1, matls=m0).requires(NEW, imp_A, matls=m0).requires(PARENT_OLD, L.delT) \
             .requires(PARENT_NEW, I.vol_frac_CC, G, 1).requires(PARENT_NEW, I.sp_vol_CC, G, 1) \
             .computes(rhs, matls=m0).computes(max_RHS)
@@ -205,7 +210,7 @@ class ImplicitICE:
         results = {imp_P.name: (I.delP_Dilatate, m0)}
         results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
         tol = self.imp.outer_tol
-        self.outer = Loop("ICE::implicitPressureOuter", self.matls, [seed, inner, upd, fc],
+        self.outer = Loop("ICE::implicitPressureOuter", matls, [seed, inner, upd, fc],
                           init={imp_P.name: imp_P0, rhs.name: rhs0}, results=results,
                           converged=lambda dw, k, pn: dw.get_reduction(max_RHS) <= tol,
                           max_iterations=self.imp.max_outer, fail="continue")
@@ -279,9 +284,13 @@ class ImplicitICE:
         vfs = [new_dw.get(I.vol_frac_CC, m, patch) for m in matls]
         sps = [new_dw.get(I.sp_vol_CC, m, patch) for m in matls]
         one = len(matls) == 1
+        s_faces = np.zeros(3) if self.exchange else s        # with exchange: faces below
         for m in matls:
             SK.add_material(A, vfs[m], sps[m], new_dw.get(I.speedSound_CC, m, patch), one, self.dims, b.lo, b.hi,
-                            s, self._keep(m), atb)
+                            s_faces, self._keep(m), atb)
+        if self.exchange:
+            keep = np.array([self._keep(m) for m in matls], dtype=np.int64)
+            IK.add_exchange_faces(A, tuple(vfs), tuple(sps), self.dims, b.lo, b.hi, s, keep, atb, dt, self.K)
         P = new_dw.allocate(imp_P0, 0, patch)
         r, rr, rmax = self._faces_and_rhs(
             patch, matls, P, A, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt,

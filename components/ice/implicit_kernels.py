@@ -5,6 +5,7 @@ import numpy as np
 from numba import njit
 
 from .eos import eos_sound_speed2
+from .kernels import _exchange_matrix, solve_small
 
 TINY = 1.0e-100
 
@@ -20,6 +21,53 @@ def face_correct(u0, sp_vol, P, uf, sh, dd, flo, fhi, dt, dx):
                 vL = sp_vol[l0, l1, l2]
                 vR = sp_vol[a, b, c]
                 uf[i, j, k] = u0[i, j, k] - dt * (2.0 * vL * vR / (vL + vR)) * (P[a, b, c] - P[l0, l1, l2]) / dx
+
+
+@njit(cache=True)
+def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K):
+    """Face terms of eq. P with the momentum exchange: a_f += s_d sum_m theta_m,f (E v_f)_m.
+
+    The exchanged face velocities are u_m = E (u* - dt v_f grad dP) (eq. 28, then eq. 38 on
+    faces with its implicit matrix E, exchange_faces), so their response to grad dP is E v_f,
+    not v_f (Uintah's exchange-corrected sp_vol_FC). With K = 1e15 a gas face next to a
+    solid moves with the solid; without E the outer iteration would stall there.
+    keep[m, 2d+side] = 0 drops material m on a domain-boundary face (fixed face velocity).
+    """
+    n = len(vfs)
+    a = np.empty((n, n))
+    b = np.empty(n)
+    th = np.empty(n)
+    sv = np.empty(n)
+    for d in range(3):
+        if not dims[d]:
+            continue
+        di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+        for i in range(lo[0], hi[0] + di):
+            for j in range(lo[1], hi[1] + dj):
+                for k in range(lo[2], hi[2] + dk):
+                    e = (i, j, k)[d]
+                    side = -1
+                    if e == lo[d] and atb[2 * d]:
+                        side = 2 * d
+                    elif e == hi[d] and atb[2 * d + 1]:
+                        side = 2 * d + 1
+                    for m in range(n):
+                        vL = sps[m][i - di, j - dj, k - dk]
+                        vR = sps[m][i, j, k]
+                        th[m] = 0.5 * (vfs[m][i - di, j - dj, k - dk] + vfs[m][i, j, k])
+                        sv[m] = 0.5 * (vL + vR)
+                        b[m] = 2.0 * vL * vR / (vL + vR)
+                    _exchange_matrix(a, th, sv, K, dt, n, None)
+                    solve_small(a, b, n)
+                    c = 0.0
+                    for m in range(n):
+                        if side < 0 or keep[m, side]:
+                            c += th[m] * b[m]
+                    c *= s[d]
+                    if e > lo[d]:
+                        A[i - di, j - dj, k - dk, 2 + 2 * d] += c
+                    if e < hi[d]:
+                        A[i, j, k, 1 + 2 * d] += c
 
 
 @njit(cache=True)

@@ -43,7 +43,7 @@ from .analysis import ParticleExtract
 from .bc import GridBCs
 from .contact import Contact
 from .materials import Material
-from .transfer import KERNELS
+from .transfer import kernels
 from .tasks import MPMTasks
 from .thermal import ThermalTasks
 
@@ -69,10 +69,11 @@ FLAGS = {
 class MPM(ThermalTasks, MPMTasks, Component):
     """Explicit single-grid MPM with Uintah's deck tags and variable names."""
 
-    # MPMICE hooks: the <MPM> flag table, grid-BC reader and contact reader it may extend
+    # MPMICE hooks: the <MPM> flag table, grid-BC reader, contact and material readers it may extend
     flags_spec = FLAGS
     grid_bcs_class = GridBCs
     contact_class = Contact
+    material_class = Material
 
     def problem_setup(self, root, level):
         self.level = level
@@ -94,14 +95,15 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 raise root.child("Grid").error(
                     f"GIMP particles reach one node beyond the domain: <extraCells> must be at least 1 in "
                     f"{'xyz'[bad[0]]} (Uintah needs the same)")
-        self.p2g, self.g2p, self.grad = KERNELS[(self.kind, self.dim)]
+        self.axes = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask (transfer.py)
+        self.p2g, self.g2p, self.grad = kernels(self.kind, self.axes)
         self.ng = 1 if self.kind == "linear" else 2
         mp = root.child("MaterialProperties", required=True).child("MPM", required=True)
         geom = getattr(root, "_geometry_reader", None)
         if geom is None:
             from framework.geometry import GeometryReader
             geom = GeometryReader()
-        self.materials = [Material(m, i, geom, self.flags["withColor"])
+        self.materials = [self.material_class(m, i, geom, self.flags["withColor"])
                           for i, m in enumerate(mp.children("material"))]
         if not self.materials:
             raise mp.error("no <material>")

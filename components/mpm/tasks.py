@@ -184,7 +184,7 @@ class MPMTasks:
         for m in self.contact.materials:
             px = old_dw.get(L.pX, m, patch)
             g[m] = np.zeros(patch.alloc_shape(NC) + (3,))
-            transfer.mass_gradient(kind, self.dim, px, old_dw.get(L.pMass, m, patch),
+            transfer.mass_gradient(kind, self.axes, px, old_dw.get(L.pMass, m, patch),
                                    self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, g[m])
             gm[m] = new_dw.get(L.gMass, m, patch)[..., None]
         out = {}

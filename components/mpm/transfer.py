@@ -16,8 +16,13 @@ could alias the node arrays), and does all the work that particle needs at its n
 
 Node sums are added particle by particle in the order given (sorted by particle ID by
 the framework), so 1 patch and many patches agree bitwise. Node arrays are C-ordered
-with local index = global - node_low; axes >= dim have one node layer (shape.py).
+with local index = global - node_low. `act` is the mask of the level's active axes
+(bit d: axis d has more than one cell); an inactive axis has one node layer, weight 1
+and gradient 0. The leading layouts x, xy, xyz (act 1, 3, 7) have entry points with
+act a compile-time constant; any other (a column along y, a yz plane) a run-time one.
 """
+import functools
+
 import numpy as np
 from numba import njit
 
@@ -51,24 +56,25 @@ def _sel(a, x0, x1, x2):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _stencil(kind, dim, px, lp, p, anchor, ih, node_low):
+def _stencil(kind, act, px, lp, p, anchor, ih, node_low):
     """The weights of particle p on its three axes, base indices made local."""
-    i, wx0, wx1, wx2, gx0, gx1, gx2 = _ax(kind, True, px[p, 0], anchor[0], ih[0], lp[p, 0])
-    j, wy0, wy1, wy2, gy0, gy1, gy2 = _ax(kind, dim >= 2, px[p, 1], anchor[1], ih[1], lp[p, 1])
-    k, wz0, wz1, wz2, gz0, gz1, gz2 = _ax(kind, dim >= 3, px[p, 2], anchor[2], ih[2], lp[p, 2])
-    i -= node_low[0]
-    if dim >= 2:
+    i, wx0, wx1, wx2, gx0, gx1, gx2 = _ax(kind, act & 1 != 0, px[p, 0], anchor[0], ih[0], lp[p, 0])
+    j, wy0, wy1, wy2, gy0, gy1, gy2 = _ax(kind, act & 2 != 0, px[p, 1], anchor[1], ih[1], lp[p, 1])
+    k, wz0, wz1, wz2, gz0, gz1, gz2 = _ax(kind, act & 4 != 0, px[p, 2], anchor[2], ih[2], lp[p, 2])
+    if act & 1:
+        i -= node_low[0]
+    if act & 2:
         j -= node_low[1]
-    if dim >= 3:
+    if act & 4:
         k -= node_low[2]
     return (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
             wz0, wz1, wz2, gz0, gz1, gz2)
 
 
 @njit(cache=True, inline="always")
-def _counts(kind, dim):
-    na = 2 if kind == LINEAR else 3
-    return na, (na if dim >= 2 else 1), (na if dim >= 3 else 1)
+def _counts(kind, act):
+    n = 2 if kind == LINEAR else 3
+    return (n if act & 1 else 1), (n if act & 2 else 1), (n if act & 4 else 1)
 
 
 @njit(cache=True, inline="always")
@@ -132,11 +138,11 @@ def _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx, node_low,
+def _p2g(kind, act, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx, node_low,
          gmass, gmom, gvol, gfext, gfint):
     """Accumulate (+=) m, mv, V, fext, fint of the particles on the node arrays."""
     sh0, sh1, sh2 = gmass.shape
-    na, nb, nc = _counts(kind, dim)
+    na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fm = gmass.reshape(-1)
     fv = gvol.reshape(-1)
@@ -145,7 +151,7 @@ def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx
     fi = gfint.reshape(-1)
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
         inside = i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2
         m = pmass[p]
         V = pvol[p]
@@ -188,11 +194,11 @@ def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx
                         fe[f3] += pfext[p, 0] * S
                         fe[f3 + np.uint64(1)] += pfext[p, 1] * S
                         fe[f3 + np.uint64(2)] += pfext[p, 2] * S
-                    if dim == 1:
+                    if act == 1:
                         fi[f3] -= s00 * G0
                         fi[f3 + np.uint64(1)] -= s10 * G0
                         fi[f3 + np.uint64(2)] -= s20 * G0
-                    elif dim == 2:
+                    elif act == 3:
                         fi[f3] -= s00 * G0 + s01 * G1
                         fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1
                         fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1
@@ -203,13 +209,13 @@ def _p2g(kind, dim, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, dt,
+def _g2p(kind, act, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, dt,
          own, x_out, v_out, L_out, gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
     """Update every particle given; write the owned ones (own[p], or all when own is
     empty) compacted to x_out / v_out; USL: F_out, vol_out (and L_out if write_L);
     MUSL: += m v_new S on gmom. Returns the number of particles deleted (x = NaN)."""
     sh0, sh1, sh2 = gvs.shape[:3]
-    na, nb, nc = _counts(kind, dim)
+    na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fv = gvs.reshape(-1)
     fa = gacc.reshape(-1)
@@ -221,7 +227,7 @@ def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, 
     t0 = t1 = t2 = t3 = t4 = t5 = t6 = t7 = 0.0
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
         if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
             raise IndexError("particle's nodes lie outside the patch node arrays")
         a0 = a1 = a2 = 0.0
@@ -248,16 +254,17 @@ def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, 
                     v1 += S * gv1
                     v2 += S * gv2
                     if not musl:
-                        G0 = ga * wb * wc
-                        L00 += gv0 * G0
-                        L10 += gv1 * G0
-                        L20 += gv2 * G0
-                        if dim >= 2:
+                        if act & 1:
+                            G0 = ga * wb * wc
+                            L00 += gv0 * G0
+                            L10 += gv1 * G0
+                            L20 += gv2 * G0
+                        if act & 2:
                             G1 = wa * gb * wc
                             L01 += gv0 * G1
                             L11 += gv1 * G1
                             L21 += gv2 * G1
-                        if dim >= 3:
+                        if act & 4:
                             G2 = wa * wb * gc
                             L02 += gv0 * G2
                             L12 += gv1 * G2
@@ -320,16 +327,16 @@ def _g2p(kind, dim, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, 
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _grad(kind, dim, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old,
+def _grad(kind, act, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old,
           F_out, vol_out):
     """L_p = sum_i v_i (x) grad S_i(x_p) (stored if write_L), then F and V (_deform)."""
     sh0, sh1, sh2 = gvel.shape[:3]
-    na, nb, nc = _counts(kind, dim)
+    na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fv = gvel.reshape(-1)
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
         if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
             raise IndexError("particle's nodes lie outside the patch node arrays")
         L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
@@ -346,16 +353,17 @@ def _grad(kind, dim, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pma
                     gv0 = fv[f3]
                     gv1 = fv[f3 + np.uint64(1)]
                     gv2 = fv[f3 + np.uint64(2)]
-                    G0 = ga * wb * wc
-                    L00 += gv0 * G0
-                    L10 += gv1 * G0
-                    L20 += gv2 * G0
-                    if dim >= 2:
+                    if act & 1:
+                        G0 = ga * wb * wc
+                        L00 += gv0 * G0
+                        L10 += gv1 * G0
+                        L20 += gv2 * G0
+                    if act & 2:
                         G1 = wa * gb * wc
                         L01 += gv0 * G1
                         L11 += gv1 * G1
                         L21 += gv2 * G1
-                    if dim >= 3:
+                    if act & 4:
                         G2 = wa * wb * gc
                         L02 += gv0 * G2
                         L12 += gv1 * G2
@@ -365,7 +373,7 @@ def _grad(kind, dim, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pma
         _deform(p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
 
 
-# ---- specialised entry points: (kind, dim) are compile-time constants -------------------
+# ---- specialised entry points: (kind, act) compile-time constants for act = 1, 3, 7 ------
 # p2g(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
 # g2p(musl, px, pv, pm, lp, anchor, dx, node_low, gvs, gacc, dt, own, x_out, v_out, L_out,
 #     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0) -> number deleted
@@ -378,12 +386,12 @@ def p2g_l1(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
 
 @njit(cache=True, fastmath=FM)
 def p2g_l2(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(LINEAR, 2, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+    _p2g(LINEAR, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
 def p2g_l3(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(LINEAR, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+    _p2g(LINEAR, 7, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
@@ -393,12 +401,12 @@ def p2g_g1(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
 
 @njit(cache=True, fastmath=FM)
 def p2g_g2(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(GIMP, 2, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+    _p2g(GIMP, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
 def p2g_g3(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(GIMP, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+    _p2g(GIMP, 7, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
@@ -409,13 +417,13 @@ def g2p_l1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot
 
 @njit(cache=True, fastmath=FM)
 def g2p_l2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+    return _g2p(LINEAR, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
                 Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
 def g2p_l3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+    return _g2p(LINEAR, 7, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
                 Vn, rho0)
 
 
@@ -427,13 +435,13 @@ def g2p_g1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot
 
 @njit(cache=True, fastmath=FM)
 def g2p_g2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 2, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+    return _g2p(GIMP, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
                 Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
 def g2p_g3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
+    return _g2p(GIMP, 7, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
                 Vn, rho0)
 
 
@@ -444,12 +452,12 @@ def grad_l1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
 
 @njit(cache=True, fastmath=FM)
 def grad_l2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(LINEAR, 2, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+    _grad(LINEAR, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
 def grad_l3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(LINEAR, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+    _grad(LINEAR, 7, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
@@ -459,32 +467,72 @@ def grad_g1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
 
 @njit(cache=True, fastmath=FM)
 def grad_g2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(GIMP, 2, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+    _grad(GIMP, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
 def grad_g3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(GIMP, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
-
-
-KERNELS = {
-    ("linear", 1): (p2g_l1, g2p_l1, grad_l1), ("linear", 2): (p2g_l2, g2p_l2, grad_l2),
-    ("linear", 3): (p2g_l3, g2p_l3, grad_l3), ("gimp", 1): (p2g_g1, g2p_g1, grad_g1),
-    ("gimp", 2): (p2g_g2, g2p_g2, grad_g2), ("gimp", 3): (p2g_g3, g2p_g3, grad_g3),
-}
+    _grad(GIMP, 7, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
 
 @njit(cache=True, fastmath=FM)
-def mass_gradient(kind, dim, px, pm, lp, anchor, dx, node_low, out):
-    """out_i += sum_p m_p grad S_i(x_p) (contact normals; kind/dim at run time), shares
+def p2g_la(act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(LINEAR, act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def p2g_ga(act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
+    _p2g(GIMP, act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_la(act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo,
+                Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_ga(act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo,
+                Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_la(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(LINEAR, act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+
+
+@njit(cache=True, fastmath=FM)
+def grad_ga(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
+    _grad(GIMP, act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+
+
+KERNELS = {
+    ("linear", 1): (p2g_l1, g2p_l1, grad_l1), ("linear", 3): (p2g_l2, g2p_l2, grad_l2),
+    ("linear", 7): (p2g_l3, g2p_l3, grad_l3), ("gimp", 1): (p2g_g1, g2p_g1, grad_g1),
+    ("gimp", 3): (p2g_g2, g2p_g2, grad_g2), ("gimp", 7): (p2g_g3, g2p_g3, grad_g3),
+}
+ANY_AXES = {"linear": (p2g_la, g2p_la, grad_la), "gimp": (p2g_ga, g2p_ga, grad_ga)}
+
+
+def kernels(kind, act):
+    """(p2g, g2p, grad) for interpolator `kind` on the active-axis mask `act`."""
+    if (kind, act) in KERNELS:
+        return KERNELS[(kind, act)]
+    return tuple(functools.partial(f, act) for f in ANY_AXES[kind])
+
+
+@njit(cache=True, fastmath=FM)
+def mass_gradient(kind, act, px, pm, lp, anchor, dx, node_low, out):
+    """out_i += sum_p m_p grad S_i(x_p) (contact normals; kind/act at run time), shares
     beyond the node array dropped."""
     sh0, sh1, sh2 = out.shape[:3]
-    na, nb, nc = _counts(kind, dim)
+    na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fo = out.reshape(-1)
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, dim, px, lp, p, anchor, ih, node_low)
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
         m = pm[p]
         for a in range(na):
             wa = _sel(a, wx0, wx1, wx2)

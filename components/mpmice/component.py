@@ -1,7 +1,8 @@
 """MPMICE: MPM solids and ICE fluids coupled through the multi-field equations (paper 000).
 
-`<SimulationComponent type="mpmice">` (and "rmpmice": the same coupling, where a
-<constitutive_model type="rigid"> solid moves as prescribed by its velocity). Reads
+`<SimulationComponent type="mpmice">` (and "rmpmice": the same coupling with solids whose
+motion is prescribed, Uintah's RigidMPM: zero stress, no pressure force, no delT limit,
+moved by their own velocity or <contact type="rigid">; rigid.py). Reads
 <MPM>, <CFD><ICE>, <MaterialProperties><MPM> and <ICE>, <exchange_properties> through
 the MPM and ICE components (setup.py): MPM materials first, then ICE, one global
 material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order):
@@ -24,16 +25,25 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
   12 ICE::advectAndAdvanceInTime (fluids)
 The ICE and MPM tasks are those components' own task bodies; this module only
 declares them over the right material sets and interleaves the coupling tasks.
+With <CFD><ICE><ImplicitSolver> steps 3-5 are ICE's semi-implicit pressure solve
+(components/ice/implicit.py) over all materials, as Uintah's MPMICE implicit branch:
+eq. P's compressibility sums theta v / c^2 of solids and fluids, its face terms use the
+exchange-corrected face specific volumes (the K = 1e15 coupling), the outer iteration
+recomputes every material's exchanged face velocities; delT then comes from the flow
+speed (and MPM's wave speed, except for prescribed solids).
 
 <CFD><ICE><ADD_HEAT> (add_heat_matls, add_heat_coeff, add_heat_t_start, add_heat_t_final)
 adds dt coeff rho_CC V to int_eng_L_CC of the named fluids where their volume fraction
 exceeds 0.001 (Uintah's accumulateEnergySourceSinks). Uintah's diagnostic labels
 mom_source_CC, intE_source_CC and Tdot are computed by tasks that only run when a <save>
 names them. Validation: inputs/MPMICE/ slab_rest, piston, pressurized_cylinder (paper
-sec. 4.1, scripts/accuracy_cost.py cylinder), wedge_mach3 (sec. 4.3,
-scripts/wedge_shock_angle.py); Uintah's symAnnulus.ups runs unchanged.
+sec. 4.1, scripts/accuracy_cost.py cylinder), piston_validation (sec. 4.2, implicit,
+scripts/piston_validation.py), wedge_mach3 (sec. 4.3, scripts/wedge_shock_angle.py);
+Uintah's symAnnulus.ups and pistonValidation.ups run unchanged.
 """
 from __future__ import annotations
+
+import sys
 
 import numpy as np
 
@@ -47,8 +57,9 @@ from framework.task import NEW, OLD, Task
 from framework.variables import Ghost
 
 from . import labels as MI
+from .rigid import RigidSolid, activate_master_contact, describe
 from .setup import ICEinMPMICE, MPMinMPMICE
-from .tasks import MPMICETasks
+from .tasks import MPMICETasks, _Capture
 
 G = Ghost.AROUND_CELLS
 STATE = (I.rho_CC, I.vel_CC, I.temp_CC)
@@ -90,15 +101,22 @@ class MPMICE(MPMICETasks, Component):
             if c is not None and c.has("useModifiedEOS"):
                 c.get("useModifiedEOS", "bool")        # the sec. 3.1 threshold is always applied
         self.mpm = MPMinMPMICE(n_all)
+        if self.rigid:
+            self.mpm.material_class = RigidSolid
         self.mpm.problem_setup(root, level)
+        activate_master_contact(self.mpm.contact)
+        if not self.rigid and self.mpm.axes not in (1, 3, 7):
+            raise root.child("Grid").error(
+                "MPMICE with deformable solids needs the active directions first (x, xy or xyz; the "
+                "pressure force on the particles assumes it); rmpmice (prescribed solids) accepts any")
         nm = len(self.mpm.materials)
         self.mpm_matls = list(range(nm))
         bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]
         self.ice = ICEinMPMICE(self.mpm.materials, cv, bulk)
         self.ice.problem_setup(root, level)
-        if self.ice.implicit if hasattr(self.ice, "implicit") else False:
-            raise root.child("CFD").child("ICE").error("MPMICE runs explicit ICE only (no <ImplicitSolver>)")
+        if self.ice.implicit:
+            self.may_recompute = self.ice.may_recompute      # iters_before_timestep_restart
         if self.ice.conserve_energy:
             raise self.ice._conserve_node.error("<conserveTotalEnergy> is not available with MPMICE")
         self.setup_solid_heat()           # p.temperature and the solid's heat exchange (tasks.py)
@@ -124,11 +142,15 @@ class MPMICE(MPMICETasks, Component):
         sched.add_task(t)
 
     def schedule_compute_stable_timestep(self, level, sched):
-        sched.add_task(Task("MPMICE::computeStableTimestep", self.stable_timestep, self.ice.ice_matls)
+        fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
+        sched.add_task(Task("MPMICE::computeStableTimestep", fn, self.ice.ice_matls)
                        .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
                        .requires(NEW, M.WaveSpeed).computes(FL.delT))
 
     def schedule_time_advance(self, level, sched):
+        if self.rigid and not self._described and sched.comm.rank == 0:
+            print(describe(self.mpm, self.mpm_matls), file=sys.stderr)
+        self._described = True
         if self.models is not None:                 # reaction tasks, after the tasks they follow
             sched = self.models.hook(sched)
         rec = _Recorder(sched)
@@ -169,19 +191,23 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.computes(I.FC_VEL[d])
         sched.add_task(t)
-        t = Task("ICE::addExchangeContributionToFCVel", ice.exchange_fc, alls) \
-            .requires(OLD, FL.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
-        for d in dirs:
-            t.requires(NEW, I.FC_VEL[d], G, 1).computes(I.FC_VEL_ME[d])
-        sched.add_task(t)
+        if ice.implicit:
+            # steps 3 and 5 with the increment implicit (ICE's eq. P over solids and fluids)
+            ice.schedule_implicit_pressure(sched, dirs, alls)
+        else:
+            t = Task("ICE::addExchangeContributionToFCVel", ice.exchange_fc, alls) \
+                .requires(OLD, FL.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
+            for d in dirs:
+                t.requires(NEW, I.FC_VEL[d], G, 1).computes(I.FC_VEL_ME[d])
+            sched.add_task(t)
 
-        t = Task("ICE::computeDelPressAndUpdatePressCC", ice.delp_press, alls) \
-            .requires(OLD, FL.delT).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
-            .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.vol_frac_CC, G, 1) \
-            .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
-        for d in dirs:
-            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
-        sched.add_task(t)
+            t = Task("ICE::computeDelPressAndUpdatePressCC", ice.delp_press, alls) \
+                .requires(OLD, FL.delT).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
+                .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.vol_frac_CC, G, 1) \
+                .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
+            for d in dirs:
+                t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+            sched.add_task(t)
 
         t = Task("ICE::computePressFC", self.press_fc, alls).requires(NEW, I.press_CC, G, 1, matls=m0)
         self._start_state(t, (I.rho_CC,), 1)
@@ -298,12 +324,27 @@ class MPMICE(MPMICETasks, Component):
                        .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
                        .computes(I.mach))
 
+    def stable_timestep_flow(self, patch, matls, old_dw, new_dw):
+        """delT with implicit ICE or prescribed solids: ICE's step over the fluids (implicit:
+        from the flow speed), and MPM's wave-speed step over the solids unless they are
+        prescribed (rmpmice: Uintah's RigidMPM sets no limit)."""
+        a = _Capture(new_dw)
+        fn = self.ice.stable_timestep_implicit if self.ice.implicit else self.ice.stable_timestep
+        fn(patch, self.ice.ice_matls, old_dw, a)
+        dt = float(a.value)
+        if not self.rigid:
+            b = _Capture(new_dw)
+            self.mpm.compute_stable_timestep(patch, self.mpm_matls, old_dw, b)
+            dt = min(dt, float(b.value))
+        new_dw.put_reduction(FL.delT, dt)
+
     @property
     def rigid(self):
         """rmpmice: the solid's motion is prescribed (no pressure force, no exchange change)."""
         return self.names_used == "rmpmice"
 
     names_used = "mpmice"
+    _described = False
 
 
 def _read_add_heat(node, ice_matls):

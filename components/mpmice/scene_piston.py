@@ -1,0 +1,82 @@
+"""Adiabatic piston compression (paper 000 sec. 4.2): deck at a chosen resolution and the
+bottom pressure against the adiabatic law P1 (V1/V2)^gamma (eq. 44).
+
+    deck(n, ...)  inputs/MPMICE/piston_validation.ups (Uintah's pistonValidation.ups with the
+                  piston stopped at compression ratio 5.9, as in the paper) with n cells
+                  along the 2.5 mm column (dy = 2.5e-3 / n; the deck's 200 cells: n = 200)
+    history(da)   per output: t, the piston's bottom y_b (lowest particle minus half a
+                  particle spacing), V1/V2 = y_b(0) / y_b(t), the trapped gas's own volume
+                  ratio (sum of its volume fractions), P at the bottom cell (y = dy/2, the
+                  paper's "y = 0"), the exact P1 (V1/V2)^gamma and the relative error
+    errors(da)    the relative error at the highest compression ('end'), its largest
+                  magnitude while the piston moves ('max') and the mean magnitude ('mean')
+The exact law assumes the trapped gas is uniform and in equilibrium: the piston moves at
+Mach 0.03, so the pressure is uniform to ~0.1 % below it. Used by scripts/piston_validation.py,
+scripts/accuracy_cost.py (scene "piston") and tests/mpmice/test_piston_validation.py.
+"""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+DECK = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "MPMICE", "piston_validation.ups")
+H = 2.5e-3                  # column height
+P1, GAMMA = 1.01325, 1.4    # the trapped gas's initial pressure and gamma (deck)
+RES = 2                     # particles per cell along y (deck)
+
+
+def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None):
+    """The validation deck with n cells; t_end: maxTime; stop: the piston's stop_time;
+    heat: the heat-exchange coefficients (one number for all pairs); output: outputInterval."""
+    text = open(DECK, encoding="iso-8859-1").read()
+    reps = [("<resolution>    [1,200,1]               </resolution>", f"<resolution> [1,{int(n)},1] </resolution>"),
+            ("<patches>       [1,2,1]                 </patches>", f"<patches> [{patches}] </patches>")]
+    if t_end is not None:
+        reps.append(("<maxTime>            0.9      </maxTime>", f"<maxTime> {float(t_end)!r} </maxTime>"))
+    if stop is not None:
+        reps.append(("<stop_time>   0.8305          </stop_time>", f"<stop_time> {float(stop)!r} </stop_time>"))
+    if heat is not None:
+        h = float(heat)
+        reps.append(("<heat>           [   1,    1,    1]     </heat>", f"<heat> [{h!r}, {h!r}, {h!r}] </heat>"))
+    if output is not None:
+        reps.append(("<outputInterval> 0.01 </outputInterval>", f"<outputInterval> {float(output)!r} </outputInterval>"))
+    for old, new in reps:
+        assert old in text, old
+        text = text.replace(old, new)
+    return text
+
+
+def history(da):
+    """Arrays over the outputs: t, y_b, ratio (geometric), ratio_gas, P (bottom cell), exact, err."""
+    rows = []
+    for i, t in enumerate(da.times):
+        y = da.particles(0, i)["p.x"][:, 1]
+        p, _ = da.read("press_CC", 0, i)
+        p = p.reshape(-1)
+        dy = H / p.size
+        yb = float(y.min()) - 0.5 * dy / RES
+        try:
+            vf, _ = da.read("vol_frac_CC", 1, i)
+            gas = float(vf.sum()) * dy
+        except KeyError:           # vol_frac_CC is computed in the step: not at t = 0
+            gas = np.nan
+        rows.append((t, yb, float(p[0]), gas))
+    t, yb, pb, gas = (np.array(c) for c in zip(*rows))
+    ratio = yb[0] / yb
+    gas[0] = yb[0]                 # at t = 0 the trapped gas fills the column below the piston
+    ratio_gas = yb[0] / gas
+    exact = P1 * ratio ** GAMMA
+    return {"t": t, "y_b": yb, "ratio": ratio, "ratio_gas": ratio_gas, "P": pb, "exact": exact,
+            "err": (pb - exact) / exact, "err_gas": (pb - P1 * ratio_gas ** GAMMA) / (P1 * ratio_gas ** GAMMA)}
+
+
+def errors(da):
+    """Relative error of the bottom pressure against eq. 44 while the piston moves."""
+    h = history(da)
+    moving = np.flatnonzero(h["ratio"] >= h["ratio"].max() * (1 - 1e-9))
+    last = moving[0] if moving.size else len(h["t"]) - 1       # first output at the highest compression
+    sel = slice(1, last + 1)
+    return {"end": float(h["err"][last]), "max": float(np.abs(h["err"][sel]).max()),
+            "mean": float(np.abs(h["err"][sel]).mean()), "ratio": float(h["ratio"][last]),
+            "end_gas": float(h["err_gas"][last])}
