@@ -94,18 +94,19 @@ def test_no_heat_coefficient_no_temperature_tasks(tmp_path):
     assert "Temperature" not in r.stdout and "computeCCTempRates" not in r.stdout and "dTdt" not in r.stdout
 
 
-def test_two_ranks_bitwise(tmp_path):
+def test_one_two_three_ranks_bitwise(tmp_path):
     path = tmp_path / "heat.ups"
-    path.write_text(deck(steps=40, patches=2))
+    path.write_text(deck(steps=40, patches=3))
     out = {}
-    for n in (1, 2):
+    for n in (1, 2, 3):
         uda = tmp_path / f"r{n}.uda"
         r = pysus(path, "--filebase", uda, np_=n, timeout=300)
         assert r.returncode == 0, r.stderr[-2000:]
         da = DataArchive(uda)
         p = da.particles(0, -1)
         out[n] = (p["p.temperature"][np.argsort(p["p.particleID"])], da.read("temp_CC", material=1, timestep=-1)[0])
-    assert np.array_equal(out[1][0], out[2][0]) and np.array_equal(out[1][1], out[2][1])
+    for n in (2, 3):
+        assert np.array_equal(out[1][0], out[n][0]) and np.array_equal(out[1][1], out[n][1])
     assert out[1][0].max() < T_S                  # the plates cooled
 
 
