@@ -50,17 +50,21 @@ def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
                 q[5, i, j, k] = volm[i, j, k] / m
                 if with_e:
                     q[6, i, j, k] = tot[i, j, k] / m
+    n = hi[2] - lo[2]
+    k0 = lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                acc[0, i, j, k] = mass[i, j, k]
-                acc[1, i, j, k] = mom[i, j, k, 0]
-                acc[2, i, j, k] = mom[i, j, k, 1]
-                acc[3, i, j, k] = mom[i, j, k, 2]
-                acc[4, i, j, k] = eng[i, j, k]
-                acc[5, i, j, k] = volm[i, j, k]
-                if with_e:
-                    acc[6, i, j, k] = tot[i, j, k]
+            for c in range(nq):
+                a = acc[c, i, j, k0:k0 + n]
+                src = q[c, i, j, k0:k0 + n] if c == 0 else (
+                    eng[i, j, k0:k0 + n] if c == 4 else (volm[i, j, k0:k0 + n] if c == 5 else tot[i, j, k0:k0 + n]))
+                if 1 <= c <= 3:
+                    mc = mom[i, j, k0:k0 + n, c - 1]
+                    for k in range(n):
+                        a[k] = mc[k]
+                else:
+                    for k in range(n):
+                        a[k] = src[k]
 
 
 @njit(cache=True, error_model="numpy")
@@ -226,17 +230,26 @@ def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi,
         _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     if dims[2]:
         _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
+    n = hi[2] - lo[2]
+    k0 = lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                m = max(acc[0, i, j, k], 1e-300)
-                rho_o[i, j, k] = m / vol
-                temp_o[i, j, k] = acc[4, i, j, k] / (m * cv)
-                spv_o[i, j, k] = acc[5, i, j, k] / m
-                for c in range(3):
-                    vel_o[i, j, k, c] = acc[1 + c, i, j, k] / m
-                if with_e:
-                    tot_o[i, j, k] = acc[6, i, j, k]
+            am, ae, av = acc[0, i, j, k0:k0 + n], acc[4, i, j, k0:k0 + n], acc[5, i, j, k0:k0 + n]
+            ro, to, so, vo = rho_o[i, j, k0:k0 + n], temp_o[i, j, k0:k0 + n], spv_o[i, j, k0:k0 + n], \
+                vel_o[i, j, k0:k0 + n]
+            for k in range(n):
+                m = max(am[k], 1e-300)
+                ro[k] = m / vol
+                to[k] = ae[k] / (m * cv)
+                so[k] = av[k] / m
+            for c in range(3):
+                ac = acc[1 + c, i, j, k0:k0 + n]
+                for k in range(n):
+                    vo[k, c] = ac[k] / max(am[k], 1e-300)
+            if with_e:
+                ae, eo = acc[6, i, j, k0:k0 + n], tot_o[i, j, k0:k0 + n]
+                for k in range(n):
+                    eo[k] = ae[k]
 
 
 @njit(cache=True)

@@ -217,6 +217,13 @@ def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
 @njit(cache=True, error_model="numpy")
 def _solve2(b0, b1, th0, th1, sv0, sv1, K01, K10, dt, cv0, cv1, heat):
     """(I + B) x = b for two materials: _exchange_matrix then solve_small, operation for operation."""
+    a00, a01, f, a11 = _factor2(th0, th1, sv0, sv1, K01, K10, dt, cv0, cv1, heat)
+    return _back2(b0, b1, a00, a01, f, a11)
+
+
+@njit(cache=True, error_model="numpy")
+def _factor2(th0, th1, sv0, sv1, K01, K10, dt, cv0, cv1, heat):
+    """The elimination of the 2 x 2 exchange matrix: (a00, a01, the row factor, the reduced a11)."""
     beta01 = dt * th1 * K01 * sv0
     beta10 = dt * th0 * K10 * sv1
     if heat:
@@ -228,6 +235,12 @@ def _solve2(b0, b1, th0, th1, sv0, sv1, K01, K10, dt, cv0, cv1, heat):
     a11 = 1.0 + beta10
     f = a10 / a00
     a11 -= f * a01
+    return a00, a01, f, a11
+
+
+@njit(cache=True, error_model="numpy")
+def _back2(b0, b1, a00, a01, f, a11):
+    """Forward elimination of the right-hand side and back substitution."""
     b1 -= f * b0
     x1 = b1 / a11
     x0 = (b0 - a01 * x1) / a00
@@ -479,10 +492,10 @@ def _exchange_cells2(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi
             for k in range(nk):
                 msum = m0[k] + m1[k]
                 esum = m0[k] * cv0 + m1[k] * cv1
+                a00, a01, fr, a11 = _factor2(f0[k], f1[k], s0[k], s1[k], K[0, 1], K[1, 0], dt, 1.0, 1.0, False)
                 for c in range(3):
                     ubar = (p0[k, c] + p1[k, c]) / msum
-                    x0, x1 = _solve2(p0[k, c] / m0[k] - ubar, p1[k, c] / m1[k] - ubar, f0[k], f1[k], s0[k], s1[k],
-                                     K[0, 1], K[1, 0], dt, 1.0, 1.0, False)
+                    x0, x1 = _back2(p0[k, c] / m0[k] - ubar, p1[k, c] / m1[k] - ubar, a00, a01, fr, a11)
                     q0[k, c] = (ubar + x0) * m0[k]
                     q1[k, c] = (ubar + x1) * m1[k]
                 tbar = (e0[k] + e1[k]) / esum
