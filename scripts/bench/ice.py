@@ -2,6 +2,7 @@
 """ICE throughput and memory: cell-steps per second per core and bytes per cell.
 
     .venv/bin/python scripts/bench/ice.py [--cells 1000000] [--steps 5] [--json ice_bench.json]
+                                          [--only 2D1] [--tasks] [--cpu]
 
 Scenes: an explosion (high-pressure circle/sphere in a closed box, second-order
 advection) in 2D and 3D with one material, and with two materials (the charge a second
@@ -9,7 +10,9 @@ ideal gas, momentum and heat exchange 1e10). One rank, one thread. Timings exclu
 the first step (numba compilation) and initialization. Memory: the peak of numpy
 allocations during the timed steps (tracemalloc) and the state carried between steps,
 both per cell. Goal (DESIGN.md): 3e6 cell-steps/s/core for one material in 2D, < 0.5 KB
-per cell (Uintah needs about 1.8 KB).
+per cell (Uintah needs about 1.8 KB). --tasks prints each task's seconds per step;
+--cpu measures CPU seconds of the process instead of wall time (steps and tasks), which
+on a machine shared with other jobs is close to what an idle machine gives.
 """
 from __future__ import annotations
 
