@@ -5,6 +5,8 @@ bc.py) and puts its results. Index boxes of a patch are cached in `_boxes`.
 """
 from __future__ import annotations
 
+import operator
+
 import numpy as np
 
 from framework import labels as L
@@ -42,6 +44,8 @@ class Boxes:
         self.perm = np.array([d for d in range(3) if not dims[d]] + [d for d in range(3) if dims[d]],
                              dtype=np.int64)
         p = self.perm
+        self.identity = bool(np.all(p == np.arange(3)))
+        self._pick = operator.itemgetter(*p)
         self.v_lo, self.v_hi = self.lo[p], self.hi[p]
         self.v_olo, self.v_ohi = self.olo[p], self.ohi[p]
         self.axis = np.argsort(p)                           # the view axis of each direction
@@ -52,10 +56,16 @@ class Boxes:
         self.v_fhi = np.array([self.fhi[d][p] for d in p])
 
     def view(self, a):
-        """a (a stored array) with its axes in the order perm: free, collapsed axes have length 1
-        (setting .shape raises rather than copy, so writes always reach the stored array)."""
+        """a (a stored array) with its axes in the order perm: free, collapsed axes have length 1.
+        Never a copy, so writes always reach the stored array (a non-contiguous array gets a
+        view whose .shape assignment raises if it would need one)."""
+        if self.identity:
+            return a
+        shape = self._pick(a.shape) + a.shape[3:]
+        if a.flags.c_contiguous:
+            return a.reshape(shape)
         r = a.view()
-        r.shape = tuple(a.shape[d] for d in self.perm) + a.shape[3:]
+        r.shape = shape
         return r
 
 
