@@ -1,13 +1,14 @@
 """Adiabatic piston compression (paper 000 sec. 4.2; inputs/MPMICE/piston_validation.ups):
 rmpmice with semi-implicit ICE, the bottom pressure against P1 (V1/V2)^gamma (eq. 44).
 
-Coarse and short here: 40 cells (the deck has 200) up to t = 0.45 s (V1/V2 = 1.8).
-Measured with scripts/accuracy_cost.py piston (full compression to 5.9, see the deck): at
-V1/V2 <= 2 the bottom pressure is within 1.2 % of eq. 44 at 50, 100 and 200 cells; the
-error comes from the piston's interface smeared over a cell (the gas near it is
-compressed a little more or less than the mean) and the heat the gas gives the piston
-(held at 300 K, heat exchange coefficient 1). The bound 0.02 leaves room for neither to
-double. The temperature follows T1 (V1/V2)^(gamma-1) to the same order.
+Coarse and short here: 40 cells (the deck has 200) up to t = 0.45 s (V1/V2 = 1.82).
+Measured up to V1/V2 = 1.82 (max |relative error| of the bottom pressure): 0.017 at 40
+cells, 0.008 at 100, 0.015 at 200 (Uintah's deck); the temperature there within 0.008 of
+T1 (V1/V2)^(gamma-1) at 40 cells. The errors come from the piston's interface smeared over
+a cell and from the heat the gas gives the piston (heat exchange coefficient 1), the
+latter dominating at 200 cells and beyond (scripts/accuracy_cost.py piston --opt heat=1,0).
+The bound 0.03 is about twice the largest of them, and far from what a wrong flow work or
+specific-volume evolution gives: an isothermal gas would be 21 % low at V1/V2 = 1.82.
 """
 import numpy as np
 import pytest
@@ -30,7 +31,7 @@ def test_bottom_pressure_follows_the_adiabat(run):
     ctl, da = run
     h = S.history(da)
     assert h["ratio"][-1] > 1.75
-    assert np.abs(h["err"]).max() < 0.02, h["err"]
+    assert np.abs(h["err"]).max() < 0.03, h["err"]
     T, _ = da.read("temp_CC", 1, -1)
     exact_T = 300.0 * h["ratio"][-1] ** (S.GAMMA - 1.0)
     assert abs(T.reshape(-1)[0] / exact_T - 1.0) < 0.02
