@@ -128,9 +128,13 @@ class TaskView:
         return self.dw.get(label, matl, patch)
 
     def get_split(self, label: VarLabel, matl: int, patch):
-        """A ghosted particle variable as (owned, ghost, order) with get() equal to
-        (owned + ghost)[order], or to owned + ghost where order is None, without forming it."""
+        """A particle variable as (owned, ghost, order) with get() equal to (owned + ghost)[order],
+        or to owned + ghost where order is None, without forming it (no ghosts declared: ghost
+        is empty)."""
         self._check_read(label, matl)
+        if label.name not in self.ghosted:
+            own = self.dw.get(label, matl, patch)
+            return own, own[:0], None
         a = self.dw.ghost_particles[(label.name, matl, patch.id, self.ghosted[label.name])]
         if isinstance(a, np.ndarray):
             own = self.dw.get(label, matl, patch)

@@ -43,7 +43,7 @@ from .analysis import ParticleExtract
 from .bc import GridBCs
 from .contact import Contact
 from .materials import Material
-from .transfer import kernels
+from .transfer import kernels, merged_p2g
 from .tasks import MPMTasks
 from .thermal import ThermalTasks
 
@@ -96,7 +96,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
                     f"GIMP particles reach one node beyond the domain: <extraCells> must be at least 1 in "
                     f"{'xyz'[bad[0]]} (Uintah needs the same)")
         self.axes = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask (transfer.py)
-        self.p2g, self.g2p, self.grad = kernels(self.kind, self.axes)
+        self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.axes)
+        self.p2g = merged_p2g(self.p2g_runs)      # one array per variable (MPMICE)
         self.ng = 1 if self.kind == "linear" else 2
         mp = root.child("MaterialProperties", required=True).child("MPM", required=True)
         geom = getattr(root, "_geometry_reader", None)

@@ -7,22 +7,24 @@ totals and the output-only nodal stress.
 import numpy as np
 from numba import njit
 
-from .shape import _particle, _setup
+from .shape import _counts, _inv_dx, _sel, _stencil
 
 FM = {'contract'}
 
 
 # ---- grid ---------------------------------------------------------------------------
 @njit(cache=True)
-def velocity_from_momentum(gmass, gmom, gvel):
-    """v_i = (m v)_i / m_i (000 eq. 22); zero where there is no mass."""
+def divide_by_mass(gmass, gsum, out):
+    """out_i = gsum_i / m_i for any number of components per node, zero where there is no
+    mass: v_i = (m v)_i / m_i (000 eq. 22), the mass-weighted nodal stress. out may be gsum."""
     m = gmass.reshape(-1)
-    p = gmom.reshape(-1)
-    v = gvel.reshape(-1)
+    s = gsum.reshape(-1)
+    o = out.reshape(-1)
+    k = s.shape[0] // m.shape[0]
     for i in range(m.shape[0]):
         inv = 1.0 / m[i] if m[i] > 0.0 else 0.0
-        for d in range(3):
-            v[3 * i + d] = p[3 * i + d] * inv
+        for c in range(k):
+            o[k * i + c] = s[k * i + c] * inv
 
 
 @njit(cache=True)
@@ -105,33 +107,28 @@ def sums(pm, pv, px, out):
 
 
 @njit(cache=True)
-def p2g_stress(kind, dim, px, pmass, pstress, lp, anchor, dx, node_low, gmass, gsm):
+def p2g_stress(kind, act, px, pmass, pstress, lp, anchor, dx, node_low, gmass, gsm):
     """gsm_i += sum S m_p sigma_p and gmass_i += sum S m_p (Uintah's g.stressFS before
-    the division by mass; kind/dim at run time: this is an output-only task)."""
-    shape = np.array(gmass.shape, np.int64)
-    na, nb, nc, nn, off, ih, base, w, g, Sq, Gq = _setup(kind, dim, dx, shape)
+    the division by mass; kind/act at run time: this is an output-only task)."""
+    sh0, sh1, sh2 = gmass.shape
+    na, nb, nc = _counts(kind, act)
+    ih = _inv_dx(dx)
     fm = gmass.reshape(-1)
     fs = gsm.reshape(-1)
     for p in range(px.shape[0]):
-        f0 = _particle(kind, dim, px, lp, p, anchor, ih, node_low, shape, base, w, g, na, nb, nc, Sq, Gq)
-        for q in range(nn):
-            f = f0 + off[q]
-            S = Sq[q] * pmass[p]
-            fm[f] += S
-            for a in range(3):
-                for b in range(3):
-                    fs[9 * f + 3 * a + b] += S * pstress[p, a, b]
-
-
-@njit(cache=True)
-def divide_by_mass(gmass, gsm, out):
-    m = gmass.reshape(-1)
-    s = gsm.reshape(-1)
-    o = out.reshape(-1)
-    for i in range(m.shape[0]):
-        inv = 1.0 / m[i] if m[i] > 0.0 else 0.0
-        for k in range(9):
-            o[9 * i + k] = s[9 * i + k] * inv
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+            raise IndexError("particle's nodes lie outside the patch node arrays")
+        for a in range(na):
+            for b in range(nb):
+                for c in range(nc):
+                    S = _sel(a, wx0, wx1, wx2) * _sel(b, wy0, wy1, wy2) * _sel(c, wz0, wz1, wz2) * pmass[p]
+                    f = ((i + a) * sh1 + j + b) * sh2 + k + c
+                    fm[f] += S
+                    for r in range(3):
+                        for q in range(3):
+                            fs[9 * f + 3 * r + q] += S * pstress[p, r, q]
 
 
 @njit(cache=True)

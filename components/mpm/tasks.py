@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from framework import labels as FL
+from framework.scheduler.particle_kernels import runs as particle_runs
 from framework.variables import VarType
 
 from . import kernels, transfer
@@ -31,8 +32,16 @@ def _zeros3(n):
 _NOF = np.zeros((1, 3))            # no p.externalforce
 _NOL = np.zeros((1, 3, 3))         # MUSL: no L_p from the g2p kernel
 _NOG = np.zeros((1, 1, 1, 3))      # USL: no remapped momentum
-_NOOWN = np.zeros(0, np.bool_)     # USL: every particle given is owned
 _NOV = np.zeros(1)                 # MUSL: F and V come later (grad kernel)
+
+
+def _split(dw, label, m, patch):
+    """(owned, ghost, ID order) of a particle variable (TaskView.get_split); a bare
+    warehouse holds no ghosts."""
+    if hasattr(dw, "get_split"):
+        return dw.get_split(label, m, patch)
+    own = dw.get(label, m, patch)
+    return own, own[:0], None
 
 
 def matls_not_in(matls, chosen):
@@ -124,27 +133,44 @@ class MPMTasks:
     # -- particles -> grid ------------------------------------------------------------------
     def interpolate_particles_to_grid(self, patch, matls, old_dw, new_dw):
         """m_i, v_i, V_i, fext_i (000 eq. 22) and fint_i (000 eq. 24) per material,
-        scattered straight into the warehouse's node arrays (transfer.py)."""
+        scattered straight into the warehouse's node arrays (transfer.py) from the owned
+        and ghost particles' own arrays (no merged copy)."""
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
         has_f = bool(self.pressure_bcs)
+        labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress] + ([L.pLoadCurveID] if has_f else [])
         for m in matls:
-            px = old_dw.get(L.pX, m, patch)
-            n = len(px)
-            pf = self._ext_force(old_dw, m, patch, px) if has_f else _NOF
+            own, ghost, runs = self._parts(old_dw, m, patch, labs)
+            own, ghost = [tuple(a[:5] + [self._forces(old_dw, a[0], a[5]) if has_f else _NOF, a[-1]])
+                          for a in (own, ghost)]
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
             gv = new_dw.allocate(L.gVelocity, m, patch, 0.0)     # momentum, then velocity
-            self.p2g(px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pVelocity, m, patch),
-                     old_dw.get(L.pVolume, m, patch), old_dw.get(L.pStress, m, patch), pf, has_f,
-                     self._lp(old_dw, m, patch, n), lv.anchor, lv.dx, low, gm, gv,
-                     new_dw.allocate(L.gVolume, m, patch, 0.0), new_dw.allocate(L.gExtForce, m, patch, 0.0),
-                     new_dw.allocate(L.gIntForce, m, patch, 0.0))
-            kernels.velocity_from_momentum(gm, gv, gv)
+            self.p2g_runs(own, ghost, runs, has_f, lv.anchor, lv.dx, low, gm, gv,
+                          new_dw.allocate(L.gVolume, m, patch, 0.0), new_dw.allocate(L.gExtForce, m, patch, 0.0),
+                          new_dw.allocate(L.gIntForce, m, patch, 0.0))
+            kernels.divide_by_mass(gm, gv, gv)
+
+    def _parts(self, old_dw, m, patch, labels):
+        """[owned arrays], [ghost arrays] of the (ghosted) particle labels, each list ending
+        with p.size (GIMP) or zeros (linear), and the runs of their merged ID order."""
+        split = [_split(old_dw, lab, m, patch) for lab in labels + ([L.pSize] if self.kind == "gimp" else [])]
+        own, ghost = [s[0] for s in split], [s[1] for s in split]
+        n_own, n_gh, order = len(own[0]), len(ghost[0]), split[0][2]
+        if self.kind != "gimp":
+            own.append(_zeros3(n_own))
+            ghost.append(_zeros3(n_gh))
+        if order is not None:
+            runs = particle_runs(order, n_own)
+        else:
+            runs = np.array([[0, 0, n_own], [1, 0, n_gh]], np.int64)[:1 + (n_gh > 0)]
+        return own, ghost, runs
 
     def _ext_force(self, old_dw, m, patch, px):
         """p.externalforce of the pressure BCs at the time this step starts (pressure.py)."""
-        return self.pressure_bcs.forces(px, old_dw.get(L.pLoadCurveID, m, patch),
-                                        old_dw.get_reduction(FL.simTime),
+        return self._forces(old_dw, px, old_dw.get(L.pLoadCurveID, m, patch))
+
+    def _forces(self, old_dw, px, lcid):
+        return self.pressure_bcs.forces(px, lcid, old_dw.get_reduction(FL.simTime),
                                         old_dw.get_reduction(L.PressureBCParticles))
 
     def interpolate_stress_to_grid(self, patch, matls, old_dw, new_dw):
@@ -159,7 +185,7 @@ class MPMTasks:
             px = old_dw.get(L.pX, m, patch)
             gm = np.zeros(shape)
             gs = np.zeros(shape + (3, 3))
-            kernels.p2g_stress(kind, self.dim, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pStress, m, patch),
+            kernels.p2g_stress(kind, self.axes, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pStress, m, patch),
                                self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, np.array(alo) - pad, gm, gs)
             out = new_dw.allocate(L.gStressFS, m, patch, None)
             kernels.divide_by_mass(np.ascontiguousarray(gm[inner]), np.ascontiguousarray(gs[inner]), out)
@@ -251,30 +277,28 @@ class MPMTasks:
         f = self.flags
         remapped = {}
         for m in matls:
-            px = old_dw.get(L.pX, m, patch)
-            n = len(px)
             mat = self.materials[m]
-            if self.musl:
-                own = self._owned(old_dw, patch, m, px)
-                n_own = int(np.count_nonzero(own))
+            if self.musl:           # owned and ghost particles, the owned ones written
+                own, ghost, runs = self._parts(old_dw, m, patch, [L.pX, L.pVelocity, L.pMass])
+                n = n_own = len(own[0])
                 gvl = remapped[m] = new_dw.allocate(L.gVelocityL, m, patch, 0.0)   # momentum, then velocity
                 Lg, F_old, F_new, vol_new = _NOL, _NOL, _NOL, _NOV
             else:
-                own, n_own, gvl = _NOOWN, n, _NOG
+                own, runs = self._parts(old_dw, m, patch, [L.pX, L.pVelocity, L.pMass])[::2]
+                ghost, n = own, len(own[0])
+                n_own, gvl = n, _NOG
                 Lg = np.empty((n, 3, 3)) if mat.uses_L else _NOL
                 F_old = old_dw.get(L.pF, m, patch)
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
             x_new = np.empty((n_own, 3))
             v_new = np.empty((n_own, 3))
-            pm = old_dw.get(L.pMass, m, patch)
-            self.g2p(self.musl, px, old_dw.get(L.pVelocity, m, patch), pm, self._lp(old_dw, m, patch, n),
-                     lv.anchor, lv.dx, low, new_dw.get(L.gVelocityStar, m, patch),
-                     new_dw.get(L.gAcceleration, m, patch), dt, own, x_new, v_new, Lg, gvl, tot,
-                     f["minimum_particle_mass"], f["maximum_particle_velocity"], mat.uses_L,
+            self.g2p(self.musl, tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low,
+                     new_dw.get(L.gVelocityStar, m, patch), new_dw.get(L.gAcceleration, m, patch), dt, x_new, v_new,
+                     Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"], mat.uses_L,
                      F_old, F_new, vol_new, mat.density)
             if self.musl:
-                kernels.velocity_from_momentum(new_dw.get(L.gMass, m, patch), gvl, gvl)
+                kernels.divide_by_mass(new_dw.get(L.gMass, m, patch), gvl, gvl)
                 if not self.contact.active:
                     self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
             else:

@@ -14,75 +14,24 @@ could alias the node arrays), and does all the work that particle needs at its n
              minimum_particle_mass / maximum_particle_velocity deletion in the same loop.
   grad       L_p = sum v_i (x) grad S_i(x_p) (004 eq. 14), MUSL's stress-update gradient.
 
-Node sums are added particle by particle in the order given (sorted by particle ID by
-the framework), so 1 patch and many patches agree bitwise. Node arrays are C-ordered
-with local index = global - node_low. `act` is the mask of the level's active axes
-(bit d: axis d has more than one cell); an inactive axis has one node layer, weight 1
-and gradient 0. The leading layouts x, xy, xyz (act 1, 3, 7) have entry points with
-act a compile-time constant; any other (a column along y, a yz plane) a run-time one.
+Node sums are added particle by particle in particle-ID order, so 1 patch and many
+patches agree bitwise. p2g and g2p read the owned and the ghost particles from their own
+arrays (TaskView.get_split), run by run in the merged ID order (particle_kernels.runs):
+nobody forms a merged copy of every ghosted variable. Node arrays are C-ordered with
+local index = global - node_low. `act` is the mask of the level's active axes (bit d:
+axis d has more than one cell; the weights: shape._stencil); an inactive axis has one
+node layer, weight 1 and gradient 0. The leading layouts x, xy, xyz (act 1, 3, 7) have
+entry points with act a compile-time constant; any other (a column along y, a yz plane)
+a run-time one.
 """
 import functools
 
 import numpy as np
 from numba import njit
 
-from .shape import GIMP, LINEAR, _gimp1
+from .shape import GIMP, LINEAR, _counts, _inv_dx, _sel, _stencil
 
 FM = {'contract'}
-
-
-@njit(cache=True, fastmath=FM, inline="always")
-def _ax(kind, active, x, a0, ih, l):
-    """Base node (global index) and weights / d/dx of one axis: (i, w0, w1, w2, g0, g1, g2)."""
-    if not active:
-        return 0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    xi = (x - a0) * ih
-    if kind == LINEAR:
-        i = int(np.floor(xi))
-        f = xi - i
-        return i, 1.0 - f, f, 0.0, -ih, ih, 0.0
-    i = int(np.floor(xi + 0.5)) - 1
-    lc = l * ih
-    inv = 0.5 / lc
-    s0, d0 = _gimp1(xi - i, lc, inv)
-    s1, d1 = _gimp1(xi - (i + 1), lc, inv)
-    s2, d2 = _gimp1(xi - (i + 2), lc, inv)
-    return i, s0, s1, s2, d0 * ih, d1 * ih, d2 * ih
-
-
-@njit(cache=True, fastmath=FM, inline="always")
-def _sel(a, x0, x1, x2):
-    return x0 if a == 0 else (x1 if a == 1 else x2)
-
-
-@njit(cache=True, fastmath=FM, inline="always")
-def _stencil(kind, act, px, lp, p, anchor, ih, node_low):
-    """The weights of particle p on its three axes, base indices made local."""
-    i, wx0, wx1, wx2, gx0, gx1, gx2 = _ax(kind, act & 1 != 0, px[p, 0], anchor[0], ih[0], lp[p, 0])
-    j, wy0, wy1, wy2, gy0, gy1, gy2 = _ax(kind, act & 2 != 0, px[p, 1], anchor[1], ih[1], lp[p, 1])
-    k, wz0, wz1, wz2, gz0, gz1, gz2 = _ax(kind, act & 4 != 0, px[p, 2], anchor[2], ih[2], lp[p, 2])
-    if act & 1:
-        i -= node_low[0]
-    if act & 2:
-        j -= node_low[1]
-    if act & 4:
-        k -= node_low[2]
-    return (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-            wz0, wz1, wz2, gz0, gz1, gz2)
-
-
-@njit(cache=True, inline="always")
-def _counts(kind, act):
-    n = 2 if kind == LINEAR else 3
-    return (n if act & 1 else 1), (n if act & 2 else 1), (n if act & 4 else 1)
-
-
-@njit(cache=True, inline="always")
-def _inv_dx(dx):
-    ih = np.empty(3)
-    for d in range(3):
-        ih[d] = 1.0 / dx[d] if dx[d] != 0.0 else 0.0
-    return ih[0], ih[1], ih[2]
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -138,9 +87,10 @@ def _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _p2g(kind, act, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx, node_low,
-         gmass, gmom, gvol, gfext, gfint):
-    """Accumulate (+=) m, mv, V, fext, fint of the particles on the node arrays."""
+def _p2g(kind, act, own, ghost, runs, has_f, anchor, dx, node_low, gmass, gmom, gvol, gfext, gfint):
+    """Accumulate (+=) m, mv, V, fext, fint of the particles on the node arrays: the owned
+    and ghost sources (x, m, v, V, sigma, fext, lp), run by run in their merged ID order
+    (particle_kernels.runs), so every node adds its shares in particle-ID order."""
     sh0, sh1, sh2 = gmass.shape
     na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
@@ -149,83 +99,81 @@ def _p2g(kind, act, px, pmass, pvel, pvol, pstress, pfext, has_f, lp, anchor, dx
     fp = gmom.reshape(-1)
     fe = gfext.reshape(-1)
     fi = gfint.reshape(-1)
-    for p in range(px.shape[0]):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-        inside = i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2
-        m = pmass[p]
-        V = pvol[p]
-        mv0 = m * pvel[p, 0]
-        mv1 = m * pvel[p, 1]
-        mv2 = m * pvel[p, 2]
-        s00 = V * pstress[p, 0, 0]
-        s10 = V * pstress[p, 1, 0]
-        s20 = V * pstress[p, 2, 0]
-        s01 = V * pstress[p, 0, 1]
-        s11 = V * pstress[p, 1, 1]
-        s21 = V * pstress[p, 2, 1]
-        s02 = V * pstress[p, 0, 2]
-        s12 = V * pstress[p, 1, 2]
-        s22 = V * pstress[p, 2, 2]
-        for a in range(na):
-            wa = _sel(a, wx0, wx1, wx2)
-            ga = _sel(a, gx0, gx1, gx2)
-            for b in range(nb):
-                wb = _sel(b, wy0, wy1, wy2)
-                gb = _sel(b, gy0, gy1, gy2)
-                for c in range(nc):
-                    wc = _sel(c, wz0, wz1, wz2)
-                    gc = _sel(c, gz0, gz1, gz2)
-                    if not inside:
-                        if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
-                            continue
-                    S = wa * wb * wc
-                    G0 = ga * wb * wc
-                    G1 = wa * gb * wc
-                    G2 = wa * wb * gc
-                    f = np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                    f3 = np.uint64(3) * f
-                    fm[f] += m * S
-                    fv[f] += V * S
-                    fp[f3] += mv0 * S
-                    fp[f3 + np.uint64(1)] += mv1 * S
-                    fp[f3 + np.uint64(2)] += mv2 * S
-                    if has_f:
-                        fe[f3] += pfext[p, 0] * S
-                        fe[f3 + np.uint64(1)] += pfext[p, 1] * S
-                        fe[f3 + np.uint64(2)] += pfext[p, 2] * S
-                    if act == 1:
-                        fi[f3] -= s00 * G0
-                        fi[f3 + np.uint64(1)] -= s10 * G0
-                        fi[f3 + np.uint64(2)] -= s20 * G0
-                    elif act == 3:
-                        fi[f3] -= s00 * G0 + s01 * G1
-                        fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1
-                        fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1
-                    else:
-                        fi[f3] -= s00 * G0 + s01 * G1 + s02 * G2
-                        fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1 + s12 * G2
-                        fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1 + s22 * G2
+    for r in range(runs.shape[0]):
+        px, pmass, pvel, pvol, pstress, pfext, lp = own if runs[r, 0] == 0 else ghost
+        for p in range(runs[r, 1], runs[r, 2]):
+            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+            inside = i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2
+            m = pmass[p]
+            V = pvol[p]
+            mv0 = m * pvel[p, 0]
+            mv1 = m * pvel[p, 1]
+            mv2 = m * pvel[p, 2]
+            s00 = V * pstress[p, 0, 0]
+            s10 = V * pstress[p, 1, 0]
+            s20 = V * pstress[p, 2, 0]
+            s01 = V * pstress[p, 0, 1]
+            s11 = V * pstress[p, 1, 1]
+            s21 = V * pstress[p, 2, 1]
+            s02 = V * pstress[p, 0, 2]
+            s12 = V * pstress[p, 1, 2]
+            s22 = V * pstress[p, 2, 2]
+            for a in range(na):
+                wa = _sel(a, wx0, wx1, wx2)
+                ga = _sel(a, gx0, gx1, gx2)
+                for b in range(nb):
+                    wb = _sel(b, wy0, wy1, wy2)
+                    gb = _sel(b, gy0, gy1, gy2)
+                    for c in range(nc):
+                        wc = _sel(c, wz0, wz1, wz2)
+                        gc = _sel(c, gz0, gz1, gz2)
+                        if not inside:
+                            if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
+                                continue
+                        S = wa * wb * wc
+                        G0 = ga * wb * wc
+                        G1 = wa * gb * wc
+                        G2 = wa * wb * gc
+                        f = np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                        f3 = np.uint64(3) * f
+                        fm[f] += m * S
+                        fv[f] += V * S
+                        fp[f3] += mv0 * S
+                        fp[f3 + np.uint64(1)] += mv1 * S
+                        fp[f3 + np.uint64(2)] += mv2 * S
+                        if has_f:
+                            fe[f3] += pfext[p, 0] * S
+                            fe[f3 + np.uint64(1)] += pfext[p, 1] * S
+                            fe[f3 + np.uint64(2)] += pfext[p, 2] * S
+                        if act == 1:
+                            fi[f3] -= s00 * G0
+                            fi[f3 + np.uint64(1)] -= s10 * G0
+                            fi[f3 + np.uint64(2)] -= s20 * G0
+                        elif act == 3:
+                            fi[f3] -= s00 * G0 + s01 * G1
+                            fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1
+                            fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1
+                        else:
+                            fi[f3] -= s00 * G0 + s01 * G1 + s02 * G2
+                            fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1 + s12 * G2
+                            fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1 + s22 * G2
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _g2p(kind, act, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, dt,
-         own, x_out, v_out, L_out, gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
-    """Update every particle given; write the owned ones (own[p], or all when own is
-    empty) compacted to x_out / v_out; USL: F_out, vol_out (and L_out if write_L);
-    MUSL: += m v_new S on gmom. Returns the number of particles deleted (x = NaN)."""
-    sh0, sh1, sh2 = gvs.shape[:3]
+def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
+    """Rows [first, end) of one source part = (x, v, m, lp): 000 eqs. 26-27 (see _g2p);
+    grid = (anchor, ih, node_low, shape, fv, fa, fp, dt), outs = (x_out, v_out, L_out,
+    F_old, F_out, vol_out, rho0, write_L), lim = (check, min_mass, max_vel), acc = the
+    running (o, n_del, totals); returns it updated."""
+    px, pvel, pmass, lp = part
+    anchor, ih, node_low, sh, fv, fa, fp, dt = grid
+    sh0, sh1, sh2 = sh
+    x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L = outs
+    check, min_mass, max_vel = lim
+    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     na, nb, nc = _counts(kind, act)
-    ih = _inv_dx(dx)
-    fv = gvs.reshape(-1)
-    fa = gacc.reshape(-1)
-    fp = gmom.reshape(-1)
-    all_own = own.shape[0] == 0
-    check = min_mass > 0.0 or max_vel < np.inf
-    n_del = 0
-    o = 0
-    t0 = t1 = t2 = t3 = t4 = t5 = t6 = t7 = 0.0
-    for p in range(px.shape[0]):
+    for p in range(first, end):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
          wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
         if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
@@ -287,7 +235,7 @@ def _g2p(kind, act, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, 
                         fp[f3] += mv0 * S
                         fp[f3 + np.uint64(1)] += mv1 * S
                         fp[f3 + np.uint64(2)] += mv2 * S
-        if not (all_own or own[p]):
+        if not owned:
             continue
         x0 = px[p, 0] + dt * v0
         x1 = px[p, 1] + dt * v1
@@ -315,6 +263,26 @@ def _g2p(kind, act, musl, px, pvel, pmass, lp, anchor, dx, node_low, gvs, gacc, 
         t6 += m * x1
         t7 += m * x2
         o += 1
+    return o, n_del, t0, t1, t2, t3, t4, t5, t6, t7
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _g2p(kind, act, musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out, gmom, tot,
+         min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
+    """Update every particle given: the owned and ghost sources (x, v, m, lp), run by run
+    in their merged ID order (as p2g); write the owned ones compacted to x_out / v_out; USL:
+    F_out, vol_out (and L_out if write_L); MUSL: += m v_new S on gmom. Returns the number
+    of particles deleted (x = NaN)."""
+    grid = (anchor, _inv_dx(dx), node_low, gvs.shape[:3], gvs.reshape(-1), gacc.reshape(-1), gmom.reshape(-1), dt)
+    outs = (x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L)
+    lim = (min_mass > 0.0 or max_vel < np.inf, min_mass, max_vel)
+    acc = (0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    for r in range(runs.shape[0]):
+        if runs[r, 0] == 0:
+            acc = _g2p_rows(kind, act, musl, own, runs[r, 1], runs[r, 2], True, grid, outs, lim, acc)
+        else:
+            acc = _g2p_rows(kind, act, musl, ghost, runs[r, 1], runs[r, 2], False, grid, outs, lim, acc)
+    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     tot[0] += t0
     tot[1] += t1
     tot[2] += t2
@@ -373,76 +341,119 @@ def _grad(kind, act, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pma
         _deform(p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
 
 
-# ---- specialised entry points: (kind, act) compile-time constants for act = 1, 3, 7 ------
-# p2g(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
-# g2p(musl, px, pv, pm, lp, anchor, dx, node_low, gvs, gacc, dt, own, x_out, v_out, L_out,
+# ---- specialised entry points: (kind, act) compile-time constants for act = 1, 3, 7 (has_f
+# branched once per call, so each variant is compiled with it constant); the *_la / *_ga
+# variants take the active-axis mask first, at run time ---------------------------------------
+# p2g(own, ghost, runs, has_f, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
+#     own/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles
+# g2p(musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out,
 #     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0) -> number deleted
+#     own/ghost: (px, pv, pm, lp)
 # grad(px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old, F_out, vol_out)
 
-@njit(cache=True, fastmath=FM)
-def p2g_l1(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(LINEAR, 1, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
-
 
 @njit(cache=True, fastmath=FM)
-def p2g_l2(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(LINEAR, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_l3(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(LINEAR, 7, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+def p2g_l1(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(LINEAR, 1, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(LINEAR, 1, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_g1(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(GIMP, 1, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+def p2g_l2(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(LINEAR, 3, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(LINEAR, 3, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_g2(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(GIMP, 3, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+def p2g_l3(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(LINEAR, 7, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(LINEAR, 7, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_g3(px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(GIMP, 7, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
+def p2g_g1(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(GIMP, 1, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(GIMP, 1, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
-                Vn, rho0)
+def p2g_g2(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(GIMP, 3, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(GIMP, 3, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
-                Vn, rho0)
+def p2g_g3(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(GIMP, 7, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(GIMP, 7, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 7, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
-                Vn, rho0)
+def p2g_la(act, o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(LINEAR, act, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(LINEAR, act, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g1(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 1, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
-                Vn, rho0)
+def p2g_ga(act, o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+    if hf:
+        _p2g(GIMP, act, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+    else:
+        _p2g(GIMP, act, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g2(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 3, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
-                Vn, rho0)
+def g2p_l1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 1, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g3(mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 7, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn,
-                Vn, rho0)
+def g2p_l2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 3, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_l3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 7, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 1, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 3, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 7, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_la(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_ga(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
@@ -476,28 +487,6 @@ def grad_g3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_la(act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(LINEAR, act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_ga(act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi):
-    _p2g(GIMP, act, px, pm, pv, pV, ps, pf, hf, lp, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_la(act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo,
-                Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_ga(act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, act, mu, px, pv, pm, lp, an, dx, lo, gvs, ga, dt, own, xo, vo, Lo, gp, tot, mm, mv, wL, Fo,
-                Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
 def grad_la(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
     _grad(LINEAR, act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
 
@@ -515,11 +504,25 @@ KERNELS = {
 ANY_AXES = {"linear": (p2g_la, g2p_la, grad_la), "gimp": (p2g_ga, g2p_ga, grad_ga)}
 
 
+def one_run(n):
+    """The runs of n owned particles and no ghosts."""
+    return np.array([[0, 0, n]], np.int64)
+
+
 def kernels(kind, act):
-    """(p2g, g2p, grad) for interpolator `kind` on the active-axis mask `act`."""
+    """(p2g, g2p, grad) for interpolator `kind` on the active-axis mask `act` (signatures above)."""
     if (kind, act) in KERNELS:
         return KERNELS[(kind, act)]
     return tuple(functools.partial(f, act) for f in ANY_AXES[kind])
+
+
+def merged_p2g(p2g):
+    """p2g on one array per particle variable (all particles in one source):
+    f(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)."""
+    def f(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi):
+        part = (px, pm, pv, pvol, ps, pf, lp)
+        p2g(part, part, one_run(len(px)), has_f, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
+    return f
 
 
 @njit(cache=True, fastmath=FM)

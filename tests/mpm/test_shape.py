@@ -1,109 +1,74 @@
-"""Tests of components.mpm.shape: partition of unity, linear exactness,
-mass conservation and agreement of the fused kernels with the weight arrays."""
+"""Shape functions (shape.py) and the fused transfer kernels (transfer.py): partition of
+unity, the uGIMP formula, conservation and exactness of p2g / g2p, and that reading the
+owned and ghost particles run by run gives bitwise the sums of one merged array."""
 import numpy as np
 import pytest
+from numba import njit
 
-from components.mpm.shape import get_interpolator, lp_from_ppc, num_nodes
+from components.mpm.shape import GIMP, LINEAR, _counts, _inv_dx, _sel, _stencil
+from components.mpm.transfer import kernels, one_run
+from framework.scheduler.particle_kernels import runs
 
-CASES = [(k, d) for k in ("linear", "gimp") for d in (1, 2, 3)]
+CASES = [(k, a) for k in ("linear", "gimp") for a in (1, 3, 7, 5)]     # 5: an xz plane
 
 
-def make_grid(dim, ncell=6, dx=(0.5, 0.25, 0.4)):
-    """Patch with one ghost layer, node_low = -1 on active axes."""
-    dx = np.array(dx)
-    dx[dim:] = 1.0
+@njit(cache=True)
+def _weights(kind, act, px, lp, anchor, dx, node_low, ni, S, dS):
+    """The stencil of shape._stencil as arrays: local node index, weight, gradient."""
+    na, nb, nc = _counts(kind, act)
+    ih = _inv_dx(dx)
+    for p in range(px.shape[0]):
+        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+        q = 0
+        for a in range(na):
+            for b in range(nb):
+                for c in range(nc):
+                    wa, wb, wc = _sel(a, wx0, wx1, wx2), _sel(b, wy0, wy1, wy2), _sel(c, wz0, wz1, wz2)
+                    ni[p, q, 0], ni[p, q, 1], ni[p, q, 2] = i + a, j + b, k + c
+                    S[p, q] = wa * wb * wc
+                    dS[p, q, 0] = _sel(a, gx0, gx1, gx2) * wb * wc
+                    dS[p, q, 1] = wa * _sel(b, gy0, gy1, gy2) * wc
+                    dS[p, q, 2] = wa * wb * _sel(c, gz0, gz1, gz2)
+                    q += 1
+
+
+def weights(kind, act, px, lp, anchor, dx, node_low):
+    na, nb, nc = (2 if kind == "linear" else 3,) * 3
+    nn = (na if act & 1 else 1) * (nb if act & 2 else 1) * (nc if act & 4 else 1)
+    ni, S, dS = np.empty((len(px), nn, 3), np.int64), np.empty((len(px), nn)), np.empty((len(px), nn, 3))
+    _weights(LINEAR if kind == "linear" else GIMP, act, px, lp, anchor, dx, node_low, ni, S, dS)
+    return ni, S, dS
+
+
+def make_grid(act, ncell=6):
+    """Patch with one ghost layer (two for GIMP's reach), node_low = -2 on active axes."""
+    on = np.array([bool(act >> d & 1) for d in range(3)])
+    dx = np.where(on, [0.5, 0.25, 0.4], 1.0)
     anchor = np.array([0.1, -0.3, 0.7])
-    lo = np.array([-1 if d < dim else 0 for d in range(3)], np.int64)
-    shape = tuple(ncell + 3 if d < dim else 1 for d in range(3))
-    return anchor, dx, lo, shape
+    lo = np.where(on, -2, 0).astype(np.int64)
+    shape = tuple(int(s) for s in np.where(on, ncell + 5, 1))
+    return on, anchor, dx, lo, shape
 
 
-def make_particles(dim, anchor, dx, ncell, n=300, seed=0):
+def make_particles(on, anchor, dx, ncell, n=300, seed=0):
     rng = np.random.default_rng(seed)
-    px = np.tile(anchor, (n, 1)).astype(np.float64)
-    px[:, :dim] += rng.random((n, dim)) * ncell * dx[:dim]
-    px[:, dim:] = anchor[dim:]
-    return px
+    px = np.tile(anchor, (n, 1)) + np.where(on, rng.random((n, 3)) * ncell * dx, 0.0)
+    lp = np.tile(dx / 4, (n, 1))                                   # 2 particles per cell
+    return np.ascontiguousarray(px), lp
 
 
-@pytest.mark.parametrize("kind,dim", CASES)
-def test_partition_of_unity(kind, dim):
-    anchor, dx, lo, shape = make_grid(dim)
-    px = make_particles(dim, anchor, dx, 6)
-    ip = get_interpolator(kind, dim)
-    assert ip.nn == num_nodes(kind, dim) == (2 if kind == "linear" else 3) ** dim
-    ni, S, dS = ip.weights(px, lp_from_ppc(len(px), dx, 2), anchor, dx, lo, shape)
+@pytest.mark.parametrize("kind,act", CASES)
+def test_partition_of_unity(kind, act):
+    on, anchor, dx, lo, shape = make_grid(act)
+    px, lp = make_particles(on, anchor, dx, 6)
+    ni, S, dS = weights(kind, act, px, lp, anchor, dx, lo)
+    assert S.shape[1] == (2 if kind == "linear" else 3) ** on.sum()
     assert np.allclose(S.sum(1), 1.0, atol=1e-13)
     assert np.allclose(dS.sum(1), 0.0, atol=1e-11)
     assert (S >= -1e-15).all()
     assert (ni >= 0).all() and (ni < np.array(shape)).all()
-    assert np.all(dS[:, :, dim:] == 0.0)
-
-
-@pytest.mark.parametrize("kind,dim", CASES)
-def test_linear_field_reproduced(kind, dim):
-    anchor, dx, lo, shape = make_grid(dim)
-    px = make_particles(dim, anchor, dx, 6, seed=1)
-    n = len(px)
-    lp = lp_from_ppc(n, dx, 2)
-    ip = get_interpolator(kind, dim)
-    A = np.array([[0.3, -1.2, 0.7], [2.0, 0.5, -0.4], [-0.8, 1.1, 0.9]])
-    A[:, dim:] = 0.0  # field varies only along active axes
-    b = np.array([1.0, -2.0, 0.5])
-    I, J, K = np.meshgrid(*[np.arange(s) for s in shape], indexing="ij")
-    xn = anchor + (np.stack([I, J, K], -1) + lo) * dx
-    gvel = np.ascontiguousarray(xn @ A.T + b)
-    gacc = np.ascontiguousarray(2.0 * gvel)
-    pv = np.random.default_rng(2).random((n, 3))
-    dt = 0.1
-    pxn, pvn, pL = np.empty_like(px), np.empty_like(pv), np.empty((n, 3, 3))
-    ip.g2p(px, pv, lp, anchor, dx, lo, gvel, gacc, dt, pxn, pvn, pL)
-    vexact = px @ A.T + b
-    assert np.allclose(pxn, px + dt * vexact, atol=1e-12)
-    assert np.allclose(pvn, pv + dt * 2 * vexact, atol=1e-12)
-    assert np.allclose(pL, np.broadcast_to(A, (n, 3, 3)), atol=1e-11)
-    # the weight arrays give the same interpolation
-    ni, S, dS = ip.weights(px, lp, anchor, dx, lo, shape)
-    gv = gvel[ni[..., 0], ni[..., 1], ni[..., 2]]
-    assert np.allclose((S[..., None] * gv).sum(1), vexact, atol=1e-12)
-    assert np.allclose(np.einsum("pqi,pqj->pij", gv, dS), A, atol=1e-11)
-
-
-@pytest.mark.parametrize("kind,dim", CASES)
-def test_p2g_conservation_and_consistency(kind, dim):
-    anchor, dx, lo, shape = make_grid(dim)
-    px = make_particles(dim, anchor, dx, 6, seed=3)
-    n = len(px)
-    rng = np.random.default_rng(4)
-    lp = lp_from_ppc(n, dx, 2)
-    pm, pvol = rng.random(n) + 0.5, rng.random(n) + 0.1
-    pv, pf = rng.random((n, 3)), rng.random((n, 3))
-    ps = rng.random((n, 3, 3))
-    ip = get_interpolator(kind, dim)
-    gm, gvol = np.zeros(shape), np.zeros(shape)
-    gp, ge, gi = (np.zeros(shape + (3,)) for _ in range(3))
-    ip.p2g(px, pm, pv, pvol, ps, pf, lp, anchor, dx, lo, gm, gp, gvol, ge, gi)
-    assert np.isclose(gm.sum(), pm.sum(), rtol=1e-13)
-    assert np.isclose(gvol.sum(), pvol.sum(), rtol=1e-13)
-    assert np.allclose(gp.sum((0, 1, 2)), (pm[:, None] * pv).sum(0), rtol=1e-13)
-    assert np.allclose(ge.sum((0, 1, 2)), pf.sum(0), rtol=1e-13)
-    assert np.allclose(gi.sum((0, 1, 2)), 0.0, atol=1e-10)  # sum dS = 0
-    # reference scatter from the weight arrays (particle order shuffled)
-    ni, S, dS = ip.weights(px, lp, anchor, dx, lo, shape)
-    rm, ri = np.zeros(shape), np.zeros(shape + (3,))
-    idx = (ni[..., 0].ravel(), ni[..., 1].ravel(), ni[..., 2].ravel())
-    np.add.at(rm, idx, (pm[:, None] * S).ravel())
-    fint = -np.einsum("p,pij,pqj->pqi", pvol, ps, dS).reshape(-1, 3)
-    np.add.at(ri, idx, fint)
-    assert np.allclose(gm, rm, atol=1e-13)
-    assert np.allclose(gi, ri, atol=1e-12)
-    # sorted order gives the same grid (stencil-buffer path)
-    order = np.lexsort(px.T[::-1])
-    gm2, gvol2 = np.zeros(shape), np.zeros(shape)
-    gp2, ge2, gi2 = (np.zeros(shape + (3,)) for _ in range(3))
-    ip.p2g(px[order], pm[order], pv[order], pvol[order], ps[order], pf[order],
-           lp[order], anchor, dx, lo, gm2, gp2, gvol2, ge2, gi2)
-    assert np.allclose(gm2, gm, atol=1e-13) and np.allclose(gi2, gi, atol=1e-12)
+    assert np.all(dS[:, :, ~on] == 0.0) and np.all(ni[:, :, ~on] == 0)
 
 
 def test_gimp_weights_match_formula():
@@ -117,12 +82,10 @@ def test_gimp_weights_match_formula():
         if a < 1 + l:
             return (1 + l - a) ** 2 / (4 * l)
         return 0.0
-    ip = get_interpolator("gimp", 1)
     xs = np.linspace(0.02, 4.98, 97)
     px = np.zeros((len(xs), 3))
     px[:, 0] = xs
-    lp = np.full((len(xs), 3), 0.25)
-    ni, S, dS = ip.weights(px, lp, np.zeros(3), np.ones(3), np.array([-1, 0, 0]), (8, 1, 1))
+    ni, S, dS = weights("gimp", 1, px, np.full((len(xs), 3), 0.25), np.zeros(3), np.ones(3), np.array([-1, 0, 0]))
     ni = ni - np.array([1, 0, 0])  # global indices
     for p, x in enumerate(xs):
         for q in range(3):
@@ -132,9 +95,105 @@ def test_gimp_weights_match_formula():
         assert np.isclose(dS[p, 0, 0], fd, atol=1e-5)
 
 
+def _p2g(kind, act, parts, order_runs, shape, anchor, dx, lo):
+    p2g = kernels(kind, act)[0]
+    g = [np.zeros(shape), np.zeros(shape + (3,)), np.zeros(shape), np.zeros(shape + (3,)), np.zeros(shape + (3,))]
+    own, ghost = parts
+    p2g(own, ghost, order_runs, True, anchor, dx, lo, *g)
+    return g
+
+
+@pytest.mark.parametrize("kind,act", CASES)
+def test_p2g_conserves_and_runs_equal_merged(kind, act):
+    on, anchor, dx, lo, shape = make_grid(act)
+    px, lp = make_particles(on, anchor, dx, 6, seed=3)
+    n = len(px)
+    rng = np.random.default_rng(4)
+    pm, pvol = rng.random(n) + 0.5, rng.random(n) + 0.1
+    pv, pf, ps = rng.random((n, 3)), rng.random((n, 3)), rng.random((n, 3, 3))
+    part = (px, pm, pv, pvol, ps, pf, lp)
+    gm, gp, gvol, ge, gi = _p2g(kind, act, (part, part), one_run(n), shape, anchor, dx, lo)
+    assert np.isclose(gm.sum(), pm.sum(), rtol=1e-13)
+    assert np.isclose(gvol.sum(), pvol.sum(), rtol=1e-13)
+    assert np.allclose(gp.sum((0, 1, 2)), (pm[:, None] * pv).sum(0), rtol=1e-13)
+    assert np.allclose(ge.sum((0, 1, 2)), pf.sum(0), rtol=1e-13)
+    assert np.allclose(gi.sum((0, 1, 2)), 0.0, atol=1e-10)  # sum dS = 0
+    ni, S, dS = weights(kind, act, px, lp, anchor, dx, lo)
+    rm, ri = np.zeros(shape), np.zeros(shape + (3,))
+    idx = (ni[..., 0].ravel(), ni[..., 1].ravel(), ni[..., 2].ravel())
+    np.add.at(rm, idx, (pm[:, None] * S).ravel())
+    np.add.at(ri, idx, -np.einsum("p,pij,pqj->pqi", pvol, ps, dS).reshape(-1, 3))
+    assert np.allclose(gm, rm, atol=1e-13) and np.allclose(gi, ri, atol=1e-12)
+    # the same particles as owned + ghost arrays read run by run: the very same sums
+    mine = rng.random(n) < 0.7
+    order = np.empty(n, np.int64)
+    order[mine] = np.arange(mine.sum())
+    order[~mine] = mine.sum() + np.arange((~mine).sum())
+    split = tuple(tuple(np.ascontiguousarray(a[sel]) for a in part) for sel in (mine, ~mine))
+    r = runs(order, int(mine.sum()))
+    assert len(r) > 2
+    for a, b in zip(_p2g(kind, act, split, r, shape, anchor, dx, lo), (gm, gp, gvol, ge, gi)):
+        assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("kind,act", CASES)
+def test_g2p_linear_field_reproduced(kind, act):
+    """USL: a linear nodal velocity field is interpolated exactly, with its gradient."""
+    on, anchor, dx, lo, shape = make_grid(act)
+    px, lp = make_particles(on, anchor, dx, 6, seed=1)
+    n = len(px)
+    A = np.array([[0.3, -1.2, 0.7], [2.0, 0.5, -0.4], [-0.8, 1.1, 0.9]]) * on   # varies along active axes
+    b = np.array([1.0, -2.0, 0.5])
+    idx = np.stack(np.meshgrid(*[np.arange(s) for s in shape], indexing="ij"), -1)
+    gvel = np.ascontiguousarray((anchor + (idx + lo) * dx) @ A.T + b)
+    pv, pm, dt = np.random.default_rng(2).random((n, 3)), np.ones(n), 0.1
+    x, v, L, F, V = np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3, 3)), np.empty(n)
+    g2p = kernels(kind, act)[1]
+    own = (px, pv, pm, lp)
+    g2p(False, own, own, one_run(n), anchor, dx, lo, gvel, 2.0 * gvel, dt, x, v, L, np.zeros((1, 1, 1, 3)),
+        np.zeros(8), 0.0, np.inf, True, np.tile(np.eye(3), (n, 1, 1)), F, V, 1.0)
+    vexact = px @ A.T + b
+    assert np.allclose(x, px + dt * vexact, atol=1e-12)
+    assert np.allclose(v, pv + dt * 2 * vexact, atol=1e-12)
+    assert np.allclose(L, np.broadcast_to(A, (n, 3, 3)), atol=1e-11)
+    assert np.allclose(F, np.eye(3) + dt * A, atol=1e-12) and np.allclose(V, np.linalg.det(np.eye(3) + dt * A))
+
+
+@pytest.mark.parametrize("kind,act", [("linear", 3), ("gimp", 7)])
+def test_g2p_musl_owned_written_all_remapped(kind, act):
+    """MUSL: every particle (owned or ghost) maps its new momentum back; only the owned
+    ones are written, compacted, with the same values as when all are owned."""
+    on, anchor, dx, lo, shape = make_grid(act)
+    px, lp = make_particles(on, anchor, dx, 6, seed=5)
+    n = len(px)
+    rng = np.random.default_rng(6)
+    pv, pm = rng.random((n, 3)), rng.random(n) + 0.5
+    gvs, ga = rng.random(shape + (3,)), rng.random(shape + (3,))
+    g2p = kernels(kind, act)[1]
+
+    def run(own, ghost, r, n_own):
+        x, v, gmom, tot = np.empty((n_own, 3)), np.empty((n_own, 3)), np.zeros(shape + (3,)), np.zeros(8)
+        g2p(True, own, ghost, r, anchor, dx, lo, gvs, ga, 0.01, x, v, np.zeros((1, 3, 3)), gmom, tot, 0.0, np.inf,
+            False, np.zeros((1, 3, 3)), np.zeros((1, 3, 3)), np.zeros(1), 1.0)
+        return x, v, gmom, tot
+    allp = (px, pv, pm, lp)
+    x, v, gmom, tot = run(allp, allp, one_run(n), n)
+    mine = rng.random(n) < 0.6
+    order = np.empty(n, np.int64)
+    order[mine] = np.arange(mine.sum())
+    order[~mine] = mine.sum() + np.arange((~mine).sum())
+    own, ghost = (tuple(np.ascontiguousarray(a[sel]) for a in allp) for sel in (mine, ~mine))
+    xs, vs, gs, ts = run(own, ghost, runs(order, int(mine.sum())), int(mine.sum()))
+    assert np.array_equal(xs, x[mine]) and np.array_equal(vs, v[mine]) and np.array_equal(gs, gmom)
+    assert np.isclose(ts[0], pm[mine].sum(), rtol=1e-14)
+
+
 def test_out_of_patch_raises():
-    anchor, dx, lo, shape = make_grid(2)
+    on, anchor, dx, lo, shape = make_grid(3)
     px = np.array([[anchor[0] - 5 * dx[0], anchor[1], anchor[2]]])
-    ip = get_interpolator("linear", 2)
+    own = (px, np.zeros((1, 3)), np.ones(1), np.zeros((1, 3)))
+    g2p = kernels("linear", 3)[1]
     with pytest.raises(IndexError):
-        ip.weights(px, lp_from_ppc(1, dx, 2), anchor, dx, lo, shape)
+        g2p(False, own, own, one_run(1), anchor, dx, lo, np.zeros(shape + (3,)), np.zeros(shape + (3,)), 0.1,
+            np.empty((1, 3)), np.empty((1, 3)), np.zeros((1, 3, 3)), np.zeros((1, 1, 1, 3)), np.zeros(8), 0.0,
+            np.inf, False, np.tile(np.eye(3), (1, 1, 1)), np.empty((1, 3, 3)), np.empty(1), 1.0)
