@@ -34,58 +34,12 @@ from framework.task import NEW, OLD, Task
 from framework.variables import Ghost, VarType
 
 from . import labels as L
-from .shape import LINEAR, _gimp1
+from .shape import _counts as _sizes
+from .shape import _sel as _pick
+from .shape import _stencil
 
 FM = {'contract'}
 NC = VarType.NC
-
-
-@njit(cache=True, fastmath=FM, inline="always")
-def _axis(kind, active, x, a0, ih, l):
-    """One axis of a particle's stencil: base node (global), three weights and d/dx.
-    An inactive (collapsed) axis has one node, weight 1, gradient 0."""
-    if not active:
-        return 0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    xi = (x - a0) * ih
-    if kind == LINEAR:
-        i = int(np.floor(xi))
-        f = xi - i
-        return i, 1.0 - f, f, 0.0, -ih, ih, 0.0
-    i = int(np.floor(xi + 0.5)) - 1
-    lc = l * ih
-    inv = 0.5 / lc
-    s0, d0 = _gimp1(xi - i, lc, inv)
-    s1, d1 = _gimp1(xi - (i + 1), lc, inv)
-    s2, d2 = _gimp1(xi - (i + 2), lc, inv)
-    return i, s0, s1, s2, d0 * ih, d1 * ih, d2 * ih
-
-
-@njit(cache=True, inline="always")
-def _pick(a, x0, x1, x2):
-    return x0 if a == 0 else (x1 if a == 1 else x2)
-
-
-@njit(cache=True, fastmath=FM, inline="always")
-def _stencil(kind, act, px, lp, p, anchor, ih, node_low):
-    """Local base indices, weights and gradients of particle p on the three axes (act: bit d
-    set when axis d is active)."""
-    i, wx0, wx1, wx2, gx0, gx1, gx2 = _axis(kind, act & 1 != 0, px[p, 0], anchor[0], ih[0], lp[p, 0])
-    j, wy0, wy1, wy2, gy0, gy1, gy2 = _axis(kind, act & 2 != 0, px[p, 1], anchor[1], ih[1], lp[p, 1])
-    k, wz0, wz1, wz2, gz0, gz1, gz2 = _axis(kind, act & 4 != 0, px[p, 2], anchor[2], ih[2], lp[p, 2])
-    if act & 1:
-        i -= node_low[0]
-    if act & 2:
-        j -= node_low[1]
-    if act & 4:
-        k -= node_low[2]
-    return (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-            wz0, wz1, wz2, gz0, gz1, gz2)
-
-
-@njit(cache=True, inline="always")
-def _sizes(kind, act):
-    n = 2 if kind == LINEAR else 3
-    return (n if act & 1 else 1), (n if act & 2 else 1), (n if act & 4 else 1)
 
 
 @njit(cache=True, inline="always")

@@ -12,7 +12,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from components.mpm.thermal import _inv, _pick, _sizes, _stencil
+from components.mpm.shape import _counts as _sizes
+from components.mpm.shape import _sel as _pick
+from components.mpm.shape import _stencil
+from components.mpm.thermal import _inv
 
 
 @njit(cache=True)
