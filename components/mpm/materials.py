@@ -86,6 +86,8 @@ class Material:
             self.params = self.model.Params.from_ups(values)
         except KeyError as e:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
+        if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
+            self.params = self.model.read_failure(self.params, node, cm)
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
         self.uses_L = kind not in NO_L       # the model reads the velocity gradient
         self.state = STATE.get(kind)          # name of the model's scalar state label, or None
