@@ -33,7 +33,7 @@ BINS = 30                          # angular bins for the ring's local outer rad
 ESCAPED = 0.05                     # gas has escaped: more than this fraction of the initial outside gas
 
 
-def _cells(da):
+def cells(da):
     """Cell-centre radius and angle (2D, one cell deep) and the cell volume."""
     x = da.anchor[0] + (np.arange(da.ncells[0]) + 0.5) * da.dx[0]
     y = da.anchor[1] + (np.arange(da.ncells[1]) + 0.5) * da.dx[1]
@@ -66,7 +66,7 @@ def outer_radius(px, ok, ang):
 
 
 def history(da):
-    r, ang, V = _cells(da)
+    r, ang, V = cells(da)
     out = {k: [] for k in ("t", "step", "mass", "dmass", "he_mass", "failed", "opening", "gas_out",
                            "escaped", "p_gap", "p_out", "gas_new")}
     solid = None

@@ -52,7 +52,7 @@ def test_container_ruptures_at_the_notch_and_vents(tmp_path):
     assert S.escape(h) is not None and S.escape(h) > k
     assert h["p_out"][-1] > 2.0 * h["p_out"][0]
     # gas appears where there was none: cells of solid explosive now hold product gas
-    r, _, _ = S._cells(da)
+    r, _, _ = S.cells(da)
     vf0 = da.read("vol_frac_CC", S.GAS, 1)[0][..., 0]
     vf1 = da.read("vol_frac_CC", S.GAS, -1)[0][..., 0]
     solid = (vf0 < 1e-3) & (r < S.R_HE)
