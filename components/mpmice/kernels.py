@@ -1,6 +1,7 @@
-"""Numba kernels of the MPMICE coupling (paper 000 sec. 3.3, steps 1, 7, 8, 10 and 13):
-the solid's state at cell centres, its pressure force, the exchange's change of its
-velocity and temperature carried back to the nodes, the fluid slivers in solid cells.
+"""Numba kernels of the MPMICE coupling (paper 000 sec. 3.3, steps 1, 7, 8, 10 and 13; step 2
+is equilibration.py): the solid's state at cell centres, its pressure force, its Lagrangian
+values, the exchange's change of its velocity and temperature carried back to the nodes,
+the fluid slivers in solid cells.
 
 Index conventions as in the ICE and MPM kernels: arrays are a patch's stored arrays,
 `cc_low` / `node_low` the global index of their entry [0, 0, 0]. A cell (i, j, k)
@@ -28,55 +29,6 @@ def _node_weight(n, d, dims, sym_lo, sym_hi, n_lo, n_hi):
     if (sym_lo[d] and n == n_lo[d]) or (sym_hi[d] and n == n_hi[d]):
         w = 1.0
     return w
-
-
-@njit(cache=True)
-def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n_lo, n_hi,
-             tiny_mass, rho0, vol, cmass, spv, vel, rho):
-    """Step 1 (interpolateNCToCC_0): solid mass, specific volume, velocity, density per cell.
-
-    cmass = sum_w m_i (+ tiny_mass where no solid), v = (sum_w V_i + tiny/rho0) / cmass,
-    u = sum_w m_i u_i / cmass, rho = cmass / V, with w the node weights of _node_weight.
-    `rho` may be a dummy (size 1) when not wanted, as may `spv`.
-    """
-    want_rho = rho.size > 1
-    want_spv = spv.size > 1
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                gi, gj, gk = i + cc_low[0], j + cc_low[1], k + cc_low[2]
-                m = 0.0
-                v = 0.0
-                p0 = 0.0
-                p1 = 0.0
-                p2 = 0.0
-                for a in range(2 if dims[0] else 1):
-                    wa = _node_weight(gi + a, 0, dims, sym_lo, sym_hi, n_lo, n_hi)
-                    for b in range(2 if dims[1] else 1):
-                        wb = _node_weight(gj + b, 1, dims, sym_lo, sym_hi, n_lo, n_hi)
-                        for c in range(2 if dims[2] else 1):
-                            wc = _node_weight(gk + c, 2, dims, sym_lo, sym_hi, n_lo, n_hi)
-                            x = gi + a - node_low[0] if dims[0] else 0
-                            y = gj + b - node_low[1] if dims[1] else 0
-                            z = gk + c - node_low[2] if dims[2] else 0
-                            w = wa * wb * wc
-                            mw = w * gmass[x, y, z]
-                            m += mw
-                            v += w * gvol[x, y, z]
-                            p0 += mw * gvel[x, y, z, 0]
-                            p1 += mw * gvel[x, y, z, 1]
-                            p2 += mw * gvel[x, y, z, 2]
-                if m < tiny_mass:
-                    v += (tiny_mass - m) / rho0
-                    m = tiny_mass
-                cmass[i, j, k] = m
-                vel[i, j, k, 0] = p0 / m
-                vel[i, j, k, 1] = p1 / m
-                vel[i, j, k, 2] = p2 / m
-                if want_spv:
-                    spv[i, j, k] = v / m
-                if want_rho:
-                    rho[i, j, k] = m / vol
 
 
 @njit(cache=True)
@@ -150,8 +102,17 @@ def _pressure_force(kind, dim, px, pvol, lp, anchor, dx, node_low, press, cc_low
                     own, ppress):
     """Step 7 (mean pressure): p_p = sum S p_i - p_ref and fint_i -= V_p p_p grad S_ip, i.e. the
     solid's stress in the internal force is sigma + (p - p_ref) I (the bulk part the
-    equilibration pressure carries, eq. 33's sigma_r - sigma). Owned p_p go to `ppress`."""
+    equilibration pressure carries, eq. 33's sigma_r - sigma). Owned p_p go to `ppress`.
+    The node pressures are computed once per node of the patch (a particle's nodes outside
+    it, ghost particles', on the fly): the same values as per particle."""
+    if px.shape[0] == 0:
+        return
     sh0, sh1, sh2 = gfint.shape[:3]
+    pn = np.empty((sh0, sh1, sh2))      # interpolatePressCCToPressNC over the patch's nodes
+    for x in range(sh0):
+        for y in range(sh1):
+            for z in range(sh2):
+                pn[x, y, z] = _node_pressure(press, x + node_low[0], y + node_low[1], z + node_low[2], cc_low, dims)
     act = (1 << dim) - 1                 # the leading `dim` axes are active
     na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
@@ -169,8 +130,12 @@ def _pressure_force(kind, dim, px, pvol, lp, anchor, dx, node_low, press, cc_low
                 for c in range(nc):
                     S = wa * wb * _pick(c, wz0, wz1, wz2)
                     if S != 0.0:
-                        pr += S * _node_pressure(press, i + a + node_low[0], j + b + node_low[1],
-                                                 k + c + node_low[2], cc_low, dims)
+                        x, y, z = i + a, j + b, k + c
+                        if 0 <= x < sh0 and 0 <= y < sh1 and 0 <= z < sh2:
+                            pr += S * pn[x, y, z]
+                        else:
+                            pr += S * _node_pressure(press, x + node_low[0], y + node_low[1], z + node_low[2],
+                                                     cc_low, dims)
         pr -= p_ref
         if all_own or own[p]:
             ppress[o] = pr
@@ -221,22 +186,27 @@ def nc_to_cc_scalar(gmass, gq, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n
                     empty, out):
     """Step 1 for a nodal scalar (interpolateNCToCC_0's Temp_CC): out = sum_w m_i q_i / sum_w m_i
     with the weights of nc_to_cc; `empty` where the cell holds less than tiny_mass of solid."""
+    w = node_weights(max(gmass.shape), node_low, dims, sym_lo, sym_hi, n_lo, n_hi)
+    na = 2 if dims[0] else 1
+    nb = 2 if dims[1] else 1
+    nc = 2 if dims[2] else 1
+    ox = cc_low[0] - node_low[0]
+    oy = cc_low[1] - node_low[1]
+    oz = cc_low[2] - node_low[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                gi, gj, gk = i + cc_low[0], j + cc_low[1], k + cc_low[2]
                 m = 0.0
                 s = 0.0
-                for a in range(2 if dims[0] else 1):
-                    wa = _node_weight(gi + a, 0, dims, sym_lo, sym_hi, n_lo, n_hi)
-                    for b in range(2 if dims[1] else 1):
-                        wb = _node_weight(gj + b, 1, dims, sym_lo, sym_hi, n_lo, n_hi)
-                        for c in range(2 if dims[2] else 1):
-                            wc = _node_weight(gk + c, 2, dims, sym_lo, sym_hi, n_lo, n_hi)
-                            x = gi + a - node_low[0] if dims[0] else 0
-                            y = gj + b - node_low[1] if dims[1] else 0
-                            z = gk + c - node_low[2] if dims[2] else 0
-                            mw = wa * wb * wc * gmass[x, y, z]
+                for a in range(na):
+                    x = i + a + ox if na == 2 else 0
+                    wa = w[0, x] if na == 2 else 1.0
+                    for b in range(nb):
+                        y = j + b + oy if nb == 2 else 0
+                        wb = w[1, y] if nb == 2 else 1.0
+                        for c in range(nc):
+                            z = k + c + oz if nc == 2 else 0
+                            mw = wa * wb * (w[2, z] if nc == 2 else 1.0) * gmass[x, y, z]
                             m += mw
                             s += mw * gq[x, y, z]
                 out[i, j, k] = s / m if m >= tiny_mass else empty
@@ -312,3 +282,101 @@ def trace_temperatures(masses, engs, vfs, cvs, role, theta_trace, lo, hi):
                 for m in range(n):
                     if role[m] == 2:
                         engs[m][i, j, k] -= de * (masses[m][i, j, k] * cvs[m] / mc_solid)
+
+
+@njit(cache=True)
+def node_weights(nlen, node_low, dims, sym_lo, sym_hi, n_lo, n_hi):
+    """_node_weight of every stored node index along each direction (rows of length nlen)."""
+    w = np.ones((3, nlen))
+    for d in range(3):
+        for x in range(nlen):
+            w[d, x] = _node_weight(x + node_low[d], d, dims, sym_lo, sym_hi, n_lo, n_hi)
+    return w
+
+
+@njit(cache=True)
+def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n_lo, n_hi,
+             tiny_mass, rho0, vol, cmass, spv, vel, rho):
+    """Step 1 (interpolateNCToCC_0): solid mass, specific volume, velocity, density per cell.
+
+    cmass = sum_w m_i (+ tiny_mass where no solid), v = (sum_w V_i + tiny/rho0) / cmass,
+    u = sum_w m_i u_i / cmass, rho = cmass / V, with w the node weights of _node_weight
+    (looked up from node_weights: no per-node branches in the cell loop).
+    `rho` may be a dummy (size 1) when not wanted, as may `spv`.
+    """
+    w = node_weights(max(gmass.shape), node_low, dims, sym_lo, sym_hi, n_lo, n_hi)
+    want_rho = rho.size > 1
+    want_spv = spv.size > 1
+    na = 2 if dims[0] else 1
+    nb = 2 if dims[1] else 1
+    nc = 2 if dims[2] else 1
+    ox = cc_low[0] - node_low[0]
+    oy = cc_low[1] - node_low[1]
+    oz = cc_low[2] - node_low[2]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                m = 0.0
+                v = 0.0
+                p0 = 0.0
+                p1 = 0.0
+                p2 = 0.0
+                for a in range(na):
+                    x = i + a + ox if na == 2 else 0
+                    wa = w[0, x] if na == 2 else 1.0
+                    for b in range(nb):
+                        y = j + b + oy if nb == 2 else 0
+                        wb = w[1, y] if nb == 2 else 1.0
+                        for c in range(nc):
+                            z = k + c + oz if nc == 2 else 0
+                            wc = w[2, z] if nc == 2 else 1.0
+                            ww = wa * wb * wc
+                            mw = ww * gmass[x, y, z]
+                            m += mw
+                            v += ww * gvol[x, y, z]
+                            p0 += mw * gvel[x, y, z, 0]
+                            p1 += mw * gvel[x, y, z, 1]
+                            p2 += mw * gvel[x, y, z, 2]
+                if m < tiny_mass:
+                    v += (tiny_mass - m) / rho0
+                    m = tiny_mass
+                cmass[i, j, k] = m
+                vel[i, j, k, 0] = p0 / m
+                vel[i, j, k, 1] = p1 / m
+                vel[i, j, k, 2] = p2 / m
+                if want_spv:
+                    spv[i, j, k] = v / m
+                if want_rho:
+                    rho[i, j, k] = m / vol
+
+
+@njit(cache=True)
+def lagrangian_solid(cmass, vstar, temp, vf, px, py, pz, shx, shy, shz, dims, mass_L, mom_L, eng_L, mom_mpm,
+                     olo, ohi, lo, hi, vol, dx, dt, cv):
+    """Steps 8-9 for a solid (computeLagrangianValuesMPM), one pass over the cells:
+    m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p* (eq. 33, ICE's lagrangian
+    term by term), (me)^L = m^L cv T*, and mom_mpm = cMass v* (without the pressure source).
+    m^L is (cMass / V) V, as ICE's lagrangian forms it from rho_CC."""
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                cm = cmass[i, j, k]
+                m = cm / vol * vol
+                mass_L[i, j, k] = m
+                eng_L[i, j, k] = m * cv * temp[i, j, k]
+                for c in range(3):
+                    mom_L[i, j, k, c] = m * vstar[i, j, k, c]
+                    mom_mpm[i, j, k, c] = cm * vstar[i, j, k, c]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                f = -dt * vol * vf[i, j, k]
+                if dims[0]:
+                    mom_L[i, j, k, 0] += f * (px[i - shx[0] + 1, j - shx[1], k - shx[2]]
+                                              - px[i - shx[0], j - shx[1], k - shx[2]]) / dx[0]
+                if dims[1]:
+                    mom_L[i, j, k, 1] += f * (py[i - shy[0], j - shy[1] + 1, k - shy[2]]
+                                              - py[i - shy[0], j - shy[1], k - shy[2]]) / dx[1]
+                if dims[2]:
+                    mom_L[i, j, k, 2] += f * (pz[i - shz[0], j - shz[1], k - shz[2] + 1]
+                                              - pz[i - shz[0], j - shz[1], k - shz[2]]) / dx[2]

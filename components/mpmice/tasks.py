@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from components.ice import kernels as IK
 from components.ice import labels as I
 from components.ice.bc import NEUMANN, SYMMETRY, bc_vector
 from components.ice.tasks import _rho_micro_array
@@ -27,6 +26,7 @@ from framework.geometry import cell_fractions
 from framework.task import NEW, OLD, Task
 from framework.variables import Ghost, VarType
 
+from . import equilibration as E
 from . import kernels as K
 from . import labels as MI
 
@@ -211,8 +211,19 @@ class MPMICETasks:
 
     # -- steps 2-6: ICE's multi-material tasks over all materials ----------------------------------
     def equilibration_pressure(self, patch, matls, old_dw, new_dw):
-        """Eq. 13 over solids and fluids (the solids with the sec. 3.1 threshold EOS)."""
-        self.ice.equilibration_pressure(patch, matls, StartOfStep(old_dw, new_dw, self.mpm_matls), new_dw)
+        """Eq. 13 over solids and fluids (the solids with the sec. 3.1 threshold EOS): ICE's
+        computeEquilibrationPressure with MPMICE's kernel (equilibration.equilibrate, the same values)
+        on arrays seen with the collapsed axes first."""
+        ice, start = self.ice, StartOfStep(old_dw, new_dw, self.mpm_matls)
+        b = ice.boxes(patch)
+        peq = new_dw.allocate(I.press_equil_CC, 0, patch)
+        get = lambda lab: tuple(b.view(start.get(lab, m, patch)) for m in matls)
+        new = lambda lab: tuple(b.view(new_dw.allocate(lab, m, patch)) for m in matls)
+        spv, vfs, css = new(I.sp_vol_CC), new(I.vol_frac_CC), new(I.speedSound_CC)
+        E.equilibrate(get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC), b.view(old_dw.get(I.press_CC, 0, patch)),
+                      spv, vfs, css, b.view(peq), ice.codes, ice.params, ice.cvs, ice.gammas, b.v_olo, b.v_ohi,
+                      1e-11, ice.max_iter)
+        ice.bcs.scalar(patch, peq, "Pressure", 0, b)
 
     def vel_fc(self, patch, matls, old_dw, new_dw):
         """Eq. 28 for every material (the solids' from their step-1 cell-centre state)."""
@@ -267,34 +278,27 @@ class MPMICETasks:
     # -- steps 8-9: the solid's Lagrangian values at the cell centres --------------------------------
     def lagrangian_values_mpm(self, patch, matls, old_dw, new_dw):
         """computeLagrangianValuesMPM: m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p*
-        (eq. 33, ICE's kernel), (me)^L = m cv T* with T* the cell mean of the nodal
-        temperature advanced by this step's conduction, g.temperature + dt g.temperatureRate
-        (Uintah's gTemperatureStar; without a thermal model the solid's T is held)."""
+        (eq. 33), (me)^L = m cv T* with T* the cell mean of the nodal temperature advanced
+        by this step's conduction, g.temperature + dt g.temperatureRate (Uintah's
+        gTemperatureStar; without a thermal model the solid's T is held); kernels.lagrangian_solid."""
         ice = self.ice
         b = ice.boxes(patch)
         dt = old_dw.get_reduction(FL.delT)
         pf = ice._faces(new_dw, I.PRESS_FC, 0, patch)
-        press, delP = new_dw.get(I.press_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch)
         shape = patch.alloc_shape(CC)
+        scratch = ice._scratch("mpmice.cmass", shape)
         for m in matls:
-            cm = new_dw.get(MI.cMass, m, patch)
             vstar = np.zeros(shape + (3,))
             self._nc_to_cc(patch, m, new_dw.get(M.gMass, m, patch), new_dw.get(M.gVolume, m, patch),
-                           new_dw.get(M.gVelocityStar, m, patch), np.empty(shape), _NO1, vstar, _NO1)
+                           new_dw.get(M.gVelocityStar, m, patch), scratch, _NO1, vstar, _NO1)
             self._extra_vector(patch, vstar, m, b)
-            mom_mpm = new_dw.allocate(MI.mom_mpm_CC, m, patch)
-            mom_mpm[...] = cm[..., None] * vstar
-            mass = new_dw.allocate(I.mass_L_CC, m, patch, fill=None)
-            mom = new_dw.allocate(I.mom_L_CC, m, patch, fill=None)
-            eng = new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None)
-            temp = self._temperature_star(patch, m, new_dw, dt)
-            IK.lagrangian(cm / b.vol, vstar, temp, new_dw.get(I.vol_frac_CC, m, patch),
-                          new_dw.get(I.sp_vol_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), press, delP,
-                          pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2], ice.dims, mass, mom, eng,
-                          b.olo, b.ohi, b.lo, b.hi, b.vol, patch.level.dx, dt, ice.cvs[m], ice.gravity,
-                          False, ice.codes[m], ice.params[m], ice.gammas[m])
-            o = _owned(b)                      # IK.lagrangian fills the owned cells only
-            eng[o] = mass[o] * ice.cvs[m] * temp[o]
+            K.lagrangian_solid(new_dw.get(MI.cMass, m, patch), vstar, self._temperature_star(patch, m, new_dw, dt),
+                               new_dw.get(I.vol_frac_CC, m, patch), pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2],
+                               ice.dims, new_dw.allocate(I.mass_L_CC, m, patch, fill=None),
+                               new_dw.allocate(I.mom_L_CC, m, patch, fill=None),
+                               new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None),
+                               new_dw.allocate(MI.mom_mpm_CC, m, patch), b.olo, b.ohi, b.lo, b.hi, b.vol,
+                               patch.level.dx, dt, ice.cvs[m])
 
     def _temperature_star(self, patch, m, new_dw, dt):
         """The solid's cell temperature after this step's conduction (temp_CC without it)."""

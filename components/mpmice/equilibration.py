@@ -1,0 +1,233 @@
+"""Numba kernels of MPMICE's step 2 (paper 000 sec. 3.3, eq. 13): the equilibration pressure
+over solids and fluids, the solids with the sec. 3.1 threshold EOS (ICE's Murnaghan with n = 1,
+setup.py).
+
+equilibrate does ICE's equilibrate_many (components/ice/kernels.py) cell by cell, the same
+operations in the same order, so its results are bitwise the same; it is faster because the
+first Newton iteration runs a row of cells at a time in loops that vectorize, because the
+solids' EOS skips its powers of 1, and because the round-off cycle of a cell full of a stiff
+solid is recognised instead of iterated to max_iter.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from components.ice.eos import (IDEAL_GAS, MURNAGHAN, _dp_dtemp, eos_press_eos, eos_rho_micro, ideal_gas_press_eos,
+                                ideal_gas_rho_micro, murnaghan_press_eos)
+from components.ice.kernels import TINY
+
+
+@njit(cache=True)
+def _press_eos(code, params, m, rho, temp, cv, gamma):
+    """eos_press_eos of material m (row m of params, read in place), with the ideal gas
+    called directly and the solids' Murnaghan n = 1 (setup.py) without its powers of 1
+    and 0 (x ** 1 = x and x ** 0 = 1 exactly): bitwise the same values."""
+    if code == IDEAL_GAS:
+        return ideal_gas_press_eos(rho, temp, cv, gamma)
+    if code == MURNAGHAN and params[m, 1] == 1.0:
+        K, rho0, P0 = params[m, 0], params[m, 2], params[m, 3]
+        if rho >= rho0:
+            return P0 + (1.0 / K) * (rho / rho0 - 1.0), 1.0 / (K * rho0), 0.0
+        return murnaghan_press_eos(rho, K, 1.0, rho0, P0)
+    return eos_press_eos(code, params[m], rho, temp, cv, gamma)
+
+
+@njit(cache=True)
+def _rho_micro(code, params, m, press, temp, cv, gamma, rho_guess):
+    """eos_rho_micro of material m, the ideal gas and Murnaghan n = 1 above P0 directly
+    (bitwise the same)."""
+    if code == IDEAL_GAS:
+        return ideal_gas_rho_micro(press, temp, cv, gamma)
+    if code == MURNAGHAN and params[m, 1] == 1.0 and press >= params[m, 3]:
+        return params[m, 2] * (params[m, 0] * (press - params[m, 3]) + 1.0)
+    return eos_rho_micro(code, params[m], press, temp, cv, gamma, rho_guess)
+
+
+@njit(cache=True, error_model="numpy")
+def _eos_row(code, params, m, rm, t, cv, gamma, pe, dpr):
+    """_press_eos of material m over a row of cells: the ideal gas, and Murnaghan n = 1 at
+    rho >= rho0, in loops that vectorize; the rest (the low branch's powers) per cell."""
+    nk = rm.shape[0]
+    if code == IDEAL_GAS:
+        for c in range(nk):
+            pe[c], dpr[c], _ = ideal_gas_press_eos(rm[c], t[c], cv, gamma)
+    elif code == MURNAGHAN and params[m, 1] == 1.0:
+        K, rho0, P0 = params[m, 0], params[m, 2], params[m, 3]
+        low = 0
+        for c in range(nk):
+            pe[c] = P0 + (1.0 / K) * (rm[c] / rho0 - 1.0)
+            dpr[c] = 1.0 / (K * rho0)
+            low += not rm[c] >= rho0
+        if low:
+            for c in range(nk):
+                if not rm[c] >= rho0:
+                    pe[c], dpr[c], _ = murnaghan_press_eos(rm[c], K, 1.0, rho0, P0)
+    else:
+        for c in range(nk):
+            pe[c], dpr[c], _ = eos_press_eos(code, params[m], rm[c], t[c], cv, gamma)
+
+
+@njit(cache=True, error_model="numpy")
+def _rho_micro_row(code, params, m, p, t, cv, gamma, rm):
+    """_rho_micro of material m over a row of cells (rm: the guess in, the result out)."""
+    nk = rm.shape[0]
+    if code == IDEAL_GAS:
+        for c in range(nk):
+            rm[c] = ideal_gas_rho_micro(p[c], t[c], cv, gamma)
+    elif code == MURNAGHAN and params[m, 1] == 1.0:
+        K, rho0, P0 = params[m, 0], params[m, 2], params[m, 3]
+        low = 0
+        for c in range(nk):
+            hi = p[c] >= P0
+            rm[c] = rho0 * (K * (p[c] - P0) + 1.0) if hi else rm[c]
+            low += not hi
+        if low:
+            for c in range(nk):
+                if not p[c] >= P0:
+                    rm[c] = eos_rho_micro(code, params[m], p[c], t[c], cv, gamma, rm[c])
+    else:
+        for c in range(nk):
+            rm[c] = eos_rho_micro(code, params[m], p[c], t[c], cv, gamma, rm[c])
+
+
+@njit(cache=True, error_model="numpy")
+def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_iter, rm1, rm2):
+    """Iterations 2.. of one cell of equilibrate (its state after iteration 1 in P, RM, PE,
+    DP column c): equilibrate_many's loop, with the round-off cycle taken at once. Returns
+    the iteration count."""
+    n = RM.shape[0]
+    p = P[c]
+    p1 = p
+    p2 = np.nan
+    for m in range(n):
+        rm1[m] = RM[m, c]
+    it = 1
+    while it < max_iter:
+        it += 1
+        A = 0.0
+        B = 0.0
+        C = 0.0
+        for m in range(n):
+            A += R[m, c] / RM[m, c]
+            y = max(DP[m, c], TINY) * RM[m, c] * RM[m, c] / R[m, c]
+            B += (p - PE[m, c]) / y
+            C += 1.0 / y
+        dp = (A - 1.0 - B) / C
+        pn = p + dp
+        if p > 0.0 and pn < 0.1 * p:
+            pn = 0.1 * p            # keep an ideal-gas iterate positive
+        p = pn
+        for m in range(n):
+            RM[m, c] = _rho_micro(codes[m], params, m, p, T[m, c], cvs[m], gammas[m], RM[m, c])
+            PE[m, c], DP[m, c], _ = _press_eos(codes[m], params, m, RM[m, c], T[m, c], cvs[m], gammas[m])
+        if abs(dp) <= tol * abs(p) + 1e-300 and abs(A - 1.0) < 1e-9:
+            break
+        same = p == p2
+        for m in range(n):
+            same = same and RM[m, c] == rm2[m]
+        if same:
+            # the iterate repeats the one two iterations back (a stiff solid's round-off
+            # cycle): it alternates between two states to max_iter; take the one it ends on
+            if (max_iter - it) % 2 == 1:
+                p = p1
+                for m in range(n):
+                    RM[m, c] = rm1[m]
+                    PE[m, c], DP[m, c], _ = _press_eos(codes[m], params, m, RM[m, c], T[m, c], cvs[m], gammas[m])
+            it = max_iter
+            break
+        p2 = p1
+        p1 = p
+        for m in range(n):
+            rm2[m] = rm1[m]
+            rm1[m] = RM[m, c]
+    P[c] = p
+    return it
+
+
+@njit(cache=True, error_model="numpy")
+def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, params, cvs, gammas,
+                lo, hi, tol, max_iter):
+    """Step 2, eq. 13 over solids and fluids by Newton per cell (ICE's equilibrate_many, the
+    same iterates): p with sum_m rho_m / rho_micro_m(p, T_m) = 1, dp = (sum theta - 1 -
+    sum Q_m/y_m) / sum 1/y_m, Q_m = p - p_eos_m, y_m = (dp/drho)_m rho_micro_m^2 / rho_m.
+
+    Arrays are seen with the collapsed axes first (ICE's Boxes.view) and taken a row along
+    the last axis at a time: the first iteration, where almost every cell converges, runs
+    for the whole row in loops over the cells that vectorize (_eos_row, _rho_micro_row);
+    the cells that have not converged go on one at a time (_newton_cell), where an iterate
+    that repeats the one two iterations back (cells full of a stiff solid, where dp never
+    drops below tol p: one ulp of the solid's rho_micro moves p by ~1e-10 p) is known to
+    alternate to max_iter, so the state it ends on is taken at once. The sound speed reuses
+    the last (dp/drho)_T. Every cell does equilibrate_many's operations in its order: bitwise
+    its results. Returns the largest iteration count (max_iter where a cell cycles)."""
+    n = len(rhos)
+    k0 = lo[2]
+    nk = hi[2] - lo[2]
+    R = np.empty((n, nk))
+    T = np.empty((n, nk))
+    RM = np.empty((n, nk))
+    PE = np.empty((n, nk))
+    DP = np.empty((n, nk))
+    P = np.empty(nk)
+    A = np.empty(nk)
+    B = np.empty(nk)
+    C = np.empty(nk)
+    D = np.empty(nk)
+    rm1 = np.empty(n)
+    rm2 = np.empty(n)
+    worst = 0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for m in range(n):
+                r_, t_, v_ = rhos[m][i, j, k0:k0 + nk], temps[m][i, j, k0:k0 + nk], sp_old[m][i, j, k0:k0 + nk]
+                r, t, rm = R[m], T[m], RM[m]
+                for c in range(nk):
+                    r[c] = r_[c]
+                    t[c] = t_[c]
+                    rm[c] = 1.0 / v_[c]
+                _eos_row(codes[m], params, m, RM[m], T[m], cvs[m], gammas[m], PE[m], DP[m])
+            pg = p_guess[i, j, k0:k0 + nk]
+            for c in range(nk):
+                P[c] = pg[c]
+            if max_iter >= 1:
+                for c in range(nk):
+                    A[c] = 0.0
+                    B[c] = 0.0
+                    C[c] = 0.0
+                for m in range(n):
+                    r, rm, pe, dpr = R[m], RM[m], PE[m], DP[m]
+                    for c in range(nk):
+                        A[c] += r[c] / rm[c]
+                        y = max(dpr[c], TINY) * rm[c] * rm[c] / r[c]
+                        B[c] += (P[c] - pe[c]) / y
+                        C[c] += 1.0 / y
+                for c in range(nk):
+                    dp = (A[c] - 1.0 - B[c]) / C[c]
+                    p = P[c]
+                    pn = p + dp
+                    P[c] = 0.1 * p if p > 0.0 and pn < 0.1 * p else pn     # keep an ideal-gas iterate positive
+                    D[c] = dp
+                for m in range(n):
+                    _rho_micro_row(codes[m], params, m, P, T[m], cvs[m], gammas[m], RM[m])
+                    _eos_row(codes[m], params, m, RM[m], T[m], cvs[m], gammas[m], PE[m], DP[m])
+                for c in range(nk):
+                    if abs(D[c]) <= tol * abs(P[c]) + 1e-300 and abs(A[c] - 1.0) < 1e-9:
+                        worst = max(worst, 1)
+                    else:
+                        worst = max(worst, _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol,
+                                                        max_iter, rm1, rm2))
+            out = press[i, j, k0:k0 + nk]
+            for c in range(nk):
+                out[c] = P[c]
+            for m in range(n):
+                v_, f_, s_ = sp_new[m][i, j, k0:k0 + nk], vfs[m][i, j, k0:k0 + nk], css[m][i, j, k0:k0 + nk]
+                r, t, rm, dpr = R[m], T[m], RM[m], DP[m]
+                cv, g, code = cvs[m], gammas[m], codes[m]
+                prm = params[m]
+                for c in range(nk):
+                    v_[c] = 1.0 / rm[c]
+                    f_[c] = r[c] / rm[c]
+                    dpdt = _dp_dtemp(code, prm, rm[c], t[c], cv, g)
+                    s_[c] = np.sqrt(max(dpr[c] + t[c] * dpdt * dpdt / (rm[c] * rm[c] * cv), TINY))
+    return worst

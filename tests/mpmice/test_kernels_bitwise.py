@@ -1,0 +1,123 @@
+"""MPMICE's own kernels give bitwise the values of the general ones they replace:
+kernels.equilibrate against ICE's equilibrate_many (solid Murnaghan n = 1 + ideal gas, cells
+from empty to solid-filled, where the stiff solid's Newton iterate cycles at round-off, and a
+third, JWL material), and kernels.nc_to_cc against a direct sum over the nodes."""
+import numpy as np
+
+from components.ice.eos import IDEAL_GAS, JWL, MAX_PARAMS, MURNAGHAN
+from components.ice.kernels import equilibrate_many
+from components.mpmice.equilibration import equilibrate
+from components.mpmice.kernels import nc_to_cc
+
+
+def _case(nmat, shape, seed):
+    rng = np.random.default_rng(seed)
+    p_ref = 101325.0
+    codes = np.array([MURNAGHAN, IDEAL_GAS, JWL][:nmat], np.int64)
+    params = np.zeros((nmat, MAX_PARAMS))
+    params[0, :4] = (1.0 / 117e9, 1.0, 8900.0, p_ref)
+    if nmat > 2:
+        params[2, :6] = (5.24e11, 7.68e9, 4.2, 1.1, 0.34, 1900.0)
+    cvs = np.array([452.0, 716.0, 1500.0][:nmat])
+    gammas = np.array([1.0, 1.4, 1.0][:nmat])
+    theta = rng.dirichlet(np.ones(nmat), size=shape)
+    theta[..., 0] = np.where(rng.random(shape) < 0.3, 1.0 - 1e-10 * rng.random(shape), theta[..., 0])
+    theta /= theta.sum(-1, keepdims=True)
+    temps = tuple(np.full(shape, 300.0) + 50.0 * rng.random(shape) for _ in range(nmat))
+    rm0 = [8900.0 * (1.0 + 1e-5 * rng.standard_normal(shape)), 1.18 * (1 + 0.1 * rng.random(shape)),
+           1900.0 * (1 + 0.01 * rng.random(shape))][:nmat]
+    rhos = tuple(theta[..., m] * rm0[m] for m in range(nmat))
+    sp_old = tuple(1.0 / (rm0[m] * (1.0 + 1e-6 * rng.standard_normal(shape))) for m in range(nmat))
+    guess = p_ref * (1.0 + 0.05 * rng.standard_normal(shape))
+    return rhos, temps, sp_old, guess, codes, params, cvs, gammas
+
+
+def _run(fn, case, shape):
+    rhos, temps, sp_old, guess, codes, params, cvs, gammas = case
+    out = [tuple(np.zeros(shape) for _ in rhos) for _ in range(3)]
+    press = np.zeros(shape)
+    it = fn(rhos, temps, sp_old, guess, out[0], out[1], out[2], press, codes, params, cvs, gammas,
+            np.array([0, 1, 0], np.int64), np.array(shape, np.int64), 1e-11, 100)
+    return it, press, out
+
+
+def test_equilibrate_is_bitwise_equilibrate_many():
+    for nmat, seed, shape in ((2, 0, (1, 12, 9)), (2, 1, (3, 4, 9)), (3, 2, (1, 12, 9)), (2, 3, (12, 9, 1))):
+        case = _case(nmat, shape, seed)
+        it_a, p_a, out_a = _run(equilibrate_many, case, shape)
+        it_b, p_b, out_b = _run(equilibrate, case, shape)
+        assert it_a == it_b
+        assert np.array_equal(p_a, p_b)
+        for qa, qb in zip(out_a, out_b):
+            for a, b in zip(qa, qb):
+                assert np.array_equal(a, b)
+
+
+# cells of the steel block of scripts/bench/mpmice.py (solid-filled, a gas sliver): rho_solid, rho_gas,
+# T_solid, T_gas, sp_vol_solid, sp_vol_gas, p_guess; their Newton iterates cycle at round-off to max_iter
+CYCLING = [(8899.999577437935, 1.20790077051351e-10, 300.0, 315.0313973716029, 0.0001123595551234107,
+            0.25525066418544223, 153257.19376506627),
+           (8899.999564593787, 1.2078994256028216e-10, 300.0, 315.0421153456528, 0.00011235955509515628,
+            0.2554004033855136, 153146.77698551523),
+           (8899.999861601173, 1.1793090344985002e-12, 300.0, 299.27746769405235, 0.00011235955292647563,
+            0.8549066821105387, 99998.1841601948),
+           (8899.99976766591, 1.6119799582511763e-11, 300.0, 311.63486699033666, 0.0001123595529967104,
+            0.32023656301992665, 138424.74790619206)]
+
+
+def test_equilibrate_cycling_cells():
+    shape = (1, 1, len(CYCLING) + 1)
+    _, _, _, _, codes, params, cvs, gammas = _case(2, shape, 0)
+    c = np.array(CYCLING + [CYCLING[0]]).reshape(shape + (7,))
+    case = ((c[..., 0], c[..., 1]), (c[..., 2], c[..., 3]), (c[..., 4], c[..., 5]), c[..., 6], codes, params,
+            cvs, gammas)
+    for max_iter in (100, 101):            # the cycle ends on either of its two states
+        res = []
+        for fn in (equilibrate_many, equilibrate):
+            rhos, temps, sp_old, guess = case[:4]
+            out = [tuple(np.zeros(shape) for _ in rhos) for _ in range(3)]
+            press = np.zeros(shape)
+            it = fn(rhos, temps, sp_old, guess, out[0], out[1], out[2], press, codes, params, cvs, gammas,
+                    np.zeros(3, np.int64), np.array(shape, np.int64), 1e-11, max_iter)
+            res.append((it, press, out))
+        assert res[0][0] == res[1][0] == max_iter
+        assert np.array_equal(res[0][1], res[1][1])
+        for qa, qb in zip(res[0][2], res[1][2]):
+            for a, b in zip(qa, qb):
+                assert np.array_equal(a, b)
+
+
+def test_nc_to_cc_is_the_weighted_node_sum():
+    rng = np.random.default_rng(3)
+    nn = (7, 6, 1)
+    gm, gv = rng.random(nn) * (rng.random(nn) < 0.7), rng.random(nn)
+    gu = rng.standard_normal(nn + (3,))
+    dims = np.array([1, 1, 0], np.bool_)
+    sym_lo, sym_hi = np.array([1, 0, 0], np.bool_), np.zeros(3, np.bool_)
+    node_low, cc_low = np.array([0, 2, 0], np.int64), np.array([-1, 1, 0], np.int64)
+    n_lo, n_hi = np.array([0, 0, 0], np.int64), np.array([6, 10, 0], np.int64)
+    shape = (8, 7, 1)
+    lo, hi = np.array([1, 1, 0], np.int64), np.array([6, 6, 1], np.int64)
+    cm, spv, rho = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+    vel = np.zeros(shape + (3,))
+    tiny, rho0, vol = 1e-3, 2.0, 0.5
+    nc_to_cc(gm, gv, gu, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n_lo, n_hi, tiny, rho0, vol, cm, spv, vel, rho)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            m = v = 0.0
+            p = np.zeros(3)
+            for a in range(2):
+                x = i + cc_low[0] + a
+                wa = 1.0 if (x == n_lo[0]) else 0.5
+                for b in range(2):
+                    y = j + cc_low[1] + b
+                    w = wa * 0.5
+                    mw = w * gm[x - node_low[0], y - node_low[1], 0]
+                    m += mw
+                    v += w * gv[x - node_low[0], y - node_low[1], 0]
+                    p += mw * gu[x - node_low[0], y - node_low[1], 0]
+            if m < tiny:
+                v += (tiny - m) / rho0
+                m = tiny
+            assert cm[i, j, 0] == m and spv[i, j, 0] == v / m and rho[i, j, 0] == m / vol
+            assert np.array_equal(vel[i, j, 0], p / m)
