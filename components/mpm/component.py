@@ -99,6 +99,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.axes)
         self.p2g = merged_p2g(self.p2g_runs)      # one array per variable (MPMICE)
         self.ng = 1 if self.kind == "linear" else 2
+        self.grid_volume = True           # until schedule_time_advance knows who reads g.volume
         mp = root.child("MaterialProperties", required=True).child("MPM", required=True)
         geom = getattr(root, "_geometry_reader", None)
         if geom is None:
@@ -165,7 +166,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
         t = Task("MPM::interpolateParticlesToGrid", self.interpolate_particles_to_grid, ms)
         for lab in self._p2g_labels():
             t.requires(OLD, lab, g, ng)
-        for lab in (L.gMass, L.gVolume, L.gVelocity, L.gExtForce, L.gIntForce):
+        self.grid_volume = self._grid_volume_needed(sched)
+        for lab in (L.gMass, L.gVelocity, L.gExtForce, L.gIntForce) + ((L.gVolume,) if self.grid_volume else ()):
             t.computes(lab)
         if self.pressure_bcs:
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
@@ -265,6 +267,14 @@ class MPM(ThermalTasks, MPMTasks, Component):
         carry = self.carry + self.carry_thermal
         sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in carry], L.pX,
                                            [final for final, _ in carry], ms, id_label=L.pID)
+
+    def _grid_volume_needed(self, sched):
+        """g.volume costs a sixth of the particle-to-grid scatter: it is computed when a task
+        reads it (<density_from_grid>; MPMICE, a subclass, for the cell volume fractions) or
+        the deck saves it."""
+        return (type(self) is not MPM or "g.volume" in getattr(sched, "output_labels", ())
+                or any(getattr(m.params, "density_from_grid", False) for m in self.materials)
+                or bool(self.pressure_bcs))        # the scatter variant with fext adds V_i too
 
     def _p2g_labels(self):
         labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]

@@ -33,6 +33,7 @@ _NOF = np.zeros((1, 3))            # no p.externalforce
 _NOL = np.zeros((1, 3, 3))         # MUSL: no L_p from the g2p kernel
 _NOG = np.zeros((1, 1, 1, 3))      # USL: no remapped momentum
 _NOV = np.zeros(1)                 # MUSL: F and V come later (grad kernel)
+_NOS = np.zeros((1, 1, 1))         # no g.volume (component._grid_volume_needed)
 
 
 def _split(dw, label, m, patch):
@@ -132,7 +133,7 @@ class MPMTasks:
 
     # -- particles -> grid ------------------------------------------------------------------
     def interpolate_particles_to_grid(self, patch, matls, old_dw, new_dw):
-        """m_i, v_i, V_i, fext_i (000 eq. 22) and fint_i (000 eq. 24) per material,
+        """m_i, v_i, V_i (where needed), fext_i (000 eq. 22) and fint_i (000 eq. 24) per material,
         scattered straight into the warehouse's node arrays (transfer.py) from the owned
         and ghost particles' own arrays (no merged copy)."""
         lv = self.level
@@ -145,9 +146,9 @@ class MPMTasks:
                           for a in (own, ghost)]
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
             gv = new_dw.allocate(L.gVelocity, m, patch, 0.0)     # momentum, then velocity
-            self.p2g_runs(own, ghost, runs, has_f, lv.anchor, lv.dx, low, gm, gv,
-                          new_dw.allocate(L.gVolume, m, patch, 0.0), new_dw.allocate(L.gExtForce, m, patch, 0.0),
-                          new_dw.allocate(L.gIntForce, m, patch, 0.0))
+            gvol = new_dw.allocate(L.gVolume, m, patch, 0.0) if self.grid_volume else _NOS
+            self.p2g_runs(own, ghost, runs, has_f, self.grid_volume, lv.anchor, lv.dx, low, gm, gv, gvol,
+                          new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0))
             kernels.divide_by_mass(gm, gv, gv)
 
     def _parts(self, old_dw, m, patch, labels):
@@ -331,18 +332,24 @@ class MPMTasks:
                            np.array(self.dims), own)
         return own
 
-    def _velocity_gradient(self, patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new):
+    def _velocity_gradient(self, patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new, stress=None):
         """MUSL: L_p = sum v^L_i (x) grad S_i(x_p) (004 eqs. 13-14) for the owned particles,
-        and F, V from it in the same pass; returns L_p (a stand-in if the model needs F only)."""
+        and F, V from it in the same pass; returns L_p (a stand-in if the model needs F only)
+        and the wave speed. stress = (velocity, stress out, energy out): a model in
+        transfer.FUSED computes them in that pass too (the wave speed is zero otherwise)."""
         lv = self.level
         mat = self.materials[m]
         px = old_dw.get(L.pX, m, patch)
         n = len(px)
         Lg = np.empty((n, 3, 3)) if mat.uses_L else _NOL
-        self.grad(px, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
-                  np.array(patch.low_index(NC), np.int64), new_dw.get(L.gVelocityL, m, patch), Lg,
-                  mat.uses_L, dt, pm, mat.density, F_old, F_new, vol_new)
-        return Lg
+        if stress is None:
+            model, K, mu, stress = 0, 0.0, 0.0, (_NOF, _NOL, _NOV)
+        else:
+            model, K, mu = transfer.FUSED[mat.model_name], mat.params.bulk_modulus, mat.params.shear_modulus
+        ws = self.grad(px, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
+                       np.array(patch.low_index(NC), np.int64), new_dw.get(L.gVelocityL, m, patch), Lg,
+                       mat.uses_L, dt, pm, mat.density, F_old, F_new, vol_new, model, K, mu, *stress)
+        return Lg, np.array(ws)
 
     def membrane_tangents(self, patch, matls, old_dw, new_dw):
         """004 sec. 3.2: the unit tangent of each owned membrane point from its neighbours
@@ -389,7 +396,7 @@ class MPMTasks:
                 pm = old_dw.get(L.pMass, m, patch)
                 n = len(pm)
                 Lg = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, old_dw.get(L.pF, m, patch),
-                                             np.empty((n, 3, 3)), np.empty(n))
+                                             np.empty((n, 3, 3)), np.empty(n))[0]
             else:
                 Lg = new_dw.get(L.pVelGrad, m, patch)
             out[2 * m], out[2 * m + 1] = av_scale(self.materials[m].params.gamma, Lg,
@@ -407,10 +414,15 @@ class MPMTasks:
             pm = old_dw.get(L.pMass, m, patch)
             F_old = old_dw.get(L.pF, m, patch)
             n = len(F_old)
+            s_new = new_dw.allocate(L.pStressPre, m, patch, None)
+            energy = np.empty(n)
+            fused = self.musl and mat.model_name in transfer.FUSED      # stress in the grad pass
             if self.musl:
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
-                Lg = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new)
+                Lg, w = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new,
+                                                (new_dw.get(L.pVelocityPre, m, patch), s_new, energy) if fused
+                                                else None)
             else:                                   # F and V were computed with L_p by g2p
                 Lg = new_dw.get(L.pVelGrad, m, patch)
                 F_new = new_dw.get(L.pFPre, m, patch)
@@ -422,8 +434,6 @@ class MPMTasks:
                 mat.model.grid_volumes(old_dw.get(L.pX, m, patch), lv.anchor, lv.dx, np.array(lv.ncells),
                                        np.array(lv.periodic), np.array(patch.low_index(NC), np.int64),
                                        new_dw.get(L.gMass, m, patch), gvol[m], sum(gvol.values()), pm, vol_new)
-            s_new = new_dw.allocate(L.pStressPre, m, patch, None)
-            energy = np.empty(n)
             old = new = None
             for final, pre in self.carry:
                 if final.name in L.STATE:
@@ -449,10 +459,13 @@ class MPMTasks:
             if m in getattr(self, "av_matls", ()) and getattr(self, "_av_level_wide", False):
                 sc = new_dw.get_reduction(L.AVScale)
                 scale = (float(sc[2 * m]), float(sc[2 * m + 1]))
-            ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
-                                                   new_dw.get(L.pVelocityPre, m, patch), dt,
-                                                   old_dw.get(L.pStress, m, patch), s_new, energy, old, new,
-                                                   scale))
+            if fused:
+                ws = np.maximum(ws, w)
+            else:
+                ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
+                                                       new_dw.get(L.pVelocityPre, m, patch), dt,
+                                                       old_dw.get(L.pStress, m, patch), s_new, energy, old,
+                                                       new, scale))
             if any(f is L.pStrainEnergy for f, _ in self.carry):
                 if mat.increment_energy:
                     energy = old_dw.get(L.pStrainEnergy, m, patch) + energy

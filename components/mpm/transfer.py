@@ -4,7 +4,7 @@ Each kernel evaluates a particle's shape weights once, as scalars per axis (base
 three weights, three gradients: LLVM keeps them in registers; no scratch arrays that
 could alias the node arrays), and does all the work that particle needs at its nodes:
 
-  p2g        m_i, (mv)_i, V_i, fext_i (000 eq. 22), fint_i = -sum V sigma.grad S (eq. 24),
+  p2g        m_i, (mv)_i, V_i (where a task reads it), fext_i (000 eq. 22), fint_i = -sum V sigma.grad S (eq. 24),
              straight into the warehouse's node arrays (owned + halo nodes); shares of
              ghost particles that fall beyond the halo are dropped (no scratch array,
              no copy).
@@ -12,7 +12,8 @@ could alias the node arrays), and does all the work that particle needs at its n
              the updated momentum m_p v_p S scattered back in the same pass (004 eq. 13);
              owned particles are written compacted, with the totals and the
              minimum_particle_mass / maximum_particle_velocity deletion in the same loop.
-  grad       L_p = sum v_i (x) grad S_i(x_p) (004 eq. 14), MUSL's stress-update gradient.
+  grad       L_p = sum v_i (x) grad S_i(x_p) (004 eq. 14), MUSL's stress-update gradient, F, V
+             and, for the models in FUSED (comp_neo_hook), the stress in the same loop.
 
 Node sums are added particle by particle in particle-ID order, so 1 patch and many
 patches agree bitwise. p2g and g2p read the owned and the ghost particles from their own
@@ -29,9 +30,15 @@ import functools
 import numpy as np
 from numba import njit
 
+from .constitutive import comp_neo_hook
 from .shape import GIMP, LINEAR, _counts, _inv_dx, _sel, _stencil
 
 FM = {'contract'}
+
+# constitutive models whose stress the grad pass computes with F, in the same loop
+# (`model` of the grad kernels; 0: F and V only, the model runs afterwards)
+NEO_HOOKE = 1
+FUSED = {"comp_neo_hook": NEO_HOOKE}
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -87,10 +94,10 @@ def _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _p2g(kind, act, own, ghost, runs, has_f, anchor, dx, node_low, gmass, gmom, gvol, gfext, gfint):
-    """Accumulate (+=) m, mv, V, fext, fint of the particles on the node arrays: the owned
-    and ghost sources (x, m, v, V, sigma, fext, lp), run by run in their merged ID order
-    (particle_kernels.runs), so every node adds its shares in particle-ID order."""
+def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass, gmom, gvol, gfext, gfint):
+    """Accumulate (+=) m, mv, V (if has_v), fext (if has_f), fint of the particles on the node
+    arrays: the owned and ghost sources (x, m, v, V, sigma, fext, lp), run by run in their
+    merged ID order (particle_kernels.runs), so every node adds its shares in particle-ID order."""
     sh0, sh1, sh2 = gmass.shape
     na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
@@ -138,7 +145,8 @@ def _p2g(kind, act, own, ghost, runs, has_f, anchor, dx, node_low, gmass, gmom, 
                         f = np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
                         f3 = np.uint64(3) * f
                         fm[f] += m * S
-                        fv[f] += V * S
+                        if has_v:
+                            fv[f] += V * S
                         fp[f3] += mv0 * S
                         fp[f3 + np.uint64(1)] += mv1 * S
                         fp[f3 + np.uint64(2)] += mv2 * S
@@ -295,13 +303,17 @@ def _g2p(kind, act, musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt,
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _grad(kind, act, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old,
-          F_out, vol_out):
-    """L_p = sum_i v_i (x) grad S_i(x_p) (stored if write_L), then F and V (_deform)."""
+def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old,
+          F_out, vol_out, K, mu, vel, s_out, e_out):
+    """L_p = sum_i v_i (x) grad S_i(x_p) (stored if write_L), then F and V (_deform); with
+    model = NEO_HOOKE also the stress (s_out), energy (e_out) and the wave speed, returned
+    as (w0, w1, w2) (comp_neo_hook.point: the numbers of comp_neo_hook.kernel)."""
     sh0, sh1, sh2 = gvel.shape[:3]
     na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fv = gvel.reshape(-1)
+    cK = K + 4.0 * mu / 3.0
+    w0 = w1 = w2 = 0.0
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
          wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
@@ -339,81 +351,106 @@ def _grad(kind, act, px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pma
         if write_L:
             _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         _deform(p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
+        if model == NEO_HOOKE:
+            e_out[p], cs = comp_neo_hook.point(K, mu, cK, F_out[p, 0, 0], F_out[p, 0, 1], F_out[p, 0, 2],
+                                               F_out[p, 1, 0], F_out[p, 1, 1], F_out[p, 1, 2], F_out[p, 2, 0],
+                                               F_out[p, 2, 1], F_out[p, 2, 2], vol_out[p], pmass[p], p, s_out)
+            w0 = max(w0, cs + abs(vel[p, 0]))
+            w1 = max(w1, cs + abs(vel[p, 1]))
+            w2 = max(w2, cs + abs(vel[p, 2]))
+    return w0, w1, w2
 
 
-# ---- specialised entry points: (kind, act) compile-time constants for act = 1, 3, 7 (has_f
-# branched once per call, so each variant is compiled with it constant); the *_la / *_ga
-# variants take the active-axis mask first, at run time ---------------------------------------
-# p2g(own, ghost, runs, has_f, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
-#     own/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles
+# ---- specialised entry points: (kind, act) compile-time constants for act = 1, 3, 7 (has_f,
+# has_v branched once per call, so each variant is compiled with them constant; has_f implies
+# has_v); the *_la / *_ga variants take the active-axis mask first, at run time --------------
+# p2g(own, ghost, runs, has_f, has_v, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
+#     own/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles; has_v: V_i
 # g2p(musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out,
 #     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0) -> number deleted
 #     own/ghost: (px, pv, pm, lp)
-# grad(px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old, F_out, vol_out)
+# grad(px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old, F_out, vol_out,
+#      model, K, mu, vel, s_out, e_out) -> wave speed (3 floats; zeros unless model)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_l1(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_l1(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(LINEAR, 1, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, 1, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(LINEAR, 1, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(LINEAR, 1, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, 1, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_l2(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_l2(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(LINEAR, 3, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, 3, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(LINEAR, 3, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(LINEAR, 3, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, 3, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_l3(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_l3(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(LINEAR, 7, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, 7, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(LINEAR, 7, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(LINEAR, 7, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, 7, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_g1(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_g1(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(GIMP, 1, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, 1, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(GIMP, 1, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(GIMP, 1, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, 1, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_g2(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_g2(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(GIMP, 3, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, 3, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(GIMP, 3, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(GIMP, 3, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, 3, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_g3(o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_g3(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(GIMP, 7, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, 7, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(GIMP, 7, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(GIMP, 7, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, 7, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_la(act, o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_la(act, o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(LINEAR, act, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, act, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(LINEAR, act, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(LINEAR, act, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(LINEAR, act, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_ga(act, o, g, r, hf, an, dx, lo, gm, gp, gV, ge, gi):
+def p2g_ga(act, o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
     if hf:
-        _p2g(GIMP, act, o, g, r, True, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, act, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
+    elif hv:
+        _p2g(GIMP, act, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
     else:
-        _p2g(GIMP, act, o, g, r, False, an, dx, lo, gm, gp, gV, ge, gi)
+        _p2g(GIMP, act, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
 
 
 @njit(cache=True, fastmath=FM)
@@ -457,43 +494,59 @@ def g2p_ga(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, m
 
 
 @njit(cache=True, fastmath=FM)
-def grad_l1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(LINEAR, 1, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_l1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(LINEAR, 1, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(LINEAR, 1, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_l2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(LINEAR, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_l2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(LINEAR, 3, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(LINEAR, 3, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_l3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(LINEAR, 7, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_l3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(LINEAR, 7, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(LINEAR, 7, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_g1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(GIMP, 1, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_g1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(GIMP, 1, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(GIMP, 1, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_g2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(GIMP, 3, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_g2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(GIMP, 3, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(GIMP, 3, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_g3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(GIMP, 7, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_g3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(GIMP, 7, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(GIMP, 7, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_la(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(LINEAR, act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_la(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(LINEAR, act, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(LINEAR, act, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 @njit(cache=True, fastmath=FM)
-def grad_ga(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn):
-    _grad(GIMP, act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn)
+def grad_ga(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
+    if md == NEO_HOOKE:
+        return _grad(GIMP, act, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
+    return _grad(GIMP, act, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
 
 
 KERNELS = {
@@ -521,7 +574,7 @@ def merged_p2g(p2g):
     f(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)."""
     def f(px, pm, pv, pvol, ps, pf, has_f, lp, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi):
         part = (px, pm, pv, pvol, ps, pf, lp)
-        p2g(part, part, one_run(len(px)), has_f, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
+        p2g(part, part, one_run(len(px)), has_f, True, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
     return f
 
 

@@ -130,6 +130,25 @@ def gather_merged(owned, ghost, order, out):
 
 
 @njit(cache=True)
+def gather_runs(owned, ghost, runs, out):
+    """out = the row ranges `runs` (source 0: owned, 1: ghost; first, end) one after another:
+    gather_merged for an order given as its runs (contiguous block copies, no per-row lookup;
+    unsigned offsets, so the copy loops carry no negative-index handling)."""
+    k = owned.shape[1]
+    fo = owned.reshape(-1)
+    fg = ghost.reshape(-1)
+    fout = out.reshape(-1)
+    o = np.uint64(0)
+    for r in range(runs.shape[0]):
+        a = np.uint64(runs[r, 1] * k)
+        b = np.uint64(runs[r, 2] * k)
+        src = fo if runs[r, 0] == 0 else fg
+        for c in range(b - a):
+            fout[o + np.uint64(c)] = src[a + np.uint64(c)]
+        o += b - a
+
+
+@njit(cache=True)
 def runs(order, n_own):
     """(source, first, end) rows of the runs of `order` that read one source consecutively:
     source 0 = owned rows [first, end), 1 = ghost rows (order over owned + ghost)."""

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..task import NEW, Task
-from .particle_kernels import complement, gather_merged, leavers
+from .particle_kernels import complement, gather_runs, leavers, runs
 
 
 @dataclass
@@ -120,17 +120,18 @@ def _assemble(spec, dw, m, p, pre, final, n_src, keep, came):
     if spec.id_label is not None and came:
         lp = pre[[lf.name for lf in final].index(spec.id_label.name)]
         ids = _gather(dw.get(lp, m, p) if n_src else arrived[spec.id_label.name][:0], arrived[spec.id_label.name],
-                      index)
+                      runs(index, n_src), len(index))
         index = index[np.argsort(ids, kind="stable")]
     dw.create_particles(m, p, len(index))
+    r = runs(index, n_src)          # long blocks of staying particles, the arrivals between them
     for lp, lf in zip(pre, final):
         src = dw.get(lp, m, p) if n_src else arrived[lf.name][:0]
-        dw.put(lf, m, p, _gather(src, arrived[lf.name], index))
+        dw.put(lf, m, p, _gather(src, arrived[lf.name], r, len(index)))
 
 
-def _gather(src, arrived, index):
-    """out[i] = (src + arrived)[index[i]] without forming the concatenation."""
-    n = len(index)
+def _gather(src, arrived, r, n):
+    """The n rows of (src + arrived) that the runs r name, in order, without forming the
+    concatenation."""
     out = np.empty((n,) + src.shape[1:], dtype=src.dtype)
-    gather_merged(_rows(src), _rows(arrived.astype(src.dtype, copy=False)), index, _rows(out))
+    gather_runs(_rows(src), _rows(arrived.astype(src.dtype, copy=False)), r, _rows(out))
     return out

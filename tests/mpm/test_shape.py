@@ -99,7 +99,7 @@ def _p2g(kind, act, parts, order_runs, shape, anchor, dx, lo):
     p2g = kernels(kind, act)[0]
     g = [np.zeros(shape), np.zeros(shape + (3,)), np.zeros(shape), np.zeros(shape + (3,)), np.zeros(shape + (3,))]
     own, ghost = parts
-    p2g(own, ghost, order_runs, True, anchor, dx, lo, *g)
+    p2g(own, ghost, order_runs, True, True, anchor, dx, lo, *g)
     return g
 
 

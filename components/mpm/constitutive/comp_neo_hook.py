@@ -28,40 +28,46 @@ class Params:
         return cls(_get(d, "bulk_modulus"), _get(d, "shear_modulus"))
 
 
+@njit(cache=True, fastmath={'contract'}, inline="always")
+def point(K, mu, cK, F00, F01, F02, F10, F11, F12, F20, F21, F22, vol, mass, p, stress_new):
+    """The stress of one particle from its F (written to stress_new[p]); returns its strain
+    energy W V/J and wave speed c. Scalar locals only (no scratch arrays that could alias
+    the outputs). The transfer kernels call it in the pass that computes F (transfer.py)."""
+    J = (F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20)
+         + F02 * (F10 * F21 - F11 * F20))
+    b00 = F00 * F00 + F01 * F01 + F02 * F02
+    b11 = F10 * F10 + F11 * F11 + F12 * F12
+    b22 = F20 * F20 + F21 * F21 + F22 * F22
+    b01 = F00 * F10 + F01 * F11 + F02 * F12
+    b02 = F00 * F20 + F01 * F21 + F02 * F22
+    b12 = F10 * F20 + F11 * F21 + F12 * F22
+    lnJ = np.log(J)
+    Jm23 = np.exp(-2.0 / 3.0 * lnJ)         # J^(-2/3), from the log the energy needs anyway
+    trbb = Jm23 * (b00 + b11 + b22)
+    iJ = 1.0 / J
+    pr = 0.5 * K * (J - iJ)
+    c = mu * iJ * Jm23
+    d = pr - mu * iJ * trbb / 3.0
+    stress_new[p, 0, 0] = c * b00 + d
+    stress_new[p, 1, 1] = c * b11 + d
+    stress_new[p, 2, 2] = c * b22 + d
+    stress_new[p, 0, 1] = stress_new[p, 1, 0] = c * b01
+    stress_new[p, 0, 2] = stress_new[p, 2, 0] = c * b02
+    stress_new[p, 1, 2] = stress_new[p, 2, 1] = c * b12
+    U = 0.5 * K * (0.5 * (J * J - 1.0) - lnJ)
+    W = 0.5 * mu * (trbb - 3.0)
+    return (U + W) * vol * iJ, np.sqrt(cK * vol / mass)
+
+
 @njit(cache=True, fastmath={'contract'})
 def kernel(K, mu, F_new, vol, mass, vel, stress_new, energy):
-    """Scalar locals only (no scratch arrays that could alias the outputs)."""
+    """Every particle's stress, energy and the wave speed (3,)."""
     w0 = w1 = w2 = 0.0
     cK = K + 4.0 * mu / 3.0
     for p in range(F_new.shape[0]):
-        F00, F01, F02 = F_new[p, 0, 0], F_new[p, 0, 1], F_new[p, 0, 2]
-        F10, F11, F12 = F_new[p, 1, 0], F_new[p, 1, 1], F_new[p, 1, 2]
-        F20, F21, F22 = F_new[p, 2, 0], F_new[p, 2, 1], F_new[p, 2, 2]
-        J = (F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20)
-             + F02 * (F10 * F21 - F11 * F20))
-        b00 = F00 * F00 + F01 * F01 + F02 * F02
-        b11 = F10 * F10 + F11 * F11 + F12 * F12
-        b22 = F20 * F20 + F21 * F21 + F22 * F22
-        b01 = F00 * F10 + F01 * F11 + F02 * F12
-        b02 = F00 * F20 + F01 * F21 + F02 * F22
-        b12 = F10 * F20 + F11 * F21 + F12 * F22
-        lnJ = np.log(J)
-        Jm23 = np.exp(-2.0 / 3.0 * lnJ)         # J^(-2/3), from the log the energy needs anyway
-        trbb = Jm23 * (b00 + b11 + b22)
-        iJ = 1.0 / J
-        pr = 0.5 * K * (J - iJ)
-        c = mu * iJ * Jm23
-        d = pr - mu * iJ * trbb / 3.0
-        stress_new[p, 0, 0] = c * b00 + d
-        stress_new[p, 1, 1] = c * b11 + d
-        stress_new[p, 2, 2] = c * b22 + d
-        stress_new[p, 0, 1] = stress_new[p, 1, 0] = c * b01
-        stress_new[p, 0, 2] = stress_new[p, 2, 0] = c * b02
-        stress_new[p, 1, 2] = stress_new[p, 2, 1] = c * b12
-        U = 0.5 * K * (0.5 * (J * J - 1.0) - lnJ)
-        W = 0.5 * mu * (trbb - 3.0)
-        energy[p] = (U + W) * vol[p] * iJ
-        cs = np.sqrt(cK * vol[p] / mass[p])
+        energy[p], cs = point(K, mu, cK, F_new[p, 0, 0], F_new[p, 0, 1], F_new[p, 0, 2], F_new[p, 1, 0],
+                              F_new[p, 1, 1], F_new[p, 1, 2], F_new[p, 2, 0], F_new[p, 2, 1], F_new[p, 2, 2],
+                              vol[p], mass[p], p, stress_new)
         w0 = max(w0, cs + abs(vel[p, 0]))
         w1 = max(w1, cs + abs(vel[p, 1]))
         w2 = max(w2, cs + abs(vel[p, 2]))
