@@ -23,13 +23,21 @@ def run_deck(text, tmp_path, name="run", **kw):
 
 
 def pysus(*args, np_=1, env=None, timeout=300, cwd=None):
-    """Run the pysus command (under mpiexec when np_ > 1); returns CompletedProcess."""
+    """Run the pysus command (under mpiexec when np_ > 1) in the test's directory; returns
+    CompletedProcess."""
     cmd = [str(BIN / "pysus"), *map(str, args), "-q"]
     if np_ > 1:
         cmd = [str(BIN / "mpiexec"), "-n", str(np_)] + cmd
     e = dict(os.environ)
     e.update(env or {})
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=cwd or ROOT, env=e)
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=cwd or os.getcwd(), env=e)
+
+
+@pytest.fixture(autouse=True)
+def _run_in_tmp(tmp_path, monkeypatch):
+    """Every test runs in its own directory: a deck's relative filebase never writes into the
+    repository, and tests running side by side never share an output directory."""
+    monkeypatch.chdir(tmp_path)
 
 
 @pytest.fixture
