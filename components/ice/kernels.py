@@ -46,67 +46,11 @@ def equilibrate_one(rho, temp, sp_vol, press, vol_frac, cs, code, params, cv, ga
                 f_[k] = 1.0
                 c_[k] = np.sqrt(max(eos_sound_speed2(code, params, r[k], t[k], cv, gamma), TINY))
 
-@njit(cache=True)
-def equilibrate_many(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, params, cvs, gammas,
-                     lo, hi, tol, max_iter):
-    """Eq. 13 by Newton per cell: find p with sum_m rho_m / rho_micro_m(p, T_m) = 1.
-
-    Linearising theta_m(p) = rho_m/rho_micro_m about the current iterate gives
-    dp = (sum theta - 1 - sum Q_m/y_m) / sum 1/y_m, Q_m = p - p_eos_m,
-    y_m = (dp/drho)_m rho_micro_m^2 / rho_m. Returns the largest iteration count.
-    """
-    n = len(rhos)
-    rm = np.empty(n)
-    pe = np.empty(n)
-    dpr = np.empty(n)
-    dpe = np.empty(n)
-    worst = 0
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                p = p_guess[i, j, k]
-                for m in range(n):
-                    rm[m] = 1.0 / sp_old[m][i, j, k]
-                    pe[m], dpr[m], dpe[m] = eos_press_eos(codes[m], params[m], rm[m], temps[m][i, j, k],
-                                                          cvs[m], gammas[m])
-                it = 0
-                while it < max_iter:
-                    it += 1
-                    A = 0.0
-                    B = 0.0
-                    C = 0.0
-                    for m in range(n):
-                        th = rhos[m][i, j, k] / rm[m]
-                        A += th
-                        y = max(dpr[m], TINY) * rm[m] * rm[m] / rhos[m][i, j, k]
-                        B += (p - pe[m]) / y
-                        C += 1.0 / y
-                    dp = (A - 1.0 - B) / C
-                    pn = p + dp
-                    if p > 0.0 and pn < 0.1 * p:
-                        pn = 0.1 * p            # keep an ideal-gas iterate positive
-                    p = pn
-                    for m in range(n):
-                        rm[m] = eos_rho_micro(codes[m], params[m], p, temps[m][i, j, k], cvs[m], gammas[m], rm[m])
-                        pe[m], dpr[m], dpe[m] = eos_press_eos(codes[m], params[m], rm[m], temps[m][i, j, k],
-                                                              cvs[m], gammas[m])
-                    if abs(dp) <= tol * abs(p) + 1e-300 and abs(A - 1.0) < 1e-9:
-                        break
-                worst = max(worst, it)
-                press[i, j, k] = p
-                for m in range(n):
-                    sp_new[m][i, j, k] = 1.0 / rm[m]
-                    vfs[m][i, j, k] = rhos[m][i, j, k] / rm[m]
-                    css[m][i, j, k] = np.sqrt(max(eos_sound_speed2(codes[m], params[m], rm[m], temps[m][i, j, k],
-                                                                   cvs[m], gammas[m]), TINY))
-    return worst
-
-
 @njit(cache=True, error_model="numpy")
 def equilibrate_ideal(rhos, temps, sp_new, vfs, css, press, cvs, gammas, lo, hi):
     """Eq. 13 for ideal gases, solved exactly: theta_m = rho_m (gamma_m - 1) cv_m T_m / p, so
     sum theta = 1 gives p = sum rho_m (gamma_m - 1) cv_m T_m; then rho_micro_m, theta_m, c_m.
-    (equilibrate_many's Newton iteration converges to the same p within its tolerance.)"""
+    (equilibration.equilibrate's Newton iteration converges to the same p within its tolerance.)"""
     n = len(rhos)
     nk = hi[2] - lo[2]
     k0 = lo[2]

@@ -14,6 +14,7 @@ from framework.geometry import cell_fractions
 from framework.variables import VarType
 
 from . import advection as A
+from . import equilibration as E
 from . import kernels as K
 from . import labels as I
 
@@ -176,9 +177,11 @@ class IceTasks:
                                     tuple(v(a) for a in spv), tuple(v(a) for a in vfs), tuple(v(a) for a in css),
                                     v(peq), self.cvs, self.gammas, b.v_olo, b.v_ohi)
             else:
-                K.equilibrate_many(get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC), old_dw.get(I.press_CC, 0, patch),
-                                   spv, vfs, css, peq, self.codes, self.params, self.cvs, self.gammas,
-                                   b.olo, b.ohi, 1e-11, self.max_iter)
+                v = b.view
+                E.equilibrate(tuple(v(a) for a in get(I.rho_CC)), tuple(v(a) for a in get(I.temp_CC)),
+                              tuple(v(a) for a in get(I.sp_vol_CC)), v(old_dw.get(I.press_CC, 0, patch)),
+                              tuple(v(a) for a in spv), tuple(v(a) for a in vfs), tuple(v(a) for a in css), v(peq),
+                              self.codes, self.params, self.cvs, self.gammas, b.v_olo, b.v_ohi, 1e-11, self.max_iter)
         self.bcs.scalar(patch, peq, "Pressure", 0, b)
 
     # -- step 3: face velocities (eq. 28) and their exchange --------------------------------------

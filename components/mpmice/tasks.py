@@ -26,7 +26,7 @@ from framework.geometry import cell_fractions
 from framework.task import NEW, OLD, Task
 from framework.variables import Ghost, VarType
 
-from . import equilibration as E
+from components.ice import equilibration as E
 from . import kernels as K
 from . import labels as MI
 

@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 from components.ice import kernels as K
+from components.ice.equilibration import equilibrate
 from components.ice.eos import IDEAL_GAS, MAX_PARAMS, STIFFENED_GAS
 
 LO, HI = np.zeros(3, np.int64), np.ones(3, np.int64)
@@ -23,8 +24,8 @@ def test_equilibration_two_materials():
     sp_old = (cell(1 / 1.2), cell(1 / 1000.0))
     out = [tuple(cell(0) for _ in range(2)) for _ in range(3)]
     press = cell(0)
-    it = K.equilibrate_many(rhos, temps, sp_old, cell(1e5), out[0], out[1], out[2], press, codes, params,
-                            cvs, gammas, LO, HI, 1e-12, 100)
+    it = equilibrate(rhos, temps, sp_old, cell(1e5), out[0], out[1], out[2], press, codes, params,
+                     cvs, gammas, LO, HI, 1e-12, 100)
     p = press[0, 0, 0]
     theta = [r[0, 0, 0] * v[0, 0, 0] for r, v in zip(rhos, out[0])]
     assert sum(theta) == pytest.approx(1.0, abs=1e-10) and it < 50
@@ -60,7 +61,7 @@ def test_exchange_conserves_and_is_stable(Kc):
 
 def test_ideal_gas_equilibration_closed_form_matches_newton():
     """Three ideal gases in 64 random cells: equilibrate_ideal (p = sum rho (gamma-1) cv T, exact)
-    and the Newton iteration of equilibrate_many give the same p, theta, v, c within the
+    and the Newton iteration of equilibration.equilibrate give the same p, theta, v, c within the
     Newton tolerance; the closed form's sum of theta is 1 to round-off."""
     rng = np.random.default_rng(7)
     n, shape = 3, (4, 4, 4)
@@ -75,9 +76,9 @@ def test_ideal_gas_equilibration_closed_form_matches_newton():
         if name == "ideal":
             K.equilibrate_ideal(rhos, temps, sp, vf, cs, p, cvs, gammas, lo, hi)
         else:
-            K.equilibrate_many(rhos, temps, tuple(np.full(shape, 1.0) for _ in range(n)), np.full(shape, 1e5),
-                               sp, vf, cs, p, np.full(n, IDEAL_GAS), np.zeros((n, MAX_PARAMS)), cvs, gammas,
-                               lo, hi, 1e-13, 100)
+            equilibrate(rhos, temps, tuple(np.full(shape, 1.0) for _ in range(n)), np.full(shape, 1e5),
+                        sp, vf, cs, p, np.full(n, IDEAL_GAS), np.zeros((n, MAX_PARAMS)), cvs, gammas,
+                        lo, hi, 1e-13, 100)
         outs[name] = (p, sp, vf, cs)
     exact = sum(r * (g - 1) * c * t for r, t, g, c in zip(rhos, temps, gammas, cvs))
     np.testing.assert_allclose(outs["ideal"][0], exact, rtol=1e-15)

@@ -1,12 +1,11 @@
-"""Numba kernels of MPMICE's step 2 (paper 000 sec. 3.3, eq. 13): the equilibration pressure
-over solids and fluids, the solids with the sec. 3.1 threshold EOS (ICE's Murnaghan with n = 1,
-setup.py).
+"""Eq. 13 of paper 000 for several materials of any EOS: the equilibration pressure by Newton
+per cell (ICE's computeEquilibrationPressure; MPMICE's step 2 over solids and fluids, the solids
+with the sec. 3.1 threshold EOS, ICE's Murnaghan with n = 1, mpmice/setup.py).
 
-equilibrate does ICE's equilibrate_many (components/ice/kernels.py) cell by cell, the same
-operations in the same order, so its results are bitwise the same; it is faster because the
-first Newton iteration runs a row of cells at a time in loops that vectorize, because the
-solids' EOS skips its powers of 1, and because the round-off cycle of a cell full of a stiff
-solid is recognised instead of iterated to max_iter.
+The first Newton iteration runs a row of cells at a time in loops that vectorize; the
+Murnaghan n = 1 EOS skips its powers of 1 and 0; the round-off cycle of a cell full of a stiff
+solid is recognised instead of iterated to max_iter. Each cell still does the plain per-cell
+iteration's operations in the same order (tests/mpmice/test_kernels_bitwise.py compares them).
 """
 from __future__ import annotations
 
@@ -94,7 +93,7 @@ def _rho_micro_row(code, params, m, p, t, cv, gamma, rm):
 @njit(cache=True, error_model="numpy")
 def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_iter, rm1, rm2):
     """Iterations 2.. of one cell of equilibrate (its state after iteration 1 in P, RM, PE,
-    DP column c): equilibrate_many's loop, with the round-off cycle taken at once. Returns
+    DP column c): the plain per-cell Newton loop, with the round-off cycle taken at once. Returns
     the iteration count."""
     n = RM.shape[0]
     p = P[c]
@@ -148,8 +147,7 @@ def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_it
 @njit(cache=True, error_model="numpy")
 def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, params, cvs, gammas,
                 lo, hi, tol, max_iter):
-    """Step 2, eq. 13 over solids and fluids by Newton per cell (ICE's equilibrate_many, the
-    same iterates): p with sum_m rho_m / rho_micro_m(p, T_m) = 1, dp = (sum theta - 1 -
+    """Step 2, eq. 13 over solids and fluids by Newton per cell: p with sum_m rho_m / rho_micro_m(p, T_m) = 1, dp = (sum theta - 1 -
     sum Q_m/y_m) / sum 1/y_m, Q_m = p - p_eos_m, y_m = (dp/drho)_m rho_micro_m^2 / rho_m.
 
     Arrays are seen with the collapsed axes first (ICE's Boxes.view) and taken a row along
@@ -159,8 +157,8 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
     that repeats the one two iterations back (cells full of a stiff solid, where dp never
     drops below tol p: one ulp of the solid's rho_micro moves p by ~1e-10 p) is known to
     alternate to max_iter, so the state it ends on is taken at once. The sound speed reuses
-    the last (dp/drho)_T. Every cell does equilibrate_many's operations in its order: bitwise
-    its results. Returns the largest iteration count (max_iter where a cell cycles)."""
+    the last (dp/drho)_T. Every cell does the plain per-cell iteration's operations in its
+    order: bitwise its results. Returns the largest iteration count (max_iter where a cell cycles)."""
     n = len(rhos)
     k0 = lo[2]
     nk = hi[2] - lo[2]
