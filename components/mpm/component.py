@@ -74,6 +74,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
     grid_bcs_class = GridBCs
     contact_class = Contact
     material_class = Material
+    # another component reads g.volume (MPMICE: the cell volume fractions)
+    coupled_reads_grid_volume = False
 
     def problem_setup(self, root, level):
         self.level = level
@@ -270,9 +272,9 @@ class MPM(ThermalTasks, MPMTasks, Component):
 
     def _grid_volume_needed(self, sched):
         """g.volume costs a sixth of the particle-to-grid scatter: it is computed when a task
-        reads it (<density_from_grid>; MPMICE, a subclass, for the cell volume fractions) or
+        reads it (<density_from_grid>; a coupled component, coupled_reads_grid_volume) or
         the deck saves it."""
-        return (type(self) is not MPM or "g.volume" in getattr(sched, "output_labels", ())
+        return (self.coupled_reads_grid_volume or "g.volume" in getattr(sched, "output_labels", ())
                 or any(getattr(m.params, "density_from_grid", False) for m in self.materials)
                 or bool(self.pressure_bcs))        # the scatter variant with fext adds V_i too
 

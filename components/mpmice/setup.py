@@ -74,6 +74,7 @@ class GridBCsWithICE(GridBCs):
 
 class MPMinMPMICE(MPM):
     flags_spec = {**FLAGS, "testForNegTemps_mpm": Param("bool", True, doc="MPMICE: read; no MPM temperature")}
+    coupled_reads_grid_volume = True
 
     def __init__(self, n_all):
         super().__init__()
