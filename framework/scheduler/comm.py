@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..variables import VarType
-from .particle_kernels import GhostMerge, near_faces
+from .particle_kernels import KNOWN_RUNS, KNOWN_SORTED, GhostMerge, gather_pieces, merge_ids, select_ghosts
 
 
 class Comm:
@@ -156,7 +156,6 @@ class Exchange:
     # -- particles ---------------------------------------------------------------------
     def _particles(self):
         ex, dw, comm = self.ex, self.dw, self.ex.comm
-        level, rank_of, me = ex.level, ex.lb.rank_of, comm.rank
         pos = ex.position_label
         if pos is None:
             raise RuntimeError("ghost particles requested but no particle position label was registered "
@@ -169,76 +168,191 @@ class Exchange:
         if not labels:
             return
         idl = ex.particle_id_label
-        outgoing, sources = {}, set()
-        pieces = {}
+        outgoing, sources, ghosts, send = {}, set(), {}, {}
         for (g, m), lbls in labels.items():
+            plan = particle_plan(ex, g)
+            sources |= plan.sources
+            self.remote_patches |= plan.remote_dst
             # the ID order of owned+ghost particles is found once per warehouse, then reused
-            send_lbls = list(dict.fromkeys(lbls + ([idl] if idl is not None and (m, g) not in dw.ghost_seen else [])))
-            for p in level.patches:
-                for q, shift, cbox in level.particle_ghost_sources(p, g):
-                    rp, rq = rank_of[p.id], rank_of[q.id]
-                    if rq == me:
-                        sel = self._select(dw, pos, m, q, cbox, g)
-                        data = {l.name: dw.get(l, m, q)[sel] for l in send_lbls}
-                        if shift != (0, 0, 0) and pos.name in data:
-                            data[pos.name] = data[pos.name] + np.asarray(shift) * level.dx
-                        if rp == me:
-                            pieces.setdefault((g, m, p.id), []).append(data)
-                        else:
-                            outgoing.setdefault(rp, []).append(((g, m, p.id), data))
-                    elif rp == me and rq != me:
-                        sources.add(rq)
-                        self.remote_patches.add(p.id)
-        if comm.size > 1:
-            got = comm.exchange_objects(outgoing, sources)
-            for r in sorted(got):
-                for key, data in got[r]:
-                    pieces.setdefault(key, []).append(data)
+            send[(g, m)] = list(dict.fromkeys(lbls + ([idl] if idl is not None and (m, g) not in dw.ghost_seen
+                                                      else [])))
+            lay = _layout(dw, pos, m, g, plan)
+            for l in send[(g, m)]:
+                ghosts[(g, m, l.name)] = _gather_local(dw, l, m, plan, lay, pos)
+            for r, key, data in _remote_pieces(dw, send[(g, m)], m, g, plan, lay, pos):
+                outgoing.setdefault(r, []).append((key, data))
+        got = comm.exchange_objects(outgoing, sources) if comm.size > 1 else {}
+        remote = {}
+        for r in sorted(got):
+            for key, data in got[r]:
+                remote.setdefault(key, []).append(data)
         for (g, m), lbls in labels.items():
-            first = (m, g) not in dw.ghost_seen
-            dw.ghost_seen.add((m, g))
-            for p in ex.local_patches:
-                parts = pieces.get((g, m, p.id), [])
-                key = (m, p.id, g)
-                if first:
-                    order = mask = None
-                    if idl is not None and parts:
-                        ids = np.concatenate([dw.get(idl, m, p)] + [d[idl.name] for d in parts])
-                        order = np.argsort(ids, kind="stable")
-                        mask = order < dw.num_particles(m, p)
-                    elif parts:
-                        n = dw.num_particles(m, p)
-                        mask = np.arange(n + sum(len(next(iter(d.values()))) for d in parts)) < n
-                    dw.ghost_order[key] = (order, mask)
-                order = dw.ghost_order[key][0]
-                for l in dict.fromkeys(lbls):
-                    own = dw.get(l, m, p)
-                    if not parts:
-                        a = own
-                    elif order is None:
-                        a = np.concatenate([own] + [d[l.name] for d in parts])
-                    else:           # merged in ID order when a task asks (TaskView.get)
-                        a = GhostMerge(own, np.concatenate([d[l.name] for d in parts]), order)
-                    dw.ghost_particles[(l.name, m, p.id, g)] = a
+            self._store_ghosts(g, m, lbls, send[(g, m)], ghosts, remote)
 
-    @staticmethod
-    def _select(dw, pos, m, q, cbox, g):
-        """Indices of q's particles whose cell lies in cbox (a ghost region next to q's faces)."""
-        key = (m, q.id, cbox)
-        if key in dw.ghost_select:
-            return dw.ghost_select[key]
-        ckey = (m, q.id, g)
-        if ckey not in dw.ghost_candidates:
-            lv = q.level
-            dims = np.array([not c for c in lv.collapsed])
-            dw.ghost_candidates[ckey] = near_faces(dw.get(pos, m, q), lv.anchor, lv.dx, np.array(q.lo),
-                                                   np.array(q.hi), g, dims)
-        idx, c = dw.ghost_candidates[ckey]
-        inside = np.ones(len(idx), dtype=bool)
-        for d in range(3):
-            if q.level.collapsed[d]:
-                continue
-            inside &= (c[:, d] >= cbox[0][d]) & (c[:, d] < cbox[1][d])
-        sel = idx[inside]
-        dw.ghost_select[key] = sel
-        return sel
+    def _store_ghosts(self, g, m, lbls, sent, ghosts, remote):
+        """Put (owned, ghost, ID order) of every label of (g, m) in the warehouse, for each local patch."""
+        ex, dw = self.ex, self.dw
+        plan, idl = particle_plan(ex, g), ex.particle_id_label
+        lay = dw.ghost_select[(m, g)]
+        first = (m, g) not in dw.ghost_seen
+        dw.ghost_seen.add((m, g))
+        for p in ex.local_patches:
+            came = remote.get((g, m, p.id), [])
+            a, b = lay.span.get(p.id, (0, 0))
+            has = bool(plan.local.get(p.id)) or bool(came)
+            part = {l.name: _with_remote(ghosts[(g, m, l.name)][a:b], [d[l.name] for d in came]) for l in sent}
+            key = (m, p.id, g)
+            if first:
+                dw.ghost_order[key] = _ghost_order(dw, idl, m, p, part, has)
+            order = dw.ghost_order[key][0]
+            for l in dict.fromkeys(lbls):
+                own = dw.get(l, m, p)
+                if not has:
+                    a_l = own
+                elif order is None:
+                    a_l = np.concatenate([own, part[l.name]])
+                else:           # merged in ID order when a task asks (TaskView.get)
+                    a_l = GhostMerge(own, part[l.name], order)
+                dw.ghost_particles[(l.name, m, p.id, g)] = a_l
+
+
+class ParticlePlan:
+    """Every ghost-particle piece (destination patch, source patch, shift, cell box) of one
+    ghost width that involves this rank, in the global (destination, source) order: per
+    local source its boxes, per local destination its local pieces (source, box number),
+    the pieces this rank sends, and the ranks it receives from."""
+
+    def __init__(self, level, rank_of, g: int, me: int):
+        self.patch = {p.id: p for p in level.patches}
+        self.boxes, self.local, self.out = {}, {}, []
+        self.sources, self.remote_dst = set(), set()
+        for p in level.patches:
+            for q, shift, cbox in level.particle_ghost_sources(p, g):
+                rp, rq = rank_of[p.id], rank_of[q.id]
+                if rq == me:
+                    k = len(self.boxes.setdefault(q.id, []))
+                    self.boxes[q.id].append((p.id, shift, cbox))
+                    if rp == me:
+                        self.local.setdefault(p.id, []).append((q.id, k))
+                    else:
+                        self.out.append((rp, p.id, q.id, k))
+                elif rp == me:
+                    self.sources.add(rq)
+                    self.remote_dst.add(p.id)
+        self.box_array = {q: np.array([cbox for _, _, cbox in b], np.int64).reshape(len(b), 2, 3)
+                          for q, b in self.boxes.items()}
+
+
+def particle_plan(ex, g: int) -> ParticlePlan:
+    """The ghost-particle plan of width g for the current patch assignment (kept with the grid plans)."""
+    key = ("particles", g, ex.lb.version)
+    if key not in ex._plans:
+        ex._plans[key] = ParticlePlan(ex.level, ex.lb.rank_of, g, ex.comm.rank)
+    return ex._plans[key]
+
+
+class _Layout:
+    """Where the ghosts of (material, width) come from and go, for one warehouse: per local
+    source the selected rows (sel, rows per box) and each box's first row in the buffer of
+    local ghosts (-1: remote); each local destination's rows [a, b) of that buffer; the
+    (first row, rows, position shift) of pieces coming through a periodic face."""
+
+    def __init__(self, sel, dst, span, total, shifts):
+        self.sel, self.dst, self.span, self.total, self.shifts = sel, dst, span, total, shifts
+
+
+def _layout(dw, pos, m, g, plan):
+    """Select the ghosts of every local source once per warehouse (positions do not change in it)."""
+    key = (m, g)
+    if key in dw.ghost_select:
+        return dw.ghost_select[key]
+    sel = {q: _select(dw, pos, m, plan.patch[q], g, plan.box_array[q]) for q in plan.boxes}
+    dst = {q: np.full(len(b), -1, np.int64) for q, b in plan.boxes.items()}
+    span, shifts, off = {}, [], 0
+    for p, pieces in plan.local.items():
+        a = off
+        for q, k in pieces:
+            n = int(sel[q][1][k])
+            dst[q][k] = off
+            shift = plan.boxes[q][k][1]
+            if shift != (0, 0, 0) and n:
+                shifts.append((off, n, shift))
+            off += n
+        span[p] = (a, off)
+    lay = dw.ghost_select[key] = _Layout(sel, dst, span, off, shifts)
+    return lay
+
+
+def _select(dw, pos, m, q, g, boxes):
+    """(indices, rows per box) of q's particles whose cell lies in each ghost box next to its faces."""
+    key = (m, q.id, g)
+    if key not in dw.ghost_candidates:
+        lv = q.level
+        dims = np.array([not c for c in lv.collapsed])
+        dw.ghost_candidates[key] = select_ghosts(dw.get(pos, m, q), lv.anchor, lv.dx, np.array(q.lo), np.array(q.hi),
+                                                 g, dims, boxes)
+    return dw.ghost_candidates[key]
+
+
+def _gather_local(dw, label, m, plan, lay, pos):
+    """One buffer holding the local ghosts of label, destination after destination."""
+    out = None
+    for q, (sel, counts) in lay.sel.items():
+        src = dw.get(label, m, plan.patch[q])
+        if out is None:
+            out = np.empty((lay.total,) + src.shape[1:], src.dtype)
+        _gather_rows(src, sel, counts, lay.dst[q], out)
+    if out is None:
+        return np.empty((0,) + label.shape, label.dtype)
+    if label.name == pos.name:
+        dx = plan.patch[next(iter(lay.sel))].level.dx
+        for a, n, shift in lay.shifts:
+            out[a:a + n] += np.asarray(shift) * dx
+    return out
+
+
+def _gather_rows(src, sel, counts, dst, out):
+    """gather_pieces on (n, k) row views; numpy indexing where src has no such view."""
+    if src.flags.c_contiguous:
+        k = int(np.prod(src.shape[1:]))
+        gather_pieces(src.reshape(len(src), k), sel, counts, dst, out.reshape(len(out), k))
+        return
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    for b in range(len(counts)):
+        if dst[b] >= 0:
+            out[dst[b]:dst[b] + counts[b]] = src[sel[starts[b]:starts[b + 1]]]
+
+
+def _remote_pieces(dw, labels, m, g, plan, lay, pos):
+    """(destination rank, (g, m, destination patch), {label: rows}) of each piece sent away."""
+    for r, p, q, k in plan.out:
+        sel, counts = lay.sel[q]
+        a = int(counts[:k].sum())
+        rows = sel[a:a + counts[k]]
+        data = {l.name: dw.get(l, m, plan.patch[q])[rows] for l in labels}
+        shift = plan.boxes[q][k][1]
+        if shift != (0, 0, 0) and pos.name in data:
+            data[pos.name] = data[pos.name] + np.asarray(shift) * plan.patch[q].level.dx
+        yield r, (g, m, p), data
+
+
+def _with_remote(local, came):
+    """A destination's local ghost rows followed by those received from other ranks."""
+    return np.concatenate([local] + came) if came else local
+
+
+def _ghost_order(dw, idl, m, p, part, has):
+    """(ID order, owned mask) of p's owned + ghost particles; the order's runs are remembered."""
+    if not has:
+        return None, None
+    n = dw.num_particles(m, p)
+    if idl is None:
+        return None, np.arange(n + len(next(iter(part.values())))) < n
+    own, ghost = dw.get(idl, m, p), part[idl.name]
+    ok, order, mask, r = merge_ids(own, ghost, np.argsort(ghost, kind="stable"), KNOWN_SORTED.get(own) is None)
+    if not ok:
+        order = np.argsort(np.concatenate([own, ghost]), kind="stable")
+        return order, order < n
+    KNOWN_SORTED.put(own, True)
+    KNOWN_RUNS.put(order, (n, r))
+    return order, mask

@@ -9,6 +9,8 @@ every other particle test of the framework uses, so the answer is the same.
 """
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 from numba import njit
 
@@ -116,6 +118,110 @@ def near_faces(x, anchor, dx, lo, hi, g, dims):
 
 
 @njit(cache=True)
+def select_ghosts(x, anchor, dx, lo, hi, g, dims, boxes):
+    """The particles of a patch that are ghosts in each cell box (k, 2, 3) in turn: their
+    indices, box after box (particle order within a box), and the count per box. One
+    read of the positions (near_faces) serves every neighbour."""
+    idx, cells = near_faces(x, anchor, dx, lo, hi, g, dims)
+    nb = boxes.shape[0]
+    counts = np.zeros(nb, np.int64)
+    out = np.empty(nb * idx.shape[0], np.int64)
+    k = 0
+    for b in range(nb):
+        k0 = k
+        for i in range(idx.shape[0]):
+            inside = True
+            for d in range(3):
+                if dims[d] and (cells[i, d] < boxes[b, 0, d] or cells[i, d] >= boxes[b, 1, d]):
+                    inside = False
+                    break
+            if inside:
+                out[k] = idx[i]
+                k += 1
+        counts[b] = k - k0
+    return out[:k], counts
+
+
+@njit(cache=True)
+def gather_pieces(src, sel, counts, dst, out):
+    """Rows src[sel] piece by piece (counts: rows per piece) into out at row dst[piece];
+    pieces with dst < 0 are skipped (they go elsewhere)."""
+    k = src.shape[1]
+    s = 0
+    for b in range(counts.shape[0]):
+        o = dst[b]
+        if o >= 0:
+            for i in range(counts[b]):
+                r = sel[s + i]
+                for c in range(k):
+                    out[o + i, c] = src[r, c]
+        s += counts[b]
+
+
+@njit(cache=True)
+def _sorted(a):
+    """a is in non-decreasing order (one branch-free pass)."""
+    bad = False
+    for i in range(1, a.shape[0]):
+        bad |= a[i] < a[i - 1]
+    return not bad
+
+
+@njit(cache=True)
+def _first_above(a, lo, v):
+    """The first index >= lo of the sorted array a whose value exceeds v (binary search)."""
+    hi = a.shape[0]
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if a[mid] <= v:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
+def merge_ids(own, ghost, gorder, check):
+    """The stable ID order of owned + ghost rows (np.argsort(concatenation, kind="stable")),
+    the owned mask of the merged rows and the runs of the order (see `runs`): the ghost IDs,
+    sorted by gorder, are placed among the sorted owned IDs by binary search and the owned
+    rows between them copied as blocks. ok is False (nothing else valid) when `check` finds
+    the owned IDs not sorted."""
+    n_own, n_gh = own.shape[0], ghost.shape[0]
+    n = n_own + n_gh
+    order = np.empty(n, np.int64)
+    mask = np.empty(n, np.bool_)
+    rs = np.empty((2 * n_gh + 1, 3), np.int64)
+    if check and not _sorted(own):
+        return False, order, mask, rs[:0]
+    i = 0
+    k = 0
+    r = 0
+    for jj in range(n_gh + 1):
+        e = n_own if jj == n_gh else _first_above(own, i, ghost[gorder[jj]])
+        if e > i:                       # owned rows [i, e): IDs not above this ghost's
+            for t in range(e - i):
+                order[k + t] = i + t
+            rs[r, 0], rs[r, 1], rs[r, 2] = 0, i, e
+            r += 1
+            k += e - i
+            i = e
+        if jj == n_gh:
+            break
+        row = gorder[jj]
+        order[k] = n_own + row
+        k += 1
+        if r > 0 and rs[r - 1, 0] == 1 and rs[r - 1, 2] == row:
+            rs[r - 1, 2] = row + 1
+        else:
+            rs[r, 0], rs[r, 1], rs[r, 2] = 1, row, row + 1
+            r += 1
+    for k in range(n):
+        mask[k] = order[k] < n_own
+    return True, order, mask, rs[:r]
+
+
+@njit(cache=True)
 def gather_merged(owned, ghost, order, out):
     """out[i] = (owned + ghost)[order[i]] without forming the concatenation (rows of 2D views)."""
     n_own = owned.shape[0]
@@ -148,10 +254,43 @@ def gather_runs(owned, ghost, runs, out):
         o += b - a
 
 
-@njit(cache=True)
+class ArrayMemo:
+    """Values attached to arrays, by identity, for as long as each array lives (particle
+    arrays are not written in place once they are in a warehouse)."""
+
+    def __init__(self):
+        self._d = {}
+
+    def put(self, a, value):
+        key = id(a)
+
+        def forget(ref):
+            if self._d.get(key, (None,))[0] is ref:
+                del self._d[key]
+        self._d[key] = (weakref.ref(a, forget), value)
+
+    def get(self, a):
+        hit = self._d.get(id(a))
+        return hit[1] if hit is not None and hit[0]() is a else None
+
+
+KNOWN_RUNS = ArrayMemo()        # ghost order -> (n_own, its runs), found while merging IDs
+KNOWN_SORTED = ArrayMemo()      # ID arrays found sorted (handed on from step to step unchanged)
+
+
 def runs(order, n_own):
     """(source, first, end) rows of the runs of `order` that read one source consecutively:
-    source 0 = owned rows [first, end), 1 = ghost rows (order over owned + ghost)."""
+    source 0 = owned rows [first, end), 1 = ghost rows (order over owned + ghost).
+    A ghost order's runs were found when it was made (KNOWN_RUNS); tasks ask each step."""
+    hit = KNOWN_RUNS.get(order)
+    if hit is not None and hit[0] == n_own:
+        return hit[1]
+    return _runs(order, n_own)
+
+
+@njit(cache=True)
+def _runs(order, n_own):
+    """runs(), one pass over order."""
     n = order.shape[0]
     out = np.empty((n, 3), np.int64)
     r = 0
