@@ -35,9 +35,9 @@ class DataWarehouse:
         self.perpatch: dict = {}
         self.ghost_particles: dict = {}
         self.ghost_order: dict = {}     # (matl, patch, g) -> (ID order, owned mask) of owned+ghost
-        self.ghost_select: dict = {}    # (matl, source patch, cell box) -> indices sent as ghosts
+        self.ghost_select: dict = {}    # (matl, g) -> where each ghost comes from and goes (comm._Layout)
         self.ghost_seen: set = set()
-        self.ghost_candidates: dict = {}  # (matl, patch, g) -> particles near the faces and their cells
+        self.ghost_candidates: dict = {}  # (matl, source patch, g) -> its ghosts per neighbour box
         self.halo_valid: dict = {}
 
     # -- grid and particle variables ---------------------------------------------
