@@ -15,6 +15,11 @@ could alias the node arrays), and does all the work that particle needs at its n
   grad       L_p = sum v_i (x) grad S_i(x_p) (004 eq. 14), MUSL's stress-update gradient, F, V
              and, for the models in FUSED (comp_neo_hook), the stress in the same loop.
 
+p2g and g2p run the particles in chunks of shape.CHUNK: a first loop stores every particle's
+base node and weights (shape._stencil_put; g2p also prefetches the node rows it will read), a
+second does the work at the nodes (shape._stencil_get); the numbers are those of one loop,
+bitwise. (grad, whose neo-Hooke stress is arithmetic-bound, measured no faster so.)
+
 Node sums are added particle by particle in particle-ID order, so 1 patch and many
 patches agree bitwise. p2g and g2p read the owned and the ghost particles from their own
 arrays (TaskView.get_split), run by run in the merged ID order (particle_kernels.runs):
@@ -31,7 +36,8 @@ import numpy as np
 from numba import njit
 
 from .constitutive import comp_neo_hook
-from .shape import GIMP, LINEAR, _counts, _inv_dx, _sel, _stencil
+from .shape import (CHUNK, GIMP, LINEAR, _counts, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil, _stencil_get,
+                    _stencil_put)
 
 FM = {'contract'}
 
@@ -42,30 +48,43 @@ FUSED = {"comp_neo_hook": NEO_HOOKE}
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _deform(p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0):
+def _deform(act, p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0):
     """F^{n+1} = (I + L dt) F^n (004 eq. 14) and V = m/rho0 det F (eq. 17) of particle p,
-    written at o (kernels.deform, fused)."""
-    A00 = 1.0 + dt * L00
-    A01 = dt * L01
-    A02 = dt * L02
-    A10 = dt * L10
-    A11 = 1.0 + dt * L11
-    A12 = dt * L12
-    A20 = dt * L20
-    A21 = dt * L21
-    A22 = 1.0 + dt * L22
+    written at o (kernels.deform, fused). Without a z axis (act = 1, 3) L02 = L12 = L22 = 0:
+    the z column of (I + L dt) is (0, 0, 1) and its products are left out (they would add
+    exact zeros); the z row (out-of-plane velocity) is kept."""
     G00, G01, G02 = F_old[p, 0, 0], F_old[p, 0, 1], F_old[p, 0, 2]
     G10, G11, G12 = F_old[p, 1, 0], F_old[p, 1, 1], F_old[p, 1, 2]
     G20, G21, G22 = F_old[p, 2, 0], F_old[p, 2, 1], F_old[p, 2, 2]
-    F00 = A00 * G00 + A01 * G10 + A02 * G20
-    F01 = A00 * G01 + A01 * G11 + A02 * G21
-    F02 = A00 * G02 + A01 * G12 + A02 * G22
-    F10 = A10 * G00 + A11 * G10 + A12 * G20
-    F11 = A10 * G01 + A11 * G11 + A12 * G21
-    F12 = A10 * G02 + A11 * G12 + A12 * G22
-    F20 = A20 * G00 + A21 * G10 + A22 * G20
-    F21 = A20 * G01 + A21 * G11 + A22 * G21
-    F22 = A20 * G02 + A21 * G12 + A22 * G22
+    A00 = 1.0 + dt * L00
+    A10 = dt * L10
+    A20 = dt * L20
+    A01 = dt * L01
+    A11 = 1.0 + dt * L11
+    A21 = dt * L21
+    if not act & 4:
+        F00 = A00 * G00 + A01 * G10
+        F01 = A00 * G01 + A01 * G11
+        F02 = A00 * G02 + A01 * G12
+        F10 = A10 * G00 + A11 * G10
+        F11 = A10 * G01 + A11 * G11
+        F12 = A10 * G02 + A11 * G12
+        F20 = A20 * G00 + A21 * G10 + G20
+        F21 = A20 * G01 + A21 * G11 + G21
+        F22 = A20 * G02 + A21 * G12 + G22
+    else:
+        A02 = dt * L02
+        A12 = dt * L12
+        A22 = 1.0 + dt * L22
+        F00 = A00 * G00 + A01 * G10 + A02 * G20
+        F01 = A00 * G01 + A01 * G11 + A02 * G21
+        F02 = A00 * G02 + A01 * G12 + A02 * G22
+        F10 = A10 * G00 + A11 * G10 + A12 * G20
+        F11 = A10 * G01 + A11 * G11 + A12 * G21
+        F12 = A10 * G02 + A11 * G12 + A12 * G22
+        F20 = A20 * G00 + A21 * G10 + A22 * G20
+        F21 = A20 * G01 + A21 * G11 + A22 * G21
+        F22 = A20 * G02 + A21 * G12 + A22 * G22
     F_out[o, 0, 0] = F00
     F_out[o, 0, 1] = F01
     F_out[o, 0, 2] = F02
@@ -99,33 +118,125 @@ def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass,
     arrays: the owned and ghost sources (x, m, v, V, sigma, fext, lp), run by run in their
     merged ID order (particle_kernels.runs), so every node adds its shares in particle-ID order."""
     sh0, sh1, sh2 = gmass.shape
-    na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fm = gmass.reshape(-1)
     fv = gvol.reshape(-1)
     fp = gmom.reshape(-1)
     fe = gfext.reshape(-1)
     fi = gfint.reshape(-1)
+    sb, sw = _scratch()
     for r in range(runs.shape[0]):
         px, pmass, pvel, pvol, pstress, pfext, lp = own if runs[r, 0] == 0 else ghost
-        for p in range(runs[r, 1], runs[r, 2]):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-            inside = i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2
-            m = pmass[p]
-            V = pvol[p]
-            mv0 = m * pvel[p, 0]
-            mv1 = m * pvel[p, 1]
-            mv2 = m * pvel[p, 2]
-            s00 = V * pstress[p, 0, 0]
-            s10 = V * pstress[p, 1, 0]
-            s20 = V * pstress[p, 2, 0]
-            s01 = V * pstress[p, 0, 1]
-            s11 = V * pstress[p, 1, 1]
-            s21 = V * pstress[p, 2, 1]
-            s02 = V * pstress[p, 0, 2]
-            s12 = V * pstress[p, 1, 2]
-            s22 = V * pstress[p, 2, 2]
+        for c0 in range(runs[r, 1], runs[r, 2], CHUNK):
+            c1 = min(c0 + CHUNK, runs[r, 2])
+            for p in range(c0, c1):
+                q = p - c0
+                i, j, k = _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw)
+                sb[0, q] = i
+                sb[1, q] = j
+                sb[2, q] = k
+            for p in range(c0, c1):
+                _p2g_one(kind, act, has_f, has_v, p, p - c0, sb, _stencil_get(kind, act, p - c0, ih, sw), sh0, sh1,
+                         sh2, pmass, pvel, pvol, pstress, pfext, fm, fv, fp, fe, fi)
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, pvol, pstress, pfext, fm, fv, fp, fe,
+             fi):
+    """p2g's shares of particle p on the flat node arrays: weights st (_stencil_get), local base
+    node (i, j, k) in column q of sb; shares on nodes beyond the arrays are dropped."""
+    na, nb, nc = _counts(kind, act)
+    wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2 = st
+    i, j, k = sb[0, q], sb[1, q], sb[2, q]
+    inside = i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2
+    m = pmass[p]
+    V = pvol[p]
+    mv0 = m * pvel[p, 0]
+    mv1 = m * pvel[p, 1]
+    mv2 = m * pvel[p, 2]
+    s00 = V * pstress[p, 0, 0]
+    s10 = V * pstress[p, 1, 0]
+    s20 = V * pstress[p, 2, 0]
+    s01 = V * pstress[p, 0, 1]
+    s11 = V * pstress[p, 1, 1]
+    s21 = V * pstress[p, 2, 1]
+    s02 = V * pstress[p, 0, 2]
+    s12 = V * pstress[p, 1, 2]
+    s22 = V * pstress[p, 2, 2]
+    for a in range(na):
+        wa = _sel(a, wx0, wx1, wx2)
+        ga = _sel(a, gx0, gx1, gx2)
+        for b in range(nb):
+            wb = _sel(b, wy0, wy1, wy2)
+            gb = _sel(b, gy0, gy1, gy2)
+            for c in range(nc):
+                wc = _sel(c, wz0, wz1, wz2)
+                gc = _sel(c, gz0, gz1, gz2)
+                if not inside:
+                    if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
+                        continue
+                S = wa * wb * wc
+                G0 = ga * wb * wc
+                G1 = wa * gb * wc
+                G2 = wa * wb * gc
+                f = np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                f3 = np.uint64(3) * f
+                fm[f] += m * S
+                if has_v:
+                    fv[f] += V * S
+                fp[f3] += mv0 * S
+                fp[f3 + np.uint64(1)] += mv1 * S
+                fp[f3 + np.uint64(2)] += mv2 * S
+                if has_f:
+                    fe[f3] += pfext[p, 0] * S
+                    fe[f3 + np.uint64(1)] += pfext[p, 1] * S
+                    fe[f3 + np.uint64(2)] += pfext[p, 2] * S
+                if act == 1:
+                    fi[f3] -= s00 * G0
+                    fi[f3 + np.uint64(1)] -= s10 * G0
+                    fi[f3 + np.uint64(2)] -= s20 * G0
+                elif act == 3:
+                    fi[f3] -= s00 * G0 + s01 * G1
+                    fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1
+                    fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1
+                else:
+                    fi[f3] -= s00 * G0 + s01 * G1 + s02 * G2
+                    fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1 + s12 * G2
+                    fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1 + s22 * G2
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
+    """Rows [first, end) of one source part = (x, v, m, lp): 000 eqs. 26-27 (see _g2p);
+    grid = (anchor, ih, node_low, shape, fv, fa, fp, dt, scratch), outs = (x_out, v_out, L_out,
+    F_old, F_out, vol_out, rho0, write_L), lim = (check, min_mass, max_vel), acc = the
+    running (o, n_del, totals); returns it updated."""
+    px, pvel, pmass, lp = part
+    anchor, ih, node_low, sh, fv, fa, fp, dt, sb, sw = grid
+    sh0, sh1, sh2 = sh
+    x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L = outs
+    check, min_mass, max_vel = lim
+    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
+    na, nb, nc = _counts(kind, act)
+    for c0 in range(first, end, CHUNK):
+        c1 = min(c0 + CHUNK, end)
+        for p in range(c0, c1):
+            i, j, k = _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, p - c0, sw)
+            if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+                raise IndexError("particle's nodes lie outside the patch node arrays")
+            sb[0, p - c0] = i
+            sb[1, p - c0] = j
+            sb[2, p - c0] = k
+            _prefetch_nodes(kind, act, i, j, k, sh1, sh2, fv)
+            _prefetch_nodes(kind, act, i, j, k, sh1, sh2, fa)
+        for p in range(c0, c1):
+            (wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil_get(kind, act, p - c0, ih, sw)
+            i, j, k = sb[0, p - c0], sb[1, p - c0], sb[2, p - c0]
+            u = np.uint64(p)          # unsigned particle indices: no negative-index wraparound
+            a0 = a1 = a2 = 0.0
+            v0 = v1 = v2 = 0.0
+            L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
             for a in range(na):
                 wa = _sel(a, wx0, wx1, wx2)
                 ga = _sel(a, gx0, gx1, gx2)
@@ -135,142 +246,80 @@ def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass,
                     for c in range(nc):
                         wc = _sel(c, wz0, wz1, wz2)
                         gc = _sel(c, gz0, gz1, gz2)
-                        if not inside:
-                            if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
-                                continue
                         S = wa * wb * wc
-                        G0 = ga * wb * wc
-                        G1 = wa * gb * wc
-                        G2 = wa * wb * gc
-                        f = np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                        f3 = np.uint64(3) * f
-                        fm[f] += m * S
-                        if has_v:
-                            fv[f] += V * S
-                        fp[f3] += mv0 * S
-                        fp[f3 + np.uint64(1)] += mv1 * S
-                        fp[f3 + np.uint64(2)] += mv2 * S
-                        if has_f:
-                            fe[f3] += pfext[p, 0] * S
-                            fe[f3 + np.uint64(1)] += pfext[p, 1] * S
-                            fe[f3 + np.uint64(2)] += pfext[p, 2] * S
-                        if act == 1:
-                            fi[f3] -= s00 * G0
-                            fi[f3 + np.uint64(1)] -= s10 * G0
-                            fi[f3 + np.uint64(2)] -= s20 * G0
-                        elif act == 3:
-                            fi[f3] -= s00 * G0 + s01 * G1
-                            fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1
-                            fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1
-                        else:
-                            fi[f3] -= s00 * G0 + s01 * G1 + s02 * G2
-                            fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1 + s12 * G2
-                            fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1 + s22 * G2
-
-
-@njit(cache=True, fastmath=FM, inline="always")
-def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
-    """Rows [first, end) of one source part = (x, v, m, lp): 000 eqs. 26-27 (see _g2p);
-    grid = (anchor, ih, node_low, shape, fv, fa, fp, dt), outs = (x_out, v_out, L_out,
-    F_old, F_out, vol_out, rho0, write_L), lim = (check, min_mass, max_vel), acc = the
-    running (o, n_del, totals); returns it updated."""
-    px, pvel, pmass, lp = part
-    anchor, ih, node_low, sh, fv, fa, fp, dt = grid
-    sh0, sh1, sh2 = sh
-    x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L = outs
-    check, min_mass, max_vel = lim
-    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
-    na, nb, nc = _counts(kind, act)
-    for p in range(first, end):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
-            raise IndexError("particle's nodes lie outside the patch node arrays")
-        a0 = a1 = a2 = 0.0
-        v0 = v1 = v2 = 0.0
-        L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
-        for a in range(na):
-            wa = _sel(a, wx0, wx1, wx2)
-            ga = _sel(a, gx0, gx1, gx2)
-            for b in range(nb):
-                wb = _sel(b, wy0, wy1, wy2)
-                gb = _sel(b, gy0, gy1, gy2)
-                for c in range(nc):
-                    wc = _sel(c, wz0, wz1, wz2)
-                    gc = _sel(c, gz0, gz1, gz2)
-                    S = wa * wb * wc
-                    f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                    gv0 = fv[f3]
-                    gv1 = fv[f3 + np.uint64(1)]
-                    gv2 = fv[f3 + np.uint64(2)]
-                    a0 += S * fa[f3]
-                    a1 += S * fa[f3 + np.uint64(1)]
-                    a2 += S * fa[f3 + np.uint64(2)]
-                    v0 += S * gv0
-                    v1 += S * gv1
-                    v2 += S * gv2
-                    if not musl:
-                        if act & 1:
-                            G0 = ga * wb * wc
-                            L00 += gv0 * G0
-                            L10 += gv1 * G0
-                            L20 += gv2 * G0
-                        if act & 2:
-                            G1 = wa * gb * wc
-                            L01 += gv0 * G1
-                            L11 += gv1 * G1
-                            L21 += gv2 * G1
-                        if act & 4:
-                            G2 = wa * wb * gc
-                            L02 += gv0 * G2
-                            L12 += gv1 * G2
-                            L22 += gv2 * G2
-        nv0 = pvel[p, 0] + dt * a0
-        nv1 = pvel[p, 1] + dt * a1
-        nv2 = pvel[p, 2] + dt * a2
-        m = pmass[p]
-        if musl:
-            mv0 = m * nv0
-            mv1 = m * nv1
-            mv2 = m * nv2
-            for a in range(na):
-                wa = _sel(a, wx0, wx1, wx2)
-                for b in range(nb):
-                    wb = _sel(b, wy0, wy1, wy2)
-                    for c in range(nc):
-                        S = wa * wb * _sel(c, wz0, wz1, wz2)
                         f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                        fp[f3] += mv0 * S
-                        fp[f3 + np.uint64(1)] += mv1 * S
-                        fp[f3 + np.uint64(2)] += mv2 * S
-        if not owned:
-            continue
-        x0 = px[p, 0] + dt * v0
-        x1 = px[p, 1] + dt * v1
-        x2 = px[p, 2] + dt * v2
-        if check:
-            if m < min_mass or np.sqrt(nv0 * nv0 + nv1 * nv1 + nv2 * nv2) > max_vel:
-                x0 = np.nan
-                n_del += 1
-        x_out[o, 0] = x0
-        x_out[o, 1] = x1
-        x_out[o, 2] = x2
-        v_out[o, 0] = nv0
-        v_out[o, 1] = nv1
-        v_out[o, 2] = nv2
-        if not musl:
-            if write_L:
-                _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22)
-            _deform(p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0)
-        t0 += m
-        t1 += 0.5 * m * (nv0 ** 2 + nv1 ** 2 + nv2 ** 2)
-        t2 += m * nv0
-        t3 += m * nv1
-        t4 += m * nv2
-        t5 += m * x0
-        t6 += m * x1
-        t7 += m * x2
-        o += 1
+                        gv0 = fv[f3]
+                        gv1 = fv[f3 + np.uint64(1)]
+                        gv2 = fv[f3 + np.uint64(2)]
+                        a0 += S * fa[f3]
+                        a1 += S * fa[f3 + np.uint64(1)]
+                        a2 += S * fa[f3 + np.uint64(2)]
+                        v0 += S * gv0
+                        v1 += S * gv1
+                        v2 += S * gv2
+                        if not musl:
+                            if act & 1:
+                                G0 = ga * wb * wc
+                                L00 += gv0 * G0
+                                L10 += gv1 * G0
+                                L20 += gv2 * G0
+                            if act & 2:
+                                G1 = wa * gb * wc
+                                L01 += gv0 * G1
+                                L11 += gv1 * G1
+                                L21 += gv2 * G1
+                            if act & 4:
+                                G2 = wa * wb * gc
+                                L02 += gv0 * G2
+                                L12 += gv1 * G2
+                                L22 += gv2 * G2
+            nv0 = pvel[u, 0] + dt * a0
+            nv1 = pvel[u, 1] + dt * a1
+            nv2 = pvel[u, 2] + dt * a2
+            m = pmass[u]
+            if musl:
+                mv0 = m * nv0
+                mv1 = m * nv1
+                mv2 = m * nv2
+                for a in range(na):
+                    wa = _sel(a, wx0, wx1, wx2)
+                    for b in range(nb):
+                        wb = _sel(b, wy0, wy1, wy2)
+                        for c in range(nc):
+                            S = wa * wb * _sel(c, wz0, wz1, wz2)
+                            f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                            fp[f3] += mv0 * S
+                            fp[f3 + np.uint64(1)] += mv1 * S
+                            fp[f3 + np.uint64(2)] += mv2 * S
+            if not owned:
+                continue
+            x0 = px[u, 0] + dt * v0
+            x1 = px[u, 1] + dt * v1
+            x2 = px[u, 2] + dt * v2
+            w = np.uint64(o)
+            if check:
+                if m < min_mass or np.sqrt(nv0 * nv0 + nv1 * nv1 + nv2 * nv2) > max_vel:
+                    x0 = np.nan
+                    n_del += 1
+            x_out[w, 0] = x0
+            x_out[w, 1] = x1
+            x_out[w, 2] = x2
+            v_out[w, 0] = nv0
+            v_out[w, 1] = nv1
+            v_out[w, 2] = nv2
+            if not musl:
+                if write_L:
+                    _store_L(L_out, w, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+                _deform(act, u, w, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0)
+            t0 += m
+            t1 += 0.5 * m * (nv0 ** 2 + nv1 ** 2 + nv2 ** 2)
+            t2 += m * nv0
+            t3 += m * nv1
+            t4 += m * nv2
+            t5 += m * x0
+            t6 += m * x1
+            t7 += m * x2
+            o += 1
     return o, n_del, t0, t1, t2, t3, t4, t5, t6, t7
 
 
@@ -281,7 +330,9 @@ def _g2p(kind, act, musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt,
     in their merged ID order (as p2g); write the owned ones compacted to x_out / v_out; USL:
     F_out, vol_out (and L_out if write_L); MUSL: += m v_new S on gmom. Returns the number
     of particles deleted (x = NaN)."""
-    grid = (anchor, _inv_dx(dx), node_low, gvs.shape[:3], gvs.reshape(-1), gacc.reshape(-1), gmom.reshape(-1), dt)
+    sb, sw = _scratch()
+    grid = (anchor, _inv_dx(dx), node_low, gvs.shape[:3], gvs.reshape(-1), gacc.reshape(-1), gmom.reshape(-1), dt,
+            sb, sw)
     outs = (x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L)
     lim = (min_mass > 0.0 or max_vel < np.inf, min_mass, max_vel)
     acc = (0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
@@ -350,7 +401,7 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
                         L22 += gv2 * G2
         if write_L:
             _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
-        _deform(p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
+        _deform(act, p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
         if model == NEO_HOOKE:
             e_out[p], cs = comp_neo_hook.point(K, mu, cK, F_out[p, 0, 0], F_out[p, 0, 1], F_out[p, 0, 2],
                                                F_out[p, 1, 0], F_out[p, 1, 1], F_out[p, 1, 2], F_out[p, 2, 0],

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 from numba import njit
 
-from components.mpm.shape import GIMP, LINEAR, _counts, _inv_dx, _sel, _stencil
+from components.mpm.shape import (CHUNK, GIMP, LINEAR, _counts, _inv_dx, _scratch, _sel, _stencil, _stencil_get,
+                                  _stencil_put)
 from components.mpm.transfer import kernels, one_run
 from framework.scheduler.particle_kernels import runs
 
@@ -41,6 +42,33 @@ def weights(kind, act, px, lp, anchor, dx, node_low):
     return ni, S, dS
 
 
+@njit(cache=True)
+def _chunked(kind, act, px, lp, anchor, dx, node_low, out_i, out_w):
+    """_stencil_put then _stencil_get chunk by chunk, as the transfer kernels run them."""
+    ih = _inv_dx(dx)
+    sb, sw = _scratch()
+    n = px.shape[0]
+    for c0 in range(0, n, CHUNK):
+        c1 = min(c0 + CHUNK, n)
+        for p in range(c0, c1):
+            out_i[p, 0], out_i[p, 1], out_i[p, 2] = _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, p - c0, sw)
+        for p in range(c0, c1):
+            w = _stencil_get(kind, act, p - c0, ih, sw)
+            for q in range(18):
+                out_w[p, q] = w[q]
+
+
+@njit(cache=True)
+def _direct(kind, act, px, lp, anchor, dx, node_low, out_i, out_w):
+    ih = _inv_dx(dx)
+    for p in range(px.shape[0]):
+        st = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+        out_i[p, 0], out_i[p, 1], out_i[p, 2] = st[0], st[1], st[2]
+        w = st[3:]
+        for q in range(18):
+            out_w[p, q] = w[q]
+
+
 def make_grid(act, ncell=6):
     """Patch with one ghost layer (two for GIMP's reach), node_low = -2 on active axes."""
     on = np.array([bool(act >> d & 1) for d in range(3)])
@@ -69,6 +97,22 @@ def test_partition_of_unity(kind, act):
     assert (S >= -1e-15).all()
     assert (ni >= 0).all() and (ni < np.array(shape)).all()
     assert np.all(dS[:, :, ~on] == 0.0) and np.all(ni[:, :, ~on] == 0)
+
+
+@pytest.mark.parametrize("kind,act", CASES)
+def test_chunked_stencil_is_stencil(kind, act):
+    """The two-loop form of the kernels (_stencil_put, then _stencil_get) gives bitwise
+    _stencil's base nodes, weights and gradients, over several chunks."""
+    on, anchor, dx, lo, shape = make_grid(act)
+    px, lp = make_particles(on, anchor, dx, 6, n=3 * CHUNK + 5)
+    k = LINEAR if kind == "linear" else GIMP
+    res = []
+    for f in (_chunked, _direct):
+        out_i, out_w = np.empty((len(px), 3), np.int64), np.empty((len(px), 18))
+        f(k, act, px, lp, anchor, dx, lo, out_i, out_w)
+        res.append((out_i, out_w))
+    assert np.array_equal(res[0][0], res[1][0])
+    assert res[0][1].tobytes() == res[1][1].tobytes()
 
 
 def test_gimp_weights_match_formula():
