@@ -47,9 +47,25 @@ def _rows(a):
     return np.ascontiguousarray(a).reshape(len(a), int(np.prod(a.shape[1:])))
 
 
+_warm: set = set()
+
+
+def _load_kernels(dtypes):
+    """Compile (or load from numba's cache) the kernels that only run when particles cross,
+    for these dtypes, so the first step that moves particles does not pay for it."""
+    for dt in dtypes:
+        if dt in _warm:
+            continue
+        _warm.add(dt)
+        one = np.zeros((1, 1), dt)
+        gather_runs(one, one, runs(np.zeros(1, np.int64), 1), np.empty((1, 1), dt))
+    complement(np.zeros(0, np.int64), 1)
+
+
 def relocate(ex, spec: RelocationSpec, dw):
     """Move particles between patches (and ranks); puts the final labels in dw."""
     level, rank_of, comm = ex.level, ex.lb.rank_of, ex.comm
+    _load_kernels({np.dtype(lf.dtype) for lf in [spec.pos] + spec.labels})
     pre = [spec.pos_pre] + spec.labels_pre
     final = [spec.pos] + spec.labels
     dims = np.array([not c for c in level.collapsed])
