@@ -14,11 +14,7 @@
 
 The particle<->grid transfers are fused numba kernels (transfer.py): p2g scatters into
 the warehouse's node arrays, g2p updates x, v (and with USL L, F, V) in one pass, MUSL
-remaps the new momentum in that pass and finds L, F, V in one more. The models in
-transfer.FUSED (comp_neo_hook) get their stress in the pass that computes F: MUSL's
-grad pass inside computeStressTensor; under USL, when every material has such a model,
-interpolateToParticlesAndUpdate (usl_fused), and computeStressTensor only carries the
-remaining particle variables over.
+remaps the new momentum in that pass and finds L, F, V in one more.
 
 One timestep (tasks.py), all MPM materials in each task:
   interpolateParticlesToGrid      m_i, v_i, V_i, fext_i, fint_i from the particles
@@ -27,8 +23,7 @@ One timestep (tasks.py), all MPM materials in each task:
   computeAndIntegrateAcceleration a_i, v*_i
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
-  interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p, usl_fused: sigma_p, strain
-                                  energy, wave speed; MUSL: v^L_i); totals
+  interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
   computeStressTensor             (MUSL: L_p, F_p, V_p from v^L) sigma_p, strain energy,
                                   wave speed
   relocateParticles, computeStableTimestep
@@ -48,7 +43,7 @@ from .analysis import ParticleExtract
 from .bc import GridBCs
 from .contact import Contact
 from .materials import Material
-from .transfer import FUSED, kernels, merged_p2g
+from .transfer import kernels, merged_p2g
 from .tasks import MPMTasks
 from .thermal import ThermalTasks
 
@@ -81,9 +76,6 @@ class MPM(ThermalTasks, MPMTasks, Component):
     material_class = Material
     # another component reads g.volume (MPMICE: the cell volume fractions)
     coupled_reads_grid_volume = False
-    # USL: g2p computes the stress of the models in transfer.FUSED when every material has
-    # one (usl_fused); False leaves it to computeStressTensor (the tests compare both)
-    fuse_usl_stress = True
 
     def problem_setup(self, root, level):
         self.level = level
@@ -121,9 +113,6 @@ class MPM(ThermalTasks, MPMTasks, Component):
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
         self.has_membrane = any(m.is_membrane for m in self.materials)
-        self.usl_fused = (not self.musl and self.fuse_usl_stress
-                          and all(m.model_name in FUSED and not m.state and not m.increment_energy
-                                  for m in self.materials))
         # fluid points with artificial viscosity: its scales are reduced over the level
         self.av_matls = [i for i, m in enumerate(self.materials)
                          if m.model_name == "ideal_gas_fluid" and m.params.artificial_viscosity]
@@ -230,8 +219,6 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(OLD, FL.simTime)
         else:       # USL: F and V in the same pass (transfer.py)
             t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
-            if self.usl_fused:      # and the stress, energy and wave speed of computeStressTensor
-                t.computes(L.pStressPre).computes(L.WaveSpeed).computes(L.StrainEnergy)
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
             t.computes(r)
         sched.add_task(t)
@@ -263,17 +250,15 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(NEW, L.gMass, Ghost.AROUND_CELLS, ng).requires(NEW, L.gVolume, Ghost.AROUND_CELLS, ng)
         if self.musl:
             t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng).requires(OLD, L.pX)
-        elif not self.usl_fused:
+        else:
             t.requires(NEW, L.pVelGrad).requires(NEW, L.pFPre).requires(NEW, L.pVolumePre).requires(OLD, L.pF)
             if self.has_membrane:
                 t.requires(OLD, L.pVolume)
-        moved = ({L.pVelocity.name} | (set() if self.musl else {L.pF.name, L.pVolume.name})
-                 | ({L.pStress.name} if self.usl_fused else set()))
+        moved = {L.pVelocity.name} | (set() if self.musl else {L.pF.name, L.pVolume.name})
         for final, pre in self.carry:
             if final.name not in moved:
                 t.requires(OLD, final).computes(pre)
-        if not self.usl_fused:
-            t.computes(L.WaveSpeed).computes(L.StrainEnergy)
+        t.computes(L.WaveSpeed).computes(L.StrainEnergy)
         if self.pressure_bcs:
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
             if not self.musl:

@@ -266,9 +266,7 @@ class MPMTasks:
         """v_p += dt sum S a (000 eq. 26), x_p += dt sum S v* (eq. 27); totals; deletion by
         minimum_particle_mass / maximum_particle_velocity; one fused kernel (transfer.py).
 
-        USL: L_p = sum v*_i (x) grad S (000 eq. 23) for the stress update, F and V; with
-        usl_fused (component.py) also the stress, strain energy and wave speed of the models
-        in transfer.FUSED, bitwise those computeStressTensor would compute.
+        USL: L_p = sum v*_i (x) grad S (000 eq. 23) for the stress update.
         MUSL (004 eqs. 11-14): the updated velocities of owned AND ghost particles are
         mapped back to the nodes, v^L_i = sum S m_p v_p^{k+1} / m_i, and the stress
         update takes L_p from v^L (next task): no node of little mass can hand a
@@ -279,7 +277,6 @@ class MPMTasks:
         tot = np.zeros(8)
         f = self.flags
         remapped = {}
-        ws, se = np.zeros(3), 0.0
         for m in matls:
             mat = self.materials[m]
             if self.musl:           # owned and ghost particles, the owned ones written
@@ -295,20 +292,12 @@ class MPMTasks:
                 F_old = old_dw.get(L.pF, m, patch)
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
-            if self.usl_fused:
-                stress = (transfer.FUSED[mat.model_name], mat.params.bulk_modulus, mat.params.shear_modulus,
-                          new_dw.allocate(L.pStressPre, m, patch, None), np.empty(n))
-            else:
-                stress = (0, 0.0, 0.0, _NOL, _NOV)
             x_new = np.empty((n_own, 3))
             v_new = np.empty((n_own, 3))
-            w = self.g2p(self.musl, tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low,
-                         new_dw.get(L.gVelocityStar, m, patch), new_dw.get(L.gAcceleration, m, patch), dt, x_new,
-                         v_new, Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"],
-                         mat.uses_L, F_old, F_new, vol_new, mat.density, *stress)[1:]
-            if self.usl_fused:      # as computeStressTensor's sums
-                ws = np.maximum(ws, np.array(w))
-                se += stress[4].sum()
+            self.g2p(self.musl, tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low,
+                     new_dw.get(L.gVelocityStar, m, patch), new_dw.get(L.gAcceleration, m, patch), dt, x_new, v_new,
+                     Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"], mat.uses_L,
+                     F_old, F_new, vol_new, mat.density)
             if self.musl:
                 kernels.divide_by_mass(new_dw.get(L.gMass, m, patch), gvl, gvl)
                 if not self.contact.active:
@@ -320,9 +309,6 @@ class MPMTasks:
         if self.musl and self.contact.active:
             self._contact_remapped(patch, matls, old_dw, new_dw, dt, remapped)
         self._put_totals(new_dw, tot)
-        if self.usl_fused:
-            new_dw.put_reduction(L.StrainEnergy, se)
-            new_dw.put_reduction(L.WaveSpeed, ws)
 
     def _contact_remapped(self, patch, matls, old_dw, new_dw, dt, gvl):
         """MUSL with contact: the remapped velocities v^L get the same contact as v*
@@ -419,12 +405,7 @@ class MPMTasks:
 
     def compute_stress_tensor(self, patch, matls, old_dw, new_dw):
         """F, V (004 eqs. 14, 17) and the stress from the constitutive model; strain energy
-        (the total: rate models accumulate their increments in p.strainEnergy); wave speed.
-        usl_fused: g2p computed all of these; only the unchanged variables are carried over."""
-        if self.usl_fused:
-            for m in matls:
-                self._carry_unchanged(patch, m, old_dw, new_dw)
-            return
+        (the total: rate models accumulate their increments in p.strainEnergy); wave speed."""
         dt = old_dw.get_reduction(FL.delT)
         ws = np.zeros(3)
         se = 0.0
@@ -490,17 +471,12 @@ class MPMTasks:
                     energy = old_dw.get(L.pStrainEnergy, m, patch) + energy
                 new_dw.put(L.pStrainEnergyPre, m, patch, energy)
             se += energy.sum()
-            self._carry_unchanged(patch, m, old_dw, new_dw)
+            for final, pre in self.carry:
+                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID):
+                    new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            if self.pressure_bcs:
+                lcid = old_dw.get(L.pLoadCurveID, m, patch)
+                new_dw.put(L.pExtForcePre, m, patch, self._ext_force(old_dw, m, patch, old_dw.get(L.pX, m, patch)))
+                new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(lcid))
         new_dw.put_reduction(L.StrainEnergy, se)
         new_dw.put_reduction(L.WaveSpeed, ws)
-
-    def _carry_unchanged(self, patch, m, old_dw, new_dw):
-        """The particle variables the step leaves as they are (mass, ID, size, color, load
-        curve), and the pressure BC's external force, into their pre-relocation labels."""
-        for final, pre in self.carry:
-            if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID):
-                new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
-        if self.pressure_bcs:
-            lcid = old_dw.get(L.pLoadCurveID, m, patch)
-            new_dw.put(L.pExtForcePre, m, patch, self._ext_force(old_dw, m, patch, old_dw.get(L.pX, m, patch)))
-            new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(lcid))

@@ -8,8 +8,7 @@ could alias the node arrays), and does all the work that particle needs at its n
              straight into the warehouse's node arrays (owned + halo nodes); shares of
              ghost particles that fall beyond the halo are dropped (no scratch array,
              no copy).
-  g2p        v_p += dt sum S a_i, x_p += dt sum S v*_i (000 eqs. 26-27), USL: L_p, F, V and,
-             for the models in FUSED, the stress (in place of the stress task); MUSL:
+  g2p        v_p += dt sum S a_i, x_p += dt sum S v*_i (000 eqs. 26-27), USL: L_p; MUSL:
              the updated momentum m_p v_p S scattered back in the same pass (004 eq. 13);
              owned particles are written compacted, with the totals and the
              minimum_particle_mass / maximum_particle_velocity deletion in the same loop.
@@ -42,8 +41,8 @@ from .shape import (CHUNK, GIMP, LINEAR, _counts, _inv_dx, _prefetch_nodes, _scr
 
 FM = {'contract'}
 
-# constitutive models whose stress the pass that computes F computes in the same loop (MUSL:
-# grad, USL: g2p; `model` of those kernels; 0: F and V only, the model runs afterwards)
+# constitutive models whose stress the grad pass computes with F, in the same loop
+# (`model` of the grad kernels; 0: F and V only, the model runs afterwards)
 NEO_HOOKE = 1
 FUSED = {"comp_neo_hook": NEO_HOOKE}
 
@@ -207,19 +206,17 @@ def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, 
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _g2p_rows(kind, act, musl, model, part, first, end, owned, grid, outs, lim, acc):
+def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
     """Rows [first, end) of one source part = (x, v, m, lp): 000 eqs. 26-27 (see _g2p);
     grid = (anchor, ih, node_low, shape, fv, fa, fp, dt, scratch), outs = (x_out, v_out, L_out,
-    F_old, F_out, vol_out, rho0, write_L, K, mu, cK, s_out, e_out), lim = (check, min_mass,
-    max_vel), acc = the running (o, n_del, totals, wave speed); returns it updated. USL with
-    model = NEO_HOOKE: the stress and energy of each owned particle from its new F and V
-    (comp_neo_hook.point, as comp_neo_hook.kernel with the new velocity)."""
+    F_old, F_out, vol_out, rho0, write_L), lim = (check, min_mass, max_vel), acc = the
+    running (o, n_del, totals); returns it updated."""
     px, pvel, pmass, lp = part
     anchor, ih, node_low, sh, fv, fa, fp, dt, sb, sw = grid
     sh0, sh1, sh2 = sh
-    x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L, K, mu, cK, s_out, e_out = outs
+    x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L = outs
     check, min_mass, max_vel = lim
-    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7, w0, w1, w2 = acc
+    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     na, nb, nc = _counts(kind, act)
     for c0 in range(first, end, CHUNK):
         c1 = min(c0 + CHUNK, end)
@@ -314,14 +311,6 @@ def _g2p_rows(kind, act, musl, model, part, first, end, owned, grid, outs, lim, 
                 if write_L:
                     _store_L(L_out, w, L00, L01, L02, L10, L11, L12, L20, L21, L22)
                 _deform(act, u, w, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0)
-                if model == NEO_HOOKE:
-                    e_out[w], cs = comp_neo_hook.point(K, mu, cK, F_out[w, 0, 0], F_out[w, 0, 1], F_out[w, 0, 2],
-                                                       F_out[w, 1, 0], F_out[w, 1, 1], F_out[w, 1, 2],
-                                                       F_out[w, 2, 0], F_out[w, 2, 1], F_out[w, 2, 2], vol_out[w],
-                                                       m, w, s_out)
-                    w0 = max(w0, cs + abs(nv0))
-                    w1 = max(w1, cs + abs(nv1))
-                    w2 = max(w2, cs + abs(nv2))
             t0 += m
             t1 += 0.5 * m * (nv0 ** 2 + nv1 ** 2 + nv2 ** 2)
             t2 += m * nv0
@@ -331,30 +320,28 @@ def _g2p_rows(kind, act, musl, model, part, first, end, owned, grid, outs, lim, 
             t6 += m * x1
             t7 += m * x2
             o += 1
-    return o, n_del, t0, t1, t2, t3, t4, t5, t6, t7, w0, w1, w2
+    return o, n_del, t0, t1, t2, t3, t4, t5, t6, t7
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _g2p(kind, act, musl, model, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out, gmom,
-         tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0, K, mu, s_out, e_out):
+def _g2p(kind, act, musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out, gmom, tot,
+         min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
     """Update every particle given: the owned and ghost sources (x, v, m, lp), run by run
     in their merged ID order (as p2g); write the owned ones compacted to x_out / v_out; USL:
-    F_out, vol_out (and L_out if write_L), with model = NEO_HOOKE also the stress s_out and
-    energy e_out (the stress task's numbers, bitwise); MUSL: += m v_new S on gmom. Returns
-    the number of particles deleted (x = NaN) and the wave speed (w0, w1, w2) (zero unless
-    the stress was computed)."""
+    F_out, vol_out (and L_out if write_L); MUSL: += m v_new S on gmom. Returns the number
+    of particles deleted (x = NaN)."""
     sb, sw = _scratch()
     grid = (anchor, _inv_dx(dx), node_low, gvs.shape[:3], gvs.reshape(-1), gacc.reshape(-1), gmom.reshape(-1), dt,
             sb, sw)
-    outs = (x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L, K, mu, K + 4.0 * mu / 3.0, s_out, e_out)
+    outs = (x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L)
     lim = (min_mass > 0.0 or max_vel < np.inf, min_mass, max_vel)
-    acc = (0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    acc = (0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     for r in range(runs.shape[0]):
         if runs[r, 0] == 0:
-            acc = _g2p_rows(kind, act, musl, model, own, runs[r, 1], runs[r, 2], True, grid, outs, lim, acc)
+            acc = _g2p_rows(kind, act, musl, own, runs[r, 1], runs[r, 2], True, grid, outs, lim, acc)
         else:
-            acc = _g2p_rows(kind, act, musl, model, ghost, runs[r, 1], runs[r, 2], False, grid, outs, lim, acc)
-    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7, w0, w1, w2 = acc
+            acc = _g2p_rows(kind, act, musl, ghost, runs[r, 1], runs[r, 2], False, grid, outs, lim, acc)
+    o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     tot[0] += t0
     tot[1] += t1
     tot[2] += t2
@@ -363,7 +350,7 @@ def _g2p(kind, act, musl, model, own, ghost, runs, anchor, dx, node_low, gvs, ga
     tot[5] += t5
     tot[6] += t6
     tot[7] += t7
-    return n_del, w0, w1, w2
+    return n_del
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -431,9 +418,8 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
 # p2g(own, ghost, runs, has_f, has_v, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
 #     own/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles; has_v: V_i
 # g2p(musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out,
-#     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0, model, K, mu, s_out, e_out)
-#     -> (number deleted, wave speed w0, w1, w2); own/ghost: (px, pv, pm, lp); model (USL only):
-#     NEO_HOOKE computes the stress and energy with F, 0 leaves them (s_out, e_out unused)
+#     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0) -> number deleted
+#     own/ghost: (px, pv, pm, lp)
 # grad(px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old, F_out, vol_out,
 #      model, K, mu, vel, s_out, e_out) -> wave speed (3 floats; zeros unless model)
 
@@ -519,77 +505,43 @@ def p2g_ga(act, o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0, md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(LINEAR, 1, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(LINEAR, 1, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_l1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 1, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0, md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(LINEAR, 3, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(LINEAR, 3, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_l2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 3, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0, md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(LINEAR, 7, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(LINEAR, 7, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_l3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 7, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0, md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(GIMP, 1, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(GIMP, 1, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_g1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 1, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0, md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(GIMP, 3, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(GIMP, 3, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_g2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 3, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0, md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(GIMP, 7, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(GIMP, 7, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_g3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 7, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_la(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0,
-           md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(LINEAR, act, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(LINEAR, act, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_la(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_ga(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0,
-           md, K, sm, So, Eo):
-    if md == NEO_HOOKE:
-        return _g2p(GIMP, act, mu, NEO_HOOKE, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                    Fo, Fn, Vn, rho0, K, sm, So, Eo)
-    return _g2p(GIMP, act, mu, 0, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL,
-                Fo, Fn, Vn, rho0, K, sm, So, Eo)
+def g2p_ga(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
