@@ -113,6 +113,29 @@ def _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
+def _add_L(act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22):
+    """L += v_i (x) grad S_i (004 eq. 14) of one node with velocity (gv0, gv1, gv2) and per-axis weights
+    wa, wb, wc / derivatives ga, gb, gc; the terms of inactive axes are left out (their gradient is 0).
+    Returns the nine updated L terms (g2p's USL L and the grad pass share it)."""
+    if act & 1:
+        G0 = ga * wb * wc
+        L00 += gv0 * G0
+        L10 += gv1 * G0
+        L20 += gv2 * G0
+    if act & 2:
+        G1 = wa * gb * wc
+        L01 += gv0 * G1
+        L11 += gv1 * G1
+        L21 += gv2 * G1
+    if act & 4:
+        G2 = wa * wb * gc
+        L02 += gv0 * G2
+        L12 += gv1 * G2
+        L22 += gv2 * G2
+    return L00, L01, L02, L10, L11, L12, L20, L21, L22
+
+
+@njit(cache=True, fastmath=FM, inline="always")
 def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass, gmom, gvol, gfext, gfint):
     """Accumulate (+=) m, mv, V (if has_v), fext (if has_f), fint of the particles on the node
     arrays: the owned and ghost sources (x, m, v, V, sigma, fext, lp), run by run in their
@@ -258,21 +281,8 @@ def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
                         v1 += S * gv1
                         v2 += S * gv2
                         if not musl:
-                            if act & 1:
-                                G0 = ga * wb * wc
-                                L00 += gv0 * G0
-                                L10 += gv1 * G0
-                                L20 += gv2 * G0
-                            if act & 2:
-                                G1 = wa * gb * wc
-                                L01 += gv0 * G1
-                                L11 += gv1 * G1
-                                L21 += gv2 * G1
-                            if act & 4:
-                                G2 = wa * wb * gc
-                                L02 += gv0 * G2
-                                L12 += gv1 * G2
-                                L22 += gv2 * G2
+                            L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
+                                act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
             nv0 = pvel[u, 0] + dt * a0
             nv1 = pvel[u, 1] + dt * a1
             nv2 = pvel[u, 2] + dt * a2
@@ -384,21 +394,8 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
                     gv0 = fv[f3]
                     gv1 = fv[f3 + np.uint64(1)]
                     gv2 = fv[f3 + np.uint64(2)]
-                    if act & 1:
-                        G0 = ga * wb * wc
-                        L00 += gv0 * G0
-                        L10 += gv1 * G0
-                        L20 += gv2 * G0
-                    if act & 2:
-                        G1 = wa * gb * wc
-                        L01 += gv0 * G1
-                        L11 += gv1 * G1
-                        L21 += gv2 * G1
-                    if act & 4:
-                        G2 = wa * wb * gc
-                        L02 += gv0 * G2
-                        L12 += gv1 * G2
-                        L22 += gv2 * G2
+                    L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
+                        act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         if write_L:
             _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         _deform(act, p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
