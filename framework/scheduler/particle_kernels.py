@@ -39,31 +39,45 @@ def _clear(x, p, b):
 
 
 @njit(cache=True)
-def leavers(x, anchor, dx, lo, hi, dims):
-    """Indices of particles whose cell is outside [lo, hi) (NaN positions count as outside)."""
+def leavers_near(x, anchor, dx, lo, hi, g, dims):
+    """Indices of particles whose cell is outside [lo, hi) (NaN positions count as outside),
+    and the indices and cells of the others that lie within g cells of the faces (near_faces
+    of what stays). Relocation reads every position anyway; the ghost candidates it finds
+    save the ghost exchange of the next step its own pass (g = 0: none)."""
     n = x.shape[0]
     out = np.empty(n, np.int64)
+    idx = np.empty(n, np.int64)
+    cells = np.empty((n, 3), np.int64)
     k = 0
-    b = _bounds(anchor, dx, lo, hi, dims)
+    kn = 0
+    b = _bounds(anchor, dx, lo + g, hi - g, dims)
     for p in range(n):
         if _clear(x, p, b):
             continue
         outside = False
+        near = False
         for d in range(3):
-            if not dims[d]:
-                continue
-            v = x[p, d]
-            if not (v == v):
-                outside = True
-                break
-            c = np.floor((v - anchor[d]) / dx[d])
-            if c < lo[d] or c >= hi[d]:
-                outside = True
-                break
+            c = 0
+            if dims[d]:
+                v = x[p, d]
+                if not (v == v):
+                    outside = True
+                    break
+                cf = np.floor((v - anchor[d]) / dx[d])
+                if cf < lo[d] or cf >= hi[d]:
+                    outside = True
+                    break
+                c = int(cf)
+                if c < lo[d] + g or c >= hi[d] - g:
+                    near = True
+            cells[kn, d] = c            # row kn is kept only if the particle is near
         if outside:
             out[k] = p
             k += 1
-    return out[:k]
+        elif near:
+            idx[kn] = p
+            kn += 1
+    return out[:k], idx[:kn], cells[:kn]
 
 
 @njit(cache=True)
@@ -123,6 +137,13 @@ def select_ghosts(x, anchor, dx, lo, hi, g, dims, boxes):
     indices, box after box (particle order within a box), and the count per box. One
     read of the positions (near_faces) serves every neighbour."""
     idx, cells = near_faces(x, anchor, dx, lo, hi, g, dims)
+    return in_boxes(idx, cells, dims, boxes)
+
+
+@njit(cache=True)
+def in_boxes(idx, cells, dims, boxes):
+    """select_ghosts from the candidates (indices, cells) near the faces: box after box,
+    the candidates whose cell is in the box, and the count per box."""
     nb = boxes.shape[0]
     counts = np.zeros(nb, np.int64)
     out = np.empty(nb * idx.shape[0], np.int64)

@@ -19,7 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..task import NEW, Task
-from .particle_kernels import complement, gather_runs, leavers, runs
+from .comm import particle_plan
+from .particle_kernels import complement, gather_runs, in_boxes, leavers_near, runs
 
 
 @dataclass
@@ -70,6 +71,8 @@ def relocate(ex, spec: RelocationSpec, dw):
     final = [spec.pos] + spec.labels
     dims = np.array([not c for c in level.collapsed])
     stay = {}       # (m, patch id) -> (particles before, indices of those staying or None: all)
+    widths = ghost_widths(ex)
+    near = {}       # (m, patch id) -> ghost candidates (indices, cells) of a patch nobody left
     arrivals = {}   # (m, patch id) -> [(source patch id, {final name: array})]
     outgoing = {}
     lost = 0
@@ -78,9 +81,12 @@ def relocate(ex, spec: RelocationSpec, dw):
             x = dw.get(spec.pos_pre, m, p)
             if len(x) == 0:
                 continue
-            out = leavers(x, level.anchor, level.dx, np.array(p.lo), np.array(p.hi), dims)
+            out, ni, nc = leavers_near(x, level.anchor, level.dx, np.array(p.lo), np.array(p.hi),
+                                       max(widths, default=0), dims)
             stay[(m, p.id)] = (len(x), complement(out, len(x)) if len(out) else None)
             if len(out) == 0:
+                if widths:
+                    near[(m, p.id)] = (ni, nc)
                 continue
             xo = x[out]
             if any(level.periodic):
@@ -109,7 +115,18 @@ def relocate(ex, spec: RelocationSpec, dw):
     ex.particles_removed += int(lost)
     for m in spec.matls:
         for p in ex.local_patches:
-            _assemble(spec, dw, m, p, pre, final, *stay.get((m, p.id), (0, None)), arrivals.get((m, p.id), []))
+            came = arrivals.get((m, p.id), [])
+            _assemble(spec, dw, m, p, pre, final, *stay.get((m, p.id), (0, None)), came)
+            if (m, p.id) in near and not came:      # positions handed on as they are: so are their candidates
+                for g in widths:
+                    boxes = particle_plan(ex, g).box_array.get(p.id)
+                    if boxes is not None:
+                        dw.ghost_candidates[(m, p.id, g)] = in_boxes(*near[(m, p.id)], dims, boxes)
+
+
+def ghost_widths(ex):
+    """The ghost-particle widths the exchanges have asked for under the current patch assignment."""
+    return sorted({k[1] for k in ex._plans if k[0] == "particles" and k[2] == ex.lb.version})
 
 
 def _assemble(spec, dw, m, p, pre, final, n_src, keep, came):
