@@ -128,8 +128,8 @@ def test_equilibrate_cycling_cells():
     shape = (1, 1, len(CYCLING) + 1)
     _, _, _, _, codes, params, cvs, gammas = _case(2, shape, 0)
     c = np.array(CYCLING + [CYCLING[0]]).reshape(shape + (7,))
-    case = ((c[..., 0], c[..., 1]), (c[..., 2], c[..., 3]), (c[..., 4], c[..., 5]), c[..., 6], codes, params,
-            cvs, gammas)
+    col = lambda q: np.ascontiguousarray(c[..., q])      # C arrays: the kernels' specialisations of the test above
+    case = ((col(0), col(1)), (col(2), col(3)), (col(4), col(5)), col(6), codes, params, cvs, gammas)
     for max_iter in (100, 101):            # the cycle ends on either of its two states
         res = []
         for fn in (equilibrate_many, equilibrate):
@@ -151,7 +151,7 @@ def test_nc_to_cc_is_the_weighted_node_sum():
     nn = (7, 6, 1)
     gm, gv = rng.random(nn) * (rng.random(nn) < 0.7), rng.random(nn)
     gu = rng.standard_normal(nn + (3,))
-    dims = np.array([1, 1, 0], np.bool_)
+    dims = np.array([1, 1, 0], np.int64)      # MPMICE's dims_i: the production specialisation, not a second one
     sym_lo, sym_hi = np.array([1, 0, 0], np.bool_), np.zeros(3, np.bool_)
     node_low, cc_low = np.array([0, 2, 0], np.int64), np.array([-1, 1, 0], np.int64)
     n_lo, n_hi = np.array([0, 0, 0], np.int64), np.array([6, 10, 0], np.int64)
