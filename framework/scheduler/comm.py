@@ -8,6 +8,8 @@ sender and receiver agree on the layout of each buffer without extra messages.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..variables import VarType
@@ -296,12 +298,18 @@ def _select(dw, pos, m, q, g, boxes):
 
 def _gather_local(dw, label, m, plan, lay, pos):
     """One buffer holding the local ghosts of label, destination after destination."""
-    out = None
+    out = out2 = None
+    k = 1
     for q, (sel, counts) in lay.sel.items():
         src = dw.get(label, m, plan.patch[q])
         if out is None:
             out = np.empty((lay.total,) + src.shape[1:], src.dtype)
-        _gather_rows(src, sel, counts, lay.dst[q], out)
+            k = math.prod(src.shape[1:])
+            out2 = out.reshape(len(out), k)
+        if src.flags.c_contiguous and src.dtype == out.dtype and src.shape[1:] == out.shape[1:]:
+            gather_pieces(src.reshape(len(src), k), sel, counts, lay.dst[q], out2)
+        else:
+            _gather_rows(src, sel, counts, lay.dst[q], out)
     if out is None:
         return np.empty((0,) + label.shape, label.dtype)
     if label.name == pos.name:
@@ -312,11 +320,8 @@ def _gather_local(dw, label, m, plan, lay, pos):
 
 
 def _gather_rows(src, sel, counts, dst, out):
-    """gather_pieces on (n, k) row views; numpy indexing where src has no such view."""
-    if src.flags.c_contiguous:
-        k = int(np.prod(src.shape[1:]))
-        gather_pieces(src.reshape(len(src), k), sel, counts, dst, out.reshape(len(out), k))
-        return
+    """src[sel] piece by piece into out at rows dst (numpy indexing, for a src that has no
+    (n, k) row view)."""
     starts = np.concatenate([[0], np.cumsum(counts)])
     for b in range(len(counts)):
         if dst[b] >= 0:

@@ -202,6 +202,60 @@ def _first_above(a, lo, v):
 
 
 @njit(cache=True)
+def _first_not_below(a, lo, v):
+    """The first index >= lo of the sorted array a whose value is not below v (binary search)."""
+    hi = a.shape[0]
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if a[mid] < v:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
+def relocation_runs(own, leave, arr, arr_order, arr_first, check):
+    """The runs (see `runs`; source 0: the patch's own rows, 1: the arrivals) of a patch's
+    particles after relocation, in ID order: its own rows (IDs `own`, sorted) but the
+    leavers (sorted indices `leave`), merged with the arrivals (IDs `arr`, in stable ID
+    order `arr_order`), an arrival going before own rows of equal ID where arr_first (it
+    came from a patch of smaller id). This is the stable argsort of the IDs of [pieces in
+    source-patch order], found by binary search, without a pass over the own rows.
+    ok is False (nothing else valid) when `check` finds `own` not sorted."""
+    n_own, n_arr, n_leave = own.shape[0], arr.shape[0], leave.shape[0]
+    rs = np.empty((2 * n_arr + n_leave + 1, 3), np.int64)
+    if check and not _sorted(own):
+        return False, rs[:0]
+    r = 0
+    i = 0
+    li = 0
+    for jj in range(n_arr + 1):
+        e = n_own
+        if jj < n_arr:
+            v = arr[arr_order[jj]]
+            e = _first_not_below(own, i, v) if arr_first[arr_order[jj]] else _first_above(own, i, v)
+        while i < e:                    # own rows [i, e) but the leavers
+            if li < n_leave and leave[li] == i:
+                i += 1
+                li += 1
+                continue
+            stop = e if li == n_leave else min(e, leave[li])
+            rs[r, 0], rs[r, 1], rs[r, 2] = 0, i, stop
+            r += 1
+            i = stop
+        if jj == n_arr:
+            break
+        j = arr_order[jj]
+        if r > 0 and rs[r - 1, 0] == 1 and rs[r - 1, 2] == j:
+            rs[r - 1, 2] = j + 1
+        else:
+            rs[r, 0], rs[r, 1], rs[r, 2] = 1, j, j + 1
+            r += 1
+    return True, rs[:r]
+
+
+@njit(cache=True)
 def merge_ids(own, ghost, gorder, check):
     """The stable ID order of owned + ghost rows (np.argsort(concatenation, kind="stable")),
     the owned mask of the merged rows and the runs of the order (see `runs`): the ghost IDs,

@@ -10,7 +10,10 @@ layout.
 
 Cost: a patch nobody left or entered hands its arrays on untouched; otherwise only the
 leavers are packed, and each variable of the patch is written once, by one gather of
-its staying particles merged with the arrivals in their final order.
+its staying particles merged with the arrivals in their final order (found by binary
+search of the arrivals' IDs among the patch's sorted ones). The one pass over the
+positions that finds the leavers also finds the particles near the faces, the ghost
+candidates of the next step's exchange, for the patches whose positions are handed on.
 """
 from __future__ import annotations
 
@@ -20,7 +23,7 @@ import numpy as np
 
 from ..task import NEW, Task
 from .comm import particle_plan
-from .particle_kernels import complement, gather_runs, in_boxes, leavers_near, runs
+from .particle_kernels import KNOWN_SORTED, complement, gather_runs, in_boxes, leavers_near, relocation_runs, runs
 
 
 @dataclass
@@ -60,7 +63,11 @@ def _load_kernels(dtypes):
         _warm.add(dt)
         one = np.zeros((1, 1), dt)
         gather_runs(one, one, runs(np.zeros(1, np.int64), 1), np.empty((1, 1), dt))
-    complement(np.zeros(0, np.int64), 1)
+    if None not in _warm:
+        _warm.add(None)
+        none = np.zeros(0, np.int64)
+        complement(none, 1)
+        relocation_runs(np.zeros(1, np.int64), none, none, none, np.zeros(0, np.bool_), True)
 
 
 def relocate(ex, spec: RelocationSpec, dw):
@@ -70,8 +77,9 @@ def relocate(ex, spec: RelocationSpec, dw):
     pre = [spec.pos_pre] + spec.labels_pre
     final = [spec.pos] + spec.labels
     dims = np.array([not c for c in level.collapsed])
-    stay = {}       # (m, patch id) -> (particles before, indices of those staying or None: all)
-    widths = ghost_widths(ex)
+    stay = {}       # (m, patch id) -> (particles before, indices of those leaving or None: none)
+    pos_label = getattr(ex, "position_label", None)
+    widths = ghost_widths(ex) if pos_label is not None and pos_label.name == spec.pos.name else []
     near = {}       # (m, patch id) -> ghost candidates (indices, cells) of a patch nobody left
     arrivals = {}   # (m, patch id) -> [(source patch id, {final name: array})]
     outgoing = {}
@@ -83,7 +91,7 @@ def relocate(ex, spec: RelocationSpec, dw):
                 continue
             out, ni, nc = leavers_near(x, level.anchor, level.dx, np.array(p.lo), np.array(p.hi),
                                        max(widths, default=0), dims)
-            stay[(m, p.id)] = (len(x), complement(out, len(x)) if len(out) else None)
+            stay[(m, p.id)] = (len(x), out if len(out) else None)
             if len(out) == 0:
                 if widths:
                     near[(m, p.id)] = (ni, nc)
@@ -129,16 +137,53 @@ def ghost_widths(ex):
     return sorted({k[1] for k in ex._plans if k[0] == "particles" and k[2] == ex.lb.version})
 
 
-def _assemble(spec, dw, m, p, pre, final, n_src, keep, came):
-    """Put the final labels of (m, p): the staying ones of its n_src particles (`keep`,
-    None: all) and the arrivals, in source-patch order, then (with an ID label) by ID."""
-    if not came and keep is None:            # nobody left or came: hand the arrays on untouched
+def _assemble(spec, dw, m, p, pre, final, n_src, out, came):
+    """Put the final labels of (m, p): its n_src particles but the leavers (`out`, None: none)
+    and the arrivals, in source-patch order, then (with an ID label) by ID."""
+    if not came and out is None:            # nobody left or came: hand the arrays on untouched
         dw.create_particles(m, p, n_src)
         for lp, lf in zip(pre, final):
             dw.put(lf, m, p, dw.get(lp, m, p) if n_src else np.empty((0,) + lf.shape, dtype=lf.dtype))
         return
     came = sorted(came, key=lambda it: it[0])
-    kept = np.arange(n_src) if keep is None else keep
+    arrived = {lf.name: np.concatenate([d[lf.name] for _, d in came]) if came else np.empty((0,) + lf.shape, lf.dtype)
+               for lf in final}
+    r = _merged_runs(spec, dw, m, p, pre, final, n_src, out, came, arrived) if n_src else None
+    if r is None:
+        r = _sorted_runs(spec, dw, m, p, pre, final, n_src, out, came, arrived)
+    n = int((r[:, 2] - r[:, 1]).sum())
+    dw.create_particles(m, p, n)
+    for lp, lf in zip(pre, final):
+        src = dw.get(lp, m, p) if n_src else arrived[lf.name][:0]
+        dw.put(lf, m, p, _gather(src, arrived[lf.name], r, n))
+
+
+def _merged_runs(spec, dw, m, p, pre, final, n_src, out, came, arrived):
+    """The runs of the final order found by merging the arrivals' IDs into the own sorted
+    ones (relocation_runs); None where that does not apply (no ID label, own IDs not sorted)."""
+    leave = np.zeros(0, np.int64) if out is None else out
+    names = [lf.name for lf in final]
+    if not came:                        # own rows but the leavers, in their order
+        none = np.zeros(0, np.int64)
+        return relocation_runs(np.empty(n_src, np.int64), leave, none, none, np.zeros(0, np.bool_), False)[1]
+    if spec.id_label is None:
+        return None
+    ids = dw.get(pre[names.index(spec.id_label.name)], m, p)
+    arr = arrived[spec.id_label.name]
+    if ids.dtype != np.int64 or arr.dtype != np.int64 or ids.ndim != 1:
+        return None
+    ids, arr = np.ascontiguousarray(ids), np.ascontiguousarray(arr)
+    first = np.concatenate([np.full(len(d[spec.pos.name]), src < p.id) for src, d in came])
+    ok, r = relocation_runs(ids, leave, arr, np.argsort(arr, kind="stable"), first, KNOWN_SORTED.get(ids) is None)
+    if not ok:
+        return None
+    KNOWN_SORTED.put(ids, True)
+    return r
+
+
+def _sorted_runs(spec, dw, m, p, pre, final, n_src, out, came, arrived):
+    """The runs of the final order by a stable argsort of the IDs of all pieces."""
+    kept = np.arange(n_src) if out is None else complement(out, n_src)
     # index of every final particle into [source arrays | arrivals], pieces in source-patch order
     parts, off = [], n_src
     for src, data in came:
@@ -148,18 +193,12 @@ def _assemble(spec, dw, m, p, pre, final, n_src, keep, came):
     parts.append((p.id, kept))
     parts.sort(key=lambda it: it[0])
     index = np.concatenate([ix for _, ix in parts]) if parts else np.zeros(0, np.int64)
-    arrived = {lf.name: np.concatenate([d[lf.name] for _, d in came]) if came else np.empty((0,) + lf.shape, lf.dtype)
-               for lf in final}
     if spec.id_label is not None and came:
         lp = pre[[lf.name for lf in final].index(spec.id_label.name)]
         ids = _gather(dw.get(lp, m, p) if n_src else arrived[spec.id_label.name][:0], arrived[spec.id_label.name],
                       runs(index, n_src), len(index))
         index = index[np.argsort(ids, kind="stable")]
-    dw.create_particles(m, p, len(index))
-    r = runs(index, n_src)          # long blocks of staying particles, the arrivals between them
-    for lp, lf in zip(pre, final):
-        src = dw.get(lp, m, p) if n_src else arrived[lf.name][:0]
-        dw.put(lf, m, p, _gather(src, arrived[lf.name], r, len(index)))
+    return runs(index, n_src)          # long blocks of staying particles, the arrivals between them
 
 
 def _gather(src, arrived, r, n):

@@ -95,3 +95,35 @@ def test_ghost_merge_reused_only_for_equal_ghost_ids():
     assert np.array_equal(o3, np.argsort(np.concatenate([own, gh2]), kind="stable"))
     o4, _ = comm._ghost_order(DW(own.copy()), Lab, 0, None, {"id": gh2}, True)
     assert o4 is not o3 and np.array_equal(o4, o3)
+
+
+def test_relocation_runs_is_stable_argsort_of_pieces():
+    """relocation_runs gives the runs of the stable ID argsort of [own rows but the leavers,
+    arrivals] with the pieces in source-patch order (own patch among the sources)."""
+    from framework.scheduler.particle_kernels import relocation_runs
+    rng = np.random.default_rng(3)
+    for _ in range(3000):
+        n_own, hi = int(rng.integers(0, 40)), int(rng.integers(1, 50))
+        own = np.sort(rng.integers(0, hi, n_own)).astype(np.int64)
+        leave = np.flatnonzero(rng.random(n_own) < rng.random() * 0.5).astype(np.int64)
+        pieces = [(5, np.setdiff1d(np.arange(n_own), leave))]      # own patch id 5
+        arr, first, off = [], [], n_own
+        for src in rng.permutation([1, 3, 7, 9])[:rng.integers(0, 4)]:
+            k = int(rng.integers(0, 6))
+            arr.append((src, rng.integers(0, hi, k).astype(np.int64)))
+        arr.sort(key=lambda it: it[0])
+        for src, a in arr:
+            pieces.append((src, np.arange(off, off + len(a))))
+            first.append(np.full(len(a), src < 5))
+            off += len(a)
+        aid = np.concatenate([a for _, a in arr]) if arr else np.zeros(0, np.int64)
+        first = np.concatenate(first) if first else np.zeros(0, np.bool_)
+        pieces.sort(key=lambda it: it[0])
+        index = np.concatenate([ix for _, ix in pieces]).astype(np.int64)
+        allids = np.concatenate([own, aid])
+        ref = index[np.argsort(allids[index], kind="stable")]
+        ok, r = relocation_runs(own, leave, aid, np.argsort(aid, kind="stable"), first, True)
+        assert ok
+        assert np.array_equal(r, _runs(ref, n_own)), (own, leave, aid, first)
+        if n_own > 1 and own[0] != own[-1]:
+            assert not relocation_runs(own[::-1].copy(), leave, aid, np.argsort(aid, kind="stable"), first, True)[0]
