@@ -50,9 +50,11 @@ FUSED = {"comp_neo_hook": NEO_HOOKE}
 @njit(cache=True, fastmath=FM, inline="always")
 def _deform(act, p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, m, rho0):
     """F^{n+1} = (I + L dt) F^n (004 eq. 14) and V = m/rho0 det F (eq. 17) of particle p,
-    written at o (kernels.deform, fused). Without a z axis (act = 1, 3) L02 = L12 = L22 = 0:
-    the z column of (I + L dt) is (0, 0, 1) and its products are left out (they would add
-    exact zeros); the z row (out-of-plane velocity) is kept."""
+    written at o (kernels.deform, fused) and returned as (F00, ..., F22, V), so that a stress
+    computed in the same pass takes them from registers, not back from F_out (measured 8 % off
+    MUSL's grad pass). Without a z axis (act = 1, 3) L02 = L12 = L22 = 0: the z column of
+    (I + L dt) is (0, 0, 1) and its products are left out (they would add exact zeros); the
+    z row (out-of-plane velocity) is kept."""
     G00, G01, G02 = F_old[p, 0, 0], F_old[p, 0, 1], F_old[p, 0, 2]
     G10, G11, G12 = F_old[p, 1, 0], F_old[p, 1, 1], F_old[p, 1, 2]
     G20, G21, G22 = F_old[p, 2, 0], F_old[p, 2, 1], F_old[p, 2, 2]
@@ -96,7 +98,9 @@ def _deform(act, p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F
     F_out[o, 2, 2] = F22
     J = (F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20)
          + F02 * (F10 * F21 - F11 * F20))
-    vol_out[o] = m / rho0 * J
+    V = m / rho0 * J
+    vol_out[o] = V
+    return F00, F01, F02, F10, F11, F12, F20, F21, F22, V
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -349,7 +353,7 @@ def _g2p(kind, act, musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt,
     for r in range(runs.shape[0]):
         if runs[r, 0] == 0:
             acc = _g2p_rows(kind, act, musl, own, runs[r, 1], runs[r, 2], True, grid, outs, lim, acc)
-        else:
+        elif musl:              # USL: a ghost particle changes nothing (no remap), so no code for it
             acc = _g2p_rows(kind, act, musl, ghost, runs[r, 1], runs[r, 2], False, grid, outs, lim, acc)
     o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     tot[0] += t0
@@ -398,11 +402,11 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
                         act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         if write_L:
             _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
-        _deform(act, p, p, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F_out, vol_out, pmass[p], rho0)
+        m = pmass[p]
+        F00, F01, F02, F10, F11, F12, F20, F21, F22, V = _deform(act, p, p, dt, L00, L01, L02, L10, L11, L12, L20,
+                                                                 L21, L22, F_old, F_out, vol_out, m, rho0)
         if model == NEO_HOOKE:
-            e_out[p], cs = comp_neo_hook.point(K, mu, cK, F_out[p, 0, 0], F_out[p, 0, 1], F_out[p, 0, 2],
-                                               F_out[p, 1, 0], F_out[p, 1, 1], F_out[p, 1, 2], F_out[p, 2, 0],
-                                               F_out[p, 2, 1], F_out[p, 2, 2], vol_out[p], pmass[p], p, s_out)
+            e_out[p], cs = comp_neo_hook.point(K, mu, cK, F00, F01, F02, F10, F11, F12, F20, F21, F22, V, m, p, s_out)
             w0 = max(w0, cs + abs(vel[p, 0]))
             w1 = max(w1, cs + abs(vel[p, 1]))
             w2 = max(w2, cs + abs(vel[p, 2]))
@@ -416,7 +420,8 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
 #     own/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles; has_v: V_i
 # g2p(musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out,
 #     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0) -> number deleted
-#     own/ghost: (px, pv, pm, lp)
+#     own/ghost: (px, pv, pm, lp); kernels() gives it; the entry points g2p_* (USL) and g2pm_* (MUSL)
+#     take the arguments after musl
 # grad(px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old, F_out, vol_out,
 #      model, K, mu, vel, s_out, e_out) -> wave speed (3 floats; zeros unless model)
 
@@ -502,43 +507,83 @@ def p2g_ga(act, o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 1, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2p_l1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 1, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 3, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2pm_l1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 1, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_l3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 7, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2p_l2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 3, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g1(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 1, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2pm_l2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 3, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g2(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 3, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2p_l3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 7, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_g3(mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 7, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2pm_l3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, 7, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_la(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2p_g1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 1, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_ga(act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, act, mu, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+def g2pm_g1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 1, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 3, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2pm_g2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 3, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_g3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 7, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2pm_g3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, 7, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_la(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, act, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2pm_la(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(LINEAR, act, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2p_ga(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, act, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
+
+
+@njit(cache=True, fastmath=FM)
+def g2pm_ga(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
+    return _g2p(GIMP, act, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
 
 
 @njit(cache=True, fastmath=FM)
@@ -598,11 +643,21 @@ def grad_ga(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K
 
 
 KERNELS = {
-    ("linear", 1): (p2g_l1, g2p_l1, grad_l1), ("linear", 3): (p2g_l2, g2p_l2, grad_l2),
-    ("linear", 7): (p2g_l3, g2p_l3, grad_l3), ("gimp", 1): (p2g_g1, g2p_g1, grad_g1),
-    ("gimp", 3): (p2g_g2, g2p_g2, grad_g2), ("gimp", 7): (p2g_g3, g2p_g3, grad_g3),
+    ("linear", 1): (p2g_l1, (g2p_l1, g2pm_l1), grad_l1), ("linear", 3): (p2g_l2, (g2p_l2, g2pm_l2), grad_l2),
+    ("linear", 7): (p2g_l3, (g2p_l3, g2pm_l3), grad_l3), ("gimp", 1): (p2g_g1, (g2p_g1, g2pm_g1), grad_g1),
+    ("gimp", 3): (p2g_g2, (g2p_g2, g2pm_g2), grad_g2), ("gimp", 7): (p2g_g3, (g2p_g3, g2pm_g3), grad_g3),
 }
-ANY_AXES = {"linear": (p2g_la, g2p_la, grad_la), "gimp": (p2g_ga, g2p_ga, grad_ga)}
+ANY_AXES = {"linear": (p2g_la, (g2p_la, g2pm_la), grad_la), "gimp": (p2g_ga, (g2p_ga, g2pm_ga), grad_ga)}
+
+
+def _g2p_by_update(usl, musl):
+    """g2p(musl, ...) (signature above) from its USL and MUSL entry points: each is compiled only
+    where a run uses it, with musl a compile-time constant (USL's has no remap and no code for
+    ghost particles, MUSL's no L or F; with musl a run-time flag one entry held both: 40 CPU s of
+    disks_50x50's cold compile)."""
+    def g2p(musl_flag, *args):
+        return (musl if musl_flag else usl)(*args)
+    return g2p
 
 
 def one_run(n):
@@ -613,8 +668,11 @@ def one_run(n):
 def kernels(kind, act):
     """(p2g, g2p, grad) for interpolator `kind` on the active-axis mask `act` (signatures above)."""
     if (kind, act) in KERNELS:
-        return KERNELS[(kind, act)]
-    return tuple(functools.partial(f, act) for f in ANY_AXES[kind])
+        p2g, (usl, musl), grad = KERNELS[(kind, act)]
+        return p2g, _g2p_by_update(usl, musl), grad
+    p2g, (usl, musl), grad = ANY_AXES[kind]
+    return (functools.partial(p2g, act), _g2p_by_update(functools.partial(usl, act), functools.partial(musl, act)),
+            functools.partial(grad, act))
 
 
 def merged_p2g(p2g):
