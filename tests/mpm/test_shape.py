@@ -241,3 +241,16 @@ def test_out_of_patch_raises():
         g2p(False, own, own, one_run(1), anchor, dx, lo, np.zeros(shape + (3,)), np.zeros(shape + (3,)), 0.1,
             np.empty((1, 3)), np.empty((1, 3)), np.zeros((1, 3, 3)), np.zeros((1, 1, 1, 3)), np.zeros(8), 0.0,
             np.inf, False, np.tile(np.eye(3), (1, 1, 1)), np.empty((1, 3, 3)), np.empty(1), 1.0)
+
+
+def test_linear_size_stand_in_has_one_numba_type():
+    """Linear's stand-in for p.size (tasks._zeros3) has the same numba type for every particle
+    count: a C-contiguous view for some counts and a strided one for others made numba compile
+    p2g, g2p and grad twice in one run."""
+    import numba
+
+    from components.mpm.tasks import _zeros3
+    types = {numba.typeof(_zeros3(n)) for n in (0, 1, 2, 7, 1000, 3)}
+    assert len(types) == 1
+    z = _zeros3(5)
+    assert z.shape == (5, 3) and not z.any() and not z.flags.writeable
