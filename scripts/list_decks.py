@@ -2,7 +2,7 @@
 """Writes inputs/README.md: every deck under inputs/ with the first sentence of its header comment.
 
     .venv/bin/python scripts/list_decks.py          # rewrite inputs/README.md
-    .venv/bin/python scripts/list_decks.py --check  # exit 1 if it is out of date (tests/test_decks.py)
+    .venv/bin/python scripts/list_decks.py --check  # exit 1 if it is out of date (tests/decks/test_inputs_readme.py)
 
 Every deck starts with an XML comment: the scene, what it checks, its runtime and the
 command. A deck without one is an error here, so the list never silently loses a deck.
@@ -20,7 +20,7 @@ HEAD = """# Decks
 
 Each deck starts with a comment: the scene, what it checks, how long it takes, the command.
 Run any of them with `./pysus inputs/<dir>/<deck>.ups`. This file is written by
-`scripts/list_decks.py` from those comments (tests/test_decks.py checks it is current)."""
+`scripts/list_decks.py` from those comments (tests/decks/test_inputs_readme.py checks it is current)."""
 WIDTH = 220
 
 
