@@ -18,6 +18,7 @@ from .component import lookup
 from .datawarehouse import DataWarehouse
 from .gridspec import level_from_spec
 from .loadbalancer import LoadBalancer
+from .memory import keep_freed_memory
 from .problemspec import InputError, Param, ProblemSpec
 from .progress import Progress
 from .scheduler.comm import Comm
@@ -88,6 +89,7 @@ class Controller:
 
     def __init__(self, deck=None, comm: Comm | None = None, restart=None, restart_index=-1,
                  quiet=False, filebase=None, max_timesteps=None, deck_text=None):
+        keep_freed_memory()
         self.comm = comm or Comm(None)
         self.quiet = quiet
         self.restart = restart
