@@ -253,6 +253,11 @@ def particle_plan(ex, g: int) -> ParticlePlan:
     return ex._plans[key]
 
 
+def ghost_widths(ex):
+    """The ghost-particle widths whose plans (particle_plan) exist for the current patch assignment."""
+    return sorted({k[1] for k in ex._plans if k[0] == "particles" and k[2] == ex.lb.version})
+
+
 class _Layout:
     """Where the ghosts of (material, width) come from and go, for one warehouse: per local
     source the selected rows (sel, rows per box) and each box's first row in the buffer of

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..task import NEW, Task
-from .comm import particle_plan
+from .comm import ghost_widths, particle_plan
 from .particle_kernels import KNOWN_SORTED, complement, gather_runs, in_boxes, leavers_near, relocation_runs, runs
 
 
@@ -130,11 +130,6 @@ def relocate(ex, spec: RelocationSpec, dw):
                     boxes = particle_plan(ex, g).box_array.get(p.id)
                     if boxes is not None:
                         dw.ghost_candidates[(m, p.id, g)] = in_boxes(*near[(m, p.id)], dims, boxes)
-
-
-def ghost_widths(ex):
-    """The ghost-particle widths the exchanges have asked for under the current patch assignment."""
-    return sorted({k[1] for k in ex._plans if k[0] == "particles" and k[2] == ex.lb.version})
 
 
 def _assemble(spec, dw, m, p, pre, final, n_src, out, came):
