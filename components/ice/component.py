@@ -13,6 +13,8 @@ adds no viscous heating to the energy. Heat conduction: div(theta k grad T) (eq.
 """
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from framework import labels as L
@@ -24,7 +26,7 @@ from framework.variables import Ghost
 
 from . import labels as I
 from .bc import BoundaryConditions, read_bcs
-from .eos import IDEAL_GAS, MAX_PARAMS, make_eos
+from .eos import IDEAL_GAS, MAX_PARAMS, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .tasks import IceTasks
 
@@ -39,6 +41,7 @@ MATERIAL = {
     "thermal_conductivity": Param("float", 0.0),
     "specific_heat": Param("float"),
     "gamma": Param("float"),
+    "tiny_rho": Param("float", 1e-12),
 }
 GEOM = {
     "res": Param("ivector", (2, 2, 2)),
@@ -46,6 +49,7 @@ GEOM = {
     "temperature": Param("float"),
     "density": Param("float"),
     "pressure": Param("float"),
+    "volumeFraction": Param("float", -1.0),
 }
 
 
@@ -59,7 +63,14 @@ class Material:
         self.gamma = props["gamma"]
         self.viscosity = props["dynamic_viscosity"]
         self.conductivity = props["thermal_conductivity"]
+        self.tiny_rho = props["tiny_rho"]
         self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
+
+
+def _rank():
+    """This process's MPI rank (notes are printed once, by rank 0)."""
+    from mpi4py import MPI
+    return MPI.COMM_WORLD.Get_rank()
 
 
 @register("ice")
@@ -118,11 +129,33 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.viscous = any(m.viscosity > 0 for m in self.materials)
         self.conduction = any(m.conductivity > 0 for m in self.materials)
         self._geom_cache = {}
+        self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
 
     def material_names(self):
         return [m.name for m in self.materials]
+
+    def read_timestep_control(self, ice):
+        """<TimeStepControl> as Uintah reads it (both tags required when the block is there);
+        without it the explicit delT is Uintah's default, aggressive with knob 1."""
+        tsc = self.timestep_control = ice.child("TimeStepControl")
+        self.conservative_dt, self.knob, self.knob_diffusion = False, 1.0, 1.0
+        self.imp_knob_for_diffusion = False
+        if tsc is not None:
+            self.conservative_dt = tsc.get("Scheme_for_delT_calc", "str",
+                                           choices=("aggressive", "conservative")) == "conservative"
+            self.knob = tsc.get("knob_for_speedSound", "float")
+            if not 0.0 <= self.knob <= 1.0:
+                raise tsc.child("knob_for_speedSound").error("knob_for_speedSound must be between 0 and 1")
+            if tsc.has("knob_for_diffusion"):
+                self.knob_diffusion = tsc.get("knob_for_diffusion", "float")
+                if not self.knob_diffusion >= 0.0:
+                    raise tsc.child("knob_for_diffusion").error("knob_for_diffusion must be >= 0")
+                self.imp_knob_for_diffusion = True
+        # pysus extension: the CFL limit counts only directions with more than one cell
+        # (Uintah also counts the one-cell directions' spacing, which can set a 1D run's step)
+        self.delt_active_dirs_only = ice.get("delT_activeDirectionsOnly", "bool", False)
 
     def _read_material(self, node, geo):
         name = node.attr("name", default=f"ice{len(getattr(self, 'materials', []))}")
@@ -139,9 +172,31 @@ class ICE(ImplicitICE, IceTasks, Component):
         objects = []
         for go in node.children("geom_object"):
             objects.append((geo.read_object(go), go.read(GEOM)))
+            self._check_initial_state(go, objects[-1][1], eos, props)
         if not objects:
             raise node.error("material has no <geom_object> (initial condition)")
         return Material(name, eos, props, objects)
+
+    def _check_initial_state(self, go, values, eos, props):
+        """Refuse a density or temperature no EOS takes; say when <pressure> is not the EOS
+        pressure at <density> and <temperature>: like Uintah, the run starts from those two."""
+        for tag in ("density", "temperature"):
+            if not (np.isfinite(values[tag]) and values[tag] > 0.0):
+                raise go.child(tag).error(f"<{tag}> must be a positive number, not {values[tag]:g}")
+        if not (values["volumeFraction"] == -1.0 or 0.0 <= values["volumeFraction"] <= 1.0):
+            raise go.child("volumeFraction").error("<volumeFraction> must be between 0 and 1 (or -1: the geometry's)")
+        if self.n_before:           # MPMICE starts its fluids from <pressure> and <temperature>
+            return
+        params = np.zeros(MAX_PARAMS)
+        params[:len(eos.params())] = eos.params()
+        p_eos = float(eos_press_eos(eos.code, params, values["density"],
+                                    values["temperature"], props["specific_heat"], props["gamma"])[0])
+        p_deck = values["pressure"]
+        if abs(p_eos - p_deck) > 1e-6 * max(abs(p_deck), abs(p_eos)) and _rank() == 0:
+            node = go.child("pressure")
+            print(f"pysus: note: {node.filename}:{node.line}: <pressure> {p_deck:g} Pa is not the EOS pressure "
+                  f"{p_eos:g} Pa at <density> {values['density']:g} and <temperature> {values['temperature']:g}; "
+                  "as in Uintah, the state starts from the density and temperature", file=sys.stderr)
 
     @staticmethod
     def _read_exchange(node, n):
@@ -174,12 +229,14 @@ class ICE(ImplicitICE, IceTasks, Component):
     def schedule_initialize(self, level, sched):
         sched.add_task(Task("ICE::actuallyInitialize", self.initialize, self.matls)
                        .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC)
-                       .computes(I.press_CC, matls=[0]))
+                       .computes(I.speedSound_CC).computes(I.press_CC, matls=[0]))
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_implicit if self.implicit else self.stable_timestep
+        g = (G, 1) if self.conservative_dt and not self.implicit else ()     # the swept volume reads neighbours
         sched.add_task(Task("ICE::computeStableTimestep", fn, self.matls)
-                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
+                       .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g)
+                       .requires(NEW, I.speedSound_CC, *g)
                        .computes(L.delT))
 
     def schedule_time_advance(self, level, sched):

@@ -146,18 +146,10 @@ class ImplicitICE:
             return
         self.imp = ImplicitSettings(node, root)
         self.may_recompute = self.imp.restart_iters is not None   # the controller keeps the old warehouse
-        tsc = ice.child("TimeStepControl")
-        self.knob = 0.0
-        self.conservative_dt = False
-        if tsc is not None:                 # both tags required when the block is there (Uintah)
-            self.conservative_dt = tsc.get("Scheme_for_delT_calc", "str",
-                                           choices=("aggressive", "conservative")) == "conservative"
-            self.knob = tsc.get("knob_for_speedSound", "float")
-            if not 0.0 <= self.knob <= 1.0:
-                raise tsc.child("knob_for_speedSound").error("knob_for_speedSound must be between 0 and 1")
-            if tsc.has("knob_for_diffusion"):
-                tsc.child("knob_for_diffusion").value("float")
-                self.imp.ignored.append("knob_for_diffusion")
+        if self.timestep_control is None:
+            self.knob = 0.0                 # pysus's default: delT from the flow speed alone
+        if self.imp_knob_for_diffusion:
+            self.imp.ignored.append("knob_for_diffusion")
         lv = self.level
         precond = self.imp.precond
         note = ""

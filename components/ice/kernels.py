@@ -501,28 +501,53 @@ def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, 
 
 
 @njit(cache=True, error_model="numpy")
-def stable_dt(vel, temp, sp_vol, code, params, cv, gamma, dims, dx, lo, hi, comp=None):
-    """CFL limit min over cells and directions of dx / (c + |u|) for one material.
+def stable_dt(vel, speed_sound, dims, dx, lo, hi, comp, knob):
+    """Uintah's 'aggressive' CFL limit: min over cells and the directions in dims of
+    dx / (knob c + |u|) for one material (the caller multiplies by the CFL number).
     comp[d]: the velocity component along axis d (arrays seen with permuted axes)."""
     best = np.inf
-    n = hi[2] - lo[2]
-    c0, c1, c2 = (0, 1, 2) if comp is None else (comp[0], comp[1], comp[2])
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
-            t, v = temp[i, j, lo[2]:hi[2]], sp_vol[i, j, lo[2]:hi[2]]
-            u = vel[i, j, lo[2]:hi[2]]
-            for k in range(n):
-                if code == IDEAL_GAS:
-                    c = np.sqrt(max(ideal_gas_sound_speed2(1.0 / v[k], t[k], cv, gamma), TINY))
-                else:
-                    c = np.sqrt(max(eos_sound_speed2(code, params, 1.0 / v[k], t[k], cv, gamma), TINY))
-                if dims[0]:
-                    best = min(best, dx[0] / (c + abs(u[k, c0])))
-                if dims[1]:
-                    best = min(best, dx[1] / (c + abs(u[k, c1])))
-                if dims[2]:
-                    best = min(best, dx[2] / (c + abs(u[k, c2])))
+            for k in range(lo[2], hi[2]):
+                c = knob * speed_sound[i, j, k]
+                u = vel[i, j, k]
+                for d in range(3):
+                    if dims[d]:
+                        best = min(best, dx[d] / (c + abs(u[comp[d]])))
     return best
+
+
+@njit(cache=True)
+def stable_dt_swept(vel, speed_sound, sp_vol, cp, count_dirs, has_neighbours, dx, lo, hi, knob, conductivity,
+                    viscosity, grav_vel):
+    """Uintah's 'conservative' limit: min over cells of vol / (outflow volume swept per unit
+    time through the cell's faces), each face moving at the face velocity plus the larger
+    neighbouring sound speed (times knob), the neighbours' relative speed, sqrt(dx |g|) and a
+    diffusion speed (the caller multiplies by the CFL number). Needs one ghost layer."""
+    best = np.inf
+    vol = dx[0] * dx[1] * dx[2]
+    dx_length = np.sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2])
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                diffusion_vel = max(conductivity * sp_vol[i, j, k] / cp, viscosity) / dx_length
+                swept = 0.0
+                for d in range(3):
+                    if not count_dirs[d]:
+                        continue
+                    s = 1 if has_neighbours[d] else 0
+                    il, jl, kl = i - s * (d == 0), j - s * (d == 1), k - s * (d == 2)
+                    ir, jr, kr = i + s * (d == 0), j + s * (d == 1), k + s * (d == 2)
+                    c = max(speed_sound[il, jl, kl], speed_sound[ir, jr, kr])
+                    u_l, u_c, u_r = vel[il, jl, kl, d], vel[i, j, k, d], vel[ir, jr, kr, d]
+                    spread = knob * c + abs(u_r - u_l) + grav_vel + diffusion_vel
+                    area = vol / dx[d]
+                    swept += max(0.0, (0.5 * (u_r + u_c) + spread) * area)
+                    swept += max(0.0, -(0.5 * (u_l + u_c) - spread) * area)
+                if swept > 0.0:
+                    best = min(best, vol / swept)
+    return best
+
 
 @njit(cache=True)
 def mach_number(vel, temp, sp_vol, out, code, params, cv, gamma, lo, hi):
@@ -550,6 +575,25 @@ def conserved_sums(rho, vel, temp, cv, vol, lo, hi, out):
                 out[3] += m * u0
                 out[4] += m * u1
                 out[5] += m * u2
+
+
+@njit(cache=True)
+def speed_sound_fill(sp_vol, temp, out, code, params, cv, gamma):
+    """Uintah's initial speedSound_CC: c^2 = dp/drho + dp/de p / rho^2 at (rho_micro, T)."""
+    for n in range(sp_vol.size):
+        if sp_vol[n] <= 0.0:            # a ghost cell not filled yet
+            out[n] = 0.0
+            continue
+        rho = 1.0 / sp_vol[n]
+        p, dp_drho, dp_de = eos_press_eos(code, params, rho, temp[n], cv, gamma)
+        out[n] = np.sqrt(max(dp_drho + dp_de * p / (rho * rho), TINY))
+
+
+@njit(cache=True)
+def press_fill(rho_micro, temp, out, code, params, cv, gamma):
+    """EOS pressure p(rho_micro, T) for flat arrays (initial condition)."""
+    for n in range(rho_micro.size):
+        out[n] = eos_press_eos(code, params, rho_micro[n], temp[n], cv, gamma)[0]
 
 
 @njit(cache=True)

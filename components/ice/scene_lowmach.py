@@ -55,6 +55,7 @@ DECK = """<?xml version="1.0" encoding="iso-8859-1"?>
     <cfl> {cfl} </cfl>
     <ICE>
       <advection type="SecondOrder"/>
+      <delT_activeDirectionsOnly>true</delT_activeDirectionsOnly>
       {implicit}
     </ICE>
   </CFD>
@@ -151,7 +152,7 @@ BLOB = """<Uintah_specification><SimulationComponent type="ice"/>{solver}
 <resolution>[{n},{n},1]</resolution></Box></Level></Grid>
 <DataArchiver><filebase>blob.uda</filebase><outputTimestepInterval>{steps}</outputTimestepInterval>
 <save label="vel_CC"/><save label="press_CC"/><save label="rho_CC"/></DataArchiver>
-<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"/>{implicit}</ICE></CFD>
+<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"/><delT_activeDirectionsOnly>true</delT_activeDirectionsOnly>{implicit}</ICE></CFD>
 <PhysicalConstants><gravity>[0,0,0]</gravity><reference_pressure>101325</reference_pressure></PhysicalConstants>
 <MaterialProperties><ICE>{materials}</ICE>{exchange}</MaterialProperties></Uintah_specification>"""
 BLOB_FACES = "".join(f'<Face side="{s}"><BCType id="all" label="Symmetric" var="symmetry"/></Face>'

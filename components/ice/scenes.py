@@ -83,7 +83,7 @@ TEMPLATE = """<?xml version="1.0" encoding="iso-8859-1"?>
   </DataArchiver>
   <CFD>
     <cfl> {cfl} </cfl>
-    <ICE>{energy}<advection type="{order}"/></ICE>
+    <ICE>{energy}<advection type="{order}"/><delT_activeDirectionsOnly>true</delT_activeDirectionsOnly></ICE>
   </CFD>
   <PhysicalConstants>
     <gravity> [0,0,0] </gravity>
@@ -203,7 +203,7 @@ WAVE_TEMPLATE = """<?xml version="1.0" encoding="iso-8859-1"?>
   </DataArchiver>
   <CFD>
     <cfl> {cfl} </cfl>
-    <ICE><advection type="{order}" transverseTerms="{transverse}"/></ICE>
+    <ICE><advection type="{order}" transverseTerms="{transverse}"/><delT_activeDirectionsOnly>true</delT_activeDirectionsOnly></ICE>
   </CFD>
   <PhysicalConstants>
     <gravity> [0,0,0] </gravity>

@@ -102,60 +102,72 @@ class IceTasks:
 
     # -- initialization -----------------------------------------------------------------------
     def initialize(self, patch, matls, old_dw, new_dw):
-        """Cell fractions of every geometry object -> theta, then rho_micro from the EOS at (p, T)."""
+        """Uintah's ICEMaterial::initializeCells and ICE::actuallyInitialize: a material takes
+        rho_micro (the deck's <density>), T and velocity from the last of its geometry objects
+        that covers a cell (its first object where none does), its volume fraction from the
+        objects' cell fractions (1 where a lone material covers any of a cell), and
+        rho_CC = rho_micro (theta + tiny_rho); press_CC is the EOS pressure of the last material."""
         b = self.boxes(patch)
         own = patch.owned(VarType.CC)
         lv = patch.level
-        fr = [[cell_fractions(piece, lv, own, g["res"]) for piece, g in mat.objects] for mat in self.materials]
-        shape = fr[0][0].shape
-        ptot, wtot = np.zeros(shape), np.zeros(shape)
-        for mat, fm in zip(self.materials, fr):
-            for (piece, g), f in zip(mat.objects, fm):
-                ptot += f * g["pressure"]
-                wtot += f
-        press = ptot / np.maximum(wtot, 1e-300)
-        press[wtot == 0] = self.materials[0].objects[0][1]["pressure"]
         sl = patch.slices(VarType.CC, own)
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
-        p_arr[sl] = press
-        for m, (mat, fm) in enumerate(zip(self.materials, fr)):
-            w = sum(fm)
-            temp = sum(f * g["temperature"] for (_, g), f in zip(mat.objects, fm))
-            vel = sum(f[..., None] * np.array(g["velocity"]) for (_, g), f in zip(mat.objects, fm))
+        many = len(self.materials) > 1
+        for m, mat in enumerate(self.materials):
             g0 = mat.objects[0][1]
-            ws = np.maximum(w, 1e-300)
-            temp = np.where(w > 0, temp / ws, g0["temperature"])
-            vel = np.where(w[..., None] > 0, vel / ws[..., None], np.array(g0["velocity"]))
-            rho_micro = _rho_micro_array(press, temp, g0["density"], *self._eos(m))
-            arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC)]
-            arrs[0][sl] = np.maximum(rho_micro * np.minimum(w, 1.0), 1e-12 * rho_micro)
+            shape = tuple(h - l for l, h in zip(*own))
+            theta = np.zeros(shape)
+            rho_micro, temp = np.full(shape, g0["density"]), np.full(shape, g0["temperature"])
+            vel = np.broadcast_to(np.array(g0["velocity"], float), shape + (3,)).copy()
+            for piece, g in mat.objects:
+                f = cell_fractions(piece, lv, own, g["res"])
+                hit = f > 0.0
+                if not many:
+                    theta[hit] = 1.0
+                elif g["volumeFraction"] == -1.0:
+                    theta += f
+                else:
+                    theta = g["volumeFraction"] * f
+                rho_micro[hit], temp[hit], vel[hit] = g["density"], g["temperature"], g["velocity"]
+            arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
+                                                                I.speedSound_CC)]
+            arrs[0][sl] = rho_micro * theta + mat.tiny_rho * rho_micro
             arrs[1][sl] = vel
             arrs[2][sl] = temp
             arrs[3][sl] = 1.0 / rho_micro
+            p_arr[sl] = _press_array(rho_micro, temp, *self._eos(m))
             # extra cells outside every geometry object get their boundary values
             self.bcs.scalar(patch, arrs[0], "Density", m, b)
             self.bcs.scalar(patch, arrs[2], "Temperature", m, b)
             self.bcs.velocity(patch, arrs[1], m, b)
             self.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
+            _speed_sound(arrs[3], arrs[2], arrs[4], *self._eos(m))
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
 
     def stable_timestep(self, patch, matls, old_dw, new_dw):
-        """CFL: delT = cfl * min dx / (c + |u|) over materials, cells and directions."""
+        """Uintah's delT (ICE::actuallyComputeStableTimestep): 'aggressive' (the default) is
+        cfl min dx / (knob c + |u|) over cells, materials and directions, and the diffusion
+        limit cfl / (2 D sum 1/dx^2); 'conservative' is cfl vol / swept outflow volume. Like
+        Uintah, every direction counts, one-cell ones too, unless <delT_activeDirectionsOnly>."""
         b = self.boxes(patch)
+        count = self.dims if self.delt_active_dirs_only else np.ones(3, dtype=bool)
+        dx = patch.level.dx
         dt = np.inf
         for m in matls:
-            v = b.view
-            dt = min(dt, K.stable_dt(v(new_dw.get(I.vel_CC, m, patch)), v(new_dw.get(I.temp_CC, m, patch)),
-                                     v(new_dw.get(I.sp_vol_CC, m, patch)), *self._eos(m), b.v_dims, b.v_dx,
-                                     b.v_lo, b.v_hi, b.perm))
             mat = self.materials[m]
-            # diffusivity times density; the normal stress diffuses with 4/3 mu
-            nu = max(4.0 / 3.0 * mat.viscosity, mat.conductivity / mat.cv)
-            if nu > 0:
+            vel, speed_sound, sp_vol = (new_dw.get(lab, m, patch) for lab in (I.vel_CC, I.speedSound_CC, I.sp_vol_CC))
+            if self.conservative_dt:
+                grav_vel = float(np.sqrt(np.sum(dx * np.abs(self.gravity))))
+                dt = min(dt, K.stable_dt_swept(vel, speed_sound, sp_vol, mat.cv * mat.gamma, count, self.dims, dx, b.lo,
+                                               b.hi, self.knob, mat.conductivity, mat.viscosity, grav_vel))
+                continue
+            dt = min(dt, K.stable_dt(vel, speed_sound, count, dx, b.lo, b.hi, np.arange(3), self.knob))
+            if mat.viscosity > 0 or mat.conductivity > 0:
                 sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
-                rho_min = 1.0 / float(new_dw.get(I.sp_vol_CC, m, patch)[sl].max())     # rho_micro
-                inv = sum(1.0 / patch.level.dx[d] ** 2 for d in range(3) if self.dims[d])
-                dt = min(dt, 0.5 * max(rho_min, 1e-300) / (2.0 * nu * inv) / self.cfl)
+                diffusivity = self.knob_diffusion * float(sp_vol[sl].max()) * max(
+                    mat.conductivity / (mat.cv * mat.gamma), mat.viscosity)
+                inv_sum = sum(1.0 / dx[d] ** 2 for d in range(3) if count[d])
+                dt = min(dt, 0.5 / (inv_sum * max(diffusivity, 1e-300)))
         new_dw.put_reduction(L.delT, self.cfl * dt)
 
     # -- step 2: equilibration pressure (eq. 13) ------------------------------------------------
@@ -409,6 +421,22 @@ class IceTasks:
             out = new_dw.allocate(I.mach, m, patch)
             K.mach_number(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
                           new_dw.get(I.sp_vol_CC, m, patch), out, *self._eos(m), b.olo, b.ohi)
+
+
+def _speed_sound(sp_vol, temp, out, code, params, cv, gamma):
+    """Initial speedSound_CC of one material over a whole array, extra cells included."""
+    flat = np.empty(sp_vol.size)
+    K.speed_sound_fill(np.ascontiguousarray(sp_vol).ravel(), np.ascontiguousarray(temp).ravel(), flat,
+                       code, params, cv, gamma)
+    out[...] = flat.reshape(sp_vol.shape)
+
+
+def _press_array(rho_micro, temp, code, params, cv, gamma):
+    """EOS pressure of one material over an array (initial press_CC)."""
+    out = np.empty(rho_micro.size)
+    K.press_fill(np.ascontiguousarray(rho_micro).ravel(), np.ascontiguousarray(temp).ravel(), out,
+                 code, params, cv, gamma)
+    return out.reshape(rho_micro.shape)
 
 
 def _rho_micro_array(press, temp, guess, code, params, cv, gamma):

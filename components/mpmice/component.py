@@ -136,15 +136,17 @@ class MPMICE(MPMICETasks, Component):
         ng = self.mpm.ng
         t = Task("MPMICE::actuallyInitialize", self.initialize_fluids, self.ice.ice_matls) \
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC) \
-            .computes(I.press_CC, matls=[0])
+            .computes(I.speedSound_CC).computes(I.press_CC, matls=[0])
         for lab in [M.pX, M.pMass, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
             t.requires(NEW, lab, Ghost.AROUND_NODES, ng, matls=self.mpm_matls)
         sched.add_task(t)
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
+        g = (Ghost.AROUND_CELLS, 1) if self.ice.conservative_dt and not self.ice.implicit else ()
         sched.add_task(Task("MPMICE::computeStableTimestep", fn, self.ice.ice_matls)
-                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
+                       .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g)
+                       .requires(NEW, I.speedSound_CC, *g)
                        .requires(NEW, M.WaveSpeed).computes(FL.delT))
 
     def schedule_time_advance(self, level, sched):

@@ -19,7 +19,7 @@ import numpy as np
 
 from components.ice import labels as I
 from components.ice.bc import NEUMANN, SYMMETRY, bc_vector
-from components.ice.tasks import _rho_micro_array
+from components.ice.tasks import _rho_micro_array, _speed_sound
 from components.mpm import labels as M
 from framework import labels as FL
 from framework.geometry import cell_fractions
@@ -162,7 +162,8 @@ class MPMICETasks:
             vel = np.broadcast_to(np.array(g0["velocity"], float), press.shape + (3,))
             rho_micro = _rho_micro_array(press, temp, g0["density"], *ice._eos(m))
             theta = free * f / tot
-            arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC)]
+            arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
+                                                                I.speedSound_CC)]
             arrs[0][sl] = np.maximum(rho_micro * theta, 1e-12 * rho_micro)
             arrs[1][sl] = vel
             arrs[2][sl] = temp
@@ -171,6 +172,7 @@ class MPMICETasks:
             ice.bcs.scalar(patch, arrs[2], "Temperature", m, b)
             ice.bcs.velocity(patch, arrs[1], m, b)
             ice.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
+            _speed_sound(arrs[3], arrs[2], arrs[4], *ice._eos(m))
         ice.bcs.scalar(patch, p_arr, "Pressure", 0, b)
 
     def _particle_nodes(self, patch, m, dw):
