@@ -7,6 +7,8 @@ error vs cells and vs wall time when matplotlib is importable).
         --opt order=FirstOrder,SecondOrder --json sod.json --png sod.png
 
     .venv/bin/python scripts/accuracy_cost.py toro3 --res 100 200 400 --opt energy=internal,total
+    .venv/bin/python scripts/accuracy_cost.py toro3 --res 100 200 400 \
+        --opt limiter=vanLeer,BarthJespersen --opt heating=true,false
     .venv/bin/python scripts/accuracy_cost.py wave1d --res 25 50 100 200 400 \
         --opt order=FirstOrder,SecondOrder --json wave1d.json --png wave1d.png
     .venv/bin/python scripts/accuracy_cost.py wave2d --res 16 32 64 \
@@ -50,9 +52,11 @@ from framework.controller import Controller  # noqa: E402
 def _ice_scene(name):
     from components.ice import scenes
 
-    def deck(n, order="SecondOrder", cfl="0.4", energy="internal"):
-        """energy=internal (Uintah's ICE) or total (<conserveTotalEnergy>)."""
-        return scenes.shock_tube_deck(name, n=n, order=order, cfl=float(cfl), conserve=energy == "total")
+    def deck(n, order="SecondOrder", cfl="0.4", energy="internal", limiter=None, heating=None):
+        """energy=internal (Uintah's ICE) or total (<conserveTotalEnergy>); limiter=vanLeer or
+        BarthJespersen (Uintah's); heating=true/false (<advection dissipationHeating>)."""
+        return scenes.shock_tube_deck(name, n=n, order=order, cfl=float(cfl), conserve=energy == "total",
+                                      limiter=limiter, heating=None if heating is None else heating == "true")
 
     def error(da):
         err, _, ex, _ = scenes.shock_tube_errors(da, name)

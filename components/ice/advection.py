@@ -23,6 +23,8 @@ from numba import njit
 from .eos import IDEAL_GAS, eos_cold_energy
 
 NQ = 7  # mass, velocity x/y/z, specific internal energy, specific volume, specific total energy
+VAN_LEER, EXTREMA = 0, 1    # second-order limiters: slope along the face normal / Uintah's SecondOrderAdvector
+SMALL_NUM = 1e-100          # Uintah's d_SMALL_NUM in the extrema limiter's ratios
 
 
 @njit(cache=True, error_model="numpy")
@@ -30,6 +32,115 @@ def _van_leer(a, b):
     """Limited slope 2ab/(a+b) where a, b have the same sign, else 0 (branch-free: vectorizes)."""
     p = a * b
     return 2.0 * p / (a + b) if p > 0.0 else 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _extrema_limit(qc, qmax, qmin, vmax, vmin):
+    """Uintah's gradient limiter: the largest factor in [0, 1] that keeps the vertex values
+    [vmin, vmax] of the reconstruction within the neighbours' extrema [qmin, qmax]."""
+    lim_max = max(0.0, (qmax - qc + SMALL_NUM) / (vmax - qc + SMALL_NUM))
+    lim_min = max(0.0, (qmin - qc + SMALL_NUM) / (vmin - qc + SMALL_NUM))
+    return min(1.0, lim_max, lim_min)
+
+
+@njit(cache=True, error_model="numpy")
+def limited_gradients(q, dims, dxs, compatible, grad):
+    """grad[t, c] = the limited gradient of q[c] along view axis t (Uintah's SecondOrderBase:
+    gradQ, Q_vertex, limitedGradient): central differences in every active direction, all
+    scaled by one factor per cell and quantity so that the linear reconstruction at the cell's
+    vertices stays within the extrema of its face neighbours. compatible (Uintah's
+    useCompatibleFluxes): the vertex value of a specific quantity q = Q/m is the one the
+    compatible flux carries, q + (grad q . r_v) m / m_v, m_v the mass at the vertex from the
+    (already limited) mass gradient; mass (c = 0) comes first. Cells without both neighbours
+    in an active direction get no gradient (first order there). Not compatible: the limited
+    gradient is that of the cell's total Q = m q (Uintah's non-compatible advectQ)."""
+    nq = q.shape[0]
+    n0, n1, n2 = q.shape[1], q.shape[2], q.shape[3]
+    h0, h1, h2 = 0.5 * dxs[0], 0.5 * dxs[1], 0.5 * dxs[2]
+    for t in range(3):
+        for c in range(nq):
+            grad[t, c] = 0.0
+    i0, i1 = (1, n0 - 1) if dims[0] else (0, n0)
+    j0, j1 = (1, n1 - 1) if dims[1] else (0, n1)
+    k0, k1 = (1, n2 - 1) if dims[2] else (0, n2)
+    for i in range(i0, i1):
+        for j in range(j0, j1):
+            for k in range(k0, k1):
+                m = q[0, i, j, k]
+                for c in range(nq):
+                    total = c > 0 and not compatible          # reconstruct m q, not q
+                    qc = q[c, i, j, k] * m if total else q[c, i, j, k]
+                    qmax, qmin = qc, qc
+                    g0 = g1 = g2 = 0.0
+                    if dims[0]:
+                        a, b = q[c, i - 1, j, k], q[c, i + 1, j, k]
+                        if total:
+                            a, b = a * q[0, i - 1, j, k], b * q[0, i + 1, j, k]
+                        g0 = (b - a) / (2.0 * dxs[0])
+                        qmax, qmin = max(qmax, a, b), min(qmin, a, b)
+                    if dims[1]:
+                        a, b = q[c, i, j - 1, k], q[c, i, j + 1, k]
+                        if total:
+                            a, b = a * q[0, i, j - 1, k], b * q[0, i, j + 1, k]
+                        g1 = (b - a) / (2.0 * dxs[1])
+                        qmax, qmin = max(qmax, a, b), min(qmin, a, b)
+                    if dims[2]:
+                        a, b = q[c, i, j, k - 1], q[c, i, j, k + 1]
+                        if total:
+                            a, b = a * q[0, i, j, k - 1], b * q[0, i, j, k + 1]
+                        g2 = (b - a) / (2.0 * dxs[2])
+                        qmax, qmin = max(qmax, a, b), min(qmin, a, b)
+                    if c == 0 or not compatible:
+                        reach = abs(g0) * h0 + abs(g1) * h1 + abs(g2) * h2
+                        vmax, vmin = qc + reach, qc - reach
+                    else:
+                        m0, m1, m2 = grad[0, 0, i, j, k] * h0, grad[1, 0, i, j, k] * h1, grad[2, 0, i, j, k] * h2
+                        vmax, vmin = -np.inf, np.inf
+                        for v in range(8):          # the vertices (+-h0, +-h1, +-h2)
+                            s0 = 1.0 if v & 1 else -1.0
+                            s1 = 1.0 if v & 2 else -1.0
+                            s2 = 1.0 if v & 4 else -1.0
+                            dq = s0 * g0 * h0 + s1 * g1 * h1 + s2 * g2 * h2
+                            val = qc + dq * m / (m + s0 * m0 + s1 * m1 + s2 * m2)
+                            vmax, vmin = max(vmax, val), min(vmin, val)
+                    lim = _extrema_limit(qc, qmax, qmin, vmax, vmin)
+                    grad[0, c, i, j, k] = g0 * lim
+                    grad[1, c, i, j, k] = g1 * lim
+                    grad[2, c, i, j, k] = g2 * lim
+
+
+@njit(cache=True, error_model="numpy")
+def _row_values_gradient(q, grad, d, u, l0, l1, lb, r0, r1, rb, dt, dx, compatible, buf):
+    """Face values of a row of faces between the cells L = (l0, l1, lb + kk) and R = (r0, r1, rb + kk)
+    from the donor's limited gradient at the outflow slab's centroid, (dx - |u| dt)/2 from its centre
+    toward the face (Uintah's qAverageFlux). compatible: a specific quantity's value is
+    q + (grad q . r) m / m_slab, so that the flux m_slab |u| dt/dx times it is Uintah's
+    (m_slab q + m grad q . r) |u| dt/dx; not compatible, grad is that of Q = m q and the value
+    is the slab's (Q + grad Q . r) / m_slab."""
+    nq = q.shape[0]
+    nk = u.shape[0]
+    for c in range(nq):
+        qL, qR = q[c, l0, l1, lb:lb + nk], q[c, r0, r1, rb:rb + nk]
+        gL, gR = grad[d, c, l0, l1, lb:lb + nk], grad[d, c, r0, r1, rb:rb + nk]
+        f = buf[c]
+        if c == 0:
+            for kk in range(nk):
+                r = 0.5 * (dx - abs(u[kk]) * dt)
+                f[kk] = qL[kk] + r * gL[kk] if u[kk] > 0.0 else qR[kk] - r * gR[kk]
+        elif not compatible:
+            mL, mR = q[0, l0, l1, lb:lb + nk], q[0, r0, r1, rb:rb + nk]
+            ms = buf[0]
+            for kk in range(nk):
+                r = 0.5 * (dx - abs(u[kk]) * dt)
+                slab = qL[kk] * mL[kk] + r * gL[kk] if u[kk] > 0.0 else qR[kk] * mR[kk] - r * gR[kk]
+                f[kk] = slab / ms[kk] if ms[kk] != 0.0 else 0.0
+        else:
+            mL, mR = q[0, l0, l1, lb:lb + nk], q[0, r0, r1, rb:rb + nk]
+            ms = buf[0]
+            for kk in range(nk):
+                r = 0.5 * (dx - abs(u[kk]) * dt)
+                w = (mL[kk] if u[kk] > 0.0 else mR[kk]) / ms[kk] if ms[kk] != 0.0 else 0.0
+                f[kk] = qL[kk] + w * r * gL[kk] if u[kk] > 0.0 else qR[kk] - w * r * gR[kk]
 
 
 @njit(cache=True, error_model="numpy")
@@ -68,7 +179,8 @@ def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
 
 
 @njit(cache=True, error_model="numpy")
-def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl):
+def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl, limiter, grad,
+           compatible):
     """Add the fluxes through the d-faces [flo, fhi) to the cells [lo, hi).
 
     Arrays are views whose last axis is the longest unit-stride one: each row of faces
@@ -93,7 +205,11 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
         for j in range(flo[1], fhi[1]):
             r0, r1 = i + sh[0], j + sh[1]
             u = uf[i, j, k0:k1]
-            if d == 2:
+            if second and limiter == EXTREMA:
+                l0, l1 = r0 - e0, r1 - e1
+                lb = base - e2
+                _row_values_gradient(q, grad, d, u, l0, l1, lb, r0, r1, base, dt, dx, compatible, buf)
+            elif d == 2:
                 _row_values_inner(q, u, r0, r1, base, dt, dx, second, sl, buf)
             else:
                 l0, l1 = r0 - e0, r1 - e1
@@ -103,7 +219,7 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
                 _row_values_outer(q, u, l0, l1, r0, r1, l0 - e0 * (rd - 1 - a), l1 - e1 * (rd - 1 - a),
                                   r0 + e0 * (b - rd), r1 + e1 * (b - rd), rd >= 2, rd + 1 < n,
                                   base, dt, dx, second, buf)
-            if second and transverse:
+            if second and transverse and limiter == VAN_LEER:
                 _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf)
             fm = buf[0]
             for kk in range(nk):                # mass flux m_face |u| dt / dx, signed L -> R
@@ -214,7 +330,8 @@ def _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf):
 
 @njit(cache=True, error_model="numpy")
 def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
-           second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+           second, transverse, limiter, compatible, q, acc, buf, sl, grad, vol, cv, rho_o, vel_o, temp_o, spv_o,
+           tot_o):
     """Advect one material's Lagrangian totals (m, m u, m e, m v, E) over one step into the
     cells [lo, hi) and return the new primitives rho = m/V, u = (mu)/m, T = (me)/(m cv),
     v = (mv)/m (and the advected E in tot_o).
@@ -224,12 +341,17 @@ def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi,
     q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6; buf: (nq, row length).
     """
     _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi)
+    if second and limiter == EXTREMA:
+        limited_gradients(q, dims, dxs, compatible, grad)
     if dims[0]:
-        _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
+        _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
+               limiter, grad, compatible)
     if dims[1]:
-        _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
+        _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
+               limiter, grad, compatible)
     if dims[2]:
-        _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
+        _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
+               limiter, grad, compatible)
     n = hi[2] - lo[2]
     k0 = lo[2]
     for i in range(lo[0], hi[0]):
@@ -250,6 +372,18 @@ def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi,
                 ae, eo = acc[6, i, j, k0:k0 + n], tot_o[i, j, k0:k0 + n]
                 for k in range(n):
                     eo[k] = ae[k]
+
+
+@njit(cache=True, error_model="numpy")
+def lagrangian_total_energy(mass, mom, eng, tot):
+    """tot = m e + |m u|^2 / (2 m) in every stored cell: the Lagrangian total energy that the
+    dissipation-heating advection carries (halo corners may hold garbage: never read)."""
+    n0, n1, n2 = mass.shape
+    for i in range(n0):
+        for j in range(n1):
+            for k in range(n2):
+                p0, p1, p2 = mom[i, j, k, 0], mom[i, j, k, 1], mom[i, j, k, 2]
+                tot[i, j, k] = eng[i, j, k] + 0.5 * (p0 * p0 + p1 * p1 + p2 * p2) / mass[i, j, k]
 
 
 @njit(cache=True)
