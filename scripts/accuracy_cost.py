@@ -176,6 +176,9 @@ def uintah_deck(text):
         for bc in root.iter("BCType"):
             if bc.get("id") == "all":
                 bc.set("id", "0")
+    tm = root.find("Time")
+    if tm is not None and tm.find("timestep_multiplier") is None:      # required by sus, 1 by default here
+        etree.SubElement(tm, "timestep_multiplier").text = "1.0"
     bcs = root.find("Grid/BoundaryConditions")
     if bcs is not None:
         have = {f.get("side") for f in bcs.findall("Face")}
@@ -198,9 +201,10 @@ def run_uintah(sus, scene, n, workdir):
     t0 = time.perf_counter()
     out = subprocess.run([sus, path], cwd=workdir, env=env, capture_output=True, text=True)
     wall = time.perf_counter() - t0
-    if out.returncode != 0:
+    udas = glob.glob(os.path.join(workdir, "*.uda.[0-9][0-9][0-9]"))
+    if out.returncode != 0 or not udas:         # sus can exit 0 after a ProblemSetupException
         raise RuntimeError(f"sus failed ({out.returncode}): {(out.stdout + out.stderr).strip()[-400:]}")
-    uda = max(glob.glob(os.path.join(workdir, "*.uda.[0-9][0-9][0-9]")), key=os.path.getmtime)
+    uda = max(udas, key=os.path.getmtime)
     da = UintahArchive(uda)
     steps = int(os.path.basename(da.steps[-1])[1:])
     rho, _ = da.read("rho_CC", 0, -1)

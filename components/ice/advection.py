@@ -144,6 +144,63 @@ def _row_values_gradient(q, grad, d, u, l0, l1, lb, r0, r1, rb, dt, dx, compatib
 
 
 @njit(cache=True, error_model="numpy")
+def _face_velocity(ux, uy, uz, t, a, b, c):
+    """The face velocity of view axis t at face index (a, b, c); 0 outside the stored faces."""
+    uf = ux if t == 0 else (uy if t == 1 else uz)
+    if a < 0 or b < 0 or c < 0 or a >= uf.shape[0] or b >= uf.shape[1] or c >= uf.shape[2]:
+        return 0.0
+    return uf[a, b, c]
+
+
+@njit(cache=True, error_model="numpy")
+def _transverse_centroid(ux, uy, uz, shs, dims, d, d0, d1, d2, dt, r):
+    """r[t], t != d: the outflow slab's centroid offset across the face normal, half of what the
+    donor cell (d0, d1, d2) sends out of its low t-face minus what it sends out of its high one
+    (Uintah's inFluxOutFluxVolume: r_y = (delY_bottom - delY_top) / 2)."""
+    for t in range(3):
+        if t == d or not dims[t]:
+            r[t] = 0.0
+            continue
+        a, b, c = d0 - shs[t, 0], d1 - shs[t, 1], d2 - shs[t, 2]
+        lo = _face_velocity(ux, uy, uz, t, a, b, c)
+        hi = _face_velocity(ux, uy, uz, t, a + (t == 0), b + (t == 1), c + (t == 2))
+        r[t] = 0.5 * (max(0.0, -lo * dt) - max(0.0, hi * dt))
+
+
+@njit(cache=True, error_model="numpy")
+def _face_values_gradient_md(q, grad, d, ux, uy, uz, shs, dims, i, j, k0, k1, sh, dt, dx, compatible, buf):
+    """Multi-dimensional face values of a row of d-faces: the donor's limited gradient at the
+    centroid of its outflow slab, offset along the normal as in _row_values_gradient and across
+    it by _transverse_centroid (Uintah's qAverageFlux with d_r_out_x/y/z)."""
+    nq = q.shape[0]
+    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    r = np.zeros(3)
+    for k in range(k0, k1):
+        u = _face_velocity(ux, uy, uz, d, i, j, k)
+        r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
+        if u > 0.0:
+            d0, d1, d2 = r0 - e0, r1 - e1, r2 - e2
+            rn = 0.5 * (dx - u * dt)
+        else:
+            d0, d1, d2 = r0, r1, r2
+            rn = -0.5 * (dx + u * dt)
+        _transverse_centroid(ux, uy, uz, shs, dims, d, d0, d1, d2, dt, r)
+        r[d] = rn
+        m = q[0, d0, d1, d2]
+        ms = m + grad[0, 0, d0, d1, d2] * r[0] + grad[1, 0, d0, d1, d2] * r[1] + grad[2, 0, d0, d1, d2] * r[2]
+        buf[0, k - k0] = ms
+        for c in range(1, nq):
+            gr = grad[0, c, d0, d1, d2] * r[0] + grad[1, c, d0, d1, d2] * r[1] + grad[2, c, d0, d1, d2] * r[2]
+            qd = q[c, d0, d1, d2]
+            if ms == 0.0:
+                buf[c, k - k0] = 0.0
+            elif compatible:
+                buf[c, k - k0] = qd + gr * m / ms
+            else:
+                buf[c, k - k0] = (qd * m + gr) / ms
+
+
+@njit(cache=True, error_model="numpy")
 def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
     """q = (m, (mu)/m, (me)/m, (mv)/m, E/m) in every stored cell (halo corners outside the
     domain may hold garbage: never read); acc = the Lagrangian totals in the cells [lo, hi)."""
@@ -180,7 +237,7 @@ def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
 
 @njit(cache=True, error_model="numpy")
 def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl, limiter, grad,
-           compatible):
+           compatible, ux, uy, uz, shs):
     """Add the fluxes through the d-faces [flo, fhi) to the cells [lo, hi).
 
     Arrays are views whose last axis is the longest unit-stride one: each row of faces
@@ -197,6 +254,7 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
     n = q.shape[1 + d]
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     dx = dxs[d]
+    ndims = dims[0] + dims[1] + dims[2]
     k0, k1 = flo[2], fhi[2]
     nk = k1 - k0
     s2 = sh[2]
@@ -205,10 +263,10 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
         for j in range(flo[1], fhi[1]):
             r0, r1 = i + sh[0], j + sh[1]
             u = uf[i, j, k0:k1]
-            if second and limiter == EXTREMA:
-                l0, l1 = r0 - e0, r1 - e1
-                lb = base - e2
-                _row_values_gradient(q, grad, d, u, l0, l1, lb, r0, r1, base, dt, dx, compatible, buf)
+            if second and limiter == EXTREMA and ndims > 1:
+                _face_values_gradient_md(q, grad, d, ux, uy, uz, shs, dims, i, j, k0, k1, sh, dt, dx, compatible, buf)
+            elif second and limiter == EXTREMA:
+                _row_values_gradient(q, grad, d, u, r0 - e0, r1 - e1, base - e2, r0, r1, base, dt, dx, compatible, buf)
             elif d == 2:
                 _row_values_inner(q, u, r0, r1, base, dt, dx, second, sl, buf)
             else:
@@ -345,13 +403,13 @@ def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi,
         limited_gradients(q, dims, dxs, compatible, grad)
     if dims[0]:
         _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
-               limiter, grad, compatible)
+               limiter, grad, compatible, ux, uy, uz, shs)
     if dims[1]:
         _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
-               limiter, grad, compatible)
+               limiter, grad, compatible, ux, uy, uz, shs)
     if dims[2]:
         _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
-               limiter, grad, compatible)
+               limiter, grad, compatible, ux, uy, uz, shs)
     n = hi[2] - lo[2]
     k0 = lo[2]
     for i in range(lo[0], hi[0]):
