@@ -2,12 +2,21 @@
 
 Mass is fluxed through each face with the face velocity u*: the flux volume is the
 slab u* dt A next to the face in the donor cell. First order takes the donor cell's
-value; second order adds the van Leer limited slope along the face normal evaluated
-at the slab's centroid (a distance (1 - |u* dt/dx|) dx/2 from the donor's centre).
+value; second order adds a limited slope evaluated at the slab's centroid (a distance
+(1 - |u* dt/dx|) dx/2 from the donor's centre). Two limiters (<advection limiter>):
+VAN_LEER (the default), van Leer's slope along the face normal; EXTREMA
+("BarthJespersen"), Uintah's SecondOrderAdvector (VanderHeyden and Kashiwa, JCP 146,
+1998): central gradients in every direction scaled by one factor per cell so that the
+reconstruction at the cell's vertices stays within its face neighbours' extrema, the
+slab centroid also offset across the normal by what the donor sends out of its other
+faces, and with Uintah's compatible vertex weights m/m_vertex (equal to sus's output
+to round-off: tests/ice/test_advection_limiters.py).
 Momentum, internal energy and material volume are fluxed *compatibly*: the mass flux
 times the reconstructed specific value (velocity, e, v), so a uniform velocity or
 temperature stays exactly uniform and every flux leaves one cell and enters the
-other (mass, momentum and energy are conserved to round-off).
+other (mass, momentum and energy are conserved to round-off). With dissipationHeating
+(the default for ICE alone) E = m (e + |u|^2/2) is advected too and e = E/m - |u|^2/2:
+the kinetic energy that the limited fluxes of mass and momentum destroy becomes heat.
 
 One kernel call advects one material of one patch: the specific values q = Q/m are
 computed once per cell into a scratch array (not three times per face), then each
