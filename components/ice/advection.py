@@ -69,6 +69,7 @@ def limited_gradients(q, dims, dxs, compatible, grad):
     for t in range(3):
         for c in range(nq):
             grad[t, c] = 0.0
+    active = (1 if dims[0] else 0) + (2 if dims[1] else 0) + (4 if dims[2] else 0)
     i0, i1 = (1, n0 - 1) if dims[0] else (0, n0)
     j0, j1 = (1, n1 - 1) if dims[1] else (0, n1)
     k0, k1 = (1, n2 - 1) if dims[2] else (0, n2)
@@ -106,6 +107,8 @@ def limited_gradients(q, dims, dxs, compatible, grad):
                         m0, m1, m2 = grad[0, 0, i, j, k] * h0, grad[1, 0, i, j, k] * h1, grad[2, 0, i, j, k] * h2
                         vmax, vmin = -np.inf, np.inf
                         for v in range(8):          # the vertices (+-h0, +-h1, +-h2)
+                            if v & ~active:         # a collapsed direction: the same vertex again
+                                continue
                             s0 = 1.0 if v & 1 else -1.0
                             s1 = 1.0 if v & 2 else -1.0
                             s2 = 1.0 if v & 4 else -1.0
