@@ -62,6 +62,7 @@ class Material:
         self.conductivity = props["thermal_conductivity"]
         self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
 
+
 LIMITERS = {"vanLeer": VAN_LEER, "BarthJespersen": EXTREMA}    # <advection limiter="...">
 
 
@@ -90,7 +91,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         # the totals m q instead of the specific values q
         self.compatible_fluxes = adv.attr("useCompatibleFluxes", "bool", adv.attr("compatibleFluxes", "bool", True))
         # pysus extension (not in Uintah): transverse (corner) terms of the second-order
-        # face values, second order in time for oblique flow; off = Uintah's scheme
+        # face values, second order in time for oblique flow; off = Uintah's scheme (for
+        # vanLeer: BarthJespersen always has Uintah's own, the slab centroid's offset)
         self.transverse = adv.attr("transverseTerms", "bool", False) and self.second_order
         # pysus extension: the advection carries m (e + |u|^2/2) as well and takes
         # e = E/m - |u|^2/2, so the kinetic energy that the limited advection of mass and
