@@ -213,9 +213,10 @@ def _face_values_gradient_md(q, grad, d, ux, uy, uz, shs, dims, i, j, k0, k1, sh
 
 
 @njit(cache=True, error_model="numpy")
-def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
+def _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi):
     """q = (m, (mu)/m, (me)/m, (mv)/m, E/m) in every stored cell (halo corners outside the
-    domain may hold garbage: never read); acc = the Lagrangian totals in the cells [lo, hi)."""
+    domain may hold garbage: never read); acc = the Lagrangian totals in the cells [lo, hi).
+    heating: E = m e + |m u|^2 / (2 m) from the others (tot unused)."""
     nq = q.shape[0]
     n0, n1, n2 = mass.shape
     for i in range(n0):
@@ -228,7 +229,10 @@ def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
                 q[3, i, j, k] = mom[i, j, k, 2] / m
                 q[4, i, j, k] = eng[i, j, k] / m
                 q[5, i, j, k] = volm[i, j, k] / m
-                if with_e:
+                if heating:
+                    q[6, i, j, k] = q[4, i, j, k] + 0.5 * (q[1, i, j, k] ** 2 + q[2, i, j, k] ** 2 +
+                                                           q[3, i, j, k] ** 2)
+                elif with_e:
                     q[6, i, j, k] = tot[i, j, k] / m
     n = hi[2] - lo[2]
     k0 = lo[2]
@@ -242,14 +246,17 @@ def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
                     mc = mom[i, j, k0:k0 + n, c - 1]
                     for k in range(n):
                         a[k] = mc[k]
+                elif c == 6 and heating:
+                    qm, qe = q[0, i, j, k0:k0 + n], q[6, i, j, k0:k0 + n]
+                    for k in range(n):
+                        a[k] = qm[k] * qe[k]
                 else:
                     for k in range(n):
                         a[k] = src[k]
 
 
 @njit(cache=True, error_model="numpy")
-def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl, limiter, grad,
-           compatible, ux, uy, uz, shs):
+def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl):
     """Add the fluxes through the d-faces [flo, fhi) to the cells [lo, hi).
 
     Arrays are views whose last axis is the longest unit-stride one: each row of faces
@@ -262,24 +269,16 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
     normal reconstruction lacks; without them oblique flow is first order in time.
     `comp[t]`: the velocity component along view axis t.
     """
-    nq = q.shape[0]
     n = q.shape[1 + d]
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     dx = dxs[d]
-    ndims = dims[0] + dims[1] + dims[2]
     k0, k1 = flo[2], fhi[2]
-    nk = k1 - k0
-    s2 = sh[2]
-    base = k0 + s2                              # the R cell of the row's first face
+    base = k0 + sh[2]                           # the R cell of the row's first face
     for i in range(flo[0], fhi[0]):
         for j in range(flo[1], fhi[1]):
             r0, r1 = i + sh[0], j + sh[1]
             u = uf[i, j, k0:k1]
-            if second and limiter == EXTREMA and ndims > 1:
-                _face_values_gradient_md(q, grad, d, ux, uy, uz, shs, dims, i, j, k0, k1, sh, dt, dx, compatible, buf)
-            elif second and limiter == EXTREMA:
-                _row_values_gradient(q, grad, d, u, r0 - e0, r1 - e1, base - e2, r0, r1, base, dt, dx, compatible, buf)
-            elif d == 2:
+            if d == 2:
                 _row_values_inner(q, u, r0, r1, base, dt, dx, second, sl, buf)
             else:
                 l0, l1 = r0 - e0, r1 - e1
@@ -289,36 +288,66 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
                 _row_values_outer(q, u, l0, l1, r0, r1, l0 - e0 * (rd - 1 - a), l1 - e1 * (rd - 1 - a),
                                   r0 + e0 * (b - rd), r1 + e1 * (b - rd), rd >= 2, rd + 1 < n,
                                   base, dt, dx, second, buf)
-            if second and transverse and limiter == VAN_LEER:
+            if second and transverse:
                 _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf)
-            fm = buf[0]
-            for kk in range(nk):                # mass flux m_face |u| dt / dx, signed L -> R
-                s = 1.0 if u[kk] > 0.0 else -1.0
-                fm[kk] = abs(u[kk]) * dt / dx * s * fm[kk] if u[kk] != 0.0 else 0.0
-            for c in range(1, nq):              # the other fluxes: mass flux times face value
+            _add_fluxes(u, d, r0, r1, base, dt, dx, lo, hi, acc, buf)
+
+
+@njit(cache=True, error_model="numpy")
+def _sweep_extrema(q, grad, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs, acc, buf):
+    """_sweep with Uintah's limited gradients (limited_gradients) at the slab centroids: in 1D
+    along the face normal a row at a time, in 2D/3D per face with the offset across it."""
+    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    dx = dxs[d]
+    ndims = int(dims[0]) + int(dims[1]) + int(dims[2])
+    k0, k1 = flo[2], fhi[2]
+    base = k0 + sh[2]
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            r0, r1 = i + sh[0], j + sh[1]
+            u = uf[i, j, k0:k1]
+            if ndims > 1:
+                _face_values_gradient_md(q, grad, d, ux, uy, uz, shs, dims, i, j, k0, k1, sh, dt, dx, compatible, buf)
+            else:
+                _row_values_gradient(q, grad, d, u, r0 - e0, r1 - e1, base - e2, r0, r1, base, dt, dx, compatible, buf)
+            _add_fluxes(u, d, r0, r1, base, dt, dx, lo, hi, acc, buf)
+
+
+@njit(cache=True, error_model="numpy")
+def _add_fluxes(u, d, r0, r1, base, dt, dx, lo, hi, acc, buf):
+    """Turn a row's face values (buf) into fluxes, mass flux m_face |u| dt/dx times each face value,
+    and add them to both cells of every face: each cell + its lower face - its upper face."""
+    nq = buf.shape[0]
+    nk = u.shape[0]
+    e0, e1 = (1, 0) if d == 0 else ((0, 1) if d == 1 else (0, 0))
+    fm = buf[0]
+    for kk in range(nk):                # mass flux m_face |u| dt / dx, signed L -> R
+        s = 1.0 if u[kk] > 0.0 else -1.0
+        fm[kk] = abs(u[kk]) * dt / dx * s * fm[kk] if u[kk] != 0.0 else 0.0
+    for c in range(1, nq):              # the other fluxes: mass flux times face value
+        f = buf[c]
+        for kk in range(nk):
+            f[kk] = fm[kk] * f[kk] if u[kk] != 0.0 else 0.0
+    if d == 2:
+        c0, c1 = max(lo[2], base), min(hi[2], base + nk - 1)
+        for c in range(nq):
+            row = acc[c, r0, r1, c0:c1]
+            f = buf[c, c0 - base:]
+            for kk in range(c1 - c0):
+                row[kk] = (row[kk] + f[kk]) - f[kk + 1]
+    else:
+        if r0 * e0 + r1 * e1 - 1 >= lo[d]:
+            for c in range(nq):
+                row = acc[c, r0 - e0, r1 - e1, base:base + nk]
                 f = buf[c]
                 for kk in range(nk):
-                    f[kk] = fm[kk] * f[kk] if u[kk] != 0.0 else 0.0
-            if d == 2:                          # each cell: + its lower face, - its upper face
-                c0, c1 = max(lo[2], base), min(hi[2], base + nk - 1)
-                for c in range(nq):
-                    row = acc[c, r0, r1, c0:c1]
-                    f = buf[c, c0 - base:]
-                    for kk in range(c1 - c0):
-                        row[kk] = (row[kk] + f[kk]) - f[kk + 1]
-            else:
-                if r0 * e0 + r1 * e1 - 1 >= lo[d]:
-                    for c in range(nq):
-                        row = acc[c, r0 - e0, r1 - e1, base:base + nk]
-                        f = buf[c]
-                        for kk in range(nk):
-                            row[kk] -= f[kk]
-                if r0 * e0 + r1 * e1 < hi[d]:
-                    for c in range(nq):
-                        row = acc[c, r0, r1, base:base + nk]
-                        f = buf[c]
-                        for kk in range(nk):
-                            row[kk] += f[kk]
+                    row[kk] -= f[kk]
+        if r0 * e0 + r1 * e1 < hi[d]:
+            for c in range(nq):
+                row = acc[c, r0, r1, base:base + nk]
+                f = buf[c]
+                for kk in range(nk):
+                    row[kk] += f[kk]
 
 
 @njit(cache=True, error_model="numpy")
@@ -399,29 +428,49 @@ def _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf):
 
 
 @njit(cache=True, error_model="numpy")
-def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
-           second, transverse, limiter, compatible, q, acc, buf, sl, grad, vol, cv, rho_o, vel_o, temp_o, spv_o,
-           tot_o):
+def advect(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
+           second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
     """Advect one material's Lagrangian totals (m, m u, m e, m v, E) over one step into the
     cells [lo, hi) and return the new primitives rho = m/V, u = (mu)/m, T = (me)/(m cv),
-    v = (mv)/m (and the advected E in tot_o).
+    v = (mv)/m (and the advected E in tot_o). heating (dissipationHeating, with with_e):
+    E = m e + |m u|^2/(2 m) is made here and T = (E/m - |u|^2/2)/cv where that is positive.
 
     All arrays are views with the collapsed axes first (a 2D run has a unit first axis),
     `comp` maps view axes to velocity components; shs, flo, fhi: (3, 3) per view axis.
     q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6; buf: (nq, row length).
     """
-    _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi)
-    if second and limiter == EXTREMA:
-        limited_gradients(q, dims, dxs, compatible, grad)
+    _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
     if dims[0]:
-        _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
-               limiter, grad, compatible, ux, uy, uz, shs)
+        _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     if dims[1]:
-        _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
-               limiter, grad, compatible, ux, uy, uz, shs)
+        _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     if dims[2]:
-        _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl,
-               limiter, grad, compatible, ux, uy, uz, shs)
+        _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
+    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
+
+
+@njit(cache=True, error_model="numpy")
+def advect_extrema(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims,
+                   compatible, q, acc, buf, grad, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+    """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
+    grad: scratch (3, nq, *mass.shape); compatible: Uintah's useCompatibleFluxes."""
+    _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
+    limited_gradients(q, dims, dxs, compatible, grad)
+    if dims[0]:
+        _sweep_extrema(q, grad, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs,
+                       acc, buf)
+    if dims[1]:
+        _sweep_extrema(q, grad, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs,
+                       acc, buf)
+    if dims[2]:
+        _sweep_extrema(q, grad, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs,
+                       acc, buf)
+    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
+
+
+@njit(cache=True, error_model="numpy")
+def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+    """The new primitives of the cells [lo, hi) from the advected totals (see advect)."""
     n = hi[2] - lo[2]
     k0 = lo[2]
     for i in range(lo[0], hi[0]):
@@ -438,22 +487,17 @@ def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi,
                 ac = acc[1 + c, i, j, k0:k0 + n]
                 for k in range(n):
                     vo[k, c] = ac[k] / max(am[k], 1e-300)
-            if with_e:
+            if heating:                         # e = E/m - |u|^2/2 where positive
+                ae = acc[6, i, j, k0:k0 + n]
+                for k in range(n):
+                    m = max(am[k], 1e-300)
+                    e = ae[k] / m - 0.5 * (vo[k, 0] ** 2 + vo[k, 1] ** 2 + vo[k, 2] ** 2)
+                    if e > 0.0:
+                        to[k] = e / cv
+            elif with_e:
                 ae, eo = acc[6, i, j, k0:k0 + n], tot_o[i, j, k0:k0 + n]
                 for k in range(n):
                     eo[k] = ae[k]
-
-
-@njit(cache=True, error_model="numpy")
-def lagrangian_total_energy(mass, mom, eng, tot):
-    """tot = m e + |m u|^2 / (2 m) in every stored cell: the Lagrangian total energy that the
-    dissipation-heating advection carries (halo corners may hold garbage: never read)."""
-    n0, n1, n2 = mass.shape
-    for i in range(n0):
-        for j in range(n1):
-            for k in range(n2):
-                p0, p1, p2 = mom[i, j, k, 0], mom[i, j, k, 1], mom[i, j, k, 2]
-                tot[i, j, k] = eng[i, j, k] + 0.5 * (p0 * p0 + p1 * p1 + p2 * p2) / mass[i, j, k]
 
 
 @njit(cache=True)
