@@ -54,8 +54,8 @@ class UintahArchive:
                 if var.findtext("variable").strip() != label or int(var.findtext("index")) != matl:
                     continue
                 p = patches[int(var.findtext("patch"))]
-                elo, ehi = np.array(_ints(p.findtext("lowIndex"))), np.array(_ints(p.findtext("highIndex")))
-                ilo, ihi = np.array(_ints(p.findtext("interiorLowIndex"))), np.array(_ints(p.findtext("interiorHighIndex")))
+                elo, ehi, ilo, ihi = (np.array(_ints(p.findtext(tag))) for tag in
+                                      ("lowIndex", "highIndex", "interiorLowIndex", "interiorHighIndex"))
                 ncomp = 3 if "Vector" in var.get("type") else 1
                 start, end = int(var.findtext("start")), int(var.findtext("end"))
                 with open(os.path.join(step, os.path.dirname(href), var.findtext("filename").strip()), "rb") as f:

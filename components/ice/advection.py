@@ -156,60 +156,67 @@ def _row_values_gradient(q, grad, d, u, l0, l1, lb, r0, r1, rb, dt, dx, compatib
 
 
 @njit(cache=True, error_model="numpy")
-def _face_velocity(ux, uy, uz, t, a, b, c):
-    """The face velocity of view axis t at face index (a, b, c); 0 outside the stored faces."""
-    uf = ux if t == 0 else (uy if t == 1 else uz)
-    if a < 0 or b < 0 or c < 0 or a >= uf.shape[0] or b >= uf.shape[1] or c >= uf.shape[2]:
-        return 0.0
-    return uf[a, b, c]
-
-
-@njit(cache=True, error_model="numpy")
-def _transverse_centroid(ux, uy, uz, shs, dims, d, d0, d1, d2, dt, r):
-    """r[t], t != d: the outflow slab's centroid offset across the face normal, half of what the
-    donor cell (d0, d1, d2) sends out of its low t-face minus what it sends out of its high one
-    (Uintah's inFluxOutFluxVolume: r_y = (delY_bottom - delY_top) / 2)."""
+def _slab_offsets(ux, uy, uz, shs, dims, dt, rc):
+    """rc[t] of every stored cell: the offset along view axis t of the centroid of the slabs it
+    sends through its faces normal to the other axes, half of what it sends out of its low
+    t-face minus what it sends out of its high one (Uintah's inFluxOutFluxVolume:
+    r_y = (delY_bottom - delY_top) / 2); 0 where a face is not stored (never a donor there)."""
+    n0, n1, n2 = rc.shape[1], rc.shape[2], rc.shape[3]
     for t in range(3):
-        if t == d or not dims[t]:
-            r[t] = 0.0
+        rc[t] = 0.0
+        if not dims[t]:
             continue
-        a, b, c = d0 - shs[t, 0], d1 - shs[t, 1], d2 - shs[t, 2]
-        lo = _face_velocity(ux, uy, uz, t, a, b, c)
-        hi = _face_velocity(ux, uy, uz, t, a + (t == 0), b + (t == 1), c + (t == 2))
-        r[t] = 0.5 * (max(0.0, -lo * dt) - max(0.0, hi * dt))
+        e0, e1, e2 = (1, 0, 0) if t == 0 else ((0, 1, 0) if t == 1 else (0, 0, 1))
+        uf = ux if t == 0 else (uy if t == 1 else uz)
+        f0, f1, f2 = uf.shape
+        for i in range(n0):
+            a = i - shs[t, 0]
+            if a < 0 or a + e0 >= f0:
+                continue
+            for j in range(n1):
+                b = j - shs[t, 1]
+                if b < 0 or b + e1 >= f1:
+                    continue
+                c0 = max(0, shs[t, 2])
+                c1 = min(n2, f2 - e2 + shs[t, 2])
+                lo, hi, row = uf[a, b], uf[a + e0, b + e1], rc[t, i, j]
+                for k in range(c0, c1):
+                    c = k - shs[t, 2]
+                    row[k] = 0.5 * (max(0.0, -lo[c] * dt) - max(0.0, hi[c + e2] * dt))
 
 
 @njit(cache=True, error_model="numpy")
-def _face_values_gradient_md(q, grad, d, ux, uy, uz, shs, dims, i, j, k0, k1, sh, dt, dx, compatible, buf):
-    """Multi-dimensional face values of a row of d-faces: the donor's limited gradient at the
-    centroid of its outflow slab, offset along the normal as in _row_values_gradient and across
-    it by _transverse_centroid (Uintah's qAverageFlux with d_r_out_x/y/z)."""
+def _row_values_gradient_md(q, grad, rc, d, u, l0, l1, lb, r0, r1, rb, dt, dx, compatible, buf):
+    """Multi-dimensional _row_values_gradient: the slab centroid is also offset across the face
+    normal by the donor's rc (Uintah's qAverageFlux with d_r_out_x/y/z)."""
     nq = q.shape[0]
-    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
-    r = np.zeros(3)
-    for k in range(k0, k1):
-        u = _face_velocity(ux, uy, uz, d, i, j, k)
-        r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
-        if u > 0.0:
-            d0, d1, d2 = r0 - e0, r1 - e1, r2 - e2
-            rn = 0.5 * (dx - u * dt)
+    nk = u.shape[0]
+    mL, mR = q[0, l0, l1, lb:lb + nk], q[0, r0, r1, rb:rb + nk]
+    ms = buf[0]
+    for c in range(nq):
+        qL, qR = q[c, l0, l1, lb:lb + nk], q[c, r0, r1, rb:rb + nk]
+        f = buf[c]
+        for kk in range(nk):                    # the normal offset: toward the face
+            r = 0.5 * (dx - abs(u[kk]) * dt)
+            f[kk] = r * grad[d, c, l0, l1, lb + kk] if u[kk] > 0.0 else -r * grad[d, c, r0, r1, rb + kk]
+        for t in range(3):                      # the offsets across it
+            if t == d:
+                continue
+            gL, gR = grad[t, c, l0, l1, lb:lb + nk], grad[t, c, r0, r1, rb:rb + nk]
+            oL, oR = rc[t, l0, l1, lb:lb + nk], rc[t, r0, r1, rb:rb + nk]
+            for kk in range(nk):
+                f[kk] += gL[kk] * oL[kk] if u[kk] > 0.0 else gR[kk] * oR[kk]
+        if c == 0:
+            for kk in range(nk):
+                f[kk] += qL[kk] if u[kk] > 0.0 else qR[kk]
+        elif compatible:
+            for kk in range(nk):
+                m = mL[kk] if u[kk] > 0.0 else mR[kk]
+                f[kk] = ((qL[kk] if u[kk] > 0.0 else qR[kk]) + f[kk] * m / ms[kk]) if ms[kk] != 0.0 else 0.0
         else:
-            d0, d1, d2 = r0, r1, r2
-            rn = -0.5 * (dx + u * dt)
-        _transverse_centroid(ux, uy, uz, shs, dims, d, d0, d1, d2, dt, r)
-        r[d] = rn
-        m = q[0, d0, d1, d2]
-        ms = m + grad[0, 0, d0, d1, d2] * r[0] + grad[1, 0, d0, d1, d2] * r[1] + grad[2, 0, d0, d1, d2] * r[2]
-        buf[0, k - k0] = ms
-        for c in range(1, nq):
-            gr = grad[0, c, d0, d1, d2] * r[0] + grad[1, c, d0, d1, d2] * r[1] + grad[2, c, d0, d1, d2] * r[2]
-            qd = q[c, d0, d1, d2]
-            if ms == 0.0:
-                buf[c, k - k0] = 0.0
-            elif compatible:
-                buf[c, k - k0] = qd + gr * m / ms
-            else:
-                buf[c, k - k0] = (qd * m + gr) / ms
+            for kk in range(nk):
+                qm = qL[kk] * mL[kk] if u[kk] > 0.0 else qR[kk] * mR[kk]
+                f[kk] = (qm + f[kk]) / ms[kk] if ms[kk] != 0.0 else 0.0
 
 
 @njit(cache=True, error_model="numpy")
@@ -294,9 +301,9 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
 
 
 @njit(cache=True, error_model="numpy")
-def _sweep_extrema(q, grad, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs, acc, buf):
+def _sweep_extrema(q, grad, rc, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, compatible, acc, buf):
     """_sweep with Uintah's limited gradients (limited_gradients) at the slab centroids: in 1D
-    along the face normal a row at a time, in 2D/3D per face with the offset across it."""
+    along the face normal, in 2D/3D with the slab centroid's offset across it (rc, _slab_offsets)."""
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     dx = dxs[d]
     ndims = int(dims[0]) + int(dims[1]) + int(dims[2])
@@ -307,7 +314,8 @@ def _sweep_extrema(q, grad, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, compatib
             r0, r1 = i + sh[0], j + sh[1]
             u = uf[i, j, k0:k1]
             if ndims > 1:
-                _face_values_gradient_md(q, grad, d, ux, uy, uz, shs, dims, i, j, k0, k1, sh, dt, dx, compatible, buf)
+                _row_values_gradient_md(q, grad, rc, d, u, r0 - e0, r1 - e1, base - e2, r0, r1, base, dt, dx,
+                                        compatible, buf)
             else:
                 _row_values_gradient(q, grad, d, u, r0 - e0, r1 - e1, base - e2, r0, r1, base, dt, dx, compatible, buf)
             _add_fluxes(u, d, r0, r1, base, dt, dx, lo, hi, acc, buf)
@@ -451,20 +459,20 @@ def advect(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi
 
 @njit(cache=True, error_model="numpy")
 def advect_extrema(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims,
-                   compatible, q, acc, buf, grad, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+                   compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
     """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
-    grad: scratch (3, nq, *mass.shape); compatible: Uintah's useCompatibleFluxes."""
+    grad, rc: scratch (3, nq, *mass.shape), (3, *mass.shape); compatible: Uintah's
+    useCompatibleFluxes."""
     _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
     limited_gradients(q, dims, dxs, compatible, grad)
+    if int(dims[0]) + int(dims[1]) + int(dims[2]) > 1:
+        _slab_offsets(ux, uy, uz, shs, dims, dt, rc)
     if dims[0]:
-        _sweep_extrema(q, grad, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs,
-                       acc, buf)
+        _sweep_extrema(q, grad, rc, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, compatible, acc, buf)
     if dims[1]:
-        _sweep_extrema(q, grad, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs,
-                       acc, buf)
+        _sweep_extrema(q, grad, rc, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, compatible, acc, buf)
     if dims[2]:
-        _sweep_extrema(q, grad, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, compatible, ux, uy, uz, shs,
-                       acc, buf)
+        _sweep_extrema(q, grad, rc, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, compatible, acc, buf)
     _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
 
 

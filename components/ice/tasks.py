@@ -387,7 +387,7 @@ class IceTasks:
             out = (b.vol, self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o))
             if self.second_order and self.limiter == A.EXTREMA:
                 A.advect_extrema(*common, self.compatible_fluxes, *scratch,
-                                 self._scratch("grad", (3, nq) + shape), *out)
+                                 self._scratch("grad", (3, nq) + shape), self._scratch("rc", (3,) + shape), *out)
             else:
                 A.advect(*common, b.perm, self.second_order, self.transverse, *scratch,
                          self._scratch("sl", (shape[2],)), *out)

@@ -19,8 +19,8 @@ TIMESTEP = """<?xml version="1.0"?>
 """
 PATCH = """    <Patch><id>{id}</id><lowIndex>{elo}</lowIndex><highIndex>{ehi}</highIndex>
       <interiorLowIndex>{ilo}</interiorLowIndex><interiorHighIndex>{ihi}</interiorHighIndex></Patch>"""
-VARIABLE = """  <Variable type="CCVariable&lt;{type}&gt;"><variable>{name}</variable><index>0</index><patch>{patch}</patch>
-    <start>{start}</start><end>{end}</end><filename>p00000.data</filename></Variable>
+VARIABLE = """  <Variable type="CCVariable&lt;{type}&gt;"><variable>{name}</variable><index>0</index>
+    <patch>{patch}</patch><start>{start}</start><end>{end}</end><filename>p00000.data</filename></Variable>
 """
 
 
