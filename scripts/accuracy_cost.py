@@ -7,6 +7,8 @@ error vs cells and vs wall time when matplotlib is importable).
         --opt order=FirstOrder,SecondOrder --json sod.json --png sod.png
 
     .venv/bin/python scripts/accuracy_cost.py toro3 --res 100 200 400 --opt energy=internal,total
+    .venv/bin/python scripts/accuracy_cost.py toro3 --res 100 200 400 \
+        --opt limiter=vanLeer,BarthJespersen --opt heating=true,false --uintah PATH/TO/sus
     .venv/bin/python scripts/accuracy_cost.py wave1d --res 25 50 100 200 400 \
         --opt order=FirstOrder,SecondOrder --json wave1d.json --png wave1d.png
     .venv/bin/python scripts/accuracy_cost.py wave2d --res 16 32 64 \
@@ -27,6 +29,9 @@ semi-implicit ICE, from components/ice/scene_lowmach.py; MPM's bar, Lame cylinde
 colliding disks with either interpolator and stress update, from
 components/mpm/scene_accuracy.py); nothing else here is
 component-specific.
+--uintah SUS runs each resolution's deck (the template's defaults, pysus-only options
+dropped, see uintah_deck) on Uintah's sus too and reads its .uda (framework/uintah_uda.py):
+its error and wall time (sus's start-up included) join the table, the JSON and the PNG.
 Wall time is the whole run (initialisation included: the 2D wave's per-cell geometry
 takes a noticeable part of it); step_s in the JSON is the time-stepping alone.
 """
@@ -50,15 +55,18 @@ from framework.controller import Controller  # noqa: E402
 def _ice_scene(name):
     from components.ice import scenes
 
-    def deck(n, order="SecondOrder", cfl="0.4", energy="internal"):
-        """energy=internal (Uintah's ICE) or total (<conserveTotalEnergy>)."""
-        return scenes.shock_tube_deck(name, n=n, order=order, cfl=float(cfl), conserve=energy == "total")
+    def deck(n, order="SecondOrder", cfl="0.4", energy="internal", limiter=None, heating=None):
+        """energy=internal (Uintah's ICE) or total (<conserveTotalEnergy>); limiter=vanLeer or
+        BarthJespersen (Uintah's); heating=true/false (<advection dissipationHeating>)."""
+        return scenes.shock_tube_deck(name, n=n, order=order, cfl=float(cfl), conserve=energy == "total",
+                                      limiter=limiter, heating=None if heating is None else heating == "true")
 
     def error(da):
-        err, _, ex, _ = scenes.shock_tube_errors(da, name)
-        return {k: v for k, v in err.items()}
+        err, num, ex, _ = scenes.shock_tube_errors(da, name)
+        return {**err, "peak": float(num["rho"].max() / ex["rho"].max())}
     return {"deck": deck, "error": error, "key": "rho",
-            "what": f"ICE {name}: L1 error of density, velocity, pressure vs the exact Riemann solution"}
+            "what": f"ICE {name}: L1 error of density, velocity, pressure vs the exact Riemann solution; "
+                    "peak: the largest density over the exact one (the overshoot at a blast wave's contact)"}
 
 
 def _wave_scene(dim):
@@ -150,6 +158,61 @@ def run_case(scene, n, opts, workdir):
             "step_s": sum(c.step_times), "errors": err, **{f"opt_{k}": v for k, v in opts.items()}}
 
 
+PYSUS_ONLY_ATTRS = ("limiter", "dissipationHeating", "transverseTerms")
+
+
+def uintah_deck(text):
+    """The deck as Uintah's sus takes it: pysus-only options dropped (sus's own scheme runs),
+    one material's boundary conditions under id "0" (sus refuses "all" then), and symmetry
+    on faces the deck leaves open (a 1D tube: y and z)."""
+    from lxml import etree
+    root = etree.fromstring(text.encode())
+    for a in root.iter("advection"):
+        for name in PYSUS_ONLY_ATTRS:
+            a.attrib.pop(name, None)
+    for tag in ("conserveTotalEnergy", "delT_activeDirectionsOnly"):
+        for e in list(root.iter(tag)):
+            e.getparent().remove(e)
+    if len(root.findall("MaterialProperties/ICE/material")) == 1:
+        for bc in root.iter("BCType"):
+            if bc.get("id") == "all":
+                bc.set("id", "0")
+    tm = root.find("Time")
+    if tm is not None and tm.find("timestep_multiplier") is None:      # required by sus, 1 by default here
+        etree.SubElement(tm, "timestep_multiplier").text = "1.0"
+    bcs = root.find("Grid/BoundaryConditions")
+    if bcs is not None:
+        have = {f.get("side") for f in bcs.findall("Face")}
+        for side in ("x-", "x+", "y-", "y+", "z-", "z+"):
+            if side not in have:
+                face = etree.SubElement(bcs, "Face", side=side)
+                etree.SubElement(face, "BCType", id="0", label="Symmetric", var="symmetry")
+    return etree.tostring(root, encoding="unicode")
+
+
+def run_uintah(sus, scene, n, workdir):
+    """Run the scene's deck (template defaults) on Uintah's sus; the same row as run_case."""
+    import glob
+    import subprocess
+    from framework.uintah_uda import UintahArchive
+    path = os.path.join(workdir, "deck.ups")
+    with open(path, "w") as f:
+        f.write(uintah_deck(scene["deck"](n)))
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    t0 = time.perf_counter()
+    out = subprocess.run([sus, path], cwd=workdir, env=env, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    udas = glob.glob(os.path.join(workdir, "*.uda.[0-9][0-9][0-9]"))
+    if out.returncode != 0 or not udas:         # sus can exit 0 after a ProblemSetupException
+        raise RuntimeError(f"sus failed ({out.returncode}): {(out.stdout + out.stderr).strip()[-400:]}")
+    uda = max(udas, key=os.path.getmtime)
+    da = UintahArchive(uda)
+    steps = int(os.path.basename(da.steps[-1])[1:])
+    rho, _ = da.read("rho_CC", 0, -1)
+    return {"n": n, "cells": int(rho.size), "steps": steps, "wall_s": wall, "step_s": None,
+            "errors": scene["error"](da), "opt_code": "uintah"}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene", choices=sorted(SCENES))
@@ -157,6 +220,8 @@ def main(argv=None):
     ap.add_argument("--opt", action="append", default=[], help="name=v1,v2 (an option of the deck template)")
     ap.add_argument("--json", default=None)
     ap.add_argument("--png", default=None)
+    ap.add_argument("--uintah", metavar="SUS", default=None,
+                    help="also run each resolution's deck on Uintah's sus (path to the executable)")
     args = ap.parse_args(argv)
     scene = SCENES[args.scene]()
     names = [o.split("=")[0] for o in args.opt]
@@ -180,6 +245,19 @@ def main(argv=None):
             errs = "  ".join(f"{k}={v:.3e}" for k, v in row["errors"].items())
             print(f"{' '.join(f'{k}={v}' for k, v in opts.items()):24s} cells={row['cells']:8d} steps={row['steps']:6d} "
                   f"wall={row['wall_s']:8.3f}s step={row['step_s']:8.3f}s  L1 {errs}  order({key})={o}", flush=True)
+    if args.uintah:
+        prev = None
+        for n in args.res:
+            with tempfile.TemporaryDirectory() as d:
+                row = run_uintah(args.uintah, scene, n, d)
+            e = row["errors"][key]
+            row["order"] = math.log(prev[1] / e) / math.log(n / prev[0]) if prev and e > 0 else None
+            prev = (n, e)
+            rows.append(row)
+            o = f"{row['order']:.2f}" if row["order"] is not None else "  - "
+            errs = "  ".join(f"{k}={v:.3e}" for k, v in row["errors"].items())
+            print(f"{'Uintah sus':24s} cells={row['cells']:8d} steps={row['steps']:6d} "
+                  f"wall={row['wall_s']:8.3f}s {'':14s}  L1 {errs}  order({key})={o}", flush=True)
     out = {"scene": args.scene, "what": scene["what"], "rows": rows}
     if args.json:
         with open(args.json, "w") as f:
@@ -193,11 +271,15 @@ def main(argv=None):
             print("matplotlib not importable: no PNG", file=sys.stderr)
         else:
             fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-            for combo in itertools.product(*values) if values else [()]:
-                sel = [r for r in rows if all(r.get(f"opt_{k}") == v for k, v in zip(names, combo))]
+            pysus_rows = [r for r in rows if r.get("opt_code") != "uintah"]
+            groups = [(" ".join(combo) or args.scene,
+                       [r for r in pysus_rows if all(r.get(f"opt_{k}") == v for k, v in zip(names, combo))])
+                      for combo in (itertools.product(*values) if values else [()])]
+            if args.uintah:
+                groups.append(("Uintah sus", [r for r in rows if r.get("opt_code") == "uintah"]))
+            for label, sel in groups:
                 for ax, x in zip(axes, ("cells", "wall_s")):
-                    ax.loglog([r[x] for r in sel], [r["errors"][key] for r in sel], "o-",
-                              label=" ".join(combo) or args.scene)
+                    ax.loglog([r[x] for r in sel], [r["errors"][key] for r in sel], "o-", label=label)
             for ax, xlabel in zip(axes, ("cells", "wall time (s)")):
                 ax.set_xlabel(xlabel)
                 ax.set_ylabel(f"error ({key})")

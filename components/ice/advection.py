@@ -2,12 +2,21 @@
 
 Mass is fluxed through each face with the face velocity u*: the flux volume is the
 slab u* dt A next to the face in the donor cell. First order takes the donor cell's
-value; second order adds the van Leer limited slope along the face normal evaluated
-at the slab's centroid (a distance (1 - |u* dt/dx|) dx/2 from the donor's centre).
+value; second order adds a limited slope evaluated at the slab's centroid (a distance
+(1 - |u* dt/dx|) dx/2 from the donor's centre). Two limiters (<advection limiter>):
+VAN_LEER (the default), van Leer's slope along the face normal; EXTREMA
+("BarthJespersen"), Uintah's SecondOrderAdvector (VanderHeyden and Kashiwa, JCP 146,
+1998): central gradients in every direction scaled by one factor per cell so that the
+reconstruction at the cell's vertices stays within its face neighbours' extrema, the
+slab centroid also offset across the normal by what the donor sends out of its other
+faces, and with Uintah's compatible vertex weights m/m_vertex (equal to sus's output
+to round-off: tests/ice/test_advection_limiters.py).
 Momentum, internal energy and material volume are fluxed *compatibly*: the mass flux
 times the reconstructed specific value (velocity, e, v), so a uniform velocity or
 temperature stays exactly uniform and every flux leaves one cell and enters the
-other (mass, momentum and energy are conserved to round-off).
+other (mass, momentum and energy are conserved to round-off). With dissipationHeating
+(the default for ICE alone) E = m (e + |u|^2/2) is advected too and e = E/m - |u|^2/2:
+the kinetic energy that the limited fluxes of mass and momentum destroy becomes heat.
 
 One kernel call advects one material of one patch: the specific values q = Q/m are
 computed once per cell into a scratch array (not three times per face), then each
@@ -23,6 +32,8 @@ from numba import njit
 from .eos import IDEAL_GAS, eos_cold_energy
 
 NQ = 7  # mass, velocity x/y/z, specific internal energy, specific volume, specific total energy
+VAN_LEER, EXTREMA = 0, 1    # second-order limiters: slope along the face normal / Uintah's SecondOrderAdvector
+SMALL_NUM = 1e-100          # Uintah's d_SMALL_NUM in the extrema limiter's ratios
 
 
 @njit(cache=True, error_model="numpy")
@@ -33,9 +44,186 @@ def _van_leer(a, b):
 
 
 @njit(cache=True, error_model="numpy")
-def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
+def _extrema_limit(qc, qmax, qmin, vmax, vmin):
+    """Uintah's gradient limiter: the largest factor in [0, 1] that keeps the vertex values
+    [vmin, vmax] of the reconstruction within the neighbours' extrema [qmin, qmax]."""
+    lim_max = max(0.0, (qmax - qc + SMALL_NUM) / (vmax - qc + SMALL_NUM))
+    lim_min = max(0.0, (qmin - qc + SMALL_NUM) / (vmin - qc + SMALL_NUM))
+    return min(1.0, lim_max, lim_min)
+
+
+@njit(cache=True, error_model="numpy")
+def limited_gradients(q, dims, dxs, compatible, grad):
+    """grad[t, c] = the limited gradient of q[c] along view axis t (Uintah's SecondOrderBase:
+    gradQ, Q_vertex, limitedGradient): central differences in every active direction, all
+    scaled by one factor per cell and quantity so that the linear reconstruction at the cell's
+    vertices stays within the extrema of its face neighbours. compatible (Uintah's
+    useCompatibleFluxes): the vertex value of a specific quantity q = Q/m is the one the
+    compatible flux carries, q + (grad q . r_v) m / m_v, m_v the mass at the vertex from the
+    (already limited) mass gradient; mass (c = 0) comes first. Cells without both neighbours
+    in an active direction get no gradient (first order there). Not compatible: the limited
+    gradient is that of the cell's total Q = m q (Uintah's non-compatible advectQ)."""
+    nq = q.shape[0]
+    n0, n1, n2 = q.shape[1], q.shape[2], q.shape[3]
+    h0, h1, h2 = 0.5 * dxs[0], 0.5 * dxs[1], 0.5 * dxs[2]
+    for t in range(3):
+        for c in range(nq):
+            grad[t, c] = 0.0
+    active = (1 if dims[0] else 0) + (2 if dims[1] else 0) + (4 if dims[2] else 0)
+    i0, i1 = (1, n0 - 1) if dims[0] else (0, n0)
+    j0, j1 = (1, n1 - 1) if dims[1] else (0, n1)
+    k0, k1 = (1, n2 - 1) if dims[2] else (0, n2)
+    for i in range(i0, i1):
+        for j in range(j0, j1):
+            for k in range(k0, k1):
+                m = q[0, i, j, k]
+                for c in range(nq):
+                    total = c > 0 and not compatible          # reconstruct m q, not q
+                    qc = q[c, i, j, k] * m if total else q[c, i, j, k]
+                    qmax, qmin = qc, qc
+                    g0 = g1 = g2 = 0.0
+                    if dims[0]:
+                        a, b = q[c, i - 1, j, k], q[c, i + 1, j, k]
+                        if total:
+                            a, b = a * q[0, i - 1, j, k], b * q[0, i + 1, j, k]
+                        g0 = (b - a) / (2.0 * dxs[0])
+                        qmax, qmin = max(qmax, a, b), min(qmin, a, b)
+                    if dims[1]:
+                        a, b = q[c, i, j - 1, k], q[c, i, j + 1, k]
+                        if total:
+                            a, b = a * q[0, i, j - 1, k], b * q[0, i, j + 1, k]
+                        g1 = (b - a) / (2.0 * dxs[1])
+                        qmax, qmin = max(qmax, a, b), min(qmin, a, b)
+                    if dims[2]:
+                        a, b = q[c, i, j, k - 1], q[c, i, j, k + 1]
+                        if total:
+                            a, b = a * q[0, i, j, k - 1], b * q[0, i, j, k + 1]
+                        g2 = (b - a) / (2.0 * dxs[2])
+                        qmax, qmin = max(qmax, a, b), min(qmin, a, b)
+                    if c == 0 or not compatible:
+                        reach = abs(g0) * h0 + abs(g1) * h1 + abs(g2) * h2
+                        vmax, vmin = qc + reach, qc - reach
+                    else:
+                        m0, m1, m2 = grad[0, 0, i, j, k] * h0, grad[1, 0, i, j, k] * h1, grad[2, 0, i, j, k] * h2
+                        vmax, vmin = -np.inf, np.inf
+                        for v in range(8):          # the vertices (+-h0, +-h1, +-h2)
+                            if v & ~active:         # a collapsed direction: the same vertex again
+                                continue
+                            s0 = 1.0 if v & 1 else -1.0
+                            s1 = 1.0 if v & 2 else -1.0
+                            s2 = 1.0 if v & 4 else -1.0
+                            dq = s0 * g0 * h0 + s1 * g1 * h1 + s2 * g2 * h2
+                            val = qc + dq * m / (m + s0 * m0 + s1 * m1 + s2 * m2)
+                            vmax, vmin = max(vmax, val), min(vmin, val)
+                    lim = _extrema_limit(qc, qmax, qmin, vmax, vmin)
+                    grad[0, c, i, j, k] = g0 * lim
+                    grad[1, c, i, j, k] = g1 * lim
+                    grad[2, c, i, j, k] = g2 * lim
+
+
+@njit(cache=True, error_model="numpy")
+def _row_values_gradient(q, grad, d, u, l0, l1, lb, r0, r1, rb, dt, dx, compatible, buf):
+    """Face values of a row of faces between the cells L = (l0, l1, lb + kk) and R = (r0, r1, rb + kk)
+    from the donor's limited gradient at the outflow slab's centroid, (dx - |u| dt)/2 from its centre
+    toward the face (Uintah's qAverageFlux). compatible: a specific quantity's value is
+    q + (grad q . r) m / m_slab, so that the flux m_slab |u| dt/dx times it is Uintah's
+    (m_slab q + m grad q . r) |u| dt/dx; not compatible, grad is that of Q = m q and the value
+    is the slab's (Q + grad Q . r) / m_slab."""
+    nq = q.shape[0]
+    nk = u.shape[0]
+    for c in range(nq):
+        qL, qR = q[c, l0, l1, lb:lb + nk], q[c, r0, r1, rb:rb + nk]
+        gL, gR = grad[d, c, l0, l1, lb:lb + nk], grad[d, c, r0, r1, rb:rb + nk]
+        f = buf[c]
+        if c == 0:
+            for kk in range(nk):
+                r = 0.5 * (dx - abs(u[kk]) * dt)
+                f[kk] = qL[kk] + r * gL[kk] if u[kk] > 0.0 else qR[kk] - r * gR[kk]
+        elif not compatible:
+            mL, mR = q[0, l0, l1, lb:lb + nk], q[0, r0, r1, rb:rb + nk]
+            ms = buf[0]
+            for kk in range(nk):
+                r = 0.5 * (dx - abs(u[kk]) * dt)
+                slab = qL[kk] * mL[kk] + r * gL[kk] if u[kk] > 0.0 else qR[kk] * mR[kk] - r * gR[kk]
+                f[kk] = slab / ms[kk] if ms[kk] != 0.0 else 0.0
+        else:
+            mL, mR = q[0, l0, l1, lb:lb + nk], q[0, r0, r1, rb:rb + nk]
+            ms = buf[0]
+            for kk in range(nk):
+                r = 0.5 * (dx - abs(u[kk]) * dt)
+                w = (mL[kk] if u[kk] > 0.0 else mR[kk]) / ms[kk] if ms[kk] != 0.0 else 0.0
+                f[kk] = qL[kk] + w * r * gL[kk] if u[kk] > 0.0 else qR[kk] - w * r * gR[kk]
+
+
+@njit(cache=True, error_model="numpy")
+def _slab_offsets(ux, uy, uz, shs, dims, dt, rc):
+    """rc[t] of every stored cell: the offset along view axis t of the centroid of the slabs it
+    sends through its faces normal to the other axes, half of what it sends out of its low
+    t-face minus what it sends out of its high one (Uintah's inFluxOutFluxVolume:
+    r_y = (delY_bottom - delY_top) / 2); 0 where a face is not stored (never a donor there)."""
+    n0, n1, n2 = rc.shape[1], rc.shape[2], rc.shape[3]
+    for t in range(3):
+        rc[t] = 0.0
+        if not dims[t]:
+            continue
+        e0, e1, e2 = (1, 0, 0) if t == 0 else ((0, 1, 0) if t == 1 else (0, 0, 1))
+        uf = ux if t == 0 else (uy if t == 1 else uz)
+        f0, f1, f2 = uf.shape
+        for i in range(n0):
+            a = i - shs[t, 0]
+            if a < 0 or a + e0 >= f0:
+                continue
+            for j in range(n1):
+                b = j - shs[t, 1]
+                if b < 0 or b + e1 >= f1:
+                    continue
+                c0 = max(0, shs[t, 2])
+                c1 = min(n2, f2 - e2 + shs[t, 2])
+                lo, hi, row = uf[a, b], uf[a + e0, b + e1], rc[t, i, j]
+                for k in range(c0, c1):
+                    c = k - shs[t, 2]
+                    row[k] = 0.5 * (max(0.0, -lo[c] * dt) - max(0.0, hi[c + e2] * dt))
+
+
+@njit(cache=True, error_model="numpy")
+def _row_values_gradient_md(q, grad, rc, d, u, l0, l1, lb, r0, r1, rb, dt, dx, compatible, buf):
+    """Multi-dimensional _row_values_gradient: the slab centroid is also offset across the face
+    normal by the donor's rc (Uintah's qAverageFlux with d_r_out_x/y/z)."""
+    nq = q.shape[0]
+    nk = u.shape[0]
+    mL, mR = q[0, l0, l1, lb:lb + nk], q[0, r0, r1, rb:rb + nk]
+    ms = buf[0]
+    for c in range(nq):
+        qL, qR = q[c, l0, l1, lb:lb + nk], q[c, r0, r1, rb:rb + nk]
+        f = buf[c]
+        for kk in range(nk):                    # the normal offset: toward the face
+            r = 0.5 * (dx - abs(u[kk]) * dt)
+            f[kk] = r * grad[d, c, l0, l1, lb + kk] if u[kk] > 0.0 else -r * grad[d, c, r0, r1, rb + kk]
+        for t in range(3):                      # the offsets across it
+            if t == d:
+                continue
+            gL, gR = grad[t, c, l0, l1, lb:lb + nk], grad[t, c, r0, r1, rb:rb + nk]
+            oL, oR = rc[t, l0, l1, lb:lb + nk], rc[t, r0, r1, rb:rb + nk]
+            for kk in range(nk):
+                f[kk] += gL[kk] * oL[kk] if u[kk] > 0.0 else gR[kk] * oR[kk]
+        if c == 0:
+            for kk in range(nk):
+                f[kk] += qL[kk] if u[kk] > 0.0 else qR[kk]
+        elif compatible:
+            for kk in range(nk):
+                m = mL[kk] if u[kk] > 0.0 else mR[kk]
+                f[kk] = ((qL[kk] if u[kk] > 0.0 else qR[kk]) + f[kk] * m / ms[kk]) if ms[kk] != 0.0 else 0.0
+        else:
+            for kk in range(nk):
+                qm = qL[kk] * mL[kk] if u[kk] > 0.0 else qR[kk] * mR[kk]
+                f[kk] = (qm + f[kk]) / ms[kk] if ms[kk] != 0.0 else 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi):
     """q = (m, (mu)/m, (me)/m, (mv)/m, E/m) in every stored cell (halo corners outside the
-    domain may hold garbage: never read); acc = the Lagrangian totals in the cells [lo, hi)."""
+    domain may hold garbage: never read); acc = the Lagrangian totals in the cells [lo, hi).
+    heating: E = m e + |m u|^2 / (2 m) from the others (tot unused)."""
     nq = q.shape[0]
     n0, n1, n2 = mass.shape
     for i in range(n0):
@@ -48,7 +236,10 @@ def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
                 q[3, i, j, k] = mom[i, j, k, 2] / m
                 q[4, i, j, k] = eng[i, j, k] / m
                 q[5, i, j, k] = volm[i, j, k] / m
-                if with_e:
+                if heating:
+                    q[6, i, j, k] = q[4, i, j, k] + 0.5 * (q[1, i, j, k] ** 2 + q[2, i, j, k] ** 2 +
+                                                           q[3, i, j, k] ** 2)
+                elif with_e:
                     q[6, i, j, k] = tot[i, j, k] / m
     n = hi[2] - lo[2]
     k0 = lo[2]
@@ -62,6 +253,10 @@ def _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi):
                     mc = mom[i, j, k0:k0 + n, c - 1]
                     for k in range(n):
                         a[k] = mc[k]
+                elif c == 6 and heating:
+                    qm, qe = q[0, i, j, k0:k0 + n], q[6, i, j, k0:k0 + n]
+                    for k in range(n):
+                        a[k] = qm[k] * qe[k]
                 else:
                     for k in range(n):
                         a[k] = src[k]
@@ -81,14 +276,11 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
     normal reconstruction lacks; without them oblique flow is first order in time.
     `comp[t]`: the velocity component along view axis t.
     """
-    nq = q.shape[0]
     n = q.shape[1 + d]
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     dx = dxs[d]
     k0, k1 = flo[2], fhi[2]
-    nk = k1 - k0
-    s2 = sh[2]
-    base = k0 + s2                              # the R cell of the row's first face
+    base = k0 + sh[2]                           # the R cell of the row's first face
     for i in range(flo[0], fhi[0]):
         for j in range(flo[1], fhi[1]):
             r0, r1 = i + sh[0], j + sh[1]
@@ -105,34 +297,65 @@ def _sweep(q, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, comp, second, transver
                                   base, dt, dx, second, buf)
             if second and transverse:
                 _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf)
-            fm = buf[0]
-            for kk in range(nk):                # mass flux m_face |u| dt / dx, signed L -> R
-                s = 1.0 if u[kk] > 0.0 else -1.0
-                fm[kk] = abs(u[kk]) * dt / dx * s * fm[kk] if u[kk] != 0.0 else 0.0
-            for c in range(1, nq):              # the other fluxes: mass flux times face value
+            _add_fluxes(u, d, r0, r1, base, dt, dx, lo, hi, acc, buf)
+
+
+@njit(cache=True, error_model="numpy")
+def _sweep_extrema(q, grad, rc, uf, d, sh, flo, fhi, lo, hi, dt, dxs, dims, compatible, acc, buf):
+    """_sweep with Uintah's limited gradients (limited_gradients) at the slab centroids: in 1D
+    along the face normal, in 2D/3D with the slab centroid's offset across it (rc, _slab_offsets)."""
+    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    dx = dxs[d]
+    ndims = int(dims[0]) + int(dims[1]) + int(dims[2])
+    k0, k1 = flo[2], fhi[2]
+    base = k0 + sh[2]
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            r0, r1 = i + sh[0], j + sh[1]
+            u = uf[i, j, k0:k1]
+            if ndims > 1:
+                _row_values_gradient_md(q, grad, rc, d, u, r0 - e0, r1 - e1, base - e2, r0, r1, base, dt, dx,
+                                        compatible, buf)
+            else:
+                _row_values_gradient(q, grad, d, u, r0 - e0, r1 - e1, base - e2, r0, r1, base, dt, dx, compatible, buf)
+            _add_fluxes(u, d, r0, r1, base, dt, dx, lo, hi, acc, buf)
+
+
+@njit(cache=True, error_model="numpy")
+def _add_fluxes(u, d, r0, r1, base, dt, dx, lo, hi, acc, buf):
+    """Turn a row's face values (buf) into fluxes, mass flux m_face |u| dt/dx times each face value,
+    and add them to both cells of every face: each cell + its lower face - its upper face."""
+    nq = buf.shape[0]
+    nk = u.shape[0]
+    e0, e1 = (1, 0) if d == 0 else ((0, 1) if d == 1 else (0, 0))
+    fm = buf[0]
+    for kk in range(nk):                # mass flux m_face |u| dt / dx, signed L -> R
+        s = 1.0 if u[kk] > 0.0 else -1.0
+        fm[kk] = abs(u[kk]) * dt / dx * s * fm[kk] if u[kk] != 0.0 else 0.0
+    for c in range(1, nq):              # the other fluxes: mass flux times face value
+        f = buf[c]
+        for kk in range(nk):
+            f[kk] = fm[kk] * f[kk] if u[kk] != 0.0 else 0.0
+    if d == 2:
+        c0, c1 = max(lo[2], base), min(hi[2], base + nk - 1)
+        for c in range(nq):
+            row = acc[c, r0, r1, c0:c1]
+            f = buf[c, c0 - base:]
+            for kk in range(c1 - c0):
+                row[kk] = (row[kk] + f[kk]) - f[kk + 1]
+    else:
+        if r0 * e0 + r1 * e1 - 1 >= lo[d]:
+            for c in range(nq):
+                row = acc[c, r0 - e0, r1 - e1, base:base + nk]
                 f = buf[c]
                 for kk in range(nk):
-                    f[kk] = fm[kk] * f[kk] if u[kk] != 0.0 else 0.0
-            if d == 2:                          # each cell: + its lower face, - its upper face
-                c0, c1 = max(lo[2], base), min(hi[2], base + nk - 1)
-                for c in range(nq):
-                    row = acc[c, r0, r1, c0:c1]
-                    f = buf[c, c0 - base:]
-                    for kk in range(c1 - c0):
-                        row[kk] = (row[kk] + f[kk]) - f[kk + 1]
-            else:
-                if r0 * e0 + r1 * e1 - 1 >= lo[d]:
-                    for c in range(nq):
-                        row = acc[c, r0 - e0, r1 - e1, base:base + nk]
-                        f = buf[c]
-                        for kk in range(nk):
-                            row[kk] -= f[kk]
-                if r0 * e0 + r1 * e1 < hi[d]:
-                    for c in range(nq):
-                        row = acc[c, r0, r1, base:base + nk]
-                        f = buf[c]
-                        for kk in range(nk):
-                            row[kk] += f[kk]
+                    row[kk] -= f[kk]
+        if r0 * e0 + r1 * e1 < hi[d]:
+            for c in range(nq):
+                row = acc[c, r0, r1, base:base + nk]
+                f = buf[c]
+                for kk in range(nk):
+                    row[kk] += f[kk]
 
 
 @njit(cache=True, error_model="numpy")
@@ -213,23 +436,49 @@ def _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf):
 
 
 @njit(cache=True, error_model="numpy")
-def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
+def advect(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
            second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
     """Advect one material's Lagrangian totals (m, m u, m e, m v, E) over one step into the
     cells [lo, hi) and return the new primitives rho = m/V, u = (mu)/m, T = (me)/(m cv),
-    v = (mv)/m (and the advected E in tot_o).
+    v = (mv)/m (and the advected E in tot_o). heating (dissipationHeating, with with_e):
+    E = m e + |m u|^2/(2 m) is made here and T = (E/m - |u|^2/2)/cv where that is positive.
 
     All arrays are views with the collapsed axes first (a 2D run has a unit first axis),
     `comp` maps view axes to velocity components; shs, flo, fhi: (3, 3) per view axis.
     q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6; buf: (nq, row length).
     """
-    _start(mass, mom, eng, volm, tot, with_e, q, acc, lo, hi)
+    _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
     if dims[0]:
         _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     if dims[1]:
         _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     if dims[2]:
         _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
+    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
+
+
+@njit(cache=True, error_model="numpy")
+def advect_extrema(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims,
+                   compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+    """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
+    grad, rc: scratch (3, nq, *mass.shape), (3, *mass.shape); compatible: Uintah's
+    useCompatibleFluxes."""
+    _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
+    limited_gradients(q, dims, dxs, compatible, grad)
+    if int(dims[0]) + int(dims[1]) + int(dims[2]) > 1:
+        _slab_offsets(ux, uy, uz, shs, dims, dt, rc)
+    if dims[0]:
+        _sweep_extrema(q, grad, rc, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, compatible, acc, buf)
+    if dims[1]:
+        _sweep_extrema(q, grad, rc, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, compatible, acc, buf)
+    if dims[2]:
+        _sweep_extrema(q, grad, rc, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, compatible, acc, buf)
+    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
+
+
+@njit(cache=True, error_model="numpy")
+def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+    """The new primitives of the cells [lo, hi) from the advected totals (see advect)."""
     n = hi[2] - lo[2]
     k0 = lo[2]
     for i in range(lo[0], hi[0]):
@@ -246,7 +495,14 @@ def advect(mass, mom, eng, volm, tot, with_e, ux, uy, uz, shs, flo, fhi, lo, hi,
                 ac = acc[1 + c, i, j, k0:k0 + n]
                 for k in range(n):
                     vo[k, c] = ac[k] / max(am[k], 1e-300)
-            if with_e:
+            if heating:                         # e = E/m - |u|^2/2 where positive
+                ae = acc[6, i, j, k0:k0 + n]
+                for k in range(n):
+                    m = max(am[k], 1e-300)
+                    e = ae[k] / m - 0.5 * (vo[k, 0] ** 2 + vo[k, 1] ** 2 + vo[k, 2] ** 2)
+                    if e > 0.0:
+                        to[k] = e / cv
+            elif with_e:
                 ae, eo = acc[6, i, j, k0:k0 + n], tot_o[i, j, k0:k0 + n]
                 for k in range(n):
                     eo[k] = ae[k]

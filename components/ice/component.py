@@ -25,6 +25,7 @@ from framework.task import NEW, OLD, Task
 from framework.variables import Ghost
 
 from . import labels as I
+from .advection import EXTREMA, VAN_LEER
 from .bc import BoundaryConditions, read_bcs
 from .eos import IDEAL_GAS, MAX_PARAMS, eos_press_eos, make_eos
 from .implicit import ImplicitICE
@@ -67,6 +68,9 @@ class Material:
         self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
 
 
+LIMITERS = {"vanLeer": VAN_LEER, "BarthJespersen": EXTREMA}    # <advection limiter="...">
+
+
 def _rank():
     """This process's MPI rank (notes are printed once, by rank 0)."""
     from mpi4py import MPI
@@ -89,10 +93,24 @@ class ICE(ImplicitICE, IceTasks, Component):
         ice = cfd.child("ICE", required=True)
         adv = ice.child("advection", required=True)
         self.second_order = adv.attr("type", choices=("FirstOrder", "SecondOrder")) == "SecondOrder"
-        adv.attr("useCompatibleFluxes", "bool", True)
+        # the second-order limiter: "vanLeer", the slope along the face normal (pysus), or
+        # "BarthJespersen", Uintah's SecondOrderAdvector: the gradient limited by the face
+        # neighbours' extrema at the cell's vertices, evaluated at the outflow slab's centroid
+        limiter = adv.attr("limiter", default="vanLeer", choices=LIMITERS)
+        self.limiter = LIMITERS[limiter]
+        # Uintah's flags (AdvectionFactory: either name); with BarthJespersen false reconstructs
+        # the totals m q instead of the specific values q
+        self.compatible_fluxes = adv.attr("useCompatibleFluxes", "bool", adv.attr("compatibleFluxes", "bool", True))
         # pysus extension (not in Uintah): transverse (corner) terms of the second-order
-        # face values, second order in time for oblique flow; off = Uintah's scheme
+        # face values, second order in time for oblique flow; off = Uintah's scheme (for
+        # vanLeer: BarthJespersen always has Uintah's own, the slab centroid's offset)
         self.transverse = adv.attr("transverseTerms", "bool", False) and self.second_order
+        # pysus extension: the advection carries m (e + |u|^2/2) as well and takes
+        # e = E/m - |u|^2/2, so the kinetic energy that the limited advection of mass and
+        # momentum destroys (at shocks, contacts) becomes heat instead of being lost; the
+        # Lagrangian phase stays Uintah's. On by default for ICE alone (MPMICE: on request);
+        # "false" with limiter="BarthJespersen" is Uintah's SecondOrderAdvector
+        self.dissipation_heating = adv.attr("dissipationHeating", "bool", self.n_before == 0)
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100)
         # pysus extension: advect a conservative total energy and take e = E/m - |u|^2/2,
         # so that mass, momentum and total energy are conserved to round-off on closed

@@ -83,7 +83,7 @@ TEMPLATE = """<?xml version="1.0" encoding="iso-8859-1"?>
   </DataArchiver>
   <CFD>
     <cfl> {cfl} </cfl>
-    <ICE>{energy}<advection type="{order}"/><delT_activeDirectionsOnly>true</delT_activeDirectionsOnly></ICE>
+    <ICE>{energy}<advection type="{order}"{advection}/><delT_activeDirectionsOnly>true</delT_activeDirectionsOnly></ICE>
   </CFD>
   <PhysicalConstants>
     <gravity> [0,0,0] </gravity>
@@ -128,16 +128,19 @@ WALL = """      <Face side="{side}"><BCType id="all" label="Symmetric" var="symm
 
 
 def shock_tube_deck(name, n=200, order="SecondOrder", cfl=0.4, patches=1, runtime="a few seconds", walls=False,
-                    conserve=False):
+                    conserve=False, limiter=None, heating=None):
     """The deck text of one Toro test at n cells (walls=True: closed ends, reflecting;
-    conserve=True: <conserveTotalEnergy>, the pysus option)."""
+    conserve=True: <conserveTotalEnergy>, the pysus option; limiter, heating: the
+    <advection> attributes limiter and dissipationHeating, left out when None)."""
+    attrs = (f' limiter="{limiter}"' if limiter else "") + \
+        (f' dissipationHeating="{str(heating).lower()}"' if heating is not None else "")
     s = TORO[name]
     (rl, ul, pl), (rr, ur, pr) = s["left"], s["right"]
     face = WALL if walls else FACE
     faces = face.format(side="x-") + face.format(side="x+")
     return TEMPLATE.format(title=s["what"], name=name, n=n, x0=s["x0"], order=order, cfl=cfl, t=s["t"],
                            runtime=runtime, faces=faces, patches=patches, rl=rl, ul=ul, pl=pl, rr=rr, ur=ur,
-                           pr=pr, Tl=pl / rl, Tr=pr / rr,
+                           pr=pr, Tl=pl / rl, Tr=pr / rr, advection=attrs,
                            energy="<conserveTotalEnergy> true </conserveTotalEnergy>" if conserve else "")
 
 

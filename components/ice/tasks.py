@@ -382,20 +382,27 @@ class IceTasks:
             vel = new_dw.allocate(I.vel_CC, m, patch)
             temp = new_dw.allocate(I.temp_CC, m, patch)
             spv = new_dw.get_modifiable(I.sp_vol_CC, m, patch)
+            heating = self.dissipation_heating and not self.conserve_energy
+            with_e = self.conserve_energy or heating
             if self.conserve_energy:
                 tot, tot_o = new_dw.get(I.tot_eng_L_ME_CC, m, patch), np.empty_like(mass)
             else:
                 tot = tot_o = mass                              # unused
             uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
             v = b.view
-            nq = A.NQ if self.conserve_energy else A.NQ - 1
+            nq = A.NQ if with_e else A.NQ - 1
             shape = v(mass).shape
-            A.advect(v(mass), v(mom), v(eng), v(volm), v(tot), self.conserve_energy, *(v(uf[p]) for p in b.perm),
-                     b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm],
-                     b.perm, self.second_order, self.transverse, self._scratch("q", (nq,) + shape),
-                     self._scratch("acc", (nq,) + shape), self._scratch("buf", (nq, shape[2] + 1)),
-                     self._scratch("sl", (shape[2],)), b.vol,
-                     self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o))
+            common = (v(mass), v(mom), v(eng), v(volm), v(tot), with_e, heating, *(v(uf[p]) for p in b.perm),
+                      b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm])
+            scratch = (self._scratch("q", (nq,) + shape), self._scratch("acc", (nq,) + shape),
+                       self._scratch("buf", (nq, shape[2] + 1)))
+            out = (b.vol, self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o))
+            if self.second_order and self.limiter == A.EXTREMA:
+                A.advect_extrema(*common, self.compatible_fluxes, *scratch,
+                                 self._scratch("grad", (3, nq) + shape), self._scratch("rc", (3,) + shape), *out)
+            else:
+                A.advect(*common, b.perm, self.second_order, self.transverse, *scratch,
+                         self._scratch("sl", (shape[2],)), *out)
             if self.conserve_energy:
                 A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m], self.codes[m], self.params[m])
             self.bcs.scalar(patch, rho, "Density", m, b)

@@ -1,14 +1,15 @@
 """Sod and Toro's tests 1-5 (inputs/ICE): accuracy, stability, boundedness, conservation.
 
 The accuracy bounds (L1 error relative to the mean exact value, 200 cells, second
-order) were measured with pysus and are set ~25 % above: Sod rho 1.4 %, test 1 2.3 %,
-test 2 1.8 %. Tests 3-5 (strong shocks) are checked for stability and bounds only:
-like Uintah's ICE, the internal-energy form under-heats very strong shocks, which
-leaves a density spike at the contact (Toro 3: rho 19.2 vs 6.0; its L1 error grows with
-resolution: L1(rho) 0.21 -> 0.27 -> 0.38 at 100/200/400 cells; with the option
-0.090 -> 0.056 -> 0.028). The pysus option
-<conserveTotalEnergy> fixes that (tests/ice/test_energy.py; scripts/accuracy_cost.py
-toro3 --opt energy=internal,total).
+order) were measured with pysus before dissipationHeating became the default and are
+set ~25 % above: Sod rho 1.4 %, test 1 2.3 %, test 2 1.8 % (with it: 1.2 %, 1.6 %,
+1.8 %). Tests 3-5 (strong shocks) are checked for stability and bounds only here:
+Uintah's ICE (limiter="BarthJespersen" dissipationHeating="false") under-heats very
+strong shocks, which leaves a density spike at the contact (Toro 3: rho 18.8 vs 6.0;
+its L1 error grows with resolution: L1(rho) 0.18 -> 0.27 -> 0.36 at 100/200/400 cells);
+the default (dissipationHeating) and <conserveTotalEnergy> remove most of it (Toro 3
+peak 6.7 at 200 cells; tests/ice/test_advection_limiters.py, tests/ice/test_energy.py;
+scripts/accuracy_cost.py toro3 --opt limiter=vanLeer,BarthJespersen --opt heating=true,false).
 """
 import numpy as np
 import pytest

@@ -36,7 +36,13 @@ def test_hot_blob_two_materials(run_deck):
     """The blob has the surroundings' density at 400 K, so its EOS pressure is 135100 Pa, not
     the deck's 101325 Pa: like Uintah, pysus starts from <density> and <temperature>, and the
     blob expands. delT and the pressure follow Uintah's sus step by step."""
-    da = run_deck(f"{UINTAH}/hotBlob2mat.ups")
+    text = open(f"{UINTAH}/hotBlob2mat.ups").read()
+    assert '<advection type = "FirstOrder" />' in text
+    # pysus's default advection also turns the kinetic energy lost in advection into heat
+    # (dissipationHeating, more accurate: docs/ICE.md); off, it is Uintah's scheme, whose
+    # answer the values below are
+    text = text.replace('<advection type = "FirstOrder" />', '<advection type = "FirstOrder" dissipationHeating="false"/>')
+    da = run_deck(text=text)
     assert np.allclose(np.diff(da.times), SUS_HOTBLOB_DELT, rtol=1e-4)
     for step, pmax in SUS_HOTBLOB_PRESS_MAX.items():
         p, _ = da.read("press_CC", 0, step)

@@ -1,0 +1,73 @@
+"""Read the cell-centred output of Uintah's sus (a .uda directory) with DataArchive's interface.
+
+Enough for comparing a run of sus with pysus on the same deck (scripts/accuracy_cost.py
+--uintah): one level, any number of patches, CCVariable<double> and CCVariable<Vector>
+saved uncompressed as 64-bit little-endian (sus's default). `read` returns the interior
+cells only, x fastest in the file (Uintah's layout), as an (nx, ny, nz[, 3]) array like
+DataArchive.read, with the cell-centre coordinates.
+"""
+from __future__ import annotations
+
+import glob
+import os
+
+import numpy as np
+from lxml import etree
+
+
+def _ints(text):
+    return [int(v) for v in text.strip().strip("[]").split(",")]
+
+
+def _floats(text):
+    return [float(v) for v in text.strip().strip("[]").split(",")]
+
+
+class UintahArchive:
+    """The timesteps of a sus .uda: times, read(label, matl, timestep)."""
+
+    def __init__(self, path):
+        self.dir = os.path.realpath(path)
+        self.steps = sorted(glob.glob(os.path.join(self.dir, "t[0-9]*")), key=lambda p: int(os.path.basename(p)[1:]))
+        if not self.steps:
+            raise FileNotFoundError(f"{path}: no timestep directories (t00000...)")
+        self.times = [float(etree.parse(os.path.join(s, "timestep.xml")).findtext("Time/currentTime"))
+                      for s in self.steps]
+
+    def read(self, label, matl=0, timestep=-1):
+        """(values over the interior cells, (x, y, z) cell centres) of one CC variable."""
+        step = self.steps[timestep]
+        ts = etree.parse(os.path.join(step, "timestep.xml"))
+        meta = ts.find("Meta")
+        if meta.findtext("endianness", "little_endian").strip() != "little_endian" or \
+                int(meta.findtext("nBits", "64")) != 64:
+            raise ValueError(f"{step}: only 64-bit little-endian output is read")
+        level = ts.find("Grid/Level")
+        dx = np.array(_floats(level.findtext("cellspacing")))
+        anchor = np.array(_floats(level.findtext("anchor")))
+        patches = {int(p.findtext("id")): p for p in level.findall("Patch")}
+        lo = np.min([_ints(p.findtext("interiorLowIndex")) for p in patches.values()], axis=0)
+        hi = np.max([_ints(p.findtext("interiorHighIndex")) for p in patches.values()], axis=0)
+        out = None
+        for href in (d.get("href") for d in ts.findall("Data/Datafile")):
+            for var in etree.parse(os.path.join(step, href)).findall("Variable"):
+                if var.findtext("variable").strip() != label or int(var.findtext("index")) != matl:
+                    continue
+                p = patches[int(var.findtext("patch"))]
+                elo, ehi, ilo, ihi = (np.array(_ints(p.findtext(tag))) for tag in
+                                      ("lowIndex", "highIndex", "interiorLowIndex", "interiorHighIndex"))
+                ncomp = 3 if "Vector" in var.get("type") else 1
+                start, end = int(var.findtext("start")), int(var.findtext("end"))
+                with open(os.path.join(step, os.path.dirname(href), var.findtext("filename").strip()), "rb") as f:
+                    f.seek(start)
+                    raw = np.frombuffer(f.read(end - start), dtype="<f8")
+                n = ehi - elo
+                a = raw.reshape(n[2], n[1], n[0], ncomp).transpose(2, 1, 0, 3)      # x fastest on disk
+                a = a[tuple(slice(l - e, h - e) for l, h, e in zip(ilo, ihi, elo))]
+                if out is None:
+                    out = np.empty(tuple(hi - lo) + (ncomp,))
+                out[tuple(slice(l - o, h - o) for l, h, o in zip(ilo, ihi, lo))] = a
+        if out is None:
+            raise KeyError(f"{step}: no {label} for material {matl}")
+        xyz = tuple(anchor[d] + (np.arange(lo[d], hi[d]) + 0.5) * dx[d] for d in range(3))
+        return (out if out.shape[3] == 3 else out[..., 0]), xyz
