@@ -366,10 +366,12 @@ class ICE(ImplicitICE, IceTasks, Component):
             t.requires(NEW, I.tot_eng_L_ME_CC, G, gadv)
         sched.add_task(t)
 
-        sched.add_task(Task("ICE::sumConservedQuantities", self.conserved_sums, self.matls)
-                       .requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.temp_CC)
-                       .computes(I.TotalMass).computes(I.KineticEnergy).computes(I.TotalIntEng)
-                       .computes(I.TotalMomentum))
+        t = Task("ICE::sumConservedQuantities", self.conserved_sums, self.matls) \
+            .requires(OLD, L.delT).requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.temp_CC) \
+            .computes(I.TotalMass).computes(I.KineticEnergy).computes(I.TotalIntEng).computes(I.TotalMomentum)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL_ME[d])
+        sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", self.compute_mach, self.matls)
                        .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
                        .computes(I.mach))

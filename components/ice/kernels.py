@@ -578,6 +578,28 @@ def conserved_sums(rho, vel, temp, cv, vol, lo, hi, out):
 
 
 @njit(cache=True)
+def upper_face_fluxes(rho, vel, temp, cv, vol, face_vel, d, lo, hi, shift, delt, out):
+    """out -= delT u_face [m, KE, IE, m u] over the extra cells of the upper face in
+    direction d (edges excluded): the boundary-flux part of Uintah's conservationTest."""
+    a, b = (d + 1) % 3, (d + 2) % 3
+    for p in range(lo[a], hi[a]):
+        for q in range(lo[b], hi[b]):
+            c = [0, 0, 0]
+            c[d], c[a], c[b] = hi[d], p, q
+            i, j, k = c[0], c[1], c[2]
+            u_face = face_vel[i - shift[0], j - shift[1], k - shift[2]]
+            m = rho[i, j, k] * vol
+            u0, u1, u2 = vel[i, j, k, 0], vel[i, j, k, 1], vel[i, j, k, 2]
+            w = delt * u_face * m
+            out[0] -= w
+            out[1] -= w * 0.5 * (u0 * u0 + u1 * u1 + u2 * u2)
+            out[2] -= w * cv * temp[i, j, k]
+            out[3] -= w * u0
+            out[4] -= w * u1
+            out[5] -= w * u2
+
+
+@njit(cache=True)
 def speed_sound_fill(sp_vol, temp, out, code, params, cv, gamma):
     """Uintah's initial speedSound_CC: c^2 = dp/drho + dp/de p / rho^2 at (rho_micro, T)."""
     for n in range(sp_vol.size):

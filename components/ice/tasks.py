@@ -412,11 +412,21 @@ class IceTasks:
 
     # -- diagnostics ----------------------------------------------------------------------------
     def conserved_sums(self, patch, matls, old_dw, new_dw):
+        """TotalMass, KineticEnergy, TotalIntEng, TotalMomentum as Uintah's conservationTest:
+        the sums over interior cells plus delT times the fluxes through the domain's faces.
+        Uintah reads each face's velocity at the extra cell's own (lower) face: the boundary
+        face on upper faces; on lower faces a face outside the domain that ICE never sets, so
+        only the upper faces contribute (zero on closed domains)."""
         b = self.boxes(patch)
         acc = np.zeros(6)
+        delt = float(old_dw.get_reduction(L.delT))
         for m in matls:
-            K.conserved_sums(new_dw.get(I.rho_CC, m, patch), new_dw.get(I.vel_CC, m, patch),
-                             new_dw.get(I.temp_CC, m, patch), self.cvs[m], b.vol, b.lo, b.hi, acc)
+            rho, vel, temp = new_dw.get(I.rho_CC, m, patch), new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch)
+            K.conserved_sums(rho, vel, temp, self.cvs[m], b.vol, b.lo, b.hi, acc)
+            for d in range(3):
+                if self.dims[d] and "xyz"[d] + "+" in patch.boundary_faces:
+                    K.upper_face_fluxes(rho, vel, temp, self.cvs[m], b.vol, new_dw.get(I.FC_VEL_ME[d], m, patch), d,
+                                        b.lo, b.hi, b.sh[d], delt, acc)
         new_dw.put_reduction(I.TotalMass, acc[0])
         new_dw.put_reduction(I.KineticEnergy, acc[1])
         new_dw.put_reduction(I.TotalIntEng, acc[2])
