@@ -8,7 +8,9 @@ lxml is used because it keeps source line numbers, which the standard library do
 """
 from __future__ import annotations
 
+import math
 import os
+import re
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -30,7 +32,11 @@ class InputError(Exception):
 
 
 def _parse_float(text):
-    return float(text.strip())
+    """A finite number: NaN and infinity are never a meaningful deck value."""
+    v = float(text.strip())
+    if not math.isfinite(v):
+        raise ValueError(text)
+    return v
 
 
 def _parse_int(text):
@@ -50,7 +56,7 @@ def _parse_bool(text):
     raise ValueError(t)
 
 
-def _parse_vector(text, conv=float):
+def _parse_vector(text, conv=_parse_float):
     t = text.strip()
     if not (t.startswith("[") and t.endswith("]")):
         raise ValueError(t)
@@ -61,23 +67,55 @@ def _parse_vector(text, conv=float):
 
 
 PARSERS: dict[str, tuple[Callable[[str], Any], str]] = {
-    "float": (_parse_float, "a number"),
+    "float": (_parse_float, "a finite number"),
     "int": (_parse_int, "an integer"),
     "bool": (_parse_bool, "true or false"),
     "str": (lambda t: t.strip(), "text"),
-    "vector": (_parse_vector, "a vector [x, y, z]"),
+    "vector": (_parse_vector, "a vector [x, y, z] of finite numbers"),
     "ivector": (lambda t: _parse_vector(t, _parse_int), "an integer vector [i, j, k]"),
 }
 
 
+def _bound_check(v, above, at_least):
+    """The words for the accepted range when a number (or any vector component) is outside it."""
+    vals = v if isinstance(v, tuple) else (v,)
+    if above is not None and any(not (x > above) for x in vals):
+        return f"> {above:g}"
+    if at_least is not None and any(not (x >= at_least) for x in vals):
+        return f">= {at_least:g}"
+    return None
+
+
 @dataclass(frozen=True)
 class Param:
-    """One accepted child tag: its type, default (REQUIRED if none) and allowed values."""
+    """One accepted child tag: its type, default (REQUIRED if none), allowed values and range.
+
+    `above` (strictly greater) and `at_least` (greater or equal) bound a number, or every
+    component of a vector; a value outside is an InputError saying what is accepted.
+    """
 
     type: str = "float"
     default: Any = REQUIRED
     choices: tuple | None = None
     doc: str = ""
+    above: float | None = None
+    at_least: float | None = None
+
+
+_DECLARED_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+
+
+def deck_bytes(text: str | bytes, filename="<string>") -> bytes:
+    """A deck as the bytes of its file: text is encoded as its `<?xml encoding=...?>` declares."""
+    if isinstance(text, bytes):
+        return text
+    m = _DECLARED_ENCODING.match(text.encode("ascii", "replace"))
+    encoding = m.group(1).decode() if m else "utf-8"
+    try:
+        return text.encode(encoding)
+    except (LookupError, UnicodeEncodeError) as e:
+        raise InputError(f"the deck text cannot be written in its declared encoding {encoding}: {e}; "
+                         "accepted: characters of that encoding", filename, 1) from None
 
 
 class _Doc:
@@ -119,9 +157,9 @@ class ProblemSpec:
         return node
 
     @classmethod
-    def from_string(cls, text: str, filename="<string>") -> "ProblemSpec":
+    def from_string(cls, text: str | bytes, filename="<string>") -> "ProblemSpec":
         try:
-            root = etree.fromstring(text.encode() if isinstance(text, str) else text)
+            root = etree.fromstring(deck_bytes(text, filename))
         except etree.XMLSyntaxError as e:
             raise InputError(f"malformed XML: {e.msg}", filename, getattr(e, "lineno", None)) from None
         return cls(root, _Doc(filename, root), root.tag)
@@ -181,8 +219,8 @@ class ProblemSpec:
     def text(self) -> str:
         return (self.element.text or "").strip()
 
-    def value(self, type_="float", choices=None):
-        """This element's own text converted to `type_`."""
+    def value(self, type_="float", choices=None, above=None, at_least=None):
+        """This element's own text converted to `type_` (and checked against its range)."""
         parse, what = PARSERS[type_]
         raw = self.text()
         try:
@@ -191,18 +229,22 @@ class ProblemSpec:
             raise self.error(f"value '{raw}' is not {what}") from None
         if choices is not None and v not in choices:
             raise self.error(f"value '{raw}' is not accepted; accepted: {', '.join(map(str, choices))}")
+        bound = _bound_check(v, above, at_least)
+        if bound is not None:
+            each = " in every component" if isinstance(v, tuple) else ""
+            raise self.error(f"value '{raw}' is out of range; accepted: {what} {bound}{each}")
         return v
 
-    def get(self, tag, type_="float", default=REQUIRED, choices=None):
+    def get(self, tag, type_="float", default=REQUIRED, choices=None, above=None, at_least=None):
         """The value of child `tag`, or `default`; a missing required tag is an error."""
         node = self.child(tag)
         if node is None:
             if default is REQUIRED:
                 raise self.error(f"missing required tag <{tag}> ({PARSERS[type_][1]})")
             return default
-        return node.value(type_, choices)
+        return node.value(type_, choices, above, at_least)
 
-    def attr(self, name, type_="str", default=REQUIRED, choices=None):
+    def attr(self, name, type_="str", default=REQUIRED, choices=None, above=None, at_least=None):
         """The value of attribute `name` of this element."""
         self.doc.used.add((id(self.element), name))
         raw = self.element.get(name)
@@ -217,13 +259,16 @@ class ProblemSpec:
             raise self.error(f"attribute {name}=\"{raw}\" is not {what}") from None
         if choices is not None and v not in choices:
             raise self.error(f"attribute {name}=\"{raw}\" is not accepted; accepted: {', '.join(map(str, choices))}")
+        bound = _bound_check(v, above, at_least)
+        if bound is not None:
+            raise self.error(f"attribute {name}=\"{raw}\" is out of range; accepted: {what} {bound}")
         return v
 
     def read(self, table: dict[str, Param]) -> dict:
         """Read every tag of a declarative table; returns {tag: value}."""
         out = {}
         for tag, p in table.items():
-            out[tag] = self.get(tag, p.type, p.default, p.choices)
+            out[tag] = self.get(tag, p.type, p.default, p.choices, p.above, p.at_least)
         return out
 
     def mark_used(self, recursive=True):
