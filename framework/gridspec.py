@@ -63,3 +63,17 @@ def level_from_spec(root):
         return Level(lower, upper, res, b["patches"], b["extraCells"], tuple(bool(x) for x in periodic))
     except ValueError as e:
         raise box.child("patches").error(str(e)) from None
+
+
+def boundary_faces(bcs, sides):
+    """[(side, <Face> node)] of a `<BoundaryConditions>` block; a side given twice is an error
+    (its conditions would otherwise be merged without a word)."""
+    seen, out = {}, []
+    for face in bcs.children("Face"):
+        side = face.attr("side", choices=sides)
+        if side in seen:
+            raise face.error(f'<Face side="{side}"> given twice (first at line {seen[side].line}); accepted: '
+                             "one <Face> per side holding all its <BCType>s")
+        seen[side] = face
+        out.append((side, face))
+    return out

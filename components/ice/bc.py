@@ -16,6 +16,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from framework.gridspec import boundary_faces
+
 NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY = 0, 1, 2, 3
 KINDS = {"Neumann": NEUMANN, "Dirichlet": DIRICHLET, "symmetry": SYMMETRY, "computeFromDensity": FROM_DENSITY}
 VARS = ("Pressure", "Velocity", "Temperature", "Density", "SpecificVol")
@@ -29,8 +31,7 @@ def read_bcs(root, level, nmat):
     found = {}
     nodes = {}
     if bcn is not None:
-        for face in bcn.children("Face"):
-            side = face.attr("side", choices=FACE_NAMES)
+        for side, face in boundary_faces(bcn, FACE_NAMES):
             table = found.setdefault(side, {})
             nodes[side] = face
             for bt in face.children("BCType"):

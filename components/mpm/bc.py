@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from framework.grid import FACES
+from framework.gridspec import boundary_faces
 from framework.variables import VarType
 
 from . import kernels
@@ -26,8 +27,7 @@ class GridBCs:
         bcs = grid.child("BoundaryConditions") if grid is not None else None
         if bcs is None:
             return
-        for face in bcs.children("Face"):
-            side = face.attr("side", choices=FACES)
+        for side, face in boundary_faces(bcs, FACES):
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
             for bc in face.children("BCType"):
                 ident = bc.attr("id")
