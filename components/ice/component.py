@@ -95,7 +95,7 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.use_gravity = bool(np.any(self.gravity != 0.0))
         mp = root.child("MaterialProperties", required=True)
         icen = mp.child("ICE", required=True)
-        geo = getattr(root, "_geometry_reader", None) or GeometryReader()   # MPMICE shares one
+        geo = getattr(root, "_geometry_reader", None) or GeometryReader(level)   # MPMICE shares one
         self.materials = [self._read_material(m, geo) for m in icen.children("material")]
         if not self.materials:
             raise icen.error("no <material>: ICE needs at least one")
