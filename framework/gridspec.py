@@ -54,11 +54,9 @@ def level_from_spec(root):
         if n > r:
             raise box.child("patches").error(f"{n} patches along {'xyz'[d]} but only {r} cells; accepted: "
                                              "1 to the number of cells in each direction")
-    narrowest = tuple(r // n for r, n in zip(res, b["patches"]))
-    if any(r > 1 and e > w for e, w, r in zip(b["extraCells"], narrowest, res)):
-        raise box.child("extraCells").error(f"extraCells {b['extraCells']} is wider than the narrowest patch "
-                                            f"{narrowest} cells; accepted: 0 or 1 (as Uintah), at most the "
-                                            "cells of a patch")
+    if any(e > 1 for e in b["extraCells"]):
+        raise box.child("extraCells").error(f"extraCells {b['extraCells']} is not accepted; accepted: 0 or 1 in "
+                                            "each direction (the components fill one layer of boundary cells)")
     try:
         return Level(lower, upper, res, b["patches"], b["extraCells"], tuple(bool(x) for x in periodic))
     except ValueError as e:

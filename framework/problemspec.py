@@ -8,6 +8,7 @@ lxml is used because it keeps source line numbers, which the standard library do
 """
 from __future__ import annotations
 
+import io
 import math
 import os
 import re
@@ -39,10 +40,14 @@ def _parse_float(text):
     return v
 
 
+INT_LIMIT = 2**62
+
+
 def _parse_int(text):
+    """An integer (written as 3 or 3.0) small enough to be an array index or a count."""
     t = text.strip()
     v = float(t)
-    if v != int(v):
+    if not math.isfinite(v) or v != int(v) or abs(v) > INT_LIMIT:
         raise ValueError(t)
     return int(v)
 
@@ -68,11 +73,11 @@ def _parse_vector(text, conv=_parse_float):
 
 PARSERS: dict[str, tuple[Callable[[str], Any], str]] = {
     "float": (_parse_float, "a finite number"),
-    "int": (_parse_int, "an integer"),
+    "int": (_parse_int, "an integer (at most 2^62 in size)"),
     "bool": (_parse_bool, "true or false"),
     "str": (lambda t: t.strip(), "text"),
     "vector": (_parse_vector, "a vector [x, y, z] of finite numbers"),
-    "ivector": (lambda t: _parse_vector(t, _parse_int), "an integer vector [i, j, k]"),
+    "ivector": (lambda t: _parse_vector(t, _parse_int), "an integer vector [i, j, k] (at most 2^62 each)"),
 }
 
 
@@ -145,12 +150,18 @@ class ProblemSpec:
         filename = os.fspath(filename)
         parser = etree.XMLParser(remove_comments=False, resolve_entities=False)
         try:
-            tree = etree.parse(filename, parser)
+            with open(filename, "rb") as f:
+                data = f.read()
         except OSError as e:
-            raise InputError(f"cannot read the deck: {e}", filename) from None
+            raise InputError(f"cannot read the deck: {e.strerror}", filename) from None
+        try:
+            # from the bytes, so that an encoding error is a syntax error with its line
+            tree = etree.parse(io.BytesIO(data), parser, base_url=filename)
         except etree.XMLSyntaxError as e:
             line = e.lineno if hasattr(e, "lineno") else None
-            raise InputError(f"malformed XML: {e.msg}", filename, line) from None
+            hint = ("; accepted: bytes of the encoding the <?xml ... encoding=\"...\"?> line declares "
+                    "(UTF-8 when none)") if "encoding" in e.msg else ""
+            raise InputError(f"malformed XML: {e.msg}{hint}", filename, line) from None
         root = tree.getroot()
         node = cls(root, _Doc(filename, root), root.tag)
         node._keep = tree
@@ -225,7 +236,7 @@ class ProblemSpec:
         raw = self.text()
         try:
             v = parse(raw)
-        except (ValueError, TypeError):
+        except (ValueError, TypeError, OverflowError):
             raise self.error(f"value '{raw}' is not {what}") from None
         if choices is not None and v not in choices:
             raise self.error(f"value '{raw}' is not accepted; accepted: {', '.join(map(str, choices))}")
@@ -255,7 +266,7 @@ class ProblemSpec:
         parse, what = PARSERS[type_]
         try:
             v = parse(raw)
-        except (ValueError, TypeError):
+        except (ValueError, TypeError, OverflowError):
             raise self.error(f"attribute {name}=\"{raw}\" is not {what}") from None
         if choices is not None and v not in choices:
             raise self.error(f"attribute {name}=\"{raw}\" is not accepted; accepted: {', '.join(map(str, choices))}")
