@@ -93,11 +93,18 @@ def _read_bctype(bt, table, nmat):
     if label == "SpecificVol" and kind not in ("computeFromDensity",):
         raise bt.error('SpecificVol accepts only var="computeFromDensity"')
     vtype = "vector" if label == "Velocity" else "float"
-    value = bt.get("value", vtype, 0.0 if vtype == "float" else (0.0, 0.0, 0.0))
+    # a fixed pressure, temperature or density on a face is a state of matter: positive
+    positive = 0.0 if kind == "Dirichlet" and label in ("Pressure", "Temperature", "Density") else None
+    value = bt.get("value", vtype, 0.0 if vtype == "float" else (0.0, 0.0, 0.0), above=positive)
     if label == "Pressure" and mats != [0] and ident != "all":
         raise bt.error('the pressure is one field: give its BCType with id="0"')
     per = table.setdefault(label, [None] * nmat)
+    given = table.setdefault("given", set())
     for m in mats:
+        if (label, m) in given:
+            raise bt.error(f'a second <BCType label="{label}"> for material {m} on this face; accepted: one '
+                           "condition per variable and material on a face")
+        given.add((label, m))
         per[m] = (KINDS[kind], np.asarray(value, dtype=np.float64) if vtype == "vector" else float(value))
 
 

@@ -29,6 +29,7 @@ class GridBCs:
             return
         for side, face in boundary_faces(bcs, FACES):
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
+            given = set()
             for bc in face.children("BCType"):
                 ident = bc.attr("id")
                 var = bc.attr("var", choices=("Dirichlet", "symmetry"))
@@ -42,6 +43,10 @@ class GridBCs:
                         raise bc.error(f'id="{ident}": accepted: all or a material index') from None
                     if not 0 <= mats[0] < nmat:
                         raise bc.error(f'id="{ident}": there are {nmat} MPM materials')
+                if given & set(mats):
+                    raise bc.error(f"a second <BCType> for material {min(given & set(mats))} on this face; "
+                                   "accepted: one condition per material on a face")
+                given |= set(mats)
                 if (var == "symmetry") != (label == "Symmetric"):
                     raise bc.error('accepted: var="Dirichlet" label="Velocity" or var="symmetry" label="Symmetric"')
                 if var == "symmetry":
