@@ -161,7 +161,7 @@ class Controller:
         self.lb_interval = 0
         if lbn is not None:
             lbn.attr("type", default="SFC", choices=("SFC", "DLB", "Simple", "SimpleLoadBalancer"))
-            self.lb_interval = lbn.get("timestepInterval", "int", 0)
+            self.lb_interval = lbn.get("timestepInterval", "int", 0, at_least=0)
         self.archive_spec = read_archiver(root)
         self.component = cls()
         self.component.problem_setup(root, self.level)
