@@ -205,7 +205,6 @@ def targeted_mutations(name, tree):
     for rel, value, expect in TARGETED:
         xp = f"/{root}/{rel}"
         if tree.xpath(xp):
-            kind = "named value " + rel.split("/")[-1]
             yield Mutation(name, "named bad value", f"{rel} = {value}",
                            _bytes(_mutate(tree, xp, _set_text(value))), expect)
     xp = f"/{root}/Time/delt_max"
