@@ -90,7 +90,7 @@ TIMESTEPS_FILE = "timesteps.jsonl"
 class Archiver:
     """Writes output and checkpoints as the `<DataArchiver>` block asks."""
 
-    def __init__(self, spec, level, comm, deck_text: str, component_name: str, materials):
+    def __init__(self, spec, level, comm, deck_text: bytes, component_name: str, materials):
         self.spec = spec
         self.level = level
         self.comm = comm
@@ -113,7 +113,7 @@ class Archiver:
     def setup(self, t0, restart_from=None):
         if self.comm.rank == 0:
             os.makedirs(self.dir, exist_ok=True)
-            with open(os.path.join(self.dir, "input.ups"), "w") as f:
+            with open(os.path.join(self.dir, "input.ups"), "wb") as f:
                 f.write(self.deck_text)
             if restart_from:
                 self.index["restarted_from"] = restart_from
@@ -237,7 +237,7 @@ class Archiver:
                     "carried": sorted(carried), "reductions": reds, "nranks": self.comm.size}
             with open(os.path.join(tmp, "checkpoint.json"), "w") as f:
                 json.dump(info, f, indent=1)
-            with open(os.path.join(tmp, "input.ups"), "w") as f:
+            with open(os.path.join(tmp, "input.ups"), "wb") as f:
                 f.write(self.deck_text)
             for fn in os.listdir(tmp):
                 fd = os.open(os.path.join(tmp, fn), os.O_RDONLY)
@@ -256,7 +256,7 @@ class Archiver:
 
 
 def load_checkpoint(uda, index=-1):
-    """(checkpoint directory, its checkpoint.json content, deck text) of checkpoint `index`."""
+    """(checkpoint directory, its checkpoint.json content, deck bytes) of checkpoint `index`."""
     cdir = os.path.join(uda, "checkpoints")
     if not os.path.isdir(cdir):
         raise FileNotFoundError(f"{uda} has no checkpoints/ directory")
@@ -269,7 +269,7 @@ def load_checkpoint(uda, index=-1):
         raise FileNotFoundError(f"{uda} has {len(cps)} checkpoints; -t {index} does not exist") from None
     with open(os.path.join(d, "checkpoint.json")) as f:
         info = json.load(f)
-    with open(os.path.join(d, "input.ups")) as f:
+    with open(os.path.join(d, "input.ups"), "rb") as f:
         deck = f.read()
     return d, info, deck
 

@@ -5,6 +5,7 @@
     mpiexec -n 4 pysus deck.ups       the same, launched by the user or a batch script
     pysus -restart run.uda [-t -1]    continue from a checkpoint (any number of ranks)
     pysus --graph deck.ups [--dot f]  print the tasks the deck will run, in order
+    pysus -validate deck.ups          check the deck (set-up, grid, task graphs) and exit
 """
 from __future__ import annotations
 
@@ -38,6 +39,8 @@ def parser():
     p.add_argument("-restart", "--restart", dest="restart", metavar="UDA", help="continue from a checkpoint")
     p.add_argument("-t", dest="t", type=int, default=-1, help="which checkpoint of -restart (index, default newest)")
     p.add_argument("--graph", action="store_true", help="print the scheduled tasks in order and exit")
+    p.add_argument("-validate", "--validate", dest="validate", action="store_true",
+                   help="read the deck, set up the grid and compile the task graphs, then exit (as Uintah's sus)")
     p.add_argument("--dot", metavar="FILE", help="with --graph: also write the task graph as DOT")
     p.add_argument("--quiet", "-q", action="store_true", help="no progress display")
     p.add_argument("--filebase", help="override <DataArchiver><filebase>")
@@ -88,6 +91,11 @@ def main(argv=None):
                 print(describe(ctl))
                 if args.dot:
                     write_dot(ctl, args.dot)
+            return 0
+        if args.validate:
+            if comm.rank == 0 and not args.quiet:
+                print(f"pysus: {args.deck or args.restart}: valid ({ctl.component_name}, "
+                      f"{' x '.join(map(str, ctl.level.ncells))} cells, {len(ctl.step_graph.tasks)} tasks a step)")
             return 0
         ctl.run()
         if comm.rank == 0 and not args.quiet:

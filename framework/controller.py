@@ -12,14 +12,16 @@ import os
 import sys
 import time
 
+import numpy as np
+
 from . import labels as L
 from .archiver import Archiver, load_checkpoint, restore_dw
 from .component import lookup
 from .datawarehouse import DataWarehouse
 from .gridspec import level_from_spec
 from .loadbalancer import LoadBalancer
-from .memory import keep_freed_memory
-from .problemspec import InputError, Param, ProblemSpec
+from .memory import keep_freed_memory, physical_memory
+from .problemspec import InputError, Param, ProblemSpec, deck_bytes
 from .progress import Progress
 from .scheduler.comm import Comm
 from .scheduler.compile import GraphError
@@ -27,15 +29,15 @@ from .scheduler.scheduler import Scheduler
 
 TIME = {
     "maxTime": Param("float"),
-    "initTime": Param("float", 0.0),
-    "delt_min": Param("float", 0.0),
-    "delt_max": Param("float", math.inf),
-    "delt_init": Param("float", math.inf),
-    "max_initial_delt": Param("float", math.inf),
-    "timestep_multiplier": Param("float", 1.0),
-    "max_delt_increase": Param("float", 1e99),
-    "max_Timesteps": Param("int", 2**62),
-    "max_iterations": Param("int", 2**62),
+    "initTime": Param("float", 0.0, at_least=0.0),
+    "delt_min": Param("float", 0.0, at_least=0.0),
+    "delt_max": Param("float", math.inf, above=0.0),
+    "delt_init": Param("float", math.inf, above=0.0),
+    "max_initial_delt": Param("float", math.inf, above=0.0),
+    "timestep_multiplier": Param("float", 1.0, above=0.0),
+    "max_delt_increase": Param("float", 1e99, above=0.0),
+    "max_Timesteps": Param("int", 2**62, at_least=0),
+    "max_iterations": Param("int", 2**62, at_least=0),
     "end_at_max_time_exactly": Param("bool", False),
     "clamp_timesteps_to_output": Param("bool", False),
 }
@@ -45,8 +47,8 @@ MAX_RECOMPUTES = 10
 
 ARCHIVER = {
     "filebase": Param("str", "pysus_output.uda"),
-    "outputInterval": Param("float", 0.0),
-    "outputTimestepInterval": Param("int", 0),
+    "outputInterval": Param("float", 0.0, at_least=0.0),
+    "outputTimestepInterval": Param("int", 0, at_least=0),
 }
 
 
@@ -74,14 +76,31 @@ def read_archiver(root):
         raise cps[1].error("only one <checkpoint> is accepted")
     if cps:
         c = cps[0]
-        spec["checkpoint_interval"] = c.attr("interval", "float", 0.0)
-        spec["checkpoint_timestepInterval"] = c.attr("timestepInterval", "int", 0)
-        spec["checkpoint_cycle"] = c.attr("cycle", "int", 2)
-        c.attr("walltimeStart", "float", None)
-        c.attr("walltimeInterval", "float", None)
+        spec["checkpoint_interval"] = c.attr("interval", "float", 0.0, at_least=0.0)
+        spec["checkpoint_timestepInterval"] = c.attr("timestepInterval", "int", 0, at_least=0)
+        spec["checkpoint_cycle"] = c.attr("cycle", "int", 2, at_least=0)
+        c.attr("walltimeStart", "float", None, at_least=0.0)
+        c.attr("walltimeInterval", "float", None, at_least=0.0)
         if spec["checkpoint_interval"] <= 0 and spec["checkpoint_timestepInterval"] <= 0:
             raise c.error('<checkpoint> needs interval="..." (time) or timestepInterval="..." (steps)')
+    spec["filebase_node"] = da.child("filebase")
     return spec
+
+
+def check_output_dir(path, node=None, filename=None):
+    """Refuse an output directory that cannot be made: a file in its way, or no write permission."""
+    where = node.error if node is not None else (lambda m: InputError(m, filename))
+    parent = os.path.abspath(path)
+    while not os.path.exists(parent):
+        parent = os.path.dirname(parent)
+    if os.path.exists(path) and not os.path.isdir(path) and parent == os.path.abspath(path):
+        return  # an existing file of that name: the archiver picks base.uda.000 beside it
+    if not os.path.isdir(parent):
+        raise where(f"output directory {path} lies under {parent}, which is a file; "
+                    "accepted: a path under directories (or none yet)")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise where(f"output directory {path} cannot be made: {parent} is not writable; "
+                    "accepted: a path under a writable directory")
 
 
 class Controller:
@@ -99,15 +118,19 @@ class Controller:
             self.restart_info = (cdir, info)
             deck = os.path.join(cdir, "input.ups")
         if deck_text is not None and restart is None:
-            self.root = ProblemSpec.from_string(deck_text, deck or "<string>")
-            self.deck_text = deck_text
+            self.deck_text = deck_bytes(deck_text, deck or "<string>")
+            self.root = ProblemSpec.from_string(self.deck_text, deck or "<string>")
         else:
             self.root = ProblemSpec.load(deck)
-            with open(self.root.filename) as f:
+            # the bytes, not decoded text: the copy in the uda stays in the deck's own encoding
+            with open(self.root.filename, "rb") as f:
                 self.deck_text = f.read()
         self._read_deck()
         if filebase is not None and self.archive_spec is not None:
             self.archive_spec["filebase"] = filebase
+            self.archive_spec["filebase_node"] = None
+        if self.archive_spec is not None:
+            check_output_dir(self.archive_spec["filebase"], self.archive_spec["filebase_node"], self.root.filename)
         if max_timesteps is not None:
             self.time["max_Timesteps"] = max_timesteps
         self._build()
@@ -115,6 +138,9 @@ class Controller:
     # -- set-up ----------------------------------------------------------------------
     def _read_deck(self):
         root = self.root
+        if root.tag != "Uintah_specification":
+            raise root.error("the root element is not <Uintah_specification>; accepted: a Uintah deck "
+                             "(<Uintah_specification> ... </Uintah_specification>)")
         meta = root.child("Meta")
         if meta is not None:
             meta.mark_used()
@@ -126,7 +152,8 @@ class Controller:
         self.time["delt_init"] = min(self.time["delt_init"], self.time["max_initial_delt"])
         self.time["max_Timesteps"] = min(self.time["max_Timesteps"], self.time["max_iterations"])
         if self.time["maxTime"] < self.time["initTime"]:
-            raise t.child("maxTime").error("maxTime is before initTime")
+            raise t.child("maxTime").error(f"maxTime {self.time['maxTime']:g} is before initTime "
+                                           f"{self.time['initTime']:g}; accepted: maxTime >= initTime")
         if self.time["delt_min"] > self.time["delt_max"]:
             raise t.child("delt_min").error("delt_min exceeds delt_max")
         self.level = level_from_spec(root)
@@ -134,7 +161,7 @@ class Controller:
         self.lb_interval = 0
         if lbn is not None:
             lbn.attr("type", default="SFC", choices=("SFC", "DLB", "Simple", "SimpleLoadBalancer"))
-            self.lb_interval = lbn.get("timestepInterval", "int", 0)
+            self.lb_interval = lbn.get("timestepInterval", "int", 0, at_least=0)
         self.archive_spec = read_archiver(root)
         self.component = cls()
         self.component.problem_setup(root, self.level)
@@ -152,6 +179,7 @@ class Controller:
         self.outputs = set(self.archive_spec["save"]) if self.archive_spec else set()
         self.sched.output_labels = set(self.outputs)
         self.compile()
+        self._check_memory()
         # a component that may ask to redo a step needs the old warehouse intact until the end
         self.sched.scrub_old = not getattr(self.component, "may_recompute", False)
         self.archiver = None
@@ -208,6 +236,39 @@ class Controller:
             self.quiet_step_graph = sched.compile({L.delT.name} | carried, old_available=available,
                                                   protect={L.delT.name} | carried, build_patch_graph=False)
         sched.set_halo([self.init_graph, self.step_graph, self.quiet_step_graph])
+
+    def grid_bytes_needed(self) -> int:
+        """A lower bound of this rank's memory for grid variables: the carried ones twice (old
+        and new warehouse) plus the largest single task's grid computes, on its local patches."""
+        from .variables import GRID_TYPES
+        patches = self.lb.local_patches()
+
+        def nbytes(deps):
+            seen, total = set(), 0
+            for d in deps:
+                if d.label.vartype not in GRID_TYPES:
+                    continue
+                per = np.dtype(d.label.dtype).itemsize * math.prod(d.label.shape)
+                for m in d.matls or (-1,):
+                    if (d.label.name, m) not in seen:
+                        seen.add((d.label.name, m))
+                        total += per * sum(math.prod(p.alloc_shape(d.label.vartype)) for p in patches)
+            return total
+
+        tasks = self.step_graph.tasks + self.init_graph.tasks
+        carried = nbytes(d for t in tasks for d in t.computes_ if d.label.name in self.carried)
+        largest = max((nbytes(t.computes_) for t in tasks), default=0)
+        return 2 * carried + largest
+
+    def _check_memory(self):
+        """Refuse a grid whose arrays cannot fit in this computer's memory, before allocating any."""
+        need, have = self.grid_bytes_needed(), physical_memory()
+        if have and need > have:
+            box = self.root.child("Grid").child("Level").child("Box")
+            raise box.error(f"{self.level.ncells[0]} x {self.level.ncells[1]} x {self.level.ncells[2]} cells need at "
+                            f"least {need / 2**30:.3g} GiB for grid variables on rank {self.comm.rank}, more than "
+                            f"the {have / 2**30:.3g} GiB of memory here; accepted: a resolution (or more ranks) "
+                            "whose arrays fit in memory")
 
     @staticmethod
     def _old_requires(tasks):

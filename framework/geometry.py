@@ -31,6 +31,9 @@ class Box:
     def __init__(self, lo, hi):
         self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
 
+    def bounds(self):
+        return self.lo, self.hi
+
     def inside(self, x):
         return np.all((x >= self.lo) & (x <= self.hi), axis=1)
 
@@ -38,6 +41,9 @@ class Box:
 class Sphere:
     def __init__(self, origin, radius):
         self.origin, self.radius = np.asarray(origin, float), float(radius)
+
+    def bounds(self):
+        return self.origin - self.radius, self.origin + self.radius
 
     def inside(self, x):
         return np.sum((x - self.origin) ** 2, axis=1) <= self.radius ** 2
@@ -48,6 +54,9 @@ class Cylinder:
         self.bottom, self.top, self.radius = np.asarray(bottom, float), np.asarray(top, float), float(radius)
         self.axis = self.top - self.bottom
         self.length2 = float(self.axis @ self.axis)
+
+    def bounds(self):
+        return np.minimum(self.bottom, self.top) - self.radius, np.maximum(self.bottom, self.top) + self.radius
 
     def inside(self, x):
         rel = x - self.bottom
@@ -69,6 +78,9 @@ class TriSurface:
         fudge = 1e-12 * max(1.0, float(np.abs(self.points).max()))
         self.lo, self.hi = self.points.min(axis=0) - fudge, self.points.max(axis=0) + fudge
         self._bins = None
+
+    def bounds(self):
+        return self.lo, self.hi
 
     def _binned(self):
         """Per ray: the triangles binned across it (geometry_kernels.build_bins)."""
@@ -116,6 +128,13 @@ class Union:
     def __init__(self, pieces):
         self.pieces = list(pieces)
 
+    def bounds(self):
+        """The box around every piece's box (None when no piece has one)."""
+        boxes = [b for b in (p.bounds() for p in self.pieces) if b is not None]
+        if not boxes:
+            return None
+        return np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+
     def inside(self, x):
         out = np.zeros(len(x), bool)
         for p in self.pieces:
@@ -124,6 +143,14 @@ class Union:
 
 
 class Intersection(Union):
+    def bounds(self):
+        """The overlap of the pieces' boxes (None when they do not overlap)."""
+        boxes = [p.bounds() for p in self.pieces]
+        if any(b is None for b in boxes):
+            return None
+        lo, hi = np.max([b[0] for b in boxes], axis=0), np.min([b[1] for b in boxes], axis=0)
+        return None if np.any(hi < lo) else (lo, hi)
+
     def inside(self, x):
         out = np.ones(len(x), bool)
         for p in self.pieces:
@@ -135,6 +162,9 @@ class Difference:
     def __init__(self, a, b):
         self.a, self.b = a, b
 
+    def bounds(self):
+        return self.a.bounds()
+
     def inside(self, x):
         return self.a.inside(x) & ~self.b.inside(x)
 
@@ -142,8 +172,9 @@ class Difference:
 class GeometryReader:
     """Builds pieces from deck elements and remembers labelled ones for reuse."""
 
-    def __init__(self):
+    def __init__(self, level=None):
         self.labelled: dict = {}
+        self.level = level        # when given, an object wholly outside it is an error
 
     @staticmethod
     def _piece_children(node):
@@ -156,7 +187,23 @@ class GeometryReader:
         pieces = [self.read(c) for c in self._piece_children(node)]
         if not pieces:
             raise node.error(f"no geometry piece; accepted: {', '.join('<%s>' % t for t in PIECE_TAGS)}")
-        return pieces[0] if len(pieces) == 1 else Union(pieces)
+        piece = pieces[0] if len(pieces) == 1 else Union(pieces)
+        if self.level is not None:
+            self._check_overlap(piece, node)
+        return piece
+
+    def _check_overlap(self, piece, node):
+        """An object that cannot reach any cell of the level (extra cells included) puts no
+        material anywhere: refuse it, naming it, rather than run without that material."""
+        lv = self.level
+        extra = np.asarray(lv.extra) * lv.dx
+        lo, hi = lv.anchor - extra, lv.upper + extra
+        b = piece.bounds()
+        if b is None or np.any(b[1] < lo) or np.any(b[0] > hi):
+            where = "is empty" if b is None else f"spans {_fmt(b[0])} to {_fmt(b[1])}"
+            raise node.error(f"this geometry object {where}, wholly outside the domain {_fmt(lo)} to {_fmt(hi)} "
+                             "(extra cells included), so it puts no material anywhere; accepted: an object "
+                             "that overlaps the domain")
 
     def read(self, node):
         """One piece element (primitive, combination or labelled reference)."""
@@ -200,6 +247,10 @@ class GeometryReader:
         if len(parts) < 1:
             raise node.error(f"<{tag}> needs at least one piece")
         return Union(parts) if tag == "union" else Intersection(parts)
+
+
+def _fmt(v):
+    return "[" + ", ".join(f"{x:g}" for x in v) + "]"
 
 
 def _read_tri(node):

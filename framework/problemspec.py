@@ -8,7 +8,10 @@ lxml is used because it keeps source line numbers, which the standard library do
 """
 from __future__ import annotations
 
+import io
+import math
 import os
+import re
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -30,13 +33,21 @@ class InputError(Exception):
 
 
 def _parse_float(text):
-    return float(text.strip())
+    """A finite number: NaN and infinity are never a meaningful deck value."""
+    v = float(text.strip())
+    if not math.isfinite(v):
+        raise ValueError(text)
+    return v
+
+
+INT_LIMIT = 2**62
 
 
 def _parse_int(text):
+    """An integer (written as 3 or 3.0) small enough to be an array index or a count."""
     t = text.strip()
     v = float(t)
-    if v != int(v):
+    if not math.isfinite(v) or v != int(v) or abs(v) > INT_LIMIT:
         raise ValueError(t)
     return int(v)
 
@@ -50,7 +61,7 @@ def _parse_bool(text):
     raise ValueError(t)
 
 
-def _parse_vector(text, conv=float):
+def _parse_vector(text, conv=_parse_float):
     t = text.strip()
     if not (t.startswith("[") and t.endswith("]")):
         raise ValueError(t)
@@ -61,23 +72,55 @@ def _parse_vector(text, conv=float):
 
 
 PARSERS: dict[str, tuple[Callable[[str], Any], str]] = {
-    "float": (_parse_float, "a number"),
-    "int": (_parse_int, "an integer"),
+    "float": (_parse_float, "a finite number"),
+    "int": (_parse_int, "an integer (at most 2^62 in size)"),
     "bool": (_parse_bool, "true or false"),
     "str": (lambda t: t.strip(), "text"),
-    "vector": (_parse_vector, "a vector [x, y, z]"),
-    "ivector": (lambda t: _parse_vector(t, _parse_int), "an integer vector [i, j, k]"),
+    "vector": (_parse_vector, "a vector [x, y, z] of finite numbers"),
+    "ivector": (lambda t: _parse_vector(t, _parse_int), "an integer vector [i, j, k] (at most 2^62 each)"),
 }
+
+
+def _bound_check(v, above, at_least):
+    """The words for the accepted range when a number (or any vector component) is outside it."""
+    vals = v if isinstance(v, tuple) else (v,)
+    if above is not None and any(not (x > above) for x in vals):
+        return f"> {above:g}"
+    if at_least is not None and any(not (x >= at_least) for x in vals):
+        return f">= {at_least:g}"
+    return None
 
 
 @dataclass(frozen=True)
 class Param:
-    """One accepted child tag: its type, default (REQUIRED if none) and allowed values."""
+    """One accepted child tag: its type, default (REQUIRED if none), allowed values and range.
+
+    `above` (strictly greater) and `at_least` (greater or equal) bound a number, or every
+    component of a vector; a value outside is an InputError saying what is accepted.
+    """
 
     type: str = "float"
     default: Any = REQUIRED
     choices: tuple | None = None
     doc: str = ""
+    above: float | None = None
+    at_least: float | None = None
+
+
+_DECLARED_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+
+
+def deck_bytes(text: str | bytes, filename="<string>") -> bytes:
+    """A deck as the bytes of its file: text is encoded as its `<?xml encoding=...?>` declares."""
+    if isinstance(text, bytes):
+        return text
+    m = _DECLARED_ENCODING.match(text.encode("ascii", "replace"))
+    encoding = m.group(1).decode() if m else "utf-8"
+    try:
+        return text.encode(encoding)
+    except (LookupError, UnicodeEncodeError) as e:
+        raise InputError(f"the deck text cannot be written in its declared encoding {encoding}: {e}; "
+                         "accepted: characters of that encoding", filename, 1) from None
 
 
 class _Doc:
@@ -107,21 +150,27 @@ class ProblemSpec:
         filename = os.fspath(filename)
         parser = etree.XMLParser(remove_comments=False, resolve_entities=False)
         try:
-            tree = etree.parse(filename, parser)
+            with open(filename, "rb") as f:
+                data = f.read()
         except OSError as e:
-            raise InputError(f"cannot read the deck: {e}", filename) from None
+            raise InputError(f"cannot read the deck: {e.strerror}", filename) from None
+        try:
+            # from the bytes, so that an encoding error is a syntax error with its line
+            tree = etree.parse(io.BytesIO(data), parser, base_url=filename)
         except etree.XMLSyntaxError as e:
             line = e.lineno if hasattr(e, "lineno") else None
-            raise InputError(f"malformed XML: {e.msg}", filename, line) from None
+            hint = ("; accepted: bytes of the encoding the <?xml ... encoding=\"...\"?> line declares "
+                    "(UTF-8 when none)") if "encoding" in e.msg else ""
+            raise InputError(f"malformed XML: {e.msg}{hint}", filename, line) from None
         root = tree.getroot()
         node = cls(root, _Doc(filename, root), root.tag)
         node._keep = tree
         return node
 
     @classmethod
-    def from_string(cls, text: str, filename="<string>") -> "ProblemSpec":
+    def from_string(cls, text: str | bytes, filename="<string>") -> "ProblemSpec":
         try:
-            root = etree.fromstring(text.encode() if isinstance(text, str) else text)
+            root = etree.fromstring(deck_bytes(text, filename))
         except etree.XMLSyntaxError as e:
             raise InputError(f"malformed XML: {e.msg}", filename, getattr(e, "lineno", None)) from None
         return cls(root, _Doc(filename, root), root.tag)
@@ -181,28 +230,32 @@ class ProblemSpec:
     def text(self) -> str:
         return (self.element.text or "").strip()
 
-    def value(self, type_="float", choices=None):
-        """This element's own text converted to `type_`."""
+    def value(self, type_="float", choices=None, above=None, at_least=None):
+        """This element's own text converted to `type_` (and checked against its range)."""
         parse, what = PARSERS[type_]
         raw = self.text()
         try:
             v = parse(raw)
-        except (ValueError, TypeError):
+        except (ValueError, TypeError, OverflowError):
             raise self.error(f"value '{raw}' is not {what}") from None
         if choices is not None and v not in choices:
             raise self.error(f"value '{raw}' is not accepted; accepted: {', '.join(map(str, choices))}")
+        bound = _bound_check(v, above, at_least)
+        if bound is not None:
+            each = " in every component" if isinstance(v, tuple) else ""
+            raise self.error(f"value '{raw}' is out of range; accepted: {what} {bound}{each}")
         return v
 
-    def get(self, tag, type_="float", default=REQUIRED, choices=None):
+    def get(self, tag, type_="float", default=REQUIRED, choices=None, above=None, at_least=None):
         """The value of child `tag`, or `default`; a missing required tag is an error."""
         node = self.child(tag)
         if node is None:
             if default is REQUIRED:
                 raise self.error(f"missing required tag <{tag}> ({PARSERS[type_][1]})")
             return default
-        return node.value(type_, choices)
+        return node.value(type_, choices, above, at_least)
 
-    def attr(self, name, type_="str", default=REQUIRED, choices=None):
+    def attr(self, name, type_="str", default=REQUIRED, choices=None, above=None, at_least=None):
         """The value of attribute `name` of this element."""
         self.doc.used.add((id(self.element), name))
         raw = self.element.get(name)
@@ -213,17 +266,20 @@ class ProblemSpec:
         parse, what = PARSERS[type_]
         try:
             v = parse(raw)
-        except (ValueError, TypeError):
+        except (ValueError, TypeError, OverflowError):
             raise self.error(f"attribute {name}=\"{raw}\" is not {what}") from None
         if choices is not None and v not in choices:
             raise self.error(f"attribute {name}=\"{raw}\" is not accepted; accepted: {', '.join(map(str, choices))}")
+        bound = _bound_check(v, above, at_least)
+        if bound is not None:
+            raise self.error(f"attribute {name}=\"{raw}\" is out of range; accepted: {what} {bound}")
         return v
 
     def read(self, table: dict[str, Param]) -> dict:
         """Read every tag of a declarative table; returns {tag: value}."""
         out = {}
         for tag, p in table.items():
-            out[tag] = self.get(tag, p.type, p.default, p.choices)
+            out[tag] = self.get(tag, p.type, p.default, p.choices, p.above, p.at_least)
         return out
 
     def mark_used(self, recursive=True):

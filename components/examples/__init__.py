@@ -36,11 +36,12 @@ gMass = L.create("g.mass", VarType.NC)
 TotalMass = L.create("TotalMass", VarType.REDUCTION, reduction="sum")
 
 DIFFUSION = {
-    "alpha": Param("float", doc="thermal diffusivity (m^2/s)"),
-    "cfl": Param("float", 0.4, doc="fraction of the explicit stability limit (may exceed 1 if implicit)"),
+    "alpha": Param("float", doc="thermal diffusivity (m^2/s)", above=0.0),
+    "cfl": Param("float", 0.4, doc="fraction of the explicit stability limit (may exceed 1 if implicit)",
+                 above=0.0),
     "implicit": Param("bool", False, doc="backward Euler solved by preconditioned CG"),
-    "tolerance": Param("float", 1e-10, doc="CG stops when |r| <= tolerance |r0|"),
-    "max_iterations": Param("int", 500),
+    "tolerance": Param("float", 1e-10, doc="CG stops when |r| <= tolerance |r0|", above=0.0),
+    "max_iterations": Param("int", 500, at_least=1),
 }
 
 # implicit solve: timestep-level seeds and the CG iteration's own variables
@@ -59,7 +60,7 @@ cg_RR = L.create("cg.rr", VarType.REDUCTION, reduction="sum")
 cg_PQ = L.create("cg.pq", VarType.REDUCTION, reduction="sum")
 GAUSSIAN = {
     "center": Param("vector"),
-    "width": Param("float", doc="standard deviation sigma0"),
+    "width": Param("float", doc="standard deviation sigma0", above=0.0),
     "amplitude": Param("float", 1.0),
     "background": Param("float", 0.0),
 }
@@ -67,11 +68,11 @@ PARTICLES = {
     "velocity": Param("vector", (0.0, 0.0, 0.0), doc="uniform part of the velocity"),
     "omega": Param("float", 0.0, doc="rotation rate about the z axis through <center>"),
     "center": Param("vector", (0.0, 0.0, 0.0)),
-    "cfl": Param("float", 0.5, doc="largest fraction of a cell a particle moves per step"),
+    "cfl": Param("float", 0.5, doc="largest fraction of a cell a particle moves per step", above=0.0),
     "lower": Param("vector", doc="box filled with particles"),
     "upper": Param("vector"),
-    "res": Param("ivector", (2, 2, 2), doc="particles per cell per direction"),
-    "density": Param("float", 1.0),
+    "res": Param("ivector", (2, 2, 2), doc="particles per cell per direction", at_least=1),
+    "density": Param("float", 1.0, above=0.0),
 }
 
 

@@ -16,6 +16,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from framework.gridspec import boundary_faces
+
 NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY = 0, 1, 2, 3
 KINDS = {"Neumann": NEUMANN, "Dirichlet": DIRICHLET, "symmetry": SYMMETRY, "computeFromDensity": FROM_DENSITY}
 VARS = ("Pressure", "Velocity", "Temperature", "Density", "SpecificVol")
@@ -29,8 +31,7 @@ def read_bcs(root, level, nmat):
     found = {}
     nodes = {}
     if bcn is not None:
-        for face in bcn.children("Face"):
-            side = face.attr("side", choices=FACE_NAMES)
+        for side, face in boundary_faces(bcn, FACE_NAMES):
             table = found.setdefault(side, {})
             nodes[side] = face
             for bt in face.children("BCType"):
@@ -92,11 +93,18 @@ def _read_bctype(bt, table, nmat):
     if label == "SpecificVol" and kind not in ("computeFromDensity",):
         raise bt.error('SpecificVol accepts only var="computeFromDensity"')
     vtype = "vector" if label == "Velocity" else "float"
-    value = bt.get("value", vtype, 0.0 if vtype == "float" else (0.0, 0.0, 0.0))
+    # a fixed pressure, temperature or density on a face is a state of matter: positive
+    positive = 0.0 if kind == "Dirichlet" and label in ("Pressure", "Temperature", "Density") else None
+    value = bt.get("value", vtype, 0.0 if vtype == "float" else (0.0, 0.0, 0.0), above=positive)
     if label == "Pressure" and mats != [0] and ident != "all":
         raise bt.error('the pressure is one field: give its BCType with id="0"')
     per = table.setdefault(label, [None] * nmat)
+    given = table.setdefault("given", set())
     for m in mats:
+        if (label, m) in given:
+            raise bt.error(f'a second <BCType label="{label}"> for material {m} on this face; accepted: one '
+                           "condition per variable and material on a face")
+        given.add((label, m))
         per[m] = (KINDS[kind], np.asarray(value, dtype=np.float64) if vtype == "vector" else float(value))
 
 

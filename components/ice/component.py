@@ -37,19 +37,20 @@ G = Ghost.AROUND_CELLS
 
 EOS_TAGS = {"ideal_gas": (), "Murnaghan": ("K", "n", "rho0", "P0"), "JWL": ("A", "B", "R1", "R2", "om", "rho0"),
             "JWLC": ("A", "B", "C", "R1", "R2", "om", "rho0"), "Stiffened_gas": ("Pinf",)}
+EOS_POSITIVE = ("K", "rho0")      # a bulk modulus and a reference density are positive
 MATERIAL = {
-    "dynamic_viscosity": Param("float", 0.0),
-    "thermal_conductivity": Param("float", 0.0),
-    "specific_heat": Param("float"),
-    "gamma": Param("float"),
-    "tiny_rho": Param("float", 1e-12),
+    "dynamic_viscosity": Param("float", 0.0, at_least=0.0),
+    "thermal_conductivity": Param("float", 0.0, at_least=0.0),
+    "specific_heat": Param("float", above=0.0),
+    "gamma": Param("float", above=1.0),     # c^2 = gamma (gamma - 1) cv T: gamma = 1 has no sound speed
+    "tiny_rho": Param("float", 1e-12, above=0.0),
 }
 GEOM = {
-    "res": Param("ivector", (2, 2, 2)),
+    "res": Param("ivector", (2, 2, 2), at_least=1),
     "velocity": Param("vector"),
-    "temperature": Param("float"),
-    "density": Param("float"),
-    "pressure": Param("float"),
+    "temperature": Param("float", above=0.0),
+    "density": Param("float", above=0.0),
+    "pressure": Param("float", above=0.0),
     "volumeFraction": Param("float", -1.0),
 }
 
@@ -89,7 +90,7 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.level = level
         self.dims = np.array([not c for c in level.collapsed])
         cfd = root.child("CFD", required=True)
-        self.cfl = cfd.get("cfl", "float")
+        self.cfl = cfd.get("cfl", "float", above=0.0)
         ice = cfd.child("ICE", required=True)
         adv = ice.child("advection", required=True)
         self.second_order = adv.attr("type", choices=("FirstOrder", "SecondOrder")) == "SecondOrder"
@@ -111,7 +112,7 @@ class ICE(ImplicitICE, IceTasks, Component):
         # Lagrangian phase stays Uintah's. On by default for ICE alone (MPMICE: on request);
         # "false" with limiter="BarthJespersen" is Uintah's SecondOrderAdvector
         self.dissipation_heating = adv.attr("dissipationHeating", "bool", self.n_before == 0)
-        self.max_iter = ice.get("max_iteration_equilibration", "int", 100)
+        self.max_iter = ice.get("max_iteration_equilibration", "int", 100, at_least=1)
         # pysus extension: advect a conservative total energy and take e = E/m - |u|^2/2,
         # so that mass, momentum and total energy are conserved to round-off on closed
         # domains (Uintah's ICE, the default, advects internal energy: see tasks.py)
@@ -119,11 +120,11 @@ class ICE(ImplicitICE, IceTasks, Component):
         self._conserve_node = ice.child("conserveTotalEnergy")
         pc = root.child("PhysicalConstants", required=True)
         self.gravity = np.array(pc.get("gravity", "vector"), dtype=np.float64)
-        self.reference_pressure = pc.get("reference_pressure", "float", 101325.0)
+        self.reference_pressure = pc.get("reference_pressure", "float", 101325.0, at_least=0.0)
         self.use_gravity = bool(np.any(self.gravity != 0.0))
         mp = root.child("MaterialProperties", required=True)
         icen = mp.child("ICE", required=True)
-        geo = getattr(root, "_geometry_reader", None) or GeometryReader()   # MPMICE shares one
+        geo = getattr(root, "_geometry_reader", None) or GeometryReader(level)   # MPMICE shares one
         self.materials = [self._read_material(m, geo) for m in icen.children("material")]
         if not self.materials:
             raise icen.error("no <material>: ICE needs at least one")
@@ -178,15 +179,10 @@ class ICE(ImplicitICE, IceTasks, Component):
     def _read_material(self, node, geo):
         name = node.attr("name", default=f"ice{len(getattr(self, 'materials', []))}")
         props = node.read(MATERIAL)
-        for tag in ("specific_heat", "gamma"):
-            if props[tag] <= 0:
-                raise node.child(tag).error(f"<{tag}> must be positive")
-        for tag in ("dynamic_viscosity", "thermal_conductivity"):
-            if props[tag] < 0.0:
-                raise node.child(tag).error(f"<{tag}> must be >= 0")
         en = node.child("EOS", required=True)
         etype = en.attr("type", choices=tuple(EOS_TAGS))
-        eos = make_eos(etype, {t: en.get(t, "float") for t in EOS_TAGS[etype]})
+        eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
+                               for t in EOS_TAGS[etype]})
         objects = []
         for go in node.children("geom_object"):
             objects.append((geo.read_object(go), go.read(GEOM)))
@@ -196,11 +192,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         return Material(name, eos, props, objects)
 
     def _check_initial_state(self, go, values, eos, props):
-        """Refuse a density or temperature no EOS takes; say when <pressure> is not the EOS
-        pressure at <density> and <temperature>: like Uintah, the run starts from those two."""
-        for tag in ("density", "temperature"):
-            if not (np.isfinite(values[tag]) and values[tag] > 0.0):
-                raise go.child(tag).error(f"<{tag}> must be a positive number, not {values[tag]:g}")
+        """Say when <pressure> is not the EOS pressure at <density> and <temperature>: like
+        Uintah, the run starts from those two."""
         if not (values["volumeFraction"] == -1.0 or 0.0 <= values["volumeFraction"] <= 1.0):
             raise go.child("volumeFraction").error("<volumeFraction> must be between 0 and 1 (or -1: the geometry's)")
         if self.n_before:           # MPMICE starts its fluids from <pressure> and <temperature>

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from framework.grid import FACES
+from framework.gridspec import boundary_faces
 from framework.variables import VarType
 
 from . import kernels
@@ -26,9 +27,9 @@ class GridBCs:
         bcs = grid.child("BoundaryConditions") if grid is not None else None
         if bcs is None:
             return
-        for face in bcs.children("Face"):
-            side = face.attr("side", choices=FACES)
+        for side, face in boundary_faces(bcs, FACES):
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
+            given = set()
             for bc in face.children("BCType"):
                 ident = bc.attr("id")
                 var = bc.attr("var", choices=("Dirichlet", "symmetry"))
@@ -42,6 +43,10 @@ class GridBCs:
                         raise bc.error(f'id="{ident}": accepted: all or a material index') from None
                     if not 0 <= mats[0] < nmat:
                         raise bc.error(f'id="{ident}": there are {nmat} MPM materials')
+                if given & set(mats):
+                    raise bc.error(f"a second <BCType> for material {min(given & set(mats))} on this face; "
+                                   "accepted: one condition per material on a face")
+                given |= set(mats)
                 if (var == "symmetry") != (label == "Symmetric"):
                     raise bc.error('accepted: var="Dirichlet" label="Velocity" or var="symmetry" label="Symmetric"')
                 if var == "symmetry":

@@ -106,7 +106,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
         geom = getattr(root, "_geometry_reader", None)
         if geom is None:
             from framework.geometry import GeometryReader
-            geom = GeometryReader()
+            geom = GeometryReader(level)
         self.materials = [self.material_class(m, i, geom, self.flags["withColor"])
                           for i, m in enumerate(mp.children("material"))]
         if not self.materials:

@@ -37,7 +37,7 @@ from . import kernels
 TYPES = ("null", "single_velocity", "friction", "friction_bard", "rigid", "specified",
          "specified_velocity")
 CONTACT = {"type": Param("str", "null", TYPES)}
-FRICTION = {"mu": Param("float", doc="Coulomb friction coefficient"),
+FRICTION = {"mu": Param("float", doc="Coulomb friction coefficient", at_least=0.0),
             "volume_constraint": Param("float", 0.0, (0.0,), "only 0 (no constraint)"),
             "OneOrTwoStep": Param("int", 2, (2,), "contact after interpolation and integration")}
 RIGID = {"direction": Param("ivector", (0, 0, 1), doc="components imposed on the other materials"),

@@ -35,20 +35,28 @@ NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid")
 STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy"}
 
 MATERIAL = {
-    "density": Param("float", doc="reference mass density (kg/m^3)"),
-    "thermal_conductivity": Param("float", 0.0, doc="W/(m K) (thermal.py)"),
-    "specific_heat": Param("float", 0.0, doc="J/(kg K) (thermal.py, MPMICE exchange)"),
-    "room_temp": Param("float", 294.0, doc="K; read, no thermal model uses it"),
-    "melt_temp": Param("float", 1e30, doc="K; read, no thermal model uses it"),
+    "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
+    "thermal_conductivity": Param("float", 0.0, doc="W/(m K) (thermal.py)", at_least=0.0),
+    "specific_heat": Param("float", 0.0, doc="J/(kg K) (thermal.py, MPMICE exchange)", at_least=0.0),
+    "room_temp": Param("float", 294.0, doc="K; read, no thermal model uses it", above=0.0),
+    "melt_temp": Param("float", 1e30, doc="K; read, no thermal model uses it", above=0.0),
     "is_rigid": Param("bool", False, doc="rigid body for <contact type=rigid>"),
     "includeFlowWork": Param("bool", False, doc="read, MPMICE only"),
 }
 
 GEOM = {
-    "res": Param("ivector", doc="particles per cell in each direction"),
+    "res": Param("ivector", doc="particles per cell in each direction", at_least=1),
     "velocity": Param("vector", (0.0, 0.0, 0.0)),
-    "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py)"),
+    "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py)", above=0.0),
 }
+
+
+# accepted ranges (above, at_least) of constitutive-model tags: moduli of a deforming solid
+# have a positive bulk modulus (none gives no or an imaginary wave speed), shear >= 0, gamma > 1
+MODEL_RANGES = {"bulk_modulus": (0.0, None), "shear_modulus": (None, 0.0), "K": (0.0, None), "G": (None, 0.0),
+                "yield_stress": (0.0, None), "hardening_modulus": (None, 0.0), "gamma": (1.0, None),
+                "viscosity": (None, 0.0), "specific_heat": (None, 0.0), "he_constant_1": (None, 0.0),
+                "he_constant_2": (None, 0.0)}
 
 
 class Material:
@@ -81,7 +89,9 @@ class Material:
             c = cm.child(f.name)
             if c is not None:
                 kind_of = "bool" if f.type in (bool, "bool") else "float"
-                values[f.name] = c.text() if f.name == "formulation" else str(c.value(kind_of))
+                above, at_least = MODEL_RANGES.get(f.name, (None, None)) if kind != "rigid" else (None, None)
+                values[f.name] = (c.text() if f.name == "formulation"
+                                  else str(c.value(kind_of, above=above, at_least=at_least)))
         try:
             self.params = self.model.Params.from_ups(values)
         except KeyError as e:
@@ -173,8 +183,8 @@ class Material:
 
 # -- membrane strings (004 sec. 3.2) ------------------------------------------------------
 MEMBRANE = {
-    "spacing": Param("float", doc="distance between consecutive membrane points (m)"),
-    "thickness": Param("float", doc="membrane thickness h (m): point volume = spacing * h * depth"),
+    "spacing": Param("float", doc="distance between consecutive membrane points (m)", above=0.0),
+    "thickness": Param("float", doc="membrane thickness h (m): point volume = spacing * h * depth", above=0.0),
     "closed": Param("bool", True, doc="the last vertex joins the first"),
 }
 
@@ -206,7 +216,7 @@ def read_membrane_object(g, with_color):
         g.child("res").mark_used()
     return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"], closed=spec["closed"],
                 velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
-                temperature=g.get("temperature", "float", 294.0),
+                temperature=g.get("temperature", "float", 294.0, above=0.0),
                 color=g.get("color", "float", 0.0) if with_color else None)
 
 

@@ -90,7 +90,7 @@ class MPMICE(MPMICETasks, Component):
         self.level = level
         self.names_used = root.child("SimulationComponent").attr("type")
         if not hasattr(root, "_geometry_reader"):
-            root._geometry_reader = GeometryReader()     # one label namespace for MPM and ICE objects
+            root._geometry_reader = GeometryReader(level)     # one label namespace for MPM and ICE objects
         mp = root.child("MaterialProperties", required=True)
         ice_node = mp.child("ICE", required=True)
         n_ice = len(ice_node.children("material"))

@@ -24,6 +24,7 @@ from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
 from framework.grid import FACES
+from framework.gridspec import boundary_faces
 from framework.problemspec import Param
 
 
@@ -56,8 +57,7 @@ class GridBCsWithICE(GridBCs):
         bcs = grid.child("BoundaryConditions") if grid is not None else None
         if bcs is None:
             return
-        for face in bcs.children("Face"):
-            side = face.attr("side", choices=FACES)
+        for side, face in boundary_faces(bcs, FACES):
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
             for bc in face.children("BCType"):
                 ident, var, label = bc.attr("id"), bc.attr("var"), bc.attr("label")

@@ -19,7 +19,7 @@ def test_typed_values_and_defaults():
 
 
 @pytest.mark.parametrize("text,expect", [
-    ("<a><x>abc</x></a>", "value 'abc' is not a number"),
+    ("<a><x>abc</x></a>", "value 'abc' is not a finite number"),
     ("<a><v>[1,2]</v></a>", "is not a vector"),
     ("<a></a>", "missing required tag <x>"),
 ])
@@ -48,7 +48,7 @@ def test_choices():
 BAD = {
     "malformed": ("<Uintah_specification><Time></Uintah_specification>", "malformed XML"),
     "unknown tag": (decks.heat().replace("<Meta>", "<Bogus>1</Bogus><Meta>"), "unsupported tag <Bogus>"),
-    "wrong type": (decks.heat().replace("<alpha>0.01</alpha>", "<alpha>fast</alpha>"), "is not a number"),
+    "wrong type": (decks.heat().replace("<alpha>0.01</alpha>", "<alpha>fast</alpha>"), "is not a finite number"),
     "missing value": (decks.heat().replace("<maxTime>0.2</maxTime>", ""), "missing required tag <maxTime>"),
     "bad choice": (decks.heat().replace('type="examples"', 'type="nonsense"'), "is not available"),
     "bad save": (decks.heat().replace('<save label="temp_CC"/>', '<save label="press_CC"/>'),
@@ -70,3 +70,31 @@ def test_cli_bad_input_is_one_line_exit_2(case, deckfile):
 def test_missing_deck_file_is_clean():
     r = pysus("/nonexistent/deck.ups")
     assert r.returncode == 2 and "Traceback" not in r.stderr and "cannot read" in r.stderr
+
+
+@pytest.mark.parametrize("text", ["nan", "inf", "-Infinity", "[1, nan, 2]", "[inf,0,0]"])
+def test_nan_and_inf_are_refused(text):
+    ps = spec(f"<a><x>{text}</x></a>")
+    kind = "vector" if text.startswith("[") else "float"
+    with pytest.raises(InputError, match="finite number"):
+        ps.get("x", kind)
+
+
+def test_ranges_declared_per_parameter():
+    ps = spec("<a><p>0</p><q>-1</q><v>[1,0,2]</v><n>1e300</n></a>")
+    with pytest.raises(InputError, match=r"<a/p> value '0' is out of range; accepted: a finite number > 0"):
+        ps.read({"p": Param("float", above=0.0)})
+    with pytest.raises(InputError, match=r"accepted: a finite number >= 0"):
+        ps.get("q", at_least=0.0)
+    with pytest.raises(InputError, match=r"> 0 in every component"):
+        ps.get("v", "vector", above=0.0)
+    with pytest.raises(InputError, match="is not an integer"):
+        ps.get("n", "int")
+    assert ps.get("q", at_least=-1.0) == -1.0 and ps.get("p", at_least=0.0) == 0.0
+
+
+def test_wrong_root_element_is_refused(tmp_path):
+    from framework.controller import Controller
+    text = decks.heat().replace("Uintah_specification>", "Uintah_spec>")
+    with pytest.raises(InputError, match="root element is not <Uintah_specification>"):
+        Controller(str(tmp_path / "d.ups"), deck_text=text, quiet=True)

@@ -80,7 +80,7 @@ def test_membrane_deck_errors(tmp_path):
     from framework.problemspec import InputError
     text = membrane_deck("ring", dx=0.2, t_end=0.01)
     bad = text.replace("<spacing>", "<spacing>-", 1)
-    with pytest.raises(InputError, match="positive"):
+    with pytest.raises(InputError, match="spacing> value '-.*' is out of range; accepted: a finite number > 0"):
         run(bad, tmp_path, name="bad")
 
 
