@@ -17,8 +17,10 @@ newest checkpoint and never touches the older ones.
 """
 from __future__ import annotations
 
+import hashlib
 import json
 import os
+import re
 import shutil
 
 import h5py
@@ -224,54 +226,142 @@ class Archiver:
             shutil.rmtree(tmp, ignore_errors=True)
             os.makedirs(tmp)
         self.comm.barrier()
-        with h5py.File(os.path.join(tmp, f"rank{self.comm.rank:04d}.h5"), "w") as h5:
+        rank_file = f"rank{self.comm.rank:04d}.h5"
+        with h5py.File(os.path.join(tmp, rank_file), "w") as h5:
             meta = _write_dw(h5, dw, self.level, local_patches, set(carried), "owned")
-        allmeta = self.comm.allgather((self.comm.rank, meta))
+        digest = file_digest(os.path.join(tmp, rank_file))
+        allmeta = self.comm.allgather((self.comm.rank, meta, rank_file, digest))
         if self.comm.rank == 0:
-            patches = {}
-            for r, m in allmeta:
+            patches, digests = {}, {}
+            for r, m, fn, dg in allmeta:
+                digests[fn] = dg
                 for pid in m:
-                    patches[str(pid)] = f"rank{r:04d}.h5"
+                    patches[str(pid)] = fn
             reds = {f"{n}|{m}": (np.asarray(v).tolist()) for (n, m), v in dw.reductions.items()}
-            info = {"timestep": timestep, "time": t, "state": state, "patches": patches,
-                    "carried": sorted(carried), "reductions": reds, "nranks": self.comm.size}
-            with open(os.path.join(tmp, "checkpoint.json"), "w") as f:
-                json.dump(info, f, indent=1)
             with open(os.path.join(tmp, "input.ups"), "wb") as f:
                 f.write(self.deck_text)
+            digests["input.ups"] = file_digest(os.path.join(tmp, "input.ups"))
+            info = {"timestep": timestep, "time": t, "state": state, "patches": patches,
+                    "carried": sorted(carried), "reductions": reds, "nranks": self.comm.size,
+                    "sha256": digests}
+            text = json.dumps(info, indent=1)
+            with open(os.path.join(tmp, "checkpoint.json"), "w") as f:
+                f.write(text)
+            with open(os.path.join(tmp, "checkpoint.sha256"), "w") as f:
+                f.write(hashlib.sha256(text.encode()).hexdigest() + "\n")
             for fn in os.listdir(tmp):
                 fd = os.open(os.path.join(tmp, fn), os.O_RDONLY)
                 os.fsync(fd)
                 os.close(fd)
-            shutil.rmtree(final, ignore_errors=True)
+            _remove_dir(final)
             os.replace(tmp, final)
             self.index["checkpoints"].append({"timestep": timestep, "time": t, "dir": f"checkpoints/t{timestep:05d}"})
             keep = s["checkpoint_cycle"]
             if keep > 0:
                 while len(self.index["checkpoints"]) > keep:
                     old = self.index["checkpoints"].pop(0)
-                    shutil.rmtree(os.path.join(self.dir, old["dir"]), ignore_errors=True)
+                    _remove_dir(os.path.join(self.dir, old["dir"]))
             self._write_index()
         self.comm.barrier()
 
 
-def load_checkpoint(uda, index=-1):
-    """(checkpoint directory, its checkpoint.json content, deck bytes) of checkpoint `index`."""
+CHECKPOINT_NAME = re.compile(r"^t\d{5,}$")     # a complete checkpoint; .tmp / .old are not
+
+
+def file_digest(path):
+    """sha256 of a file, read in 1 MiB blocks."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _remove_dir(path):
+    """Delete a checkpoint directory so that a kill part-way never leaves an incomplete one
+    under a checkpoint's name: it is renamed to NAME.old first, then removed."""
+    if not os.path.isdir(path):
+        return
+    trash = path + ".old"
+    shutil.rmtree(trash, ignore_errors=True)
+    os.replace(path, trash)
+    shutil.rmtree(trash, ignore_errors=True)
+
+
+class DamagedCheckpoint(Exception):
+    """A checkpoint whose files are missing, unreadable or differ from their recorded sha256."""
+
+
+def verify_checkpoint(d):
+    """(checkpoint.json content, deck bytes) of checkpoint directory d after checking every
+    file against the sha256 recorded when it was written; DamagedCheckpoint says what is wrong.
+    Checkpoints written without digests are read as they are."""
+    name = os.path.basename(d)
+    try:
+        with open(os.path.join(d, "checkpoint.json"), "rb") as f:
+            raw = f.read()
+        info = json.loads(raw)
+    except (OSError, ValueError) as e:
+        raise DamagedCheckpoint(f"{name}/checkpoint.json is unreadable ({e})") from None
+    digests = info.get("sha256") if isinstance(info, dict) else None
+    if digests is not None:
+        try:
+            with open(os.path.join(d, "checkpoint.sha256")) as f:
+                want = f.read().strip()
+        except OSError:
+            raise DamagedCheckpoint(f"{name}/checkpoint.sha256 is missing") from None
+        if hashlib.sha256(raw).hexdigest() != want:
+            raise DamagedCheckpoint(f"{name}/checkpoint.json differs from its checksum (edited or damaged)")
+        for fn, want in digests.items():
+            path = os.path.join(d, fn)
+            if not os.path.isfile(path):
+                raise DamagedCheckpoint(f"{name}/{fn} is missing")
+            if file_digest(path) != want:
+                raise DamagedCheckpoint(f"{name}/{fn} differs from its checksum (truncated or overwritten)")
+    for key in ("timestep", "time", "state", "patches", "carried", "reductions"):
+        if not isinstance(info, dict) or key not in info:
+            raise DamagedCheckpoint(f"{name}/checkpoint.json has no '{key}'")
+    try:
+        with open(os.path.join(d, "input.ups"), "rb") as f:
+            deck = f.read()
+    except OSError as e:
+        raise DamagedCheckpoint(f"{name}/input.ups is unreadable ({e})") from None
+    return info, deck
+
+
+def load_checkpoint(uda, index=-1, notices=None):
+    """(checkpoint directory, its checkpoint.json content, deck bytes) of checkpoint `index`.
+
+    Every file is checked against its recorded sha256. The newest checkpoint (index -1) falls
+    back to the newest intact one, and each damaged one skipped is described in `notices`;
+    an explicitly chosen checkpoint that is damaged is an error."""
     cdir = os.path.join(uda, "checkpoints")
     if not os.path.isdir(cdir):
         raise FileNotFoundError(f"{uda} has no checkpoints/ directory")
-    cps = sorted(d for d in os.listdir(cdir) if d.startswith("t") and not d.endswith(".tmp"))
+    cps = sorted(d for d in os.listdir(cdir) if CHECKPOINT_NAME.match(d))
     if not cps:
         raise FileNotFoundError(f"{uda}/checkpoints holds no complete checkpoint")
-    try:
-        d = os.path.join(cdir, cps[index])
-    except IndexError:
-        raise FileNotFoundError(f"{uda} has {len(cps)} checkpoints; -t {index} does not exist") from None
-    with open(os.path.join(d, "checkpoint.json")) as f:
-        info = json.load(f)
-    with open(os.path.join(d, "input.ups"), "rb") as f:
-        deck = f.read()
-    return d, info, deck
+    if index != -1:
+        try:
+            name = cps[index]
+        except IndexError:
+            raise FileNotFoundError(f"{uda} has {len(cps)} checkpoints; -t {index} does not exist") from None
+        try:
+            info, deck = verify_checkpoint(os.path.join(cdir, name))
+        except DamagedCheckpoint as e:
+            raise FileNotFoundError(f"checkpoint -t {index} of {uda} is damaged: {e}") from None
+        return os.path.join(cdir, name), info, deck
+    damaged = []
+    for name in reversed(cps):
+        try:
+            info, deck = verify_checkpoint(os.path.join(cdir, name))
+        except DamagedCheckpoint as e:
+            damaged.append(str(e))
+            continue
+        if damaged and notices is not None:
+            notices.append(f"damaged checkpoint skipped: {'; '.join(damaged)}; restarting from {name}")
+        return os.path.join(cdir, name), info, deck
+    raise FileNotFoundError(f"{uda}: no intact checkpoint ({'; '.join(damaged)})")
 
 
 def restore_dw(dw, cdir, info, level, local_patches):

@@ -10,11 +10,14 @@
 from __future__ import annotations
 
 import argparse
+import errno
 import os
 import shutil
 import sys
 import traceback
 from pathlib import Path
+
+from .archiver import CHECKPOINT_NAME
 
 MPI_ENV = ("PMI_RANK", "PMI_SIZE", "PMIX_RANK", "OMPI_COMM_WORLD_SIZE", "MPI_LOCALNRANKS", "HYDI_CONTROL_FD")
 
@@ -116,12 +119,22 @@ def main(argv=None):
         if comm.rank == 0:
             print(f"pysus: task graph error: {e}", file=sys.stderr)
         return 3
-    except Exception:
+    except Exception as e:
         prefix = f"[rank {comm.rank}] " if comm.size > 1 else ""
-        msg = traceback.format_exc()
-        sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
-        sys.stderr.write(prefix + failure_summary(sys.exc_info()[1], ctl if "ctl" in locals() else None) + "\n")
+        if not _out_of_space(e):        # a full disk is not a bug: its one line says it all
+            msg = traceback.format_exc()
+            sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
+        sys.stderr.write(prefix + failure_summary(e, ctl if "ctl" in locals() else None) + "\n")
         return _exit(comm, 1)
+
+
+def _out_of_space(exc) -> bool:
+    """Whether an exception (or one it was raised from) is a full disk or an exhausted quota."""
+    while exc is not None:
+        if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT):
+            return True
+        exc = exc.__cause__ or exc.__context__
+    return False
 
 
 def failure_summary(exc, ctl) -> str:
@@ -130,7 +143,8 @@ def failure_summary(exc, ctl) -> str:
     line = f"pysus: the run failed{' at ' + where if where else ''}: {type(exc).__name__}: {exc}"
     arch = getattr(ctl, "archiver", None)
     if arch is not None and getattr(arch, "dir", None):
-        cps = sorted(p.name for p in Path(arch.dir).glob("checkpoints/t*")) if Path(arch.dir).is_dir() else []
+        cps = sorted(p.name for p in Path(arch.dir).glob("checkpoints/t*") if CHECKPOINT_NAME.match(p.name)) \
+            if Path(arch.dir).is_dir() else []
         line += (f"; last checkpoint {arch.dir}/checkpoints/{cps[-1]} (pysus -restart {arch.dir})" if cps
                  else f"; output so far in {arch.dir} (no checkpoint)")
     return line

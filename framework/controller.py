@@ -114,7 +114,11 @@ class Controller:
         self.restart = restart
         self.restart_info = None
         if restart is not None:
-            cdir, info, deck_text = load_checkpoint(restart, restart_index)
+            notices = []
+            cdir, info, deck_text = load_checkpoint(restart, restart_index, notices)
+            if self.comm.rank == 0:
+                for line in notices:
+                    print(f"pysus: notice: {line}", file=sys.stderr)
             self.restart_info = (cdir, info)
             deck = os.path.join(cdir, "input.ups")
         if deck_text is not None and restart is None:
