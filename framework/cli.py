@@ -18,6 +18,7 @@ import traceback
 from pathlib import Path
 
 from .archiver import CHECKPOINT_NAME
+from .errors import RunStopped
 
 MPI_ENV = ("PMI_RANK", "PMI_SIZE", "PMIX_RANK", "OMPI_COMM_WORLD_SIZE", "MPI_LOCALNRANKS", "HYDI_CONTROL_FD")
 
@@ -121,7 +122,7 @@ def main(argv=None):
         return 3
     except Exception as e:
         prefix = f"[rank {comm.rank}] " if comm.size > 1 else ""
-        if not _out_of_space(e):        # a full disk is not a bug: its one line says it all
+        if not (_out_of_space(e) or isinstance(e, RunStopped)):     # not bugs: their one line says it all
             msg = traceback.format_exc()
             sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
         sys.stderr.write(prefix + failure_summary(e, ctl if "ctl" in locals() else None) + "\n")

@@ -25,6 +25,7 @@ from .problemspec import InputError, Param, ProblemSpec, deck_bytes
 from .progress import Progress
 from .scheduler.comm import Comm
 from .scheduler.compile import GraphError
+from .scheduler.relocate import relocation_task
 from .scheduler.scheduler import Scheduler
 
 TIME = {
@@ -213,7 +214,7 @@ class Controller:
         for t in init_tasks + step_tasks:
             all_computed |= {d.label.name for d in t.computes_}
         if step_reloc is not None:
-            all_computed |= {l.name for l in [step_reloc.pos] + step_reloc.labels}
+            all_computed |= {d.label.name for d in relocation_task(step_reloc).computes_}
         for name in sorted(self.outputs):
             if name not in all_computed:
                 node = self.archive_spec["save_nodes"][name]

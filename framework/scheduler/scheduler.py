@@ -44,11 +44,14 @@ class Scheduler:
         self.tasks.append(task)
         return task
 
-    def schedule_particle_relocation(self, pos_pre, labels_pre, pos, labels, matls, id_label=None):
-        """Move particles to their new patch at the end of the step (Uintah's relocation)."""
+    def schedule_particle_relocation(self, pos_pre, labels_pre, pos, labels, matls, id_label=None,
+                                     mass_pre=None, on_leaving="warn"):
+        """Move particles to their new patch at the end of the step (Uintah's relocation);
+        particles leaving the domain are deleted and reported (their mass, with mass_pre)."""
         if len(labels_pre) != len(labels):
             raise ValueError("relocation needs one final label per pre-relocation label")
-        self.relocation = RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label)
+        self.relocation = RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label,
+                                         mass_pre, on_leaving)
         self.register_particle_labels(pos, id_label)
 
     def request_recompute(self, reason: str):
