@@ -10,6 +10,7 @@ import time
 from collections import defaultdict
 
 
+from ..datawarehouse import DataWarehouse
 from ..labels import delT as delT_label
 from ..task import NEW, OLD, PARENT_NEW, PARENT_OLD, Task, TaskError, TaskView
 from ..variables import VarType
@@ -183,16 +184,35 @@ class Scheduler:
             if dep.label.vartype is VarType.REDUCTION:
                 for m in dep.matls:
                     key = (dep.label.name, m)
+                    if dep.label.reduction == "sum":
+                        new_dw.reductions[key] = self._sum_in_patch_order(new_dw.patch_sums.pop(key, {}), dep.label)
+                        continue
                     v = new_dw.reductions.get(key, new_dw.identity(dep.label))
                     new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
 
+    def _sum_in_patch_order(self, parts, label):
+        """The sum of every patch's contribution, added in patch-id order whatever rank holds
+        each patch, so saved sums are bitwise the same on any number of ranks."""
+        if self.comm.size > 1:
+            merged = {}
+            for d in self.comm.allgather(parts):
+                merged.update(d)
+            parts = merged
+        total = DataWarehouse.identity(label)
+        for pid in sorted(parts):
+            total = total + parts[pid]
+        return total
+
     def _call(self, task, patch, views, new_dw):
+        new_dw.reduction_patch = patch.id
         try:
             task.fn(patch, task.matls, *views)
         except Exception as e:
             if not hasattr(e, "pysus_where"):
                 e.pysus_where = f"task {task.name} on patch {patch.id}"
             raise
+        finally:
+            new_dw.reduction_patch = None
         for dep in task.computes_:
             vt = dep.label.vartype
             if vt is VarType.REDUCTION:
