@@ -1,5 +1,6 @@
 # Sourced by ./pysus and scripts/test: create .venv on first use (or when
-# pyproject.toml changed) with the project, mpi4py and the mpich wheel (for mpiexec).
+# pyproject.toml changed) with the project, mpi4py, the mpich wheel (for mpiexec) and
+# matplotlib (the plot extra, for `pysus plot`).
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 VENV="$ROOT/.venv"
 STAMP="$VENV/.pysus-installed"
@@ -8,7 +9,7 @@ if [ ! -x "$VENV/bin/python" ] || [ ! -f "$STAMP" ] || [ "$ROOT/pyproject.toml" 
   PY="${PYTHON:-python3}"
   [ -x "$VENV/bin/python" ] || "$PY" -m venv "$VENV" || { echo "pysus: could not create $VENV with $PY" >&2; exit 1; }
   "$VENV/bin/python" -m pip install -q --upgrade pip >&2 || exit 1
-  "$VENV/bin/python" -m pip install -q -e "$ROOT[mpich]" >&2 || { echo "pysus: pip install failed" >&2; exit 1; }
+  "$VENV/bin/python" -m pip install -q -e "$ROOT[mpich,plot]" >&2 || { echo "pysus: pip install failed" >&2; exit 1; }
   touch "$STAMP"
 fi
 export PATH="$VENV/bin:$PATH"
