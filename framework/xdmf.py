@@ -1,7 +1,9 @@
 """XDMF (version 2) descriptions of a `.uda` so ParaView and VisIt open it directly.
 
 Each output timestep is a spatial collection of one uniform grid per patch (a
-3DCoRectMesh for grid variables, a 2DCoRectMesh when the grid is one cell thick in z,
+3DCoRectMesh for grid variables; when the grid is one cell thick in z, a slab FLAT_SLAB
+of a cell thick from the bottom face, so the particles at mid-cell show above it: XDMF's
+2DCoRectMesh lies in the y-z plane and one plane of points is refused by the legacy reader),
 and a Polyvertex set per material for particles, with explicit connectivity so the
 Xdmf3 readers make cells of them too), and `output.xdmf` is the temporal collection of
 all of them. HDF5 datasets are stored (z, y, x) so the XDMF dimensions are written
@@ -17,6 +19,7 @@ import numpy as np
 from .variables import VarType
 
 CONNECTIVITY = "vertex_ids"   # per particle set: 0..n-1, the Polyvertex connectivity
+FLAT_SLAB = 0.4               # thickness of a one-cell-thick grid as drawn, in cells
 _ATYPE = {1: "Scalar", 3: "Vector", 9: "Tensor"}
 
 
@@ -64,21 +67,16 @@ def timestep_grids(entry, index, level, prefix=""):
                 center = "Node"
             flat = dims[2] == 1     # one cell (or node) thick in z: written as 2D
             out.append(f'<Grid Name="{kind}_patch{pid}" GridType="Uniform">')
-            if flat:
-                out.append(f'<Topology TopologyType="2DCoRectMesh" Dimensions="{npts[1]} {npts[0]}"/>')
-                out.append('<Geometry GeometryType="ORIGIN_DXDY">'
-                           f'<DataItem Dimensions="2" NumberType="Float" Precision="8" Format="XML">'
-                           f'{float(origin[1])!r} {float(origin[0])!r}</DataItem>'
-                           f'<DataItem Dimensions="2" NumberType="Float" Precision="8" Format="XML">'
-                           f'{float(level.dx[1])!r} {float(level.dx[0])!r}</DataItem></Geometry>')
-            else:
-                out.append(f'<Topology TopologyType="3DCoRectMesh" Dimensions="{npts[2]} {npts[1]} {npts[0]}"/>')
-                out.append('<Geometry GeometryType="ORIGIN_DXDYDZ">'
-                           f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
-                           f'{float(origin[2])!r} {float(origin[1])!r} {float(origin[0])!r}</DataItem>'
-                           f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
-                           f'{float(level.dx[2])!r} {float(level.dx[1])!r} {float(level.dx[0])!r}</DataItem></Geometry>')
-            adims = [dims[1], dims[0]] if flat else [dims[2], dims[1], dims[0]]
+            spacing = list(level.dx)
+            if flat:    # a thin slab under the particles' mid-plane, so they are drawn on top of it
+                spacing[2] = FLAT_SLAB * level.dx[2]
+            out.append(f'<Topology TopologyType="3DCoRectMesh" Dimensions="{npts[2]} {npts[1]} {npts[0]}"/>')
+            out.append('<Geometry GeometryType="ORIGIN_DXDYDZ">'
+                       f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
+                       f'{float(origin[2])!r} {float(origin[1])!r} {float(origin[0])!r}</DataItem>'
+                       f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
+                       f'{float(spacing[2])!r} {float(spacing[1])!r} {float(spacing[0])!r}</DataItem></Geometry>')
+            adims = [dims[2], dims[1], dims[0]]
             for name, m, shape in items:
                 out.append(_attribute(f"{name}_{m}", center, f"{fn}:/patch_{pid}/{name}/{m}",
                                       adims, _ncomp(shape)))
