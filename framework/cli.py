@@ -6,6 +6,7 @@
     pysus -restart run.uda [-t -1]    continue from a checkpoint (any number of ranks)
     pysus --graph deck.ups [--dot f]  print the tasks the deck will run, in order
     pysus -validate deck.ups          check the deck (set-up, grid, task graphs) and exit
+    pysus info|extract|plot RUN.uda   inspect a run's output (framework/uda_tools.py)
 """
 from __future__ import annotations
 
@@ -75,6 +76,10 @@ def relaunch(args, argv):
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
+    from .uda_tools import COMMANDS
+    if argv and argv[0] in COMMANDS:        # pysus info|extract|plot RUN.uda (framework/uda_tools.py)
+        from .uda_tools import main as tool_main
+        return tool_main(argv)
     args = parser().parse_args(argv)
     if args.np > 1 and not under_mpi():
         relaunch(args, argv)
