@@ -19,6 +19,8 @@ from .archiver import Archiver, load_checkpoint, restore_dw
 from .component import lookup
 from .datawarehouse import DataWarehouse
 from .gridspec import level_from_spec
+from .errors import RunStopped
+from .health import check_health
 from .loadbalancer import LoadBalancer
 from .memory import keep_freed_memory, physical_memory
 from .problemspec import InputError, Param, ProblemSpec, deck_bytes
@@ -371,6 +373,7 @@ class Controller:
             self.t += delt
             self.timestep += 1
             self.prev_delt = delt
+            self._check_state(dw, delt)
             if self.archiver is not None:
                 if self.archiver.output_due(self.timestep, self.t):
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
@@ -382,6 +385,20 @@ class Controller:
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw
+
+    def _check_state(self, dw, delt):
+        """Stop at the first non-finite or negative-mass/density/temperature value of the carried
+        state (PYSUS_CHECK_STATE=0 turns it off); the bad step is written as an output timestep
+        so a viewer shows where it went wrong, and no checkpoint is written from it."""
+        if os.environ.get("PYSUS_CHECK_STATE", "1") == "0":
+            return
+        try:
+            check_health(dw, self.carried, self.level, self.sched.local_patches, L, self.comm, self.timestep)
+        except RunStopped as e:
+            if self.archiver is None:
+                raise
+            self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
+            raise RunStopped(f"{e}; that state is output timestep {self.archiver.dir}/t{self.timestep:05d}") from None
 
     def _recompute_requested(self) -> bool:
         """True on every rank when any rank's component asked to redo the step."""
