@@ -110,7 +110,7 @@ class Controller:
     """Sets up a run from a deck (or a checkpoint) and runs the time loop."""
 
     def __init__(self, deck=None, comm: Comm | None = None, restart=None, restart_index=-1,
-                 quiet=False, filebase=None, max_timesteps=None, deck_text=None):
+                 quiet=False, filebase=None, max_timesteps=None, deck_text=None, max_time=None):
         keep_freed_memory()
         self.comm = comm or Comm(None)
         self.quiet = quiet
@@ -140,7 +140,30 @@ class Controller:
             check_output_dir(self.archive_spec["filebase"], self.archive_spec["filebase_node"], self.root.filename)
         if max_timesteps is not None:
             self.time["max_Timesteps"] = max_timesteps
+        if max_time is not None:
+            if not (math.isfinite(max_time) and max_time >= self.time["initTime"]):
+                raise InputError(f"--maxTime {max_time!r}; accepted: a finite number >= initTime "
+                                 f"{self.time['initTime']:g}")
+            self.time["maxTime"] = max_time
+        self._check_restart_has_work()
         self._build()
+
+    def _check_restart_has_work(self):
+        """A restart from a checkpoint at or past maxTime / max_Timesteps would write an empty uda:
+        say so, and how to go on (--maxTime, --max-timesteps)."""
+        if self.restart_info is None:
+            return
+        st = self.restart_info[1]["state"]
+        tm = self.time
+        if st["time"] >= tm["maxTime"] * (1 - 1e-14):
+            reached = f"maxTime {tm['maxTime']:g} s"
+        elif st["timestep"] >= tm["max_Timesteps"]:
+            reached = f"max_Timesteps {tm['max_Timesteps']}"
+        else:
+            return
+        raise InputError(f"{self.restart}: the checkpoint (timestep {st['timestep']}, t = {st['time']:.6g} s) "
+                         f"already reached {reached}; nothing to run. Accepted: raise it with "
+                         "pysus -restart UDA --maxTime T (or --max-timesteps N)")
 
     # -- set-up ----------------------------------------------------------------------
     def _read_deck(self):
