@@ -50,6 +50,8 @@ def parser():
     p.add_argument("--quiet", "-q", action="store_true", help="no progress display")
     p.add_argument("--filebase", help="override <DataArchiver><filebase>")
     p.add_argument("--max-timesteps", type=int, help="override <Time><max_Timesteps>")
+    p.add_argument("--maxTime", "--max-time", dest="max_time", type=float,
+                   help="override <Time><maxTime> (e.g. to continue a finished run with -restart)")
     p.add_argument("--timing", action="store_true", help="print time per task at the end")
     return p
 
@@ -93,7 +95,8 @@ def main(argv=None):
     try:
         from .controller import Controller
         ctl = Controller(args.deck, comm, restart=args.restart, restart_index=args.t, quiet=args.quiet,
-                         filebase=args.filebase, max_timesteps=args.max_timesteps)
+                         filebase=args.filebase, max_timesteps=args.max_timesteps,
+                         max_time=args.max_time)
         if args.graph:
             if comm.rank == 0:
                 from .graphview import describe, write_dot

@@ -19,6 +19,8 @@ from .archiver import Archiver, load_checkpoint, restore_dw
 from .component import lookup
 from .datawarehouse import DataWarehouse
 from .gridspec import level_from_spec
+from .errors import RunStopped
+from .health import check_health
 from .loadbalancer import LoadBalancer
 from .memory import keep_freed_memory, physical_memory
 from .problemspec import InputError, Param, ProblemSpec, deck_bytes
@@ -108,7 +110,7 @@ class Controller:
     """Sets up a run from a deck (or a checkpoint) and runs the time loop."""
 
     def __init__(self, deck=None, comm: Comm | None = None, restart=None, restart_index=-1,
-                 quiet=False, filebase=None, max_timesteps=None, deck_text=None):
+                 quiet=False, filebase=None, max_timesteps=None, deck_text=None, max_time=None):
         keep_freed_memory()
         self.comm = comm or Comm(None)
         self.quiet = quiet
@@ -138,7 +140,30 @@ class Controller:
             check_output_dir(self.archive_spec["filebase"], self.archive_spec["filebase_node"], self.root.filename)
         if max_timesteps is not None:
             self.time["max_Timesteps"] = max_timesteps
+        if max_time is not None:
+            if not (math.isfinite(max_time) and max_time >= self.time["initTime"]):
+                raise InputError(f"--maxTime {max_time!r}; accepted: a finite number >= initTime "
+                                 f"{self.time['initTime']:g}")
+            self.time["maxTime"] = max_time
+        self._check_restart_has_work()
         self._build()
+
+    def _check_restart_has_work(self):
+        """A restart from a checkpoint at or past maxTime / max_Timesteps would write an empty uda:
+        say so, and how to go on (--maxTime, --max-timesteps)."""
+        if self.restart_info is None:
+            return
+        st = self.restart_info[1]["state"]
+        tm = self.time
+        if st["time"] >= tm["maxTime"] * (1 - 1e-14):
+            reached = f"maxTime {tm['maxTime']:g} s"
+        elif st["timestep"] >= tm["max_Timesteps"]:
+            reached = f"max_Timesteps {tm['max_Timesteps']}"
+        else:
+            return
+        raise InputError(f"{self.restart}: the checkpoint (timestep {st['timestep']}, t = {st['time']:.6g} s) "
+                         f"already reached {reached}; nothing to run. Accepted: raise it with "
+                         "pysus -restart UDA --maxTime T (or --max-timesteps N)")
 
     # -- set-up ----------------------------------------------------------------------
     def _read_deck(self):
@@ -371,6 +396,7 @@ class Controller:
             self.t += delt
             self.timestep += 1
             self.prev_delt = delt
+            self._check_state(dw, delt)
             if self.archiver is not None:
                 if self.archiver.output_due(self.timestep, self.t):
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
@@ -382,6 +408,20 @@ class Controller:
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw
+
+    def _check_state(self, dw, delt):
+        """Stop at the first non-finite or negative-mass/density/temperature value of the carried
+        state (PYSUS_CHECK_STATE=0 turns it off); the bad step is written as an output timestep
+        so a viewer shows where it went wrong, and no checkpoint is written from it."""
+        if os.environ.get("PYSUS_CHECK_STATE", "1") == "0":
+            return
+        try:
+            check_health(dw, self.carried, self.level, self.sched.local_patches, L, self.comm, self.timestep)
+        except RunStopped as e:
+            if self.archiver is None:
+                raise
+            self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
+            raise RunStopped(f"{e}; that state is output timestep {self.archiver.dir}/t{self.timestep:05d}") from None
 
     def _recompute_requested(self) -> bool:
         """True on every rank when any rank's component asked to redo the step."""
