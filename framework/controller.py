@@ -46,6 +46,7 @@ TIME = {
 }
 
 RECOMPUTE_FACTOR = 0.5    # delT scale for a recomputed timestep
+HEALTH_SHARE = 0.02       # the state check may cost this share of a step (else it skips steps)
 MAX_RECOMPUTES = 10
 
 ARCHIVER = {
@@ -355,6 +356,7 @@ class Controller:
         tm = self.time
         progress = Progress(enabled=not self.quiet and self.comm.rank == 0)
         first = self.restart_info is None
+        self._next_health_check, self._health_every, self._last_healthy = self.timestep + 1, 1, self.timestep
         step_wall = []
         while self.t < tm["maxTime"] * (1 - 1e-14) and self.timestep < tm["max_Timesteps"]:
             raw = self.sched.reduce_delT(dw)
@@ -396,7 +398,7 @@ class Controller:
             self.t += delt
             self.timestep += 1
             self.prev_delt = delt
-            self._check_state(dw, delt)
+            self._check_state(dw, delt, step_wall[-1])
             if self.archiver is not None:
                 if self.archiver.output_due(self.timestep, self.t):
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
@@ -409,19 +411,36 @@ class Controller:
         self.step_times = step_wall
         return dw
 
-    def _check_state(self, dw, delt):
+    def _check_state(self, dw, delt, step_wall):
         """Stop at the first non-finite or negative-mass/density/temperature value of the carried
         state (PYSUS_CHECK_STATE=0 turns it off); the bad step is written as an output timestep
-        so a viewer shows where it went wrong, and no checkpoint is written from it."""
+        so a viewer shows where it went wrong, and no checkpoint is written from it.
+
+        The check runs every step while it costs under HEALTH_SHARE of a step; on very cheap
+        steps it runs every few steps (then the report gives the last healthy step), but always
+        before an output or a checkpoint is written."""
         if os.environ.get("PYSUS_CHECK_STATE", "1") == "0":
             return
+        a = self.archiver
+        due = self.timestep >= self._next_health_check or (
+            a is not None and (a.output_due(self.timestep, self.t) or a.checkpoint_due(self.timestep, self.t)))
+        if not due:
+            return
+        t0 = time.perf_counter()
         try:
             check_health(dw, self.carried, self.level, self.sched.local_patches, L, self.comm, self.timestep)
         except RunStopped as e:
-            if self.archiver is None:
-                raise
-            self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
-            raise RunStopped(f"{e}; that state is output timestep {self.archiver.dir}/t{self.timestep:05d}") from None
+            since = "" if self._last_healthy == self.timestep - 1 else \
+                f" (healthy at timestep {self._last_healthy}, checked every {self._health_every} steps)"
+            if a is None:
+                raise RunStopped(f"{e}{since}") from None
+            a.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
+            raise RunStopped(f"{e}{since}; that state is output timestep {a.dir}/t{self.timestep:05d}") from None
+        cost = time.perf_counter() - t0
+        every = max(1, math.ceil(cost / (HEALTH_SHARE * max(step_wall, 1e-9))))
+        self._health_every = int(self.comm.allreduce(min(every, 50), "max"))
+        self._last_healthy = self.timestep
+        self._next_health_check = self.timestep + self._health_every
 
     def _recompute_requested(self) -> bool:
         """True on every rank when any rank's component asked to redo the step."""
