@@ -327,8 +327,12 @@ class Controller:
         """Initialize and step to maxTime or max_Timesteps; returns the final warehouse."""
         wall0 = time.perf_counter()
         dw = self.initialize()
+        self.output_wall = 0.0
+        self.init_wall = time.perf_counter() - wall0
         tm = self.time
-        progress = Progress(enabled=not self.quiet and self.comm.rank == 0)
+        progress = Progress(enabled=not self.quiet and self.comm.rank == 0, max_time=tm["maxTime"],
+                            max_timesteps=tm["max_Timesteps"], start_step=self.timestep, start_time=self.t,
+                            start_wall=self.init_wall)
         first = self.restart_info is None
         step_wall = []
         while self.t < tm["maxTime"] * (1 - 1e-14) and self.timestep < tm["max_Timesteps"]:
@@ -372,16 +376,27 @@ class Controller:
             self.timestep += 1
             self.prev_delt = delt
             if self.archiver is not None:
+                o0 = time.perf_counter()
                 if self.archiver.output_due(self.timestep, self.t):
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
                 if self.archiver.checkpoint_due(self.timestep, self.t):
                     self.archiver.checkpoint(dw, self.carried | {L.delT.name}, self.timestep, self.t,
                                              self._state(), self.sched.local_patches)
-            progress.update(self.timestep, self.t, delt, time.perf_counter() - wall0, step_wall[-1])
+                self.output_wall += time.perf_counter() - o0
+            progress.update(self.timestep, self.t, delt, time.perf_counter() - wall0)
         progress.close()
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw
+
+    def timing_table(self):
+        """(name, seconds, calls) rows that add up to the run's wall time: set-up, each task, ghost
+        exchange, relocation, output, and the rest (delT reduction, load balancing, scheduling)."""
+        rows = [("initialization (set-up, first output)", self.init_wall, 1)]
+        rows += [(name, t, calls) for name, t, calls, _ in self.sched.timing_table()]
+        rows.append(("output and checkpoints", self.output_wall, 0))
+        rows.append(("other (delT, load balance, scheduling)", self.wall - sum(r[1] for r in rows), 0))
+        return rows
 
     def _recompute_requested(self) -> bool:
         """True on every rank when any rank's component asked to redo the step."""
