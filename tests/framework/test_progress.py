@@ -65,7 +65,7 @@ def test_timing_rows_add_up_to_wall(tmp_path):
     names = [n.strip() for n, _ in rows]
     total = float(rows[-1][1])
     assert names[-1] == "total (wall)"
-    for want in ("initialization (set-up, first output)", "output and checkpoints", "ghost exchange"):
+    for want in ("set-up outside tasks (grid, first output)", "output and checkpoints", "ghost exchange"):
         assert want in names, names
     parts = sum(float(t) for n, t in rows[:-1] if not n.startswith("other"))
     other = float(dict((n.strip(), t) for n, t in rows)["other (delT, load balance, scheduling)"])
