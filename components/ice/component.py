@@ -373,5 +373,4 @@ class ICE(ImplicitICE, IceTasks, Component):
             t.requires(NEW, I.FC_VEL_ME[d])
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", self.compute_mach, self.matls)
-                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
-                       .computes(I.mach))
+                       .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))
