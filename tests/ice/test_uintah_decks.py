@@ -3,12 +3,18 @@
 advect.ups: uniform flow [1,1,1] m/s through a 5^3 box with zero-gradient faces: the
 compatible advection keeps the state exactly uniform, so inflow equals outflow and
 mass and internal energy stay constant. hotBlob2mat.ups: a 400 K blob of the
-surroundings' density expands, as in Uintah's sus (values stored below).
+surroundings' density expands, as in Uintah's sus (values stored below). The decks in
+uintah_reference/ are Uintah's, edited as their header comment says (XY_freeSlip_explicit:
+the FreeSlipWall velocity condition).
 """
+import pathlib
+
 import numpy as np
 import pytest
 
 from .conftest import UINTAH
+
+REF = pathlib.Path(__file__).parent / "uintah_reference"
 
 
 def test_advect(run_deck):
@@ -94,3 +100,38 @@ def test_advect_reductions_as_uintah(run_deck):
     _, ie = da.reduction("TotalIntEng")
     assert np.allclose(ke[:2], SUS_ADVECT_KE, rtol=1e-12)
     assert np.allclose(ie[:2], SUS_ADVECT_IE, rtol=1e-12)
+
+
+# Uintah's sus on uintah_reference/XY_freeSlip_explicit.ups (puda -varsummary -no_extra_cells, after
+# step 2): (label, component): (min, max)
+SUS_FREESLIP = {("press_CC", 0): (9.9607172882156068e+04, 1.0132500000010135e+05),
+                ("rho_CC", 0): (1.1650137410398085e+00, 1.1792946927386099e+00),
+                ("temp_CC", 0): (2.9857146775476002e+02, 3.0000000000000006e+02),
+                ("vel_CC", 0): (-8.2986817442238436e+00, 7.6464339239299716e-09),
+                ("vel_CC", 1): (0.0, 1.5020304648897977e-08)}
+
+
+def test_free_slip_wall_as_uintah(run_deck):
+    """FreeSlipWall (y faces): Poiseuille flow driven along x, two explicit steps as sus."""
+    da = run_deck(str(REF / "XY_freeSlip_explicit.ups"))
+    assert np.allclose(np.diff(da.times), [1e-9, 0.000227883032], rtol=1e-9)
+    for (label, c), (lo, hi) in SUS_FREESLIP.items():
+        a = da.read(label, 0, -1)[0]
+        a = a[..., c] if a.ndim == 4 else a
+        scale = 8.3 if label == "vel_CC" else hi
+        assert abs(a.min() - lo) < 1e-12 * scale and abs(a.max() - hi) < 1e-9 * scale, (label, c, a.min(), a.max())
+
+
+def test_free_slip_wall_extra_cells():
+    """Uintah's setFreeSlipWallBC_CC: the extra cell takes the interior neighbour's velocity with
+    the normal component zero; the normal face velocity is zero."""
+    from components.ice.bc import FREE_SLIP, bc_face_velocity, bc_vector
+    q = np.zeros((4, 3, 3, 3))
+    q[1:3, :, :] = [2.0, -3.0, 5.0]
+    lo, hi = np.array([1, 0, 0]), np.array([3, 3, 3])
+    for side in (0, 1):
+        bc_vector(q, 0, side, FREE_SLIP, np.zeros(3), 0.1, lo, hi, np.array([0, 0, 0]), np.array([4, 3, 3]))
+    assert np.array_equal(q[0, 1, 1], [0.0, -3.0, 5.0]) and np.array_equal(q[3, 2, 0], [0.0, -3.0, 5.0])
+    uf = np.ones((5, 3, 3))
+    bc_face_velocity(uf, 0, 4, 0.0)
+    assert np.all(uf[4] == 0.0) and np.all(uf[:4] == 1.0)
