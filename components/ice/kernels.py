@@ -13,8 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .eos import (IDEAL_GAS, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro, eos_sound_speed2,
-                  ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2)
+from .eos import (IDEAL_GAS, THOMSEN_HARTKA, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro,
+                  eos_sound_speed2, ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2)
 
 TINY = 1.0e-100
 
@@ -316,7 +316,8 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
     sources act on interior cells: -dt V theta grad p* (+ dt m g), V theta kappa p_w delP.
     ICE carries e = cv T, so the flow work uses p_w = p + (T (dp/dT)_v - p_eos): for an
     ideal gas p_w = p exactly (as Uintah); for a stiffened gas it is p + Pinf, which
-    keeps cv dT = -T (dp/dT)_v dv consistent with the EOS. comp[d]: the momentum
+    keeps cv dT = -T (dp/dT)_v dv consistent with the EOS; Thomsen_Hartka_water takes p_w = p
+    (Uintah's, whose values pysus reproduces for it). comp[d]: the momentum
     component along axis d (arrays seen with permuted axes; None = the identity).
     """
     c0, c1, c2 = (0, 1, 2) if comp is None else (comp[0], comp[1], comp[2])
@@ -362,7 +363,7 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
                     pe, dpdr, dpde = ideal_gas_press_eos(1.0 / v_[k], t, cv, gamma)
                 else:
                     pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / v_[k], t, cv, gamma)
-                pw = p_[k] + (dpde * cv * t - pe)
+                pw = p_[k] if code == THOMSEN_HARTKA else p_[k] + (dpde * cv * t - pe)
                 es[k] += vol * th * v_[k] / cc * pw * d_[k]
 
 

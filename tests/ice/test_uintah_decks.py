@@ -135,3 +135,22 @@ def test_free_slip_wall_extra_cells():
     uf = np.ones((5, 3, 3))
     bc_face_velocity(uf, 0, 4, 0.0)
     assert np.all(uf[4] == 0.0) and np.all(uf[:4] == 1.0)
+
+
+# Uintah's sus on uintah_reference/water_tube_TH.ups after step 5 (puda -varsummary -no_extra_cells)
+SUS_WATER = {"delP_Dilatate": (-1.2484044589436407e+04, 1.2459896268988789e+04),
+             "temp_CC": (2.9999994581001914e+02, 3.0000004653637336e+02),
+             "vel_CC": (0.0, 1.6539016916819174e-01)}
+
+
+def test_thomsen_hartka_water_as_uintah(run_deck):
+    """Thomsen_Hartka_water: pressure, sound speed, flow work and temperature as Uintah's EOS,
+    a 1D water tube for 5 steps equal to sus to round-off."""
+    da = run_deck(str(REF / "water_tube_TH.ups"))
+    assert np.allclose(np.diff(da.times)[1:], 1.61844e-07, rtol=1e-5)
+    assert da.times[-1] == pytest.approx(8.09221e-07, rel=1e-5)
+    for label, (lo, hi) in SUS_WATER.items():
+        a = da.read(label, 0, -1)[0]
+        a = a[..., 0] if a.ndim == 4 else a
+        scale = max(abs(lo), abs(hi))
+        assert abs(a.min() - lo) < 1e-11 * scale and abs(a.max() - hi) < 1e-11 * scale, (label, a.min(), a.max())
