@@ -43,7 +43,7 @@ MATERIAL = {
     "dynamic_viscosity": Param("float", 0.0, at_least=0.0),
     "thermal_conductivity": Param("float", 0.0, at_least=0.0),
     "specific_heat": Param("float", above=0.0),
-    "gamma": Param("float", above=1.0),     # c^2 = gamma (gamma - 1) cv T: gamma = 1 has no sound speed
+    "gamma": Param("float", above=0.0),     # > 1 where the EOS uses it (_read_material)
     "tiny_rho": Param("float", 1e-12, above=0.0),
 }
 GEOM = {
@@ -186,6 +186,10 @@ class ICE(ImplicitICE, IceTasks, Component):
         props = node.read(MATERIAL)
         en = node.child("EOS", required=True)
         etype = en.attr("type", choices=tuple(EOS_TAGS))
+        if etype in ("ideal_gas", "Stiffened_gas") and not props["gamma"] > 1.0:
+            # c^2 = gamma (gamma - 1) cv T: gamma = 1 has no sound speed
+            raise node.child("gamma").error(f"value '{props['gamma']:g}' is out of range; accepted: a finite "
+                                            f"number > 1 (the {etype} EOS)")
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
         objects = []

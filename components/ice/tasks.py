@@ -106,16 +106,22 @@ class IceTasks:
         rho_micro (the deck's <density>), T and velocity from the last of its geometry objects
         that covers a cell (its first object where none does), its volume fraction from the
         objects' cell fractions (1 where a lone material covers any of a cell), and
-        rho_CC = rho_micro (theta + tiny_rho); press_CC is the EOS pressure of the last material."""
+        rho_CC = rho_micro (theta + tiny_rho); press_CC is the EOS pressure of the last material.
+
+        One difference, in cells a material does not cover at all (its trace of tiny_rho):
+        Uintah gives it its first object's density there, so a trace of water in air starts at
+        1000 kg/m^3 and the first steps compress or expand it by orders of magnitude, which
+        heats it to absurd temperatures that then set delT; pysus gives it the micro density of
+        the covering materials' pressure at its temperature."""
         b = self.boxes(patch)
         own = patch.owned(VarType.CC)
         lv = patch.level
         sl = patch.slices(VarType.CC, own)
-        p_arr = new_dw.allocate(I.press_CC, 0, patch)
+        shape = tuple(h - l for l, h in zip(*own))
         many = len(self.materials) > 1
+        state = []
         for m, mat in enumerate(self.materials):
             g0 = mat.objects[0][1]
-            shape = tuple(h - l for l, h in zip(*own))
             theta = np.zeros(shape)
             rho_micro, temp = np.full(shape, g0["density"]), np.full(shape, g0["temperature"])
             vel = np.broadcast_to(np.array(g0["velocity"], float), shape + (3,)).copy()
@@ -129,6 +135,20 @@ class IceTasks:
                 else:
                     theta = g["volumeFraction"] * f
                 rho_micro[hit], temp[hit], vel[hit] = g["density"], g["temperature"], g["velocity"]
+            state.append((theta, rho_micro, temp, vel))
+        if many:
+            covered_p, covered = np.zeros(shape), np.zeros(shape)
+            for m, (theta, rho_micro, temp, _) in enumerate(state):
+                covered_p += theta * _press_array(rho_micro, temp, *self._eos(m))
+                covered += theta
+            p_cover = covered_p / np.maximum(covered, 1e-300)
+            for m, (theta, rho_micro, temp, _) in enumerate(state):
+                trace = (theta == 0.0) & (covered > 0.0)
+                if trace.any():
+                    rho_micro[trace] = _rho_micro_array(p_cover[trace], temp[trace], float(rho_micro[trace][0]),
+                                                        *self._eos(m))
+        p_arr = new_dw.allocate(I.press_CC, 0, patch)
+        for m, (mat, (theta, rho_micro, temp, vel)) in enumerate(zip(self.materials, state)):
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
                                                                 I.speedSound_CC)]
             arrs[0][sl] = rho_micro * theta + mat.tiny_rho * rho_micro

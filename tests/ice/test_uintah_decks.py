@@ -51,8 +51,10 @@ def test_hot_blob_two_materials(run_deck):
     text = text.replace('<advection type = "FirstOrder" />', '<advection type = "FirstOrder" dissipationHeating="false"/>')
     da = run_deck(text=text)
     # the same algorithm: round-off agreement (the face exchange's harmonic-mean specific volume,
-    # Uintah's vel_FC_exchange, is what makes it so after step 1)
-    assert np.allclose(np.diff(da.times), np.diff([0.0] + SUS_HOTBLOB_TIMES), rtol=1e-11, atol=0)
+    # Uintah's vel_FC_exchange, is what makes it so after step 1); delT to 1e-9 only, because
+    # pysus starts a material's trace (cells it does not cover) at the covering materials'
+    # pressure, where Uintah takes its object's density (components/ice/tasks.py: initialize)
+    assert np.allclose(np.diff(da.times), np.diff([0.0] + SUS_HOTBLOB_TIMES), rtol=1e-9, atol=0)
     for step, pmax in SUS_HOTBLOB_PRESS_MAX.items():
         p, _ = da.read("press_CC", 0, step)
         assert p.max() == pytest.approx(pmax, rel=1e-11)
