@@ -129,6 +129,8 @@ class Controller:
             # the bytes, not decoded text: the copy in the uda stays in the deck's own encoding
             with open(self.root.filename, "rb") as f:
                 self.deck_text = f.read()
+            if self.root.has_includes:   # the uda keeps the deck with its includes resolved, for restarts
+                self.deck_text = self.root.resolved_bytes()
         self._read_deck()
         if filebase is not None and self.archive_spec is not None:
             self.archive_spec["filebase"] = filebase
