@@ -84,6 +84,10 @@ def read_archiver(root):
         if spec["checkpoint_interval"] <= 0 and spec["checkpoint_timestepInterval"] <= 0:
             raise c.error('<checkpoint> needs interval="..." (time) or timestepInterval="..." (steps)')
     spec["filebase_node"] = da.child("filebase")
+    # as Uintah: <outputInitTimestep/> (a presence flag) writes the initial state,
+    # <outputLastTimestep>true</outputLastTimestep> the final step, even when no output is due then
+    spec["outputInitTimestep"] = da.child("outputInitTimestep") is not None
+    spec["outputLastTimestep"] = da.get("outputLastTimestep", "bool", False)
     return spec
 
 
@@ -320,7 +324,7 @@ class Controller:
         self.sched.execute(self.init_graph, None, dw, keep=self.outputs)
         if self.archiver is not None:
             self.archiver.setup(self.t)
-            if self.archiver.output_due(0, self.t):
+            if self.archiver.output_due(0, self.t) or self.archiver.spec["outputInitTimestep"]:
                 self.archiver.output(dw, 0, self.t, 0.0, self.sched.local_patches)
         return dw
 
@@ -347,7 +351,9 @@ class Controller:
                 dw = DataWarehouse(self.timestep + 1)
                 old.set_reduction(L.delT, delt)
                 old.set_reduction(L.simTime, self.t)
-                writes = self.archiver is not None and self.archiver.output_due(self.timestep + 1, self.t + delt)
+                writes = self.archiver is not None and (
+                    self.archiver.output_due(self.timestep + 1, self.t + delt)
+                    or (self.archiver.spec["outputLastTimestep"] and self._last_step(delt)))
                 graph = self.step_graph if writes else self.quiet_step_graph
                 s0 = time.perf_counter()
                 try:
@@ -373,7 +379,7 @@ class Controller:
             self.timestep += 1
             self.prev_delt = delt
             if self.archiver is not None:
-                if self.archiver.output_due(self.timestep, self.t):
+                if writes:
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
                 if self.archiver.checkpoint_due(self.timestep, self.t):
                     self.archiver.checkpoint(dw, self.carried | {L.delT.name}, self.timestep, self.t,
@@ -383,6 +389,11 @@ class Controller:
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw
+
+    def _last_step(self, delt) -> bool:
+        """True when the step about to be taken with delt ends the run (the loop's own test)."""
+        tm = self.time
+        return self.timestep + 1 >= tm["max_Timesteps"] or self.t + delt >= tm["maxTime"] * (1 - 1e-14)
 
     def _recompute_requested(self) -> bool:
         """True on every rank when any rank's component asked to redo the step."""
