@@ -214,6 +214,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         K, H = np.zeros((n, n)), np.zeros((n, n))
         if node is None:
             return K, H
+        if n == 1:      # as Uintah (ExchangeCoefficients::problemSetup): one material has no pair to exchange
+            node.mark_used()
+            return K, H
         ec = node.child("exchange_coefficients")
         if ec is None:
             return K, H
@@ -300,6 +303,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         for d in dirs:
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
+        sched.add_task(Task("ICE::computeDelP_MassX", self.delp_mass_exchange, m0)   # only when saved
+                       .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
+                       .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
 
         if self.viscous:
             sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)
