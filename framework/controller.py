@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 from . import labels as L
+from .analysis import read_analysis
 from .archiver import Archiver, load_checkpoint, restore_dw
 from .component import lookup
 from .datawarehouse import DataWarehouse
@@ -175,6 +176,7 @@ class Controller:
         self.archive_spec = read_archiver(root)
         self.component = cls()
         self.component.problem_setup(root, self.level)
+        self.analysis = read_analysis(root, self.component, self.level)
         root.check_all_used()
 
     def _build(self):
@@ -205,6 +207,8 @@ class Controller:
         provided = {L.delT.name, L.simTime.name}
         sched.begin_graph("timestep")
         comp.schedule_time_advance(level, sched)
+        for module in self.analysis:
+            module.schedule(sched)
         comp.schedule_compute_stable_timestep(level, sched)
         step_tasks, step_reloc = list(sched.tasks), sched.relocation
         probe = sched.compile({L.delT.name} | self.outputs | self._old_requires(step_tasks),
@@ -238,13 +242,15 @@ class Controller:
         sched.tasks, sched.relocation = step_tasks, step_reloc
         self.carried = carried
         available = self.init_graph.computed | carried | provided
-        self.step_graph = sched.compile({L.delT.name} | carried | self.outputs, old_available=available,
-                                        protect={L.delT.name} | carried)
+        analysed = set().union(*(m.needed for m in self.analysis))   # every step, as Uintah's modules
+        self.step_graph = sched.compile({L.delT.name} | carried | self.outputs | analysed, old_available=available,
+                                        protect={L.delT.name} | carried | analysed)
         # steps that write no output skip the tasks that only feed output
         self.quiet_step_graph = self.step_graph
-        if self.outputs - carried - {L.delT.name}:
-            self.quiet_step_graph = sched.compile({L.delT.name} | carried, old_available=available,
-                                                  protect={L.delT.name} | carried, build_patch_graph=False)
+        if self.outputs - carried - {L.delT.name} - analysed:
+            self.quiet_step_graph = sched.compile({L.delT.name} | carried | analysed, old_available=available,
+                                                  protect={L.delT.name} | carried | analysed,
+                                                  build_patch_graph=False)
         sched.set_halo([self.init_graph, self.step_graph, self.quiet_step_graph])
 
     def grid_bytes_needed(self) -> int:
@@ -378,6 +384,10 @@ class Controller:
             self.t += delt
             self.timestep += 1
             self.prev_delt = delt
+            if self.analysis and self.comm.rank == 0:
+                uda = self.archiver.dir if self.archiver is not None else None
+                for module in self.analysis:
+                    module.after_step(dw, self.timestep, self.t, uda)
             if self.archiver is not None:
                 if writes:
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
