@@ -74,3 +74,14 @@ def test_unknown_module_and_material_are_refused(run_deck):
         run_deck(text=deck().replace('name="vorticity"', 'name="lineExtractX"'))
     with pytest.raises(InputError, match="no material named 'air'"):
         run_deck(text=deck().replace("<material>blob</material>", "<material>air</material>"))
+
+
+def test_one_material_is_found_whatever_the_name(run_deck):
+    """As Uintah's MaterialManager::parseAndLookupMaterial: one material is material 0."""
+    with open(f"{UINTAH}/advect.ups") as f:
+        text = f.read().replace("</Time>", "<max_Timesteps>1</max_Timesteps></Time>")
+    text = text.replace('<save label="press_equil_CC"/>', '<save label="press_equil_CC"/><save label="vorticity"/>')
+    da = run_deck(text=text.replace("</Uintah_specification>", '<DataAnalysis><Module name="vorticity">'
+                                    "<material>atmoshpere</material></Module></DataAnalysis></Uintah_specification>"))
+    vort, _ = da.read("vorticity", 0, -1)
+    assert np.abs(vort).max() < 1e-9              # uniform flow: no vorticity
