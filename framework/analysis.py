@@ -67,11 +67,11 @@ class Vorticity:
 
     def schedule(self, sched):
         sched.add_task(Task("vorticity::doAnalysis", self.compute, [self.matl])
-                       .requires(NEW, L.registered("vel_CC"), Ghost.AROUND_CELLS, 1).computes(self.label))
+                       .requires(NEW, L.find("vel_CC"), Ghost.AROUND_CELLS, 1).computes(self.label))
 
     def compute(self, patch, matls, old_dw, new_dw):
         for m in matls:
-            vel = new_dw.get(L.registered("vel_CC"), m, patch)
+            vel = new_dw.get(L.find("vel_CC"), m, patch)
             out = new_dw.allocate(self.label, m, patch)
             lo, hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
             curl_central(vel, out, lo, hi, np.asarray(self.level.dx, dtype=np.float64),
@@ -93,7 +93,7 @@ class MinMax:
         self.vars = []
         for a in node.child("Variables", required=True).children("analyze"):
             name = a.attr("label")
-            label = L.registered(name)
+            label = L.find(name)
             if label is None or label.vartype not in (VarType.CC,) + FACE_TYPES or label.shape not in ((), (3,)):
                 raise a.error(f'label="{name}" is not a cell- or face-centred double or Vector of this deck; '
                               "accepted: a CC or FC variable the component computes")

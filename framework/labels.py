@@ -32,11 +32,6 @@ class VarLabel:
 _registry: dict[str, VarLabel] = {}
 
 
-def registered(name) -> VarLabel | None:
-    """The label of that name, or None when no component has created it."""
-    return _registry.get(name)
-
-
 def create(name, vartype: VarType, shape=(), dtype=np.float64, reduction=None) -> VarLabel:
     """Create (or fetch the identical existing) label; a conflicting redefinition is an error."""
     if vartype is VarType.REDUCTION and reduction not in REDUCTION_OPS:
