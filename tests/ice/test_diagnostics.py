@@ -44,3 +44,17 @@ def test_one_material_ignores_exchange_coefficients(run_deck, tmp_path):
     b = run_deck(text=text.replace("</MaterialProperties>", exch))
     rb, _ = b.read("rho_CC", 0, -1)
     assert np.array_equal(ra, rb)
+
+
+def test_implicit_rhs_is_the_last_outer_residual(run_deck):
+    """<save label="rhs"> (Uintah's impHotBlob.ups saves it): the residual of the pressure equation
+    after the last outer iteration, so within the outer tolerance when the loop converged and
+    above it after one outer iteration whose inner solve was loose (1e-4)."""
+    from components.ice.scene_lowmach import vortex_deck
+
+    def rhs(outer):
+        text = vortex_deck(8, implicit=True, max_timesteps=2, outer=outer, outer_tol=1e-9, tolerance=1e-4)
+        da = run_deck(text=text.replace('<save label="vel_CC"/>', '<save label="vel_CC"/><save label="rhs"/>'
+                                            '<outputLastTimestep>true</outputLastTimestep>'))
+        return np.abs(da.read("rhs", 0, -1)[0]).max()
+    assert rhs(20) <= 1e-9 < rhs(1)
