@@ -152,13 +152,17 @@ MODULES = {"vorticity": Vorticity, "minMax": MinMax}
 
 
 def read_analysis(root, component, level) -> list:
-    """The deck's <DataAnalysis> modules, in order; an unknown name is refused with the accepted ones."""
+    """The deck's <DataAnalysis> modules, in order, but those the component reads itself (its
+    `analysis_modules`); an unknown name is refused with the accepted ones."""
     da = root.child("DataAnalysis")
     if da is None:
         return []
     out = []
+    own = set(getattr(component, "analysis_modules", ()))    # read by the component itself
     for node in da.children("Module"):
         name = node.attr("name")
+        if name in own:
+            continue
         cls = MODULES.get(name)
         if cls is None:
             raise node.error(f'<Module name="{name}"> is not available; accepted: {", ".join(MODULES)}')

@@ -85,3 +85,19 @@ def test_one_material_is_found_whatever_the_name(run_deck):
                                     "<material>atmoshpere</material></Module></DataAnalysis></Uintah_specification>"))
     vort, _ = da.read("vorticity", 0, -1)
     assert np.abs(vort).max() < 1e-9              # uniform flow: no vorticity
+
+
+def test_modules_a_component_reads_itself_are_left_to_it():
+    """MPM reads <Module name="particleExtract"> itself (components/mpm/analysis.py); the framework
+    leaves it, and still refuses a module nobody has."""
+    from framework.analysis import read_analysis
+    from framework.problemspec import InputError, ProblemSpec
+
+    class Component:
+        analysis_modules = ("particleExtract",)
+
+    root = ProblemSpec.from_string('<a><DataAnalysis><Module name="particleExtract"/></DataAnalysis></a>', "d.ups")
+    assert read_analysis(root, Component(), None) == []
+    root = ProblemSpec.from_string('<a><DataAnalysis><Module name="planeAverage"/></DataAnalysis></a>', "d.ups")
+    with pytest.raises(InputError, match="d.ups:1: .*planeAverage"):
+        read_analysis(root, Component(), None)
