@@ -336,6 +336,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         if self.conduction:
             t.requires(NEW, I.heatCond_src_CC)
         sched.add_task(t)
+        sched.add_task(Task("ICE::computeMomentumSource", self.momentum_source, self.matls)   # only when saved
+                       .requires(NEW, I.mom_L_CC).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC)
+                       .computes(I.mom_source_CC))
 
         if self.exchange:
             t = Task("ICE::addExchangeToMomentumAndEnergy", self.exchange_cc, self.matls) \

@@ -260,6 +260,15 @@ class IceTasks:
         K.pressure_from_mass_exchange(new_dw.get(I.press_CC, 0, patch), new_dw.get(I.press_equil_CC, 0, patch),
                                       new_dw.get(I.delP_Dilatate, 0, patch), out, b.lo, b.hi)
 
+    def momentum_source(self, patch, matls, old_dw, new_dw):
+        """Uintah's mom_source_CC diagnostic, computed only when a deck saves it: the Lagrangian
+        momentum less the old momentum (pressure, viscous and gravity sources times delT)."""
+        b = self.boxes(patch)
+        for m in matls:
+            out = new_dw.allocate(I.mom_source_CC, m, patch)
+            K.momentum_source(new_dw.get(I.mom_L_CC, m, patch), old_dw.get(I.rho_CC, m, patch),
+                              old_dw.get(I.vel_CC, m, patch), b.vol, out, b.lo, b.hi)
+
     # -- step 6: face pressure (eq. 31) -------------------------------------------------------------
     def press_fc(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
