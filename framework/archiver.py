@@ -28,6 +28,7 @@ import numpy as np
 
 from . import labels as label_registry
 from .grid import box_intersect
+from .xdmf import CONNECTIVITY
 from .variables import VarType
 
 SCALAR, VECTOR, TENSOR = "Scalar", "Vector", "Tensor"
@@ -81,6 +82,8 @@ def _write_dw(h5, dw, level, patches, names, region):
         for (m, pid), n in dw.nparticles.items():
             if pid == p.id:
                 g.require_group(f"particles/{m}").attrs["n"] = n
+                if region == "interior" and n:      # XDMF Polyvertex connectivity (framework/xdmf.py)
+                    g.create_dataset(f"particles/{m}/{CONNECTIVITY}", data=np.arange(n, dtype=np.int32))
                 pm.setdefault("np", {})[str(m)] = n
         meta[p.id] = pm
     return meta
@@ -502,8 +505,84 @@ class DataArchive:
                 h.close()
         return {k: np.concatenate(v) for k, v in out.items()}
 
+    def label_info(self, label):
+        """What a saved label is: {'centring': CC/NC/SFCX/SFCY/SFCZ/Particle/Reduction,
+        'materials': [..], 'shape': per-entry shape, 'units': SI units or None}."""
+        if label not in self.index["labels"]:
+            raise KeyError(f"{label} was not saved; saved: {', '.join(self.labels)}")
+        info = self.index["labels"][label]
+        mats = set()
+        for e in self.index["timesteps"]:
+            for pm in e["patches"].values():
+                mats.update(int(m) for m in pm["grid"].get(label, {}))
+                mats.update(int(m) for m, names in pm["particles"].items() if label in names)
+        return {"centring": VarType(info["type"]).value, "materials": sorted(mats),
+                "shape": tuple(info["shape"]), "units": units_of(label)}
+
+    def __repr__(self):
+        t = self.times
+        span = f"t = {t[0]:.6g} .. {t[-1]:.6g} s" if len(t) else "no output yet"
+        lines = [f"DataArchive('{self.path}'): {len(t)} timesteps {self.timesteps[:1] + self.timesteps[-1:]}, {span}",
+                 f"  grid {self.ncells[0]}x{self.ncells[1]}x{self.ncells[2]} cells, "
+                 f"[{', '.join(f'{v:g}' for v in self.anchor)}] .. [{', '.join(f'{v:g}' for v in self.upper)}] m"]
+        for name in self.labels:
+            i = self.label_info(name)
+            lines.append(f"  {name:24s} {i['centring']:9s} materials {i['materials']}"
+                         + (f" [{i['units']}]" if i["units"] else ""))
+        return "\n".join(lines)
+
+    def to_xarray(self, label, material=0, timestep=-1):
+        """A grid variable as an xarray.DataArray with x, y, z coordinates (needs xarray)."""
+        xr = _optional("xarray")
+        data, (x, y, z) = self.read(label, material, timestep)
+        dims = ["x", "y", "z"] + [f"c{k}" for k in range(data.ndim - 3)]
+        return xr.DataArray(data, coords={"x": x, "y": y, "z": z}, dims=dims, name=label,
+                            attrs={"units": units_of(label) or "", "material": material,
+                                   "time": float(self.times[timestep])})
+
+    def particles_table(self, material=0, timestep=-1):
+        """Particles as {column: 1D array}: vectors and tensors split into `label[k]` columns,
+        so pandas.DataFrame(...) takes it directly."""
+        cols = {}
+        for name, arr in self.particles(material, timestep).items():
+            flat = arr.reshape(len(arr), -1)
+            if arr.ndim == 1:
+                cols[name] = arr
+            else:
+                cols.update({f"{name}[{k}]": flat[:, k] for k in range(flat.shape[1])})
+        return cols
+
+    def to_dataframe(self, material=0, timestep=-1):
+        """Particles of a material as a pandas.DataFrame (needs pandas)."""
+        return _optional("pandas").DataFrame(self.particles_table(material, timestep))
+
     def reduction(self, label):
         """(times, values) from `<label>.dat`."""
         fn = os.path.join(self.path, f"{label}.dat")
         data = np.loadtxt(fn, ndmin=2)
         return data[:, 0], data[:, 1:].squeeze()
+
+
+# SI units by the physical quantity a label's stem names (press_CC, p.stress, vel_CC ...)
+_UNITS = {"press": "Pa", "temp": "K", "rho": "kg/m^3", "vel": "m/s", "velocity": "m/s", "mass": "kg",
+          "volume": "m^3", "vol": "m^3", "sp_vol": "m^3/kg", "x": "m", "stress": "Pa", "int_eng": "J",
+          "KineticEnergy": "J", "TotalMass": "kg", "delP_Dilatate": "Pa", "speedSound": "m/s",
+          "displacement": "m", "externalforce": "N", "size": "1", "vol_frac": "1", "heatRate": "W/m^3",
+          "thermalCond": "W/(m K)", "viscosity": "Pa s", "f": "1", "deformationMeasure": "1"}
+
+
+def units_of(label):
+    """SI units of a label, from its stem (None where the stem is not a known quantity)."""
+    stem = label[2:] if label.startswith(("p.", "g.")) else label
+    for suffix in ("_CC", "_NC", "_FC", "_FCX", "_FCY", "_FCZ", "+"):
+        stem = stem.removesuffix(suffix)
+    return _UNITS.get(stem)
+
+
+def _optional(module):
+    """Import an optional package or say in one line how to get it."""
+    import importlib
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        raise ImportError(f"{module} is not installed; pip install {module}") from None

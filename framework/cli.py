@@ -6,6 +6,12 @@
     pysus -restart run.uda [-t -1]    continue from a checkpoint (any number of ranks)
     pysus --graph deck.ups [--dot f]  print the tasks the deck will run, in order
     pysus -validate deck.ups          check the deck (set-up, grid, task graphs) and exit
+    pysus info|extract|plot RUN.uda   inspect a run's output (framework/uda_tools.py)
+    pysus --warm deck.ups             compile the deck's numba kernels (set-up + one step, no output)
+
+numba caches compiled kernels next to the source unless NUMBA_CACHE_DIR is set; --cache-dir DIR
+sets it for this run (a per-user directory such as ~/.cache/pysus/numba lets one `--warm` in a
+batch job serve every rank that follows).
 """
 from __future__ import annotations
 
@@ -18,6 +24,7 @@ import traceback
 from pathlib import Path
 
 from .archiver import CHECKPOINT_NAME
+from .errors import RunStopped
 
 MPI_ENV = ("PMI_RANK", "PMI_SIZE", "PMIX_RANK", "OMPI_COMM_WORLD_SIZE", "MPI_LOCALNRANKS", "HYDI_CONTROL_FD")
 
@@ -48,7 +55,14 @@ def parser():
     p.add_argument("--quiet", "-q", action="store_true", help="no progress display")
     p.add_argument("--filebase", help="override <DataArchiver><filebase>")
     p.add_argument("--max-timesteps", type=int, help="override <Time><max_Timesteps>")
+    p.add_argument("--maxTime", "--max-time", dest="max_time", type=float,
+                   help="override <Time><maxTime> (e.g. to continue a finished run with -restart)")
     p.add_argument("--timing", action="store_true", help="print time per task at the end")
+    p.add_argument("--warm", action="store_true",
+                   help="compile the kernels the deck uses (set-up and one step, output thrown away), then exit")
+    p.add_argument("--cache-dir", metavar="DIR",
+                   help="numba's cache directory for this run (sets NUMBA_CACHE_DIR; default: that variable, "
+                        "else next to the source)")
     return p
 
 
@@ -74,6 +88,10 @@ def relaunch(args, argv):
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
+    from .uda_tools import COMMANDS
+    if argv and argv[0] in COMMANDS:        # pysus info|extract|plot RUN.uda (framework/uda_tools.py)
+        from .uda_tools import main as tool_main
+        return tool_main(argv)
     args = parser().parse_args(argv)
     if args.np > 1 and not under_mpi():
         relaunch(args, argv)
@@ -81,13 +99,18 @@ def main(argv=None):
         parser().print_usage(sys.stderr)
         print("pysus: error: give a deck (or -restart UDA)", file=sys.stderr)
         return 2
+    if args.cache_dir:
+        os.environ["NUMBA_CACHE_DIR"] = os.path.abspath(os.path.expanduser(args.cache_dir))  # before numba loads
+    if args.warm:
+        return warm(args)
     comm = make_comm()
     from .problemspec import InputError
     from .scheduler.compile import GraphError
     try:
         from .controller import Controller
         ctl = Controller(args.deck, comm, restart=args.restart, restart_index=args.t, quiet=args.quiet,
-                         filebase=args.filebase, max_timesteps=args.max_timesteps)
+                         filebase=args.filebase, max_timesteps=args.max_timesteps,
+                         max_time=args.max_time)
         if args.graph:
             if comm.rank == 0:
                 from .graphview import describe, write_dot
@@ -107,8 +130,9 @@ def main(argv=None):
                   + (f" on {comm.size} ranks" if comm.size > 1 else "")
                   + (f"; output in {ctl.archiver.dir}" if ctl.archiver else ""))
         if args.timing and comm.rank == 0:
-            for name, t, calls, pct in ctl.sched.timing_table():
-                print(f"  {name:40s} {t:9.3f} s {calls:7d} calls {pct:5.1f}%")
+            for name, t, calls in ctl.timing_table():
+                print(f"  {name:40s} {t:9.3f} s {calls:7d} calls {100.0 * t / (ctl.wall or 1.0):5.1f}%")
+            print(f"  {'total (wall)':40s} {ctl.wall:9.3f} s")
         return 0
     except (InputError, FileNotFoundError) as e:
         # every rank reads the same deck and finds the same error: report once, exit together
@@ -121,11 +145,25 @@ def main(argv=None):
         return 3
     except Exception as e:
         prefix = f"[rank {comm.rank}] " if comm.size > 1 else ""
-        if not _out_of_space(e):        # a full disk is not a bug: its one line says it all
+        if not (_out_of_space(e) or isinstance(e, RunStopped)):     # not bugs: their one line says it all
             msg = traceback.format_exc()
             sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
         sys.stderr.write(prefix + failure_summary(e, ctl if "ctl" in locals() else None) + "\n")
         return _exit(comm, 1)
+
+
+def warm(args) -> int:
+    """Run set-up and one timestep of the deck into a throwaway directory, so that numba compiles
+    (and caches) every kernel the deck uses; a batch job runs this once before starting its ranks."""
+    import tempfile
+    # a restart compiles what its deck does: warm with the copy of the deck the uda keeps
+    deck = args.deck or os.path.join(args.restart, "input.ups")
+    with tempfile.TemporaryDirectory(prefix="pysus-warm-") as tmp:
+        rc = main(["-q", "--max-timesteps", "1", "--filebase", os.path.join(tmp, "warm.uda"), deck])
+    if rc == 0 and not args.quiet:
+        print(f"pysus: kernels for {args.deck or args.restart} compiled"
+              f" (cache: {os.environ.get('NUMBA_CACHE_DIR') or 'next to the source'})")
+    return rc
 
 
 def _out_of_space(exc) -> bool:

@@ -20,12 +20,15 @@ from .archiver import Archiver, load_checkpoint, restore_dw
 from .component import lookup
 from .datawarehouse import DataWarehouse
 from .gridspec import level_from_spec
+from .errors import RunStopped
+from .health import check_health
 from .loadbalancer import LoadBalancer
 from .memory import keep_freed_memory, physical_memory
 from .problemspec import InputError, Param, ProblemSpec, deck_bytes
 from .progress import Progress
 from .scheduler.comm import Comm
 from .scheduler.compile import GraphError
+from .scheduler.relocate import relocation_task
 from .scheduler.scheduler import Scheduler
 
 TIME = {
@@ -44,6 +47,7 @@ TIME = {
 }
 
 RECOMPUTE_FACTOR = 0.5    # delT scale for a recomputed timestep
+HEALTH_SHARE = 0.02       # the state check may cost this share of a step (else it skips steps)
 MAX_RECOMPUTES = 10
 
 ARCHIVER = {
@@ -112,7 +116,7 @@ class Controller:
     """Sets up a run from a deck (or a checkpoint) and runs the time loop."""
 
     def __init__(self, deck=None, comm: Comm | None = None, restart=None, restart_index=-1,
-                 quiet=False, filebase=None, max_timesteps=None, deck_text=None):
+                 quiet=False, filebase=None, max_timesteps=None, deck_text=None, max_time=None):
         keep_freed_memory()
         self.comm = comm or Comm(None)
         self.quiet = quiet
@@ -144,7 +148,30 @@ class Controller:
             check_output_dir(self.archive_spec["filebase"], self.archive_spec["filebase_node"], self.root.filename)
         if max_timesteps is not None:
             self.time["max_Timesteps"] = max_timesteps
+        if max_time is not None:
+            if not (math.isfinite(max_time) and max_time >= self.time["initTime"]):
+                raise InputError(f"--maxTime {max_time!r}; accepted: a finite number >= initTime "
+                                 f"{self.time['initTime']:g}")
+            self.time["maxTime"] = max_time
+        self._check_restart_has_work()
         self._build()
+
+    def _check_restart_has_work(self):
+        """A restart from a checkpoint at or past maxTime / max_Timesteps would write an empty uda:
+        say so, and how to go on (--maxTime, --max-timesteps)."""
+        if self.restart_info is None:
+            return
+        st = self.restart_info[1]["state"]
+        tm = self.time
+        if st["time"] >= tm["maxTime"] * (1 - 1e-14):
+            reached = f"maxTime {tm['maxTime']:g} s"
+        elif st["timestep"] >= tm["max_Timesteps"]:
+            reached = f"max_Timesteps {tm['max_Timesteps']}"
+        else:
+            return
+        raise InputError(f"{self.restart}: the checkpoint (timestep {st['timestep']}, t = {st['time']:.6g} s) "
+                         f"already reached {reached}; nothing to run. Accepted: raise it with "
+                         "pysus -restart UDA --maxTime T (or --max-timesteps N)")
 
     # -- set-up ----------------------------------------------------------------------
     def _read_deck(self):
@@ -223,7 +250,7 @@ class Controller:
         for t in init_tasks + step_tasks:
             all_computed |= {d.label.name for d in t.computes_}
         if step_reloc is not None:
-            all_computed |= {l.name for l in [step_reloc.pos] + step_reloc.labels}
+            all_computed |= {d.label.name for d in relocation_task(step_reloc).computes_}
         for name in sorted(self.outputs):
             if name not in all_computed:
                 node = self.archive_spec["save_nodes"][name]
@@ -338,9 +365,16 @@ class Controller:
         """Initialize and step to maxTime or max_Timesteps; returns the final warehouse."""
         wall0 = time.perf_counter()
         dw = self.initialize()
+        self.output_wall = 0.0
+        self.init_wall = time.perf_counter() - wall0
+        # set-up beyond its tasks (those have their rows in the scheduler's table)
+        self.init_other_wall = self.init_wall - sum(t for _, t, _, _ in self.sched.timing_table())
         tm = self.time
-        progress = Progress(enabled=not self.quiet and self.comm.rank == 0)
+        progress = Progress(enabled=not self.quiet and self.comm.rank == 0, max_time=tm["maxTime"],
+                            max_timesteps=tm["max_Timesteps"], start_step=self.timestep, start_time=self.t,
+                            start_wall=self.init_wall)
         first = self.restart_info is None
+        self._next_health_check, self._health_every, self._last_healthy = self.timestep + 1, 1, self.timestep
         step_wall = []
         while self.t < tm["maxTime"] * (1 - 1e-14) and self.timestep < tm["max_Timesteps"]:
             raw = self.sched.reduce_delT(dw)
@@ -384,17 +418,20 @@ class Controller:
             self.t += delt
             self.timestep += 1
             self.prev_delt = delt
+            self._check_state(dw, delt, step_wall[-1])
             if self.analysis and self.comm.rank == 0:
                 uda = self.archiver.dir if self.archiver is not None else None
                 for module in self.analysis:
                     module.after_step(dw, self.timestep, self.t, uda)
             if self.archiver is not None:
+                o0 = time.perf_counter()
                 if writes:
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
                 if self.archiver.checkpoint_due(self.timestep, self.t):
                     self.archiver.checkpoint(dw, self.carried | {L.delT.name}, self.timestep, self.t,
                                              self._state(), self.sched.local_patches)
-            progress.update(self.timestep, self.t, delt, time.perf_counter() - wall0, step_wall[-1])
+                self.output_wall += time.perf_counter() - o0
+            progress.update(self.timestep, self.t, delt, time.perf_counter() - wall0)
         progress.close()
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
@@ -404,6 +441,46 @@ class Controller:
         """True when the step about to be taken with delt ends the run (the loop's own test)."""
         tm = self.time
         return self.timestep + 1 >= tm["max_Timesteps"] or self.t + delt >= tm["maxTime"] * (1 - 1e-14)
+
+    def _check_state(self, dw, delt, step_wall):
+        """Stop at the first non-finite or negative-mass/density/temperature value of the carried
+        state (PYSUS_CHECK_STATE=0 turns it off); the bad step is written as an output timestep
+        so a viewer shows where it went wrong, and no checkpoint is written from it.
+
+        The check runs every step while it costs under HEALTH_SHARE of a step; on very cheap
+        steps it runs every few steps (then the report gives the last healthy step), but always
+        before an output or a checkpoint is written."""
+        if os.environ.get("PYSUS_CHECK_STATE", "1") == "0":
+            return
+        a = self.archiver
+        due = self.timestep >= self._next_health_check or (
+            a is not None and (a.output_due(self.timestep, self.t) or a.checkpoint_due(self.timestep, self.t)))
+        if not due:
+            return
+        t0 = time.perf_counter()
+        try:
+            check_health(dw, self.carried, self.level, self.sched.local_patches, L, self.comm, self.timestep)
+        except RunStopped as e:
+            since = "" if self._last_healthy == self.timestep - 1 else \
+                f" (healthy at timestep {self._last_healthy}, checked every {self._health_every} steps)"
+            if a is None:
+                raise RunStopped(f"{e}{since}") from None
+            a.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
+            raise RunStopped(f"{e}{since}; that state is output timestep {a.dir}/t{self.timestep:05d}") from None
+        cost = time.perf_counter() - t0
+        every = max(1, math.ceil(cost / (HEALTH_SHARE * max(step_wall, 1e-9))))
+        self._health_every = int(self.comm.allreduce(min(every, 50), "max"))
+        self._last_healthy = self.timestep
+        self._next_health_check = self.timestep + self._health_every
+
+    def timing_table(self):
+        """(name, seconds, calls) rows that add up to the run's wall time: set-up, each task, ghost
+        exchange, relocation, output, and the rest (delT reduction, load balancing, scheduling)."""
+        rows = [("set-up outside tasks (grid, first output)", self.init_other_wall, 1)]
+        rows += [(name, t, calls) for name, t, calls, _ in self.sched.timing_table()]
+        rows.append(("output and checkpoints", self.output_wall, 0))
+        rows.append(("other (delT, load balance, scheduling)", self.wall - sum(r[1] for r in rows), 0))
+        return rows
 
     def _recompute_requested(self) -> bool:
         """True on every rank when any rank's component asked to redo the step."""

@@ -32,6 +32,10 @@ class DataWarehouse:
         self.nparticles: dict = {}
         self.pre_counts: dict = {}
         self.reductions: dict = {}
+        # while a task runs on a patch, its sum reductions are kept per patch, so that the
+        # scheduler can add them in patch order: the same total on any number of ranks
+        self.reduction_patch = None
+        self.patch_sums: dict = {}
         self.perpatch: dict = {}
         self.ghost_particles: dict = {}
         self.ghost_order: dict = {}     # (matl, patch, g) -> (ID order, owned mask) of owned+ghost
@@ -134,6 +138,11 @@ class DataWarehouse:
         """Combine a patch's contribution into the rank's partial reduction."""
         key = (label.name, matl)
         v = float(value) if label.shape == () else np.asarray(value, dtype=np.float64)
+        if label.reduction == "sum" and self.reduction_patch is not None:
+            parts = self.patch_sums.setdefault(key, {})
+            pid = self.reduction_patch
+            parts[pid] = parts[pid] + v if pid in parts else v
+            return
         if key in self.reductions:
             self.reductions[key] = _COMBINE[label.reduction](self.reductions[key], v) if label.shape == () \
                 else self._combine_array(label.reduction, self.reductions[key], v)

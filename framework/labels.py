@@ -54,3 +54,6 @@ def find(name) -> VarLabel | None:
 # Labels the framework itself provides to every component.
 delT = create("delT", VarType.REDUCTION, reduction="min")
 simTime = create("simulationTime", VarType.REDUCTION, reduction="max")
+# mass of the particles that left the domain through a face without a wall in this step
+# (relocation deletes them, as Uintah does); <save label="LostParticleMass"/> writes it
+LostParticleMass = create("LostParticleMass", VarType.REDUCTION, reduction="sum")

@@ -1,38 +1,78 @@
-"""A one-line progress display for long runs: step, time, delT, wall time, time per step.
+"""A one-line progress display for long runs: step, simulated time of maxTime, percentage,
+wall time per step and the estimated time to the end.
 
-It redraws at most a few times a second and only on a terminal, so batch logs stay
-clean; `--quiet` turns it off everywhere.
+The time per step is measured wall time between redraws (tasks, output, exchanges and all), not a
+sum of task times. It redraws at most a few times a second and only on a terminal, so batch logs
+stay clean; `--quiet` turns it off everywhere.
 """
 from __future__ import annotations
 
+import math
 import sys
 import time
 
 
+def clock(seconds: float) -> str:
+    """Seconds as h:mm:ss (or m:ss under an hour)."""
+    s = int(round(seconds))
+    h, s = divmod(s, 3600)
+    m, s = divmod(s, 60)
+    return f"{h}:{m:02d}:{s:02d}" if h else f"{m}:{s:02d}"
+
+
 class Progress:
-    def __init__(self, enabled=True, stream=None, interval=0.25):
+    def __init__(self, enabled=True, stream=None, interval=0.25, max_time=math.inf,
+                 max_timesteps=2**62, start_step=0, start_time=0.0, start_wall=0.0):
         self.stream = stream or sys.stdout
         self.enabled = enabled and hasattr(self.stream, "isatty") and self.stream.isatty()
         self.interval = interval
+        self.max_time = max_time
+        self.max_timesteps = max_timesteps
+        self.start_step, self.start_time = start_step, start_time
         self._last = 0.0
+        self._last_step, self._last_wall = start_step, start_wall
+        self.start_wall = start_wall
+        self._step_wall = 0.0
         self._shown = False
+        self._latest = None
+
+    def fraction(self, step, t) -> float:
+        """How far the run is, by simulated time or by step count, whichever ends it first."""
+        f = 0.0
+        if math.isfinite(self.max_time) and self.max_time > self.start_time:
+            f = (t - self.start_time) / (self.max_time - self.start_time)
+        if self.max_timesteps < 2**62 and self.max_timesteps > self.start_step:
+            f = max(f, (step - self.start_step) / (self.max_timesteps - self.start_step))
+        return min(max(f, 0.0), 1.0)
 
     def line(self, step, t, delt, wall, step_wall):
-        return (f"step {step:7d}  t = {t:.6e}  delT = {delt:.3e}  wall {wall:8.2f} s  "
-                f"{1e3 * step_wall:8.2f} ms/step")
+        f = self.fraction(step, t)
+        eta = clock((wall - self.start_wall) * (1.0 - f) / f) if f > 0 else "?"
+        end = f" of {self.max_time:.4g}" if math.isfinite(self.max_time) else ""
+        return (f"step {step:7d}  t = {t:.6e}{end} s ({100.0 * f:5.1f}%)  delT = {delt:.3e}  "
+                f"{1e3 * step_wall:8.2f} ms/step  wall {clock(wall)}  ETA {eta}")
 
-    def update(self, step, t, delt, wall, step_wall):
+    def update(self, step, t, delt, wall):
+        """Redraw if due; wall is the run's wall time so far."""
         if not self.enabled:
             return
+        self._latest = (step, t, delt, wall)
         now = time.monotonic()
         if now - self._last < self.interval:
             return
         self._last = now
-        self.stream.write("\r" + self.line(step, t, delt, wall, step_wall))
+        if step > self._last_step:
+            self._step_wall = (wall - self._last_wall) / (step - self._last_step)
+            self._last_step, self._last_wall = step, wall
+        self.stream.write("\r" + self.line(step, t, delt, wall, self._step_wall) + "\033[K")
         self.stream.flush()
         self._shown = True
 
     def close(self):
+        """Draw the final state (the last redraw may be older) and end the line."""
+        if self.enabled and self._latest is not None:
+            self._last = -math.inf
+            self.update(*self._latest)
         if self._shown:
             self.stream.write("\n")
             self.stream.flush()

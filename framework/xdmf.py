@@ -1,9 +1,14 @@
 """XDMF (version 2) descriptions of a `.uda` so ParaView and VisIt open it directly.
 
 Each output timestep is a spatial collection of one uniform grid per patch (a
-3DCoRectMesh for grid variables, a Polyvertex set per material for particles), and
-`output.xdmf` is the temporal collection of all of them. HDF5 datasets are stored
-(z, y, x) so the XDMF dimensions are written slowest first.
+3DCoRectMesh for grid variables; when the grid is one cell thick in z, a slab FLAT_SLAB
+of a cell thick from the bottom face, so the particles at mid-cell show above it: XDMF's
+2DCoRectMesh lies in the y-z plane and one plane of points is refused by the legacy reader),
+and a Polyvertex set per material for particles, with explicit connectivity so the
+Xdmf3 readers make cells of them too), and `output.xdmf` is the temporal collection of
+all of them. HDF5 datasets are stored (z, y, x) so the XDMF dimensions are written
+slowest first. Naming rule, grid and particles alike: arrays are `<label>_<material>`
+(temp_CC_0, p.mass_1), blocks are `<cells|nodes|particles_m<material>>_patch<id>`.
 """
 from __future__ import annotations
 
@@ -13,6 +18,8 @@ import numpy as np
 
 from .variables import VarType
 
+CONNECTIVITY = "vertex_ids"   # per particle set: 0..n-1, the Polyvertex connectivity
+FLAT_SLAB = 0.4               # thickness of a one-cell-thick grid as drawn, in cells
 _ATYPE = {1: "Scalar", 3: "Vector", 9: "Tensor"}
 
 
@@ -58,30 +65,37 @@ def timestep_grids(entry, index, level, prefix=""):
                 origin = [level.anchor[d] + lo[d] * level.dx[d] for d in range(3)]
                 npts = dims
                 center = "Node"
-            out.append(f'<Grid Name="patch{pid}_{kind}" GridType="Uniform">')
+            flat = dims[2] == 1     # one cell (or node) thick in z: written as 2D
+            out.append(f'<Grid Name="{kind}_patch{pid}" GridType="Uniform">')
+            spacing = list(level.dx)
+            if flat:    # a thin slab under the particles' mid-plane, so they are drawn on top of it
+                spacing[2] = FLAT_SLAB * level.dx[2]
             out.append(f'<Topology TopologyType="3DCoRectMesh" Dimensions="{npts[2]} {npts[1]} {npts[0]}"/>')
             out.append('<Geometry GeometryType="ORIGIN_DXDYDZ">'
                        f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
                        f'{float(origin[2])!r} {float(origin[1])!r} {float(origin[0])!r}</DataItem>'
                        f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
-                       f'{float(level.dx[2])!r} {float(level.dx[1])!r} {float(level.dx[0])!r}</DataItem></Geometry>')
+                       f'{float(spacing[2])!r} {float(spacing[1])!r} {float(spacing[0])!r}</DataItem></Geometry>')
+            adims = [dims[2], dims[1], dims[0]]
             for name, m, shape in items:
                 out.append(_attribute(f"{name}_{m}", center, f"{fn}:/patch_{pid}/{name}/{m}",
-                                      [dims[2], dims[1], dims[0]], _ncomp(shape)))
+                                      adims, _ncomp(shape)))
             out.append("</Grid>")
         for m, names in sorted(pm["particles"].items()):
             n = pm.get("np", {}).get(m, 0)
             if n == 0 or "p.x" not in names:
                 continue
-            out.append(f'<Grid Name="patch{pid}_particles_m{m}" GridType="Uniform">')
-            out.append(f'<Topology TopologyType="Polyvertex" NumberOfElements="{n}" NodesPerElement="1"/>')
+            out.append(f'<Grid Name="particles_m{m}_patch{pid}" GridType="Uniform">')
+            out.append(f'<Topology TopologyType="Polyvertex" NumberOfElements="{n}" NodesPerElement="1">'
+                       f'<DataItem Dimensions="{n}" NumberType="Int" Precision="4" Format="HDF">'
+                       f'{fn}:/patch_{pid}/particles/{m}/{CONNECTIVITY}</DataItem></Topology>')
             out.append(f'<Geometry GeometryType="XYZ">{_dataitem(f"{fn}:/patch_{pid}/particles/{m}/p.x", [n, 3])}</Geometry>')
             for name in names:
                 if name == "p.x":
                     continue
                 lab = labels.get(name, {"shape": []})
                 nc = _ncomp(lab["shape"])
-                out.append(_attribute(name, "Node", f"{fn}:/patch_{pid}/particles/{m}/{name}", [n], nc))
+                out.append(_attribute(f"{name}_{m}", "Node", f"{fn}:/patch_{pid}/particles/{m}/{name}", [n], nc))
             out.append("</Grid>")
     out.append("</Grid>")
     return "\n".join(out)

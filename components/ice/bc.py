@@ -7,8 +7,10 @@ Extra cells hold the boundary values of CC variables, as in Uintah:
   symmetry             scalars copied; the normal velocity component reflected; the
                        normal face velocity is zero
   computeFromDensity   (SpecificVol only) v = theta / rho in the extra cell
-Face velocities on a boundary face: Dirichlet sets the normal component, symmetry
-zero, Neumann keeps the value computed from the extra cells.
+  FreeSlipWall         (Velocity only) the first interior cell's velocity with its normal
+                       component zero; the normal face velocity is zero
+Face velocities on a boundary face: Dirichlet sets the normal component, symmetry and
+FreeSlipWall zero, Neumann keeps the value computed from the extra cells.
 A `<BCType id="all">` applies to every material; Pressure is one field (material 0).
 """
 from __future__ import annotations
@@ -18,8 +20,9 @@ from numba import njit
 
 from framework.gridspec import boundary_faces
 
-NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY = 0, 1, 2, 3
-KINDS = {"Neumann": NEUMANN, "Dirichlet": DIRICHLET, "symmetry": SYMMETRY, "computeFromDensity": FROM_DENSITY}
+NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY, FREE_SLIP = 0, 1, 2, 3, 4
+KINDS = {"Neumann": NEUMANN, "Dirichlet": DIRICHLET, "symmetry": SYMMETRY, "computeFromDensity": FROM_DENSITY,
+         "FreeSlipWall": FREE_SLIP}
 VARS = ("Pressure", "Velocity", "Temperature", "Density", "SpecificVol")
 FACE_NAMES = ("x-", "x+", "y-", "y+", "z-", "z+")
 
@@ -92,6 +95,8 @@ def _read_bctype(bt, table, nmat):
         raise bt.error('var="computeFromDensity" applies only to label="SpecificVol"')
     if label == "SpecificVol" and kind not in ("computeFromDensity",):
         raise bt.error('SpecificVol accepts only var="computeFromDensity"')
+    if kind == "FreeSlipWall" and label != "Velocity":
+        raise bt.error('var="FreeSlipWall" applies only to label="Velocity"')
     vtype = "vector" if label == "Velocity" else "float"
     # a fixed pressure, temperature or density on a face is a state of matter: positive
     positive = 0.0 if kind == "Dirichlet" and label in ("Pressure", "Temperature", "Density") else None
@@ -150,6 +155,8 @@ def bc_vector(q, d, side, kind, value, dx, lo, hi, olo, ohi):
                 elif kind == 2:
                     v = q[i_n[0], i_n[1], i_n[2], c]
                     q[ie[0], ie[1], ie[2], c] = -v if c == d else v
+                elif kind == 4:
+                    q[ie[0], ie[1], ie[2], c] = 0.0 if c == d else q[i_n[0], i_n[1], i_n[2], c]
                 else:
                     q[ie[0], ie[1], ie[2], c] = q[i_n[0], i_n[1], i_n[2], c] + value[c] * dx
 
@@ -213,7 +220,7 @@ class BoundaryConditions:
             bc_sp_vol_from_density(spv, vf, rho, d, s, b.lo, b.hi, b.olo, b.ohi)
 
     def face_velocity(self, patch, uf, d, m, flo, fhi):
-        """Boundary faces of direction d: Dirichlet -> value[d], symmetry -> 0."""
+        """Boundary faces of direction d: Dirichlet -> value[d], symmetry and FreeSlipWall -> 0."""
         for s, at in ((0, patch.at_low[d]), (1, patch.at_high[d])):
             if not at:
                 continue
@@ -221,5 +228,5 @@ class BoundaryConditions:
             idx = flo[d] if s == 0 else fhi[d] - 1
             if kind == DIRICHLET:
                 bc_face_velocity(uf, d, idx, float(value[d]))
-            elif kind == SYMMETRY:
+            elif kind in (SYMMETRY, FREE_SLIP):
                 bc_face_velocity(uf, d, idx, 0.0)

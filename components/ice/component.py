@@ -27,7 +27,7 @@ from framework.variables import Ghost
 from . import labels as I
 from .advection import EXTREMA, VAN_LEER
 from .bc import BoundaryConditions, read_bcs
-from .eos import IDEAL_GAS, MAX_PARAMS, eos_press_eos, make_eos
+from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .tasks import IceTasks
 
@@ -36,7 +36,8 @@ G = Ghost.AROUND_CELLS
 # neighbour, and the halo is what makes them part of the stored array.
 
 EOS_TAGS = {"ideal_gas": (), "Murnaghan": ("K", "n", "rho0", "P0"), "JWL": ("A", "B", "R1", "R2", "om", "rho0"),
-            "JWLC": ("A", "B", "C", "R1", "R2", "om", "rho0"), "Stiffened_gas": ("Pinf",)}
+            "JWLC": ("A", "B", "C", "R1", "R2", "om", "rho0"), "Stiffened_gas": ("Pinf",),
+            "Thomsen_Hartka_water": ("a", "b", "co", "ko", "To", "L", "vo")}
 EOS_POSITIVE = ("K", "rho0")      # a bulk modulus and a reference density are positive
 MATERIAL = {
     "dynamic_viscosity": Param("float", 0.0, at_least=0.0),
@@ -139,6 +140,10 @@ class ICE(ImplicitICE, IceTasks, Component):
             # not be conserved: several materials must all be ideal gases (e_c = 0)
             raise self._conserve_node.error("<conserveTotalEnergy> with several materials needs ideal gases "
                                             "only (any EOS is accepted for one material)")
+        if self.conserve_energy and np.any(self.codes == THOMSEN_HARTKA):
+            # its energy is not cv T plus a cold energy of rho alone (the T-dependence is not linear)
+            raise self._conserve_node.error("<conserveTotalEnergy> is not available with the "
+                                            "Thomsen_Hartka_water EOS")
         self.params = np.array([m.eos.params() for m in self.materials]).reshape(n, MAX_PARAMS)
         self.cvs = np.array([m.cv for m in self.materials])
         # ICE alone with ideal gases only: eq. 13 has a closed form (kernels.equilibrate_ideal)
@@ -375,5 +380,4 @@ class ICE(ImplicitICE, IceTasks, Component):
             t.requires(NEW, I.FC_VEL_ME[d])
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", self.compute_mach, self.matls)
-                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
-                       .computes(I.mach))
+                       .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))

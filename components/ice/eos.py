@@ -26,6 +26,10 @@ Codes and parameter layouts (Uintah deck tags in brackets):
   STIFFENED_GAS = 4  ``Stiffened_gas`` [Pinf]   (not in Uintah; pysus tag names)
                      p = (gamma-1) rho e - gamma Pinf with e = cv T + Pinf/rho,
                      i.e. p = (gamma-1) rho cv T - Pinf.
+  THOMSEN_HARTKA = 5 ``Thomsen_Hartka_water`` [a, b, co, ko, To, L, vo]
+                     v = vo (1 - ko p + L (a p + T - To)^2) (Uintah Thomsen_Hartka_water.cc:
+                     p(rho, T) the root of that quadratic, dp_drho, dp_de and alpha its
+                     formulas; the temperature from (p, rho) as Uintah's computeTempCC).
 
 Per-cell functions (all @njit, scalar float64):
   eos_press_eos(code, params, rho_micro, temp, cv, gamma) -> (p, dp_drho, dp_de)
@@ -68,6 +72,7 @@ MURNAGHAN = 1
 JWL = 2
 JWLC = 3
 STIFFENED_GAS = 4
+THOMSEN_HARTKA = 5
 MAX_PARAMS = 8
 
 
@@ -160,6 +165,35 @@ def jwlc_press_eos(rho, A, B, C, R1, R2, om, rho0):
 
 
 # ----------------------------------------------------------------------------
+# Thomsen-Hartka water (Thomsen_Hartka_water.cc)
+@njit(cache=True)
+def thomsen_hartka_press_eos(rho, temp, a, b, co, ko, To, L, vo):
+    """(p, dp_drho, dp_de) as Uintah's computePressEOS."""
+    vo_rho = vo * rho
+    a_L = a * L
+    term1 = 1.0 / (2.0 * a_L * a * vo_rho)
+    term2 = (ko + 2.0 * a_L * (To - temp)) * vo_rho
+    term3 = ko * ko * vo_rho
+    term4 = 4.0 * a_L * (a - (a + (temp - To) * ko) * vo_rho)
+    press = term1 * (term2 - math.sqrt(vo_rho * (term3 + term4)))
+    a_press = a * press
+    a_press_temp = a_press + temp
+    x = a_press_temp - To
+    y = 1.0 - ko * press + x * x * L
+    dp_drho = y * y * vo / (ko - 2.0 * a_L * (a_press_temp - To))
+    d1 = ko - 2.0 * a_L * (a_press_temp - To)
+    d2 = co + b * (To - temp) + 2.0 * press * L * vo * (-a_press + To - 2.0 * temp)
+    dp_de = 2.0 * L * (a_press_temp - To) / (d1 * d2)
+    return press, dp_drho, dp_de
+
+
+@njit(cache=True)
+def thomsen_hartka_rho_micro(press, temp, a, ko, To, L, vo):
+    x = a * press + temp - To
+    return 1.0 / (vo * (1.0 - ko * press + L * x * x))
+
+
+# ----------------------------------------------------------------------------
 # dispatchers
 @njit(cache=True)
 def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
@@ -176,6 +210,9 @@ def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
                               params[4], params[5], params[6])
     elif code == STIFFENED_GAS:
         return stiffened_gas_press_eos(rho_micro, temp, cv, gamma, params[0])
+    elif code == THOMSEN_HARTKA:
+        return thomsen_hartka_press_eos(rho_micro, temp, params[0], params[1], params[2], params[3],
+                                        params[4], params[5], params[6])
     return math.nan, math.nan, math.nan
 
 
@@ -232,6 +269,8 @@ def _dp_dtemp(code, params, rho_micro, temp, cv, gamma):
         return (gamma - 1.0) * rho_micro * cv
     elif code == JWL:
         return params[4] * cv * rho_micro
+    elif code == THOMSEN_HARTKA:
+        return eos_dp_de(code, params, rho_micro, temp, cv, gamma) * cv
     return 0.0
 
 
@@ -271,6 +310,8 @@ def eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess):
         return murnaghan_rho_micro(press, params[0], params[1], params[2], params[3])
     elif code == STIFFENED_GAS:
         return stiffened_gas_rho_micro(press, temp, cv, gamma, params[0])
+    elif code == THOMSEN_HARTKA:
+        return thomsen_hartka_rho_micro(press, temp, params[0], params[3], params[4], params[5], params[6])
     elif code == JWL or code == JWLC:
         if press <= 0.0:
             return 0.0
@@ -289,12 +330,19 @@ def eos_temp(code, params, press, rho_micro, cv, gamma):
         v = params[5] / rho_micro
         cold = params[0] * math.exp(-params[2] * v) + params[1] * math.exp(-params[3] * v)
         return (press - cold) / (params[4] * rho_micro * cv)
+    elif code == THOMSEN_HARTKA:       # as Uintah's computeTempCC
+        return -params[0] * press + params[4] + math.sqrt(1.0 + params[6] * rho_micro * (params[3] * press - 1.0))
     return 300.0  # Murnaghan, JWLC: T-independent; Uintah sets 300 K
 
 
 @njit(cache=True)
 def eos_alpha(code, params, rho_micro, temp, cv, gamma):
     """beta = (1/v)(dv/dT)_p = (dp/dT)_rho / (rho (dp/drho)_T)  (paper 000 eq. 48)."""
+    if code == THOMSEN_HARTKA:         # Uintah's getAlpha, at p = p(rho, T)
+        a, ko, To, L = params[0], params[3], params[4], params[5]
+        p = eos_press(code, params, rho_micro, temp, cv, gamma)
+        x = a * p + temp - To
+        return 2.0 * L * x / (1.0 - ko * p + L * x * x)
     dpdt = _dp_dtemp(code, params, rho_micro, temp, cv, gamma)
     if dpdt == 0.0:
         return 0.0
@@ -303,7 +351,11 @@ def eos_alpha(code, params, rho_micro, temp, cv, gamma):
 
 @njit(cache=True)
 def eos_sound_speed2(code, params, rho_micro, temp, cv, gamma):
-    """Adiabatic c^2 = (dp/drho)_T + T (dp/dT)_rho^2 / (rho^2 cv)."""
+    """Adiabatic c^2 = (dp/drho)_T + T (dp/dT)_rho^2 / (rho^2 cv); Thomsen_Hartka_water:
+    Uintah's c^2 = dp_drho + dp_de p / rho^2 (its dp_de is not (dp/dT)_rho / cv)."""
+    if code == THOMSEN_HARTKA:
+        p, dp_drho, dp_de = eos_press_eos(code, params, rho_micro, temp, cv, gamma)
+        return sound_speed2_uintah(p, rho_micro, dp_drho, dp_de)
     dpdrho = eos_dp_drho(code, params, rho_micro, temp, cv, gamma)
     dpdt = _dp_dtemp(code, params, rho_micro, temp, cv, gamma)
     return dpdrho + temp * dpdt * dpdt / (rho_micro * rho_micro * cv)
@@ -392,9 +444,10 @@ MurnaghanEOS = _model("Murnaghan", MURNAGHAN, ("K", "n", "rho0", "P0"))
 JWLEOS = _model("JWL", JWL, ("A", "B", "R1", "R2", "om", "rho0"))
 JWLCEOS = _model("JWLC", JWLC, ("A", "B", "C", "R1", "R2", "om", "rho0"))
 StiffenedGasEOS = _model("Stiffened_gas", STIFFENED_GAS, ("Pinf",))
+ThomsenHartkaEOS = _model("Thomsen_Hartka_water", THOMSEN_HARTKA, ("a", "b", "co", "ko", "To", "L", "vo"))
 
 EOS_TYPES = {"ideal_gas": IdealGasEOS, "Murnaghan": MurnaghanEOS, "JWL": JWLEOS,
-             "JWLC": JWLCEOS, "Stiffened_gas": StiffenedGasEOS}
+             "JWLC": JWLCEOS, "Stiffened_gas": StiffenedGasEOS, "Thomsen_Hartka_water": ThomsenHartkaEOS}
 
 
 def make_eos(type_name, tags):

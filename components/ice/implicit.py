@@ -33,7 +33,7 @@ from framework.variables import Ghost, VarType
 from . import implicit_kernels as IK
 from . import kernels as K
 from . import labels as I
-from .bc import DIRICHLET, FACE_NAMES, SYMMETRY, bc_scalar
+from .bc import DIRICHLET, FACE_NAMES, FREE_SLIP, SYMMETRY, bc_scalar
 from .solver import kernels as SK
 from .solver.pcg import PCG
 
@@ -221,7 +221,7 @@ class ImplicitICE:
             if tab is None:
                 continue
             vk = tab["Velocity"][m][0]
-            keep[f] = int(vk not in (DIRICHLET, SYMMETRY) and tab["Pressure"][0][0] == DIRICHLET)
+            keep[f] = int(vk not in (DIRICHLET, SYMMETRY, FREE_SLIP) and tab["Pressure"][0][0] == DIRICHLET)
         return keep
 
     def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces):

@@ -55,8 +55,8 @@ def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K):
                         vL = sps[m][i - di, j - dj, k - dk]
                         vR = sps[m][i, j, k]
                         th[m] = 0.5 * (vfs[m][i - di, j - dj, k - dk] + vfs[m][i, j, k])
-                        sv[m] = 0.5 * (vL + vR)
-                        b[m] = 2.0 * vL * vR / (vL + vR)
+                        sv[m] = 2.0 * (vL * vR) / (vL + vR)     # as exchange_faces
+                        b[m] = sv[m]
                     _exchange_matrix(a, th, sv, K, dt, n, None)
                     solve_small(a, b, n)
                     c = 0.0

@@ -13,8 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .eos import (IDEAL_GAS, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro, eos_sound_speed2,
-                  ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2)
+from .eos import (IDEAL_GAS, THOMSEN_HARTKA, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro,
+                  eos_sound_speed2, ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2)
 
 TINY = 1.0e-100
 
@@ -115,7 +115,8 @@ def solve_small(a, b, n):
 def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
     """Eqs. 28+38 on faces: implicit momentum exchange of the face velocities of all materials.
 
-    With face-averaged theta and v: u_m - u_m* = sum_n dt theta_n K_mn v_m (u_n - u_m).
+    With face-averaged theta and v: u_m - u_m* = sum_n dt theta_n K_mn v_m (u_n - u_m);
+    theta is the mean of the two cells', v their harmonic mean (Uintah's vel_FC_exchange).
     Two materials: rows of faces with the 2 x 2 solve written out (the same operations).
     """
     n = len(ufs)
@@ -136,7 +137,8 @@ def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
                 o0, o1 = out[0][i, j, k0:k1], out[1][i, j, k0:k1]
                 for k in range(nk):
                     o0[k], o1[k] = _solve2(u0[k], u1[k], 0.5 * (fR0[k] + fL0[k]), 0.5 * (fR1[k] + fL1[k]),
-                                           0.5 * (sR0[k] + sL0[k]), 0.5 * (sR1[k] + sL1[k]),
+                                           2.0 * (sL0[k] * sR0[k]) / (sL0[k] + sR0[k]),
+                                           2.0 * (sL1[k] * sR1[k]) / (sL1[k] + sR1[k]),
                                            K[0, 1], K[1, 0], dt, 1.0, 1.0, False)
         return
     a = np.empty((n, n))
@@ -150,7 +152,8 @@ def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
                 l0, l1, l2 = x - dd[0], y - dd[1], z - dd[2]
                 for m in range(n):
                     th[m] = 0.5 * (vfs[m][x, y, z] + vfs[m][l0, l1, l2])
-                    sv[m] = 0.5 * (sps[m][x, y, z] + sps[m][l0, l1, l2])
+                    sR, sL = sps[m][x, y, z], sps[m][l0, l1, l2]
+                    sv[m] = 2.0 * (sL * sR) / (sL + sR)
                     b[m] = ufs[m][i, j, k]
                 _exchange_matrix(a, th, sv, K, dt, n, None)
                 solve_small(a, b, n)
@@ -333,7 +336,8 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
     sources act on interior cells: -dt V theta grad p* (+ dt m g), V theta kappa p_w delP.
     ICE carries e = cv T, so the flow work uses p_w = p + (T (dp/dT)_v - p_eos): for an
     ideal gas p_w = p exactly (as Uintah); for a stiffened gas it is p + Pinf, which
-    keeps cv dT = -T (dp/dT)_v dv consistent with the EOS. comp[d]: the momentum
+    keeps cv dT = -T (dp/dT)_v dv consistent with the EOS; Thomsen_Hartka_water takes p_w = p
+    (Uintah's, whose values pysus reproduces for it). comp[d]: the momentum
     component along axis d (arrays seen with permuted axes; None = the identity).
     """
     c0, c1, c2 = (0, 1, 2) if comp is None else (comp[0], comp[1], comp[2])
@@ -379,7 +383,7 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
                     pe, dpdr, dpde = ideal_gas_press_eos(1.0 / v_[k], t, cv, gamma)
                 else:
                     pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / v_[k], t, cv, gamma)
-                pw = p_[k] + (dpde * cv * t - pe)
+                pw = p_[k] if code == THOMSEN_HARTKA else p_[k] + (dpde * cv * t - pe)
                 es[k] += vol * th * v_[k] / cc * pw * d_[k]
 
 
@@ -570,15 +574,13 @@ def stable_dt_swept(vel, speed_sound, sp_vol, cp, count_dirs, has_neighbours, dx
 
 
 @njit(cache=True)
-def mach_number(vel, temp, sp_vol, out, code, params, cv, gamma, lo, hi):
-    """|u| / c from the end-of-step state."""
+def mach_number(vel, sound, out, lo, hi):
+    """|u| / c, c the speedSound_CC of the step's equilibration (Uintah's computeMach)."""
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                r = 1.0 / sp_vol[i, j, k]
-                c = np.sqrt(max(eos_sound_speed2(code, params, r, temp[i, j, k], cv, gamma), TINY))
                 u = vel[i, j, k]
-                out[i, j, k] = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / c
+                out[i, j, k] = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / sound[i, j, k]
 
 
 @njit(cache=True)

@@ -453,8 +453,7 @@ class IceTasks:
         b = self.boxes(patch)
         for m in matls:
             out = new_dw.allocate(I.mach, m, patch)
-            K.mach_number(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
-                          new_dw.get(I.sp_vol_CC, m, patch), out, *self._eos(m), b.olo, b.ohi)
+            K.mach_number(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.speedSound_CC, m, patch), out, b.olo, b.ohi)
 
 
 def _speed_sound(sp_vol, temp, out, code, params, cv, gamma):

@@ -62,6 +62,9 @@ FLAGS = {
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
     "use_load_curves": Param("bool", False, doc="pressure BCs follow <PhysicalBC> load curves"),
+    "particles_leaving_domain": Param("str", "warn", ("warn", "error"),
+                                      "pysus: particles leaving through a face without a wall are deleted "
+                                      "(as in Uintah) with a warning line, or stop the run"),
 }
 
 
@@ -269,7 +272,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             self.analysis.schedule(sched)
         carry = self.carry + self.carry_thermal
         sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in carry], L.pX,
-                                           [final for final, _ in carry], ms, id_label=L.pID)
+                                           [final for final, _ in carry], ms, id_label=L.pID,
+                                           mass_pre=L.pMassPre, on_leaving=self.flags["particles_leaving_domain"])
 
     def _grid_volume_needed(self, sched):
         """g.volume costs a sixth of the particle-to-grid scatter: it is computed when a task

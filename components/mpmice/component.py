@@ -324,8 +324,7 @@ class MPMICE(MPMICETasks, Component):
             t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", ice.compute_mach, fl)
-                       .requires(NEW, I.vel_CC).requires(NEW, I.temp_CC).requires(NEW, I.sp_vol_CC)
-                       .computes(I.mach))
+                       .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))
 
     def stable_timestep_flow(self, patch, matls, old_dw, new_dw):
         """delT with implicit ICE or prescribed solids: ICE's step over the fluids (implicit:

@@ -17,10 +17,13 @@ candidates of the next step's exchange, for the patches whose positions are hand
 """
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 
 import numpy as np
 
+from .. import labels as L
+from ..errors import RunStopped
 from ..task import NEW, Task
 from .comm import ghost_widths, particle_plan
 from .particle_kernels import KNOWN_SORTED, complement, gather_runs, in_boxes, leavers_near, relocation_runs, runs
@@ -34,6 +37,8 @@ class RelocationSpec:
     labels: list
     matls: tuple
     id_label: object = None
+    mass_pre: object = None          # pre-relocation mass label: lost mass is reported
+    on_leaving: str = "warn"         # particles leaving the domain: "warn" or "error"
 
 
 def relocation_task(spec: RelocationSpec) -> Task:
@@ -43,6 +48,8 @@ def relocation_task(spec: RelocationSpec) -> Task:
         t.requires(NEW, lp)
     for lf in [spec.pos] + spec.labels:
         t.computes(lf)
+    if spec.mass_pre is not None:
+        t.computes(L.LostParticleMass)
     return t
 
 
@@ -84,6 +91,7 @@ def relocate(ex, spec: RelocationSpec, dw):
     arrivals = {}   # (m, patch id) -> [(source patch id, {final name: array})]
     outgoing = {}
     lost = 0
+    left = np.zeros((len(spec.matls), 2))      # per material: particles and mass that left the domain
     for m in spec.matls:
         for p in ex.local_patches:
             x = dw.get(spec.pos_pre, m, p)
@@ -103,6 +111,12 @@ def relocate(ex, spec: RelocationSpec, dw):
             dest = level.patch_ids_of_cells(level.cells_of(np.where(bad[:, None], -1e300, xo)))
             dest[bad] = -1
             lost += int(np.count_nonzero(dest < 0))
+            gone = (dest < 0) & ~bad                   # out of the domain, not deleted on purpose
+            if gone.any():
+                k = spec.matls.index(m)
+                left[k, 0] += np.count_nonzero(gone)
+                if spec.mass_pre is not None:
+                    left[k, 1] += float(np.sum(dw.get(spec.mass_pre, m, p)[out[gone]]))
             for q in np.unique(dest[dest >= 0]):
                 sel = np.flatnonzero(dest == q)
                 data = {lf.name: (xo[sel] if lp is spec.pos_pre else dw.get(lp, m, p)[out[sel]])
@@ -120,7 +134,12 @@ def relocate(ex, spec: RelocationSpec, dw):
             for key, item in got[r]:
                 arrivals.setdefault(key, []).append(item)
         lost = comm.allreduce(lost, "sum")
+        left = np.asarray(comm.allreduce(left, "sum"))
     ex.particles_removed += int(lost)
+    if spec.mass_pre is not None:
+        dw.put_reduction(L.LostParticleMass, float(left[:, 1].sum()))
+    if left[:, 0].any():
+        _report_leavers(comm, spec, left, dw.generation)
     for m in spec.matls:
         for p in ex.local_patches:
             came = arrivals.get((m, p.id), [])
@@ -130,6 +149,19 @@ def relocate(ex, spec: RelocationSpec, dw):
                     boxes = particle_plan(ex, g).box_array.get(p.id)
                     if boxes is not None:
                         dw.ghost_candidates[(m, p.id, g)] = in_boxes(*near[(m, p.id)], dims, boxes)
+
+
+def _report_leavers(comm, spec, left, timestep):
+    """One line per step in which particles left the domain (Uintah deletes them silently);
+    with on_leaving "error" the run stops."""
+    parts = [f"{int(n)} of material {m}" + (f" ({mass:.4g} kg)" if spec.mass_pre is not None else "")
+             for m, (n, mass) in zip(spec.matls, left) if n]
+    line = (f"timestep {timestep}: particles left the domain through a face without a wall and were "
+            f"deleted: {', '.join(parts)}")
+    if spec.on_leaving == "error":
+        raise RunStopped(line + " (<particles_leaving_domain>error)")
+    if comm.rank == 0:
+        print(f"pysus: warning: {line}", file=sys.stderr)
 
 
 def _assemble(spec, dw, m, p, pre, final, n_src, out, came):

@@ -10,6 +10,7 @@ import time
 from collections import defaultdict
 
 
+from ..datawarehouse import DataWarehouse
 from ..labels import delT as delT_label
 from ..task import NEW, OLD, PARENT_NEW, PARENT_OLD, Task, TaskError, TaskView
 from ..variables import VarType
@@ -31,6 +32,8 @@ class Scheduler:
         self.position_label = None
         self.particle_id_label = None
         self.timing: dict = defaultdict(float)
+        self.overhead: dict = defaultdict(float)   # time in execute outside the task bodies: ghost exchange, relocation
+        self._ghost_wall = 0.0
         self.calls: dict = defaultdict(int)
         self.particles_removed = 0
         self.scrub_old = True
@@ -44,11 +47,14 @@ class Scheduler:
         self.tasks.append(task)
         return task
 
-    def schedule_particle_relocation(self, pos_pre, labels_pre, pos, labels, matls, id_label=None):
-        """Move particles to their new patch at the end of the step (Uintah's relocation)."""
+    def schedule_particle_relocation(self, pos_pre, labels_pre, pos, labels, matls, id_label=None,
+                                     mass_pre=None, on_leaving="warn"):
+        """Move particles to their new patch at the end of the step (Uintah's relocation);
+        particles leaving the domain are deleted and reported (their mass, with mass_pre)."""
         if len(labels_pre) != len(labels):
             raise ValueError("relocation needs one final label per pre-relocation label")
-        self.relocation = RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label)
+        self.relocation = RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label,
+                                         mass_pre, on_leaving)
         self.register_particle_labels(pos, id_label)
 
     def request_recompute(self, reason: str):
@@ -133,13 +139,15 @@ class Scheduler:
             new_dw.pre_counts = dict(old_dw.nparticles)
         for task in cg.tasks:
             t0 = time.perf_counter()
+            ghost0 = self._ghost_wall
             if hasattr(task, "relocation"):
                 relocate(self, task.relocation, new_dw)
+                self.overhead["relocation"] += time.perf_counter() - t0
             elif isinstance(task, Loop):
-                run_loop(self, task, old_dw, new_dw)
+                run_loop(self, task, old_dw, new_dw)     # its body's tasks have their own rows
             else:
                 self._run(task, old_dw, new_dw, parents)
-            self.timing[task.name] += time.perf_counter() - t0
+                self.timing[task.name] += time.perf_counter() - t0 - (self._ghost_wall - ghost0)
             self.calls[task.name] += 1
             for name in cg.scrub_after.get(task, ()):
                 if name not in keep:
@@ -157,6 +165,7 @@ class Scheduler:
             views = (ov, nv, TaskView(parents[0], task, PARENT_OLD), TaskView(parents[1], task, PARENT_NEW))
             dws += [(PARENT_OLD, parents[0]), (PARENT_NEW, parents[1])]
         exchanges = []
+        g0 = time.perf_counter()
         for which, dw in dws:
             grid = [(d.label, d.n, d.matls) for d in task.requires_
                     if d.dw == which and d.n and d.label.vartype.is_grid]
@@ -166,13 +175,18 @@ class Scheduler:
                 ex = Exchange(self, dw, grid, parts)
                 ex.begin()
                 exchanges.append(ex)
+        g1 = time.perf_counter()
         remote = set().union(*(ex.remote_patches for ex in exchanges)) if exchanges else set()
         patches = self.local_patches
         for p in patches:
             if p.id not in remote:
                 self._call(task, p, views, new_dw)
+        g2 = time.perf_counter()
         for ex in exchanges:
             ex.finish()
+        ghost = (g1 - g0) + (time.perf_counter() - g2)
+        self._ghost_wall += ghost
+        self.overhead["ghost exchange"] += ghost
         for p in patches:
             if p.id in remote:
                 self._call(task, p, views, new_dw)
@@ -180,16 +194,35 @@ class Scheduler:
             if dep.label.vartype is VarType.REDUCTION:
                 for m in dep.matls:
                     key = (dep.label.name, m)
+                    if dep.label.reduction == "sum":
+                        new_dw.reductions[key] = self._sum_in_patch_order(new_dw.patch_sums.pop(key, {}), dep.label)
+                        continue
                     v = new_dw.reductions.get(key, new_dw.identity(dep.label))
                     new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
 
+    def _sum_in_patch_order(self, parts, label):
+        """The sum of every patch's contribution, added in patch-id order whatever rank holds
+        each patch, so saved sums are bitwise the same on any number of ranks."""
+        if self.comm.size > 1:
+            merged = {}
+            for d in self.comm.allgather(parts):
+                merged.update(d)
+            parts = merged
+        total = DataWarehouse.identity(label)
+        for pid in sorted(parts):
+            total = total + parts[pid]
+        return total
+
     def _call(self, task, patch, views, new_dw):
+        new_dw.reduction_patch = patch.id
         try:
             task.fn(patch, task.matls, *views)
         except Exception as e:
             if not hasattr(e, "pysus_where"):
                 e.pysus_where = f"task {task.name} on patch {patch.id}"
             raise
+        finally:
+            new_dw.reduction_patch = None
         for dep in task.computes_:
             vt = dep.label.vartype
             if vt is VarType.REDUCTION:
@@ -217,7 +250,8 @@ class Scheduler:
         return [merged[p.id] for p in self.level.patches]
 
     def timing_table(self):
-        total = sum(self.timing.values()) or 1.0
-        rows = sorted(self.timing.items(), key=lambda kv: -kv[1])
-        return [(name, t, self.calls[name], 100.0 * t / total) for name, t in rows]
+        """(name, seconds, calls, % of the rows' sum) per task, then ghost exchange and relocation."""
+        rows = sorted(self.timing.items(), key=lambda kv: -kv[1]) + sorted(self.overhead.items())
+        total = sum(t for _, t in rows) or 1.0
+        return [(name, t, self.calls.get(name, 0), 100.0 * t / total) for name, t in rows]
 

@@ -1,18 +1,34 @@
 #!/bin/bash
-# Example batch job for a cluster with Slurm and the system MPI.
-# Submit:  sbatch scripts/batch/slurm_example.sh inputs/examples/quickstart.ups
+# Example batch job for a cluster with Slurm and the system MPI; submit from any directory:
+#   sbatch /path/to/pysus/scripts/batch/slurm_example.sh DECK.ups          a new run
+#   sbatch /path/to/pysus/scripts/batch/slurm_example.sh RUN.uda           continue from its newest checkpoint
+# The output (filebase of the deck) is written relative to the directory the job was submitted from.
+# PYSUS selects the pysus command (default: `pysus` on the PATH).
 # On a cluster, build mpi4py against the system MPI instead of the mpich wheel:
-#   module load mpi; python3 -m venv .venv; .venv/bin/pip install -e . ; (no [mpich] extra)
+#   module load mpi; python3 -m venv ~/pysus-env; ~/pysus-env/bin/pip install /path/to/pysus  (no [mpich] extra)
+# One process compiles the numba kernels into a per-user cache before srun starts the ranks, which
+# then load them instead of all compiling the same kernels at once.
 #SBATCH --job-name=pysus
 #SBATCH --nodes=2
 #SBATCH --ntasks-per-node=32
 #SBATCH --time=02:00:00
 #SBATCH --output=pysus-%j.log
 set -euo pipefail
-DECK=${1:?usage: sbatch slurm_example.sh DECK.ups [restart.uda]}
+INPUT=${1:?usage: sbatch slurm_example.sh DECK.ups | RUN.uda}
+cd "${SLURM_SUBMIT_DIR:-$PWD}"
+
+# sbatch runs a copy of this script, so it cannot find the repository from its own path
+PYSUS=${PYSUS:-pysus}
+command -v "$PYSUS" >/dev/null || { echo "slurm_example.sh: no '$PYSUS' command; set PYSUS=/path/to/bin/pysus" >&2; exit 2; }
+
 export NUMBA_NUM_THREADS=1 OMP_NUM_THREADS=1
-if [ -n "${2:-}" ]; then
-  srun .venv/bin/pysus -q -restart "$2"          # continue from the newest checkpoint
+export NUMBA_CACHE_DIR=${NUMBA_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/pysus/numba}
+mkdir -p "$NUMBA_CACHE_DIR"
+
+if [ -d "$INPUT" ]; then
+  "$PYSUS" -q --warm -restart "$INPUT"           # compile once, on this node, before the ranks start
+  srun "$PYSUS" -q -restart "$INPUT"             # continue from the newest checkpoint
 else
-  srun .venv/bin/pysus -q "$DECK"
+  "$PYSUS" -q --warm "$INPUT"
+  srun "$PYSUS" -q "$INPUT"
 fi

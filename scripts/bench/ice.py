@@ -98,6 +98,7 @@ def bench(dim, nmat, cells, steps, cpu=False):
                 if state["steps"] == 2:          # task timings and peak of steps 2.. (no compilation)
                     tracemalloc.reset_peak()
                     c.sched.timing.clear()
+                    c.sched.overhead.clear()
             t0 = time.process_time()
             out = execute(graph, old_dw, new_dw, **kw)
             if state["steps"] >= 2:

@@ -42,13 +42,13 @@ def test_progress_draws_on_a_terminal_only():
     tty, pipe = FakeTTY(), io.StringIO()
     for stream in (tty, pipe):
         p = Progress(stream=stream, interval=0.0)
-        p.update(12, 0.5, 1e-3, 2.0, 0.01)
+        p.update(12, 0.5, 1e-3, 2.0)
         p.close()
     assert "step      12" in tty.getvalue() and "ms/step" in tty.getvalue()
     assert pipe.getvalue() == ""
     q = FakeTTY()
     p = Progress(enabled=False, stream=q)
-    p.update(1, 0, 1, 1, 1)
+    p.update(1, 0, 1, 1)
     assert q.getvalue() == ""
 
 

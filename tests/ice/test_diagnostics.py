@@ -53,7 +53,8 @@ def test_implicit_rhs_is_the_last_outer_residual(run_deck):
     from components.ice.scene_lowmach import vortex_deck
 
     def rhs(outer):
-        text = vortex_deck(8, implicit=True, max_timesteps=2, outer=outer, outer_tol=1e-9, tolerance=1e-4)
+        text = vortex_deck(8, implicit=True, max_timesteps=2, outer=outer, outer_tol=1e-9, tolerance=1e-4,
+                           precond="jacobi")
         da = run_deck(text=text.replace('<save label="vel_CC"/>', '<save label="vel_CC"/><save label="rhs"/>'
                                             '<outputLastTimestep>true</outputLastTimestep>'))
         return np.abs(da.read("rhs", 0, -1)[0]).max()

@@ -13,7 +13,8 @@ from framework.archiver import DataArchive
 from tests.conftest import pysus
 from tests.framework import decks
 
-SAVE = '<save label="p.x"/><save label="p.particleID"/><save label="p.mass"/><save label="g.mass"/>'
+SAVE = ('<save label="p.x"/><save label="p.particleID"/><save label="p.mass"/><save label="g.mass"/>'
+        '<save label="TotalHeat"/>')
 
 
 def deck(**kw):
@@ -52,6 +53,11 @@ def test_ranks_equal_one_rank(serial, tmp_path, nranks):
     r = pysus(serial / "deck.ups", "--filebase", uda, np_=nranks)
     assert r.returncode == 0, r.stderr
     same(serial / "one.uda", uda, steps=(1, 3, -1))
+    # sums over patches are added in patch order on any number of ranks: bitwise equal
+    t1, h1 = DataArchive(serial / "one.uda").reduction("TotalHeat")
+    tn, hn = DataArchive(uda).reduction("TotalHeat")
+    assert np.array_equal(t1, tn) and np.array_equal(h1, hn)
+    assert (serial / "one.uda" / "TotalHeat.dat").read_bytes() == (uda / "TotalHeat.dat").read_bytes()
     files = os.listdir(uda / DataArchive(uda).index["timesteps"][-1]["dir"])
     assert sum(f.endswith(".h5") for f in files) == nranks
 

@@ -1,0 +1,82 @@
+"""The progress line as a user sees it (under a pseudo-terminal), `--timing` adding up to the wall
+time, and `--warm` compiling without leaving output behind."""
+import os
+import pty
+import re
+import subprocess
+import sys
+
+from framework.progress import Progress, clock
+from tests.framework import decks
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def _deck(tmp_path, maxTime=0.05):
+    path = tmp_path / "heat.ups"
+    path.write_text(decks.heat(n=16, maxTime=maxTime))
+    return str(path)
+
+
+def _pysus(args, cwd, **kw):
+    env = dict(os.environ, PYTHONPATH=ROOT)
+    return subprocess.run([sys.executable, "-m", "framework"] + args, cwd=cwd, env=env, timeout=300, **kw)
+
+
+def test_progress_line_under_a_pty(tmp_path):
+    """Run a deck with its stdout on a pseudo-terminal: the line shows step, t of maxTime, % and ETA."""
+    master, slave = pty.openpty()
+    proc = subprocess.Popen([sys.executable, "-m", "framework", _deck(tmp_path)],
+                            cwd=tmp_path, stdout=slave, stderr=slave, env=dict(os.environ, PYTHONPATH=ROOT))
+    os.close(slave)
+    out = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:        # the child closed the terminal
+            break
+        if not chunk:
+            break
+        out += chunk
+    os.close(master)
+    assert proc.wait(timeout=300) == 0
+    text = out.decode()
+    lines = [s for s in re.split(r"[\r\n]", text) if s.startswith("step")]
+    assert lines, text
+    last = lines[-1]
+    assert re.search(r"t = [0-9.e+-]+ of 0\.05 s \(100\.0%\)", last), last
+    assert "ETA 0:00" in last and "ms/step" in last
+
+
+def test_fraction_and_eta():
+    p = Progress(enabled=False, max_time=2.0, start_time=1.0)
+    assert p.fraction(10, 1.5) == 0.5
+    line = p.line(10, 1.5, 1e-3, 20.0, 0.025)
+    assert "( 50.0%)" in line and "25.00 ms/step" in line and "ETA 0:20" in line
+    q = Progress(enabled=False, max_timesteps=100, start_step=50)
+    assert q.fraction(75, 0.0) == 0.5
+    assert clock(3725) == "1:02:05" and clock(65) == "1:05"
+
+
+def test_timing_rows_add_up_to_wall(tmp_path):
+    r = _pysus(["--timing", _deck(tmp_path, maxTime=0.2)], tmp_path, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    rows = re.findall(r"^  (.+?)\s+([0-9.]+) s", r.stdout, re.M)
+    names = [n.strip() for n, _ in rows]
+    total = float(rows[-1][1])
+    assert names[-1] == "total (wall)"
+    for want in ("set-up outside tasks (grid, first output)", "output and checkpoints", "ghost exchange"):
+        assert want in names, names
+    parts = sum(float(t) for n, t in rows[:-1] if not n.startswith("other"))
+    other = float(dict((n.strip(), t) for n, t in rows)["other (delT, load balance, scheduling)"])
+    assert other >= -1e-3
+    assert abs(parts + other - total) <= 0.03 * total + 2e-3
+
+
+def test_warm_leaves_no_output(tmp_path):
+    deck = _deck(tmp_path)
+    cache = tmp_path / "cache"
+    r = _pysus(["--warm", "--cache-dir", str(cache), deck], tmp_path, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert "compiled" in r.stdout and str(cache) in r.stdout
+    assert sorted(os.listdir(tmp_path)) == ["cache", "heat.ups"]   # no .uda next to the deck

@@ -1,0 +1,40 @@
+"""Restarting a finished run: one clean line saying so, and --maxTime to continue it; the
+continued run matches the uninterrupted one (up to the step cut short at the old maxTime)."""
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from framework.archiver import DataArchive
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _pysus(cwd, *args):
+    return subprocess.run([sys.executable, "-m", "framework", "-q", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_restart_of_finished_run_says_so_and_maxtime_continues_it(tmp_path):
+    deck = (ROOT / "inputs/examples/quickstart.ups").read_text(encoding="latin-1")
+    deck = deck.replace('<checkpoint interval="0.25" cycle="2"/>', '<checkpoint interval="0.05" cycle="2"/>')
+    (tmp_path / "short.ups").write_text(deck.replace("0.5      </maxTime>", "0.05 </maxTime>")
+                                        .replace("quickstart.uda", "short.uda"), encoding="latin-1")
+    (tmp_path / "long.ups").write_text(deck.replace("0.5      </maxTime>", "0.1 </maxTime>")
+                                       .replace("quickstart.uda", "long.uda"), encoding="latin-1")
+    assert _pysus(tmp_path, "short.ups").returncode == 0
+    r = _pysus(tmp_path, "-restart", "short.uda")
+    assert r.returncode == 2
+    assert r.stderr.count("\n") == 1 and "already reached maxTime 0.05 s" in r.stderr, r.stderr
+    assert not (tmp_path / "short.uda.000").exists()          # no empty uda written
+    r = _pysus(tmp_path, "-restart", "short.uda", "--maxTime", "0.1")
+    assert r.returncode == 0, r.stderr
+    assert _pysus(tmp_path, "long.ups").returncode == 0
+    cont, _ = DataArchive(tmp_path / "short.uda.000").read("temp_CC", 0, -1)
+    whole, _ = DataArchive(tmp_path / "long.uda").read("temp_CC", 0, -1)
+    assert DataArchive(tmp_path / "short.uda.000").times[-1] == DataArchive(tmp_path / "long.uda").times[-1]
+    # not bitwise: the short run's last step was cut to end at 0.05 exactly, the long run's was not
+    assert np.abs(cont - whole).max() < 1e-3 * np.abs(whole).max()
+    r = _pysus(tmp_path, "-restart", "short.uda", "--maxTime", "nan")
+    assert r.returncode == 2 and "--maxTime" in r.stderr and "Traceback" not in r.stderr
