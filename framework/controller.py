@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 from . import labels as L
+from .analysis import read_analysis
 from .archiver import Archiver, load_checkpoint, restore_dw
 from .component import lookup
 from .datawarehouse import DataWarehouse
@@ -88,6 +89,10 @@ def read_archiver(root):
         if spec["checkpoint_interval"] <= 0 and spec["checkpoint_timestepInterval"] <= 0:
             raise c.error('<checkpoint> needs interval="..." (time) or timestepInterval="..." (steps)')
     spec["filebase_node"] = da.child("filebase")
+    # as Uintah: <outputInitTimestep/> (a presence flag) writes the initial state,
+    # <outputLastTimestep>true</outputLastTimestep> the final step, even when no output is due then
+    spec["outputInitTimestep"] = da.child("outputInitTimestep") is not None
+    spec["outputLastTimestep"] = da.get("outputLastTimestep", "bool", False)
     return spec
 
 
@@ -133,6 +138,8 @@ class Controller:
             # the bytes, not decoded text: the copy in the uda stays in the deck's own encoding
             with open(self.root.filename, "rb") as f:
                 self.deck_text = f.read()
+            if self.root.has_includes:   # the uda keeps the deck with its includes resolved, for restarts
+                self.deck_text = self.root.resolved_bytes()
         self._read_deck()
         if filebase is not None and self.archive_spec is not None:
             self.archive_spec["filebase"] = filebase
@@ -196,6 +203,7 @@ class Controller:
         self.archive_spec = read_archiver(root)
         self.component = cls()
         self.component.problem_setup(root, self.level)
+        self.analysis = read_analysis(root, self.component, self.level)
         root.check_all_used()
 
     def _build(self):
@@ -226,6 +234,8 @@ class Controller:
         provided = {L.delT.name, L.simTime.name}
         sched.begin_graph("timestep")
         comp.schedule_time_advance(level, sched)
+        for module in self.analysis:
+            module.schedule(sched)
         comp.schedule_compute_stable_timestep(level, sched)
         step_tasks, step_reloc = list(sched.tasks), sched.relocation
         probe = sched.compile({L.delT.name} | self.outputs | self._old_requires(step_tasks),
@@ -259,13 +269,15 @@ class Controller:
         sched.tasks, sched.relocation = step_tasks, step_reloc
         self.carried = carried
         available = self.init_graph.computed | carried | provided
-        self.step_graph = sched.compile({L.delT.name} | carried | self.outputs, old_available=available,
-                                        protect={L.delT.name} | carried)
+        analysed = set().union(*(m.needed for m in self.analysis))   # every step, as Uintah's modules
+        self.step_graph = sched.compile({L.delT.name} | carried | self.outputs | analysed, old_available=available,
+                                        protect={L.delT.name} | carried | analysed)
         # steps that write no output skip the tasks that only feed output
         self.quiet_step_graph = self.step_graph
-        if self.outputs - carried - {L.delT.name}:
-            self.quiet_step_graph = sched.compile({L.delT.name} | carried, old_available=available,
-                                                  protect={L.delT.name} | carried, build_patch_graph=False)
+        if self.outputs - carried - {L.delT.name} - analysed:
+            self.quiet_step_graph = sched.compile({L.delT.name} | carried | analysed, old_available=available,
+                                                  protect={L.delT.name} | carried | analysed,
+                                                  build_patch_graph=False)
         sched.set_halo([self.init_graph, self.step_graph, self.quiet_step_graph])
 
     def grid_bytes_needed(self) -> int:
@@ -345,7 +357,7 @@ class Controller:
         self.sched.execute(self.init_graph, None, dw, keep=self.outputs)
         if self.archiver is not None:
             self.archiver.setup(self.t)
-            if self.archiver.output_due(0, self.t):
+            if self.archiver.output_due(0, self.t) or self.archiver.spec["outputInitTimestep"]:
                 self.archiver.output(dw, 0, self.t, 0.0, self.sched.local_patches)
         return dw
 
@@ -379,7 +391,9 @@ class Controller:
                 dw = DataWarehouse(self.timestep + 1)
                 old.set_reduction(L.delT, delt)
                 old.set_reduction(L.simTime, self.t)
-                writes = self.archiver is not None and self.archiver.output_due(self.timestep + 1, self.t + delt)
+                writes = self.archiver is not None and (
+                    self.archiver.output_due(self.timestep + 1, self.t + delt)
+                    or (self.archiver.spec["outputLastTimestep"] and self._last_step(delt)))
                 graph = self.step_graph if writes else self.quiet_step_graph
                 s0 = time.perf_counter()
                 try:
@@ -405,9 +419,13 @@ class Controller:
             self.timestep += 1
             self.prev_delt = delt
             self._check_state(dw, delt, step_wall[-1])
+            if self.analysis and self.comm.rank == 0:
+                uda = self.archiver.dir if self.archiver is not None else None
+                for module in self.analysis:
+                    module.after_step(dw, self.timestep, self.t, uda)
             if self.archiver is not None:
                 o0 = time.perf_counter()
-                if self.archiver.output_due(self.timestep, self.t):
+                if writes:
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
                 if self.archiver.checkpoint_due(self.timestep, self.t):
                     self.archiver.checkpoint(dw, self.carried | {L.delT.name}, self.timestep, self.t,
@@ -418,6 +436,11 @@ class Controller:
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw
+
+    def _last_step(self, delt) -> bool:
+        """True when the step about to be taken with delt ends the run (the loop's own test)."""
+        tm = self.time
+        return self.timestep + 1 >= tm["max_Timesteps"] or self.t + delt >= tm["maxTime"] * (1 - 1e-14)
 
     def _check_state(self, dw, delt, step_wall):
         """Stop at the first non-finite or negative-mass/density/temperature value of the carried

@@ -12,6 +12,7 @@ import io
 import math
 import os
 import re
+from copy import deepcopy
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -126,12 +127,102 @@ def deck_bytes(text: str | bytes, filename="<string>") -> bytes:
 class _Doc:
     """Book-keeping shared by all nodes of one parsed file."""
 
-    def __init__(self, filename, root):
+    def __init__(self, filename, root, origin=None):
         self.filename = filename
         # lxml proxies may be recreated with new ids unless kept alive: keep them all
         self.alive = list(root.iter())
         self.used: set = set()
         self.queried: dict = {}
+        # {id(element): file} for elements an <include href> brought in
+        self.origin: dict = origin or {}
+
+    def file_of(self, el) -> str:
+        return self.origin.get(id(el), self.filename)
+
+
+def _parse_file(filename, what="the deck"):
+    """The root element of an XML file; unreadable or malformed files are InputErrors."""
+    parser = etree.XMLParser(remove_comments=False, resolve_entities=False)
+    try:
+        with open(filename, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        raise InputError(f"cannot read {what}: {e.strerror}", filename) from None
+    try:
+        # from the bytes, so that an encoding error is a syntax error with its line
+        return etree.parse(io.BytesIO(data), parser, base_url=filename).getroot()
+    except etree.XMLSyntaxError as e:
+        line = e.lineno if hasattr(e, "lineno") else None
+        hint = ("; accepted: bytes of the encoding the <?xml ... encoding=\"...\"?> line declares "
+                "(UTF-8 when none)") if "encoding" in e.msg else ""
+        raise InputError(f"malformed XML: {e.msg}{hint}", filename, line) from None
+
+
+_INCLUDE_CONTROL = ("href", "section", "excludeSectionTag", "need_applies_to")
+
+
+def _include_target(href, including_file, el):
+    """Uintah's rule: an absolute href as is; else next to the including file, then the working directory."""
+    if os.path.isabs(href):
+        if os.path.isfile(href):
+            return href
+        raise InputError(f'<include href="{href}">: no such file; accepted: an existing file',
+                         including_file, el.sourceline)
+    near = os.path.join(os.path.dirname(os.path.abspath(including_file)), href)
+    if os.path.isfile(near):
+        return near
+    if os.path.isfile(href):
+        return os.path.abspath(href)
+    raise InputError(f'<include href="{href}">: no file {near} next to this file nor {os.path.abspath(href)} '
+                     "in the working directory; accepted: a path relative to either, or absolute",
+                     including_file, el.sourceline)
+
+
+def _include_nodes(el, target, including_file):
+    """The elements an <include> stands for: the file's top level, or its `section` path whose
+    last element carries every other attribute of the <include> (children only with excludeSectionTag)."""
+    inc_root = _parse_file(target, "the included file")
+    if inc_root.tag not in ("Uintah_Include", "Uintah_specification"):
+        raise InputError(f"the root element is <{inc_root.tag}>; accepted: <Uintah_Include> or "
+                         "<Uintah_specification>", target, inc_root.sourceline)
+    section = el.get("section", "")
+    if not section:
+        return list(inc_root)
+    want = {k: v for k, v in el.attrib.items() if k not in _INCLUDE_CONTROL}
+    nodes = [inc_root]
+    for name in section.split("/"):
+        nodes = [c for n in nodes for c in n if c.tag == name]
+    found = [n for n in nodes if all(n.get(k) == v for k, v in want.items())]
+    if not found:
+        attrs = " ".join(f'{k}="{v}"' for k, v in want.items())
+        raise InputError(f'<include section="{section}" {attrs}>: no such element in {target}; '
+                         "accepted: a section path and attributes that one element of that file has",
+                         including_file, el.sourceline)
+    return list(found[0]) if el.get("excludeSectionTag") else [found[0]]
+
+
+def _resolve_includes(root, filename, origin, keep):
+    """Replaces every <include href> under root by what it names, an included file's own includes
+    resolved next to it (as Uintah does); origin records the file each brought-in element came
+    from (keep holds those elements, so that their ids stay theirs)."""
+    count = 0
+    while (el := next(root.iter("include"), None)) is not None:
+        including = origin.get(id(el), filename)
+        count += 1
+        if count > 1000:
+            raise InputError(f'<include href="{el.get("href")}">: over 1000 includes; '
+                             "accepted: includes that do not include themselves", including, el.sourceline)
+        target = _include_target(el.get("href", ""), including, el)
+        parent = el.getparent()
+        at = parent.index(el)
+        for node in _include_nodes(el, target, including):
+            copy = deepcopy(node)
+            for sub in copy.iter():
+                origin[id(sub)] = target
+                keep.append(sub)
+            parent.insert(at, copy)
+            at += 1
+        parent.remove(el)
 
 
 class ProblemSpec:
@@ -148,24 +239,22 @@ class ProblemSpec:
     def load(cls, filename) -> "ProblemSpec":
         """Parse a deck file; malformed XML becomes an InputError with its line."""
         filename = os.fspath(filename)
-        parser = etree.XMLParser(remove_comments=False, resolve_entities=False)
-        try:
-            with open(filename, "rb") as f:
-                data = f.read()
-        except OSError as e:
-            raise InputError(f"cannot read the deck: {e.strerror}", filename) from None
-        try:
-            # from the bytes, so that an encoding error is a syntax error with its line
-            tree = etree.parse(io.BytesIO(data), parser, base_url=filename)
-        except etree.XMLSyntaxError as e:
-            line = e.lineno if hasattr(e, "lineno") else None
-            hint = ("; accepted: bytes of the encoding the <?xml ... encoding=\"...\"?> line declares "
-                    "(UTF-8 when none)") if "encoding" in e.msg else ""
-            raise InputError(f"malformed XML: {e.msg}{hint}", filename, line) from None
-        root = tree.getroot()
-        node = cls(root, _Doc(filename, root), root.tag)
-        node._keep = tree
+        root = _parse_file(filename)
+        origin, keep = {}, []
+        _resolve_includes(root, filename, origin, keep)
+        node = cls(root, _Doc(filename, root, origin), root.tag)
+        node._keep = root.getroottree()
         return node
+
+    def resolved_bytes(self) -> bytes:
+        """The whole deck, includes resolved, in the deck's declared encoding."""
+        tree = self.element.getroottree()
+        return etree.tostring(tree, xml_declaration=True, encoding=tree.docinfo.encoding or "utf-8")
+
+    @property
+    def has_includes(self) -> bool:
+        """True when <include href> brought elements of other files into this deck."""
+        return bool(self.doc.origin)
 
     @classmethod
     def from_string(cls, text: str | bytes, filename="<string>") -> "ProblemSpec":
@@ -190,7 +279,7 @@ class ProblemSpec:
 
     def error(self, message) -> InputError:
         """An InputError located at this element."""
-        return InputError(message, self.doc.filename, self.line, self.path)
+        return InputError(message, self.doc.file_of(self.element), self.line, self.path)
 
     def _elements(self, tag=None):
         for child in self.element:
@@ -300,7 +389,7 @@ class ProblemSpec:
         for name in el.attrib:
             if (id(el), name) not in self.doc.used:
                 raise InputError(f"attribute {name}=\"{el.get(name)}\" is not supported here",
-                                 self.doc.filename, el.sourceline, path)
+                                 self.doc.file_of(el), el.sourceline, path)
         for c in el:
             if not isinstance(c.tag, str):
                 continue
@@ -308,7 +397,7 @@ class ProblemSpec:
             if id(c) not in self.doc.used:
                 accepted = sorted(self.doc.queried.get(id(el), ()))
                 hint = f"; accepted here: {', '.join('<%s>' % a for a in accepted)}" if accepted else ""
-                raise InputError(f"unsupported tag <{c.tag}>{hint}", self.doc.filename, c.sourceline, cpath)
+                raise InputError(f"unsupported tag <{c.tag}>{hint}", self.doc.file_of(c), c.sourceline, cpath)
             self._check(c, cpath)
 
     def to_string(self) -> str:

@@ -23,6 +23,14 @@ def _floats(text):
     return [float(v) for v in text.strip().strip("[]").split(",")]
 
 
+def _index(patch, tag):
+    """A patch's index triple; sus leaves out interior{Low,High}Index where it equals {low,high}Index."""
+    text = patch.findtext(tag)
+    if text is None and tag.startswith("interior"):
+        text = patch.findtext(tag[len("interior"):][0].lower() + tag[len("interior") + 1:])
+    return _ints(text)
+
+
 class UintahArchive:
     """The timesteps of a sus .uda: times, read(label, matl, timestep)."""
 
@@ -46,15 +54,15 @@ class UintahArchive:
         dx = np.array(_floats(level.findtext("cellspacing")))
         anchor = np.array(_floats(level.findtext("anchor")))
         patches = {int(p.findtext("id")): p for p in level.findall("Patch")}
-        lo = np.min([_ints(p.findtext("interiorLowIndex")) for p in patches.values()], axis=0)
-        hi = np.max([_ints(p.findtext("interiorHighIndex")) for p in patches.values()], axis=0)
+        lo = np.min([_index(p, "interiorLowIndex") for p in patches.values()], axis=0)
+        hi = np.max([_index(p, "interiorHighIndex") for p in patches.values()], axis=0)
         out = None
         for href in (d.get("href") for d in ts.findall("Data/Datafile")):
             for var in etree.parse(os.path.join(step, href)).findall("Variable"):
                 if var.findtext("variable").strip() != label or int(var.findtext("index")) != matl:
                     continue
                 p = patches[int(var.findtext("patch"))]
-                elo, ehi, ilo, ihi = (np.array(_ints(p.findtext(tag))) for tag in
+                elo, ehi, ilo, ihi = (np.array(_index(p, tag)) for tag in
                                       ("lowIndex", "highIndex", "interiorLowIndex", "interiorHighIndex"))
                 ncomp = 3 if "Vector" in var.get("type") else 1
                 start, end = int(var.findtext("start")), int(var.findtext("end"))

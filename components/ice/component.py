@@ -223,6 +223,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         K, H = np.zeros((n, n)), np.zeros((n, n))
         if node is None:
             return K, H
+        if n == 1:      # as Uintah (ExchangeCoefficients::problemSetup): one material has no pair to exchange
+            node.mark_used()
+            return K, H
         ec = node.child("exchange_coefficients")
         if ec is None:
             return K, H
@@ -309,6 +312,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         for d in dirs:
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
+        sched.add_task(Task("ICE::computeDelP_MassX", self.delp_mass_exchange, m0)   # only when saved
+                       .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
+                       .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
 
         if self.viscous:
             sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)
@@ -339,6 +345,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         if self.conduction:
             t.requires(NEW, I.heatCond_src_CC)
         sched.add_task(t)
+        sched.add_task(Task("ICE::computeMomentumSource", self.momentum_source, self.matls)   # only when saved
+                       .requires(NEW, I.mom_L_CC).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC)
+                       .computes(I.mom_source_CC))
 
         if self.exchange:
             t = Task("ICE::addExchangeToMomentumAndEnergy", self.exchange_cc, self.matls) \

@@ -199,7 +199,8 @@ class ImplicitICE:
             .computes(rhs, matls=m0).computes(max_RHS)
         for d in dirs:
             fc.requires(PARENT_NEW, I.FC_VEL[d], G, 1).computes(imp_UF[d])
-        results = {imp_P.name: (I.delP_Dilatate, m0)}
+        # rhs: the last outer iteration's residual of eq. P, handed back for <save label="rhs"> (Uintah's)
+        results = {imp_P.name: (I.delP_Dilatate, m0), rhs.name: (rhs, m0)}
         results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
         tol = self.imp.outer_tol
         self.outer = Loop("ICE::implicitPressureOuter", matls, [seed, inner, upd, fc],

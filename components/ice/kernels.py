@@ -279,6 +279,26 @@ def update_pressure(press_eq, div, kap_sum, delP, press, lo, hi, p_floor):
                 p[k] = max(pe[k] + d, p_floor)
 
 @njit(cache=True, error_model="numpy")
+def pressure_from_mass_exchange(press, press_eq, delP, out, lo, hi):
+    """delP_MassX = p - p_eq - delP_Dilatate (eq. 30's mass-exchange term), interior cells."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                out[i, j, k] = press[i, j, k] - press_eq[i, j, k] - delP[i, j, k]
+
+
+@njit(cache=True, error_model="numpy")
+def momentum_source(mom_L, rho, vel, vol, out, lo, hi):
+    """mom_source_CC = mom_L - m u^n, m = rho^n V (eq. 34's sources times dt), interior cells."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                m = rho[i, j, k] * vol
+                for d in range(3):
+                    out[i, j, k, d] = mom_L[i, j, k, d] - vel[i, j, k, d] * m
+
+
+@njit(cache=True, error_model="numpy")
 def add_theta_kappa(vf, sp_vol, cs, out, lo, hi):
     """out += theta kappa, kappa = v / c^2 (isothermal compressibility of eq. 47, as Uintah)."""
     n = hi[2] - lo[2]

@@ -27,6 +27,7 @@ FC_VEL_ME = (L.create("uvel_FCME", X), L.create("vvel_FCME", Y), L.create("wvel_
 
 # steps 5-6: pressure increment (eq. 29-30), face pressure (eq. 31)
 delP_Dilatate = L.create("delP_Dilatate", CC)
+delP_MassX = L.create("delP_MassX", CC)          # diagnostic: the pressure that mass exchange adds
 PRESS_FC = (L.create("pressX_FC", X), L.create("pressY_FC", Y), L.create("pressZ_FC", Z))
 
 # optional physics sources (viscous stress, heat conduction)
@@ -36,6 +37,7 @@ heatCond_src_CC = L.create("heatCond_src_CC", CC)
 # steps 8-11: Lagrangian values (eq. 35-37), exchange (38-39), specific volume (40)
 mass_L_CC = L.create("mass_L_CC", CC)
 mom_L_CC = L.create("mom_L_CC", CC, (3,))
+mom_source_CC = L.create("mom_source_CC", CC, (3,))   # diagnostic: dt (-grad p V + viscous + m g)
 int_eng_L_CC = L.create("int_eng_L_CC", CC)
 mom_L_ME_CC = L.create("mom_L_ME_CC", CC, (3,))
 int_eng_L_ME_CC = L.create("eng_L_ME_CC", CC)       # Uintah's name

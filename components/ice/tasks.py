@@ -272,6 +272,23 @@ class IceTasks:
                           b.v_lo, b.v_hi, self.press_floor)
         self.bcs.scalar(patch, press, "Pressure", 0, b)
 
+    def delp_mass_exchange(self, patch, matls, old_dw, new_dw):
+        """Uintah's delP_MassX diagnostic, computed only when a deck saves it: what press_CC holds
+        beyond p_eq + delP_Dilatate (the models' mass sources; 0, to round-off, without them)."""
+        b = self.boxes(patch)
+        out = new_dw.allocate(I.delP_MassX, 0, patch)
+        K.pressure_from_mass_exchange(new_dw.get(I.press_CC, 0, patch), new_dw.get(I.press_equil_CC, 0, patch),
+                                      new_dw.get(I.delP_Dilatate, 0, patch), out, b.lo, b.hi)
+
+    def momentum_source(self, patch, matls, old_dw, new_dw):
+        """Uintah's mom_source_CC diagnostic, computed only when a deck saves it: the Lagrangian
+        momentum less the old momentum (pressure, viscous and gravity sources times delT)."""
+        b = self.boxes(patch)
+        for m in matls:
+            out = new_dw.allocate(I.mom_source_CC, m, patch)
+            K.momentum_source(new_dw.get(I.mom_L_CC, m, patch), old_dw.get(I.rho_CC, m, patch),
+                              old_dw.get(I.vel_CC, m, patch), b.vol, out, b.lo, b.hi)
+
     # -- step 6: face pressure (eq. 31) -------------------------------------------------------------
     def press_fc(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)

@@ -1,9 +1,9 @@
 """`<DataAnalysis>` of MPM decks.
 
-Only `<Module name="particleExtract">` is accepted (disks.ups has one). Its tags are
+`<Module name="particleExtract">` (disks.ups has one) is read here: its tags are
 read and checked, but pysus does not yet write Uintah's per-particle text files: it
-says so on stderr at set-up instead of ignoring the block silently. Any other module
-is an input error.
+says so on stderr at set-up instead of ignoring the block silently. The other modules
+are the framework's (framework/analysis.py), which refuses those it does not have.
 """
 import sys
 
@@ -26,7 +26,9 @@ class ParticleExtract:
         if da is None:
             return
         for mod in da.children("Module"):
-            name = mod.attr("name", choices=("particleExtract",))
+            name = mod.attr("name")
+            if name != "particleExtract":
+                continue
             spec = mod.read(PARTICLE_EXTRACT)
             names = [m.name for m in mpm.materials]
             if spec["material"] not in names:

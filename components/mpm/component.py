@@ -72,6 +72,7 @@ FLAGS = {
 class MPM(ThermalTasks, MPMTasks, Component):
     """Explicit single-grid MPM with Uintah's deck tags and variable names."""
 
+    analysis_modules = ("particleExtract",)    # <DataAnalysis> modules this component reads itself
     # MPMICE hooks: the <MPM> flag table, grid-BC reader, contact and material readers it may extend
     flags_spec = FLAGS
     grid_bcs_class = GridBCs

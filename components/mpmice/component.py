@@ -84,6 +84,7 @@ class _Recorder:
 class MPMICE(MPMICETasks, Component):
     """Fluid-structure interaction: explicit MPM solids in explicit multi-material ICE."""
 
+    analysis_modules = ("particleExtract",)    # <DataAnalysis> modules this component reads itself
     tiny = 1e-12        # solid density floor, relative to its reference density (empty cells)
 
     def problem_setup(self, root, level):

@@ -50,3 +50,16 @@ def test_progress_draws_on_a_terminal_only():
     p = Progress(enabled=False, stream=q)
     p.update(1, 0, 1, 1)
     assert q.getvalue() == ""
+
+
+def test_output_last_timestep(tmp_path):
+    """Uintah's <outputLastTimestep>true</...>: the final step is written though no output is due
+    (every 10th step here, 3 steps run); without it only the initial state is."""
+    def run(flag):
+        text = decks.heat(n=8, maxTime=5.0, out=10).replace(
+            "<initTime>0</initTime>", "<initTime>0</initTime><max_Timesteps>3</max_Timesteps>")
+        text = text.replace("</DataArchiver>", f"{flag}</DataArchiver>")
+        c = run_deck(text, tmp_path, name=f"r{len(flag)}")
+        return sorted(p.name for p in (tmp_path / f"r{len(flag)}.uda").glob("t0*"))
+    assert run("") == ["t00000"]
+    assert run("<outputLastTimestep> true </outputLastTimestep><outputInitTimestep/>") == ["t00000", "t00003"]

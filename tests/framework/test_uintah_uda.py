@@ -62,3 +62,14 @@ def test_reads_interior_cells_x_fastest_over_patches(tmp_path):
     assert vel.shape == (4, 3, 1, 3) and np.array_equal(vel[..., 1], -value(i, j, k))
     with pytest.raises(KeyError):
         da.read("press_CC", 0, -1)
+
+
+def test_interior_index_left_out_when_it_is_the_patch_index():
+    """sus writes no <interiorHighIndex> for a patch whose high side touches no domain face (its
+    interior ends where its cells do), as in the timestep.xml of hotBlob2mat8patch.ups's patch 0."""
+    from lxml import etree
+    from framework.uintah_uda import _index
+    p = etree.fromstring("<Patch><lowIndex>[-1, -1, -1]</lowIndex><highIndex>[5, 5, 5]</highIndex>"
+                         "<interiorLowIndex>[0, 0, 0]</interiorLowIndex></Patch>")
+    assert _index(p, "interiorHighIndex") == [5, 5, 5]
+    assert _index(p, "interiorLowIndex") == [0, 0, 0]
