@@ -151,3 +151,36 @@ def test_full_disk_is_one_line(tmp_path, monkeypatch, capsys):
     assert cli.main([str(deck), "-q"]) == 1
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("pysus: the run failed") and "writing output failed" in err[0]
+
+
+def test_sigkill_while_checkpointing_leaves_a_restartable_checkpoint(tmp_path):
+    """Killed with SIGKILL at three moments of a run that checkpoints every step, each time the
+    newest complete checkpoint restarts, and the run continued to the end equals the run that
+    never stopped, bitwise."""
+    import signal
+    import time
+
+    from tests.conftest import BIN
+    text = decks.heat(n=64, patches="[2,2,1]", maxTime=0.3, out=4,
+                      checkpoint='<checkpoint timestepInterval="1" cycle="2"/>')
+    (tmp_path / "d.ups").write_text(text)
+    whole = run_deck(text, tmp_path, name="whole")
+    ref = DataArchive(whole.archiver.dir).read("temp_CC", 0, -1)[0]
+    restarted = 0
+    for k, delay in enumerate((1.5, 2.5, 3.5)):
+        uda = tmp_path / f"killed{k}.uda"
+        p = subprocess.Popen([str(BIN / "pysus"), "-q", str(tmp_path / "d.ups"), "--filebase", str(uda)],
+                             cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        time.sleep(delay)
+        if p.poll() is not None:
+            continue                        # it finished first: nothing was killed
+        p.send_signal(signal.SIGKILL)
+        p.wait()
+        if not (uda / "checkpoints").is_dir() or not any(
+                c.startswith("t") and "." not in c for c in os.listdir(uda / "checkpoints")):
+            continue                        # killed before its first checkpoint: nothing to restart
+        again = _restart(str(uda), tmp_path, f"again{k}")
+        again.run()
+        assert np.array_equal(DataArchive(again.archiver.dir).read("temp_CC", 0, -1)[0], ref)
+        restarted += 1
+    assert restarted >= 1
