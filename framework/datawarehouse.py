@@ -138,7 +138,7 @@ class DataWarehouse:
         """Combine a patch's contribution into the rank's partial reduction."""
         key = (label.name, matl)
         v = float(value) if label.shape == () else np.asarray(value, dtype=np.float64)
-        if label.reduction == "sum" and self.reduction_patch is not None:
+        if label.reduction == "sum" and label.patch_order and self.reduction_patch is not None:
             parts = self.patch_sums.setdefault(key, {})
             pid = self.reduction_patch
             parts[pid] = parts[pid] + v if pid in parts else v

@@ -21,6 +21,9 @@ class VarLabel:
     shape: tuple = ()
     dtype: type = np.float64
     reduction: str | None = None
+    # a sum reduction whose per-patch parts are added in patch order (the same on any number of
+    # ranks); False for a rank-local array where every entry has one contributor
+    patch_order: bool = True
 
     def __repr__(self):
         return f"VarLabel({self.name}, {self.vartype.value})"
@@ -32,11 +35,11 @@ class VarLabel:
 _registry: dict[str, VarLabel] = {}
 
 
-def create(name, vartype: VarType, shape=(), dtype=np.float64, reduction=None) -> VarLabel:
+def create(name, vartype: VarType, shape=(), dtype=np.float64, reduction=None, patch_order=True) -> VarLabel:
     """Create (or fetch the identical existing) label; a conflicting redefinition is an error."""
     if vartype is VarType.REDUCTION and reduction not in REDUCTION_OPS:
         raise ValueError(f"reduction label {name} needs reduction= one of {REDUCTION_OPS}")
-    label = VarLabel(name, vartype, tuple(shape), np.dtype(dtype).type, reduction)
+    label = VarLabel(name, vartype, tuple(shape), np.dtype(dtype).type, reduction, patch_order)
     old = _registry.get(name)
     if old is not None:
         if (old.vartype, old.shape, old.dtype, old.reduction) != \

@@ -194,7 +194,7 @@ class Scheduler:
             if dep.label.vartype is VarType.REDUCTION:
                 for m in dep.matls:
                     key = (dep.label.name, m)
-                    if dep.label.reduction == "sum":
+                    if dep.label.reduction == "sum" and dep.label.patch_order:
                         new_dw.reductions[key] = self._sum_in_patch_order(new_dw.patch_sums.pop(key, {}), dep.label)
                         continue
                     v = new_dw.reductions.get(key, new_dw.identity(dep.label))

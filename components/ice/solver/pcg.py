@@ -65,7 +65,8 @@ class PCG:
             self.ZC = L.create(f"{n}.zc", CC)
             self.ZP = [L.create(f"{n}.zpost{s}", CC) for s in range(self.sweeps - 1)]
             shape = "x".join(map(str, self.nc))
-            self.RC = L.create(f"{n}.rc.{shape}", R, self.nc, reduction="sum")
+            # the rank's coarse residual array, every coarse cell from one patch: a plain rank sum
+            self.RC = L.create(f"{n}.rc.{shape}", R, self.nc, reduction="sum", patch_order=False)
             self.OP = L.create(f"{n}.op.{shape}", R, (4,) + tuple(c + 1 for c in self.nc), reduction="sum")
         self.hierarchy = None
         self._op_seen = None

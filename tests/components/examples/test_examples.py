@@ -128,7 +128,7 @@ def test_output_opens_as_xdmf_and_hdf5(tmp_path):
     assert "np." not in text
     doc = etree.parse(f"{uda}/output.xdmf")
     types = {a.get("Name"): a.get("AttributeType") for a in doc.iter("Attribute")}
-    assert types["temp_CC_0"] == "Scalar" and types["p.mass"] == "Scalar"
+    assert types["temp_CC_0"] == "Scalar" and types["p.mass_0"] == "Scalar"      # <label>_<material>
     items = doc.findall(".//DataItem[@Format='HDF']")
     assert items
     for it in items:
