@@ -118,3 +118,43 @@ def test_rebalancing_keeps_the_answer(serial, tmp_path):
     r = pysus(path, "--filebase", uda, np_=3)
     assert r.returncode == 0, r.stderr
     same(serial / "one.uda", uda, steps=(1, -1))
+
+
+def test_a_rank_killed_ends_the_others(tmp_path):
+    """SIGKILL of one rank (a node failing) ends the whole job promptly instead of a hang."""
+    import signal
+    import subprocess
+    import time
+
+    from tests.conftest import BIN
+    (tmp_path / "long.ups").write_text(deck(n=64, maxTime=50.0, checkpoint=""))
+    job = subprocess.Popen([str(BIN / "mpiexec"), "-n", "2", str(BIN / "pysus"), "-q", str(tmp_path / "long.ups"),
+                            "--filebase", str(tmp_path / "long.uda")], cwd=tmp_path,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    ranks = []
+    deadline = time.time() + 120
+    while len(ranks) < 2 and time.time() < deadline:      # the two pysus processes under mpiexec
+        out = subprocess.run(["pgrep", "-f", str(tmp_path / "long.ups")], capture_output=True, text=True).stdout
+        ranks = [int(p) for p in out.split() if int(p) != job.pid and _is_rank(int(p))]
+        time.sleep(0.5)
+    assert len(ranks) == 2, "both ranks started"
+    time.sleep(3.0)                                         # into the time loop
+    assert job.poll() is None
+    t0 = time.time()
+    os.kill(ranks[1], signal.SIGKILL)
+    try:
+        job.wait(timeout=30)
+    finally:
+        if job.poll() is None:
+            os.killpg(job.pid, signal.SIGKILL)
+    assert time.time() - t0 < 10.0
+    assert job.returncode != 0
+
+
+def _is_rank(pid):
+    try:
+        with open(f"/proc/{pid}/cmdline", "rb") as f:
+            cmd = f.read().split(b"\0")
+    except OSError:
+        return False
+    return any(c.endswith(b"pysus") for c in cmd) and not any(c.endswith(b"mpiexec") or b"hydra" in c for c in cmd)
