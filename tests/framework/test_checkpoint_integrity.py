@@ -184,3 +184,32 @@ def test_sigkill_while_checkpointing_leaves_a_restartable_checkpoint(tmp_path):
         assert np.array_equal(DataArchive(again.archiver.dir).read("temp_CC", 0, -1)[0], ref)
         restarted += 1
     assert restarted >= 1
+
+
+def test_real_full_disk_keeps_the_last_checkpoint(tmp_path):
+    """Output to a 3 MB file system fills it: one failure line, no traceback, and the newest
+    complete checkpoint restarts (needs root to mount a tmpfs; skipped otherwise)."""
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", "size=3m", "tmpfs", str(disk)],
+                                           capture_output=True).returncode != 0:
+        pytest.skip("cannot mount a small tmpfs here")
+    try:
+        text = decks.heat(n=64, maxTime=10.0, out=1, checkpoint='<checkpoint timestepInterval="3" cycle="2"/>')
+        (tmp_path / "d.ups").write_text(text)
+        env = dict(os.environ, PYTHONPATH=ROOT)
+        r = subprocess.run([sys.executable, "-m", "framework", "-q", str(tmp_path / "d.ups"), "--filebase",
+                            str(disk / "run.uda")], capture_output=True, text=True, env=env, timeout=300)
+        assert r.returncode == 1
+        lines = r.stderr.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith("pysus: the run failed") and "checkpoint" in lines[0], r.stderr
+        shutil.copytree(disk / "run.uda", tmp_path / "copy.uda")
+    finally:
+        subprocess.run(["umount", str(disk)], capture_output=True)
+    d, info, _ = load_checkpoint(str(tmp_path / "copy.uda"))
+    start = info["state"]["timestep"]
+    assert start > 0
+    again = Controller(restart=str(tmp_path / "copy.uda"), quiet=True, filebase=str(tmp_path / "again.uda"),
+                       max_timesteps=start + 2)
+    again.run()
+    assert again.timestep == start + 2
