@@ -213,6 +213,18 @@ def run_uintah(sus, scene, n, workdir):
             "errors": scene["error"](da), "opt_code": "uintah"}
 
 
+def _report_row(row, prev, n, key, label, step_column):
+    """Adds the observed order against the previous resolution (prev: (n, error) or None) to
+    row, prints the row's line and returns (n, error) for the next one."""
+    e = row["errors"][key]
+    row["order"] = math.log(prev[1] / e) / math.log(n / prev[0]) if prev and e > 0 else None
+    o = f"{row['order']:.2f}" if row["order"] is not None else "  - "
+    errs = "  ".join(f"{k}={v:.3e}" for k, v in row["errors"].items())
+    print(f"{label:24s} cells={row['cells']:8d} steps={row['steps']:6d} "
+          f"wall={row['wall_s']:8.3f}s {step_column}  L1 {errs}  order({key})={o}", flush=True)
+    return n, e
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene", choices=sorted(SCENES))
@@ -237,27 +249,16 @@ def main(argv=None):
         for n in args.res:
             with tempfile.TemporaryDirectory() as d:
                 row = run_case(scene, n, opts, d)
-            e = row["errors"][key]
-            row["order"] = math.log(prev[1] / e) / math.log(n / prev[0]) if prev and e > 0 else None
-            prev = (n, e)
+            prev = _report_row(row, prev, n, key, " ".join(f"{k}={v}" for k, v in opts.items()),
+                               f"step={row['step_s']:8.3f}s")
             rows.append(row)
-            o = f"{row['order']:.2f}" if row["order"] is not None else "  - "
-            errs = "  ".join(f"{k}={v:.3e}" for k, v in row["errors"].items())
-            print(f"{' '.join(f'{k}={v}' for k, v in opts.items()):24s} cells={row['cells']:8d} steps={row['steps']:6d} "
-                  f"wall={row['wall_s']:8.3f}s step={row['step_s']:8.3f}s  L1 {errs}  order({key})={o}", flush=True)
     if args.uintah:
         prev = None
         for n in args.res:
             with tempfile.TemporaryDirectory() as d:
                 row = run_uintah(args.uintah, scene, n, d)
-            e = row["errors"][key]
-            row["order"] = math.log(prev[1] / e) / math.log(n / prev[0]) if prev and e > 0 else None
-            prev = (n, e)
+            prev = _report_row(row, prev, n, key, "Uintah sus", " " * 14)
             rows.append(row)
-            o = f"{row['order']:.2f}" if row["order"] is not None else "  - "
-            errs = "  ".join(f"{k}={v:.3e}" for k, v in row["errors"].items())
-            print(f"{'Uintah sus':24s} cells={row['cells']:8d} steps={row['steps']:6d} "
-                  f"wall={row['wall_s']:8.3f}s {'':14s}  L1 {errs}  order({key})={o}", flush=True)
     out = {"scene": args.scene, "what": scene["what"], "rows": rows}
     if args.json:
         with open(args.json, "w") as f:
