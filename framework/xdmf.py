@@ -113,11 +113,12 @@ class XdmfWriter:
     def __init__(self, uda, level):
         self.uda, self.level, self.parts = uda, level, []
 
-    def add(self, index):
-        entry = index["timesteps"][-1]
-        with open(os.path.join(self.uda, entry["dir"], f'{entry["dir"]}.xdmf'), "w") as f:
-            f.write(_document(timestep_grids(entry, index, self.level)))
-        self.parts.append(timestep_grids(entry, index, self.level, prefix=f'{entry["dir"]}/'))
+    def add(self, index, entries=None):
+        """Describe the index's newest timestep (or each of `entries`), then rewrite output.xdmf."""
+        for entry in entries if entries is not None else index["timesteps"][-1:]:
+            with open(os.path.join(self.uda, entry["dir"], f'{entry["dir"]}.xdmf'), "w") as f:
+                f.write(_document(timestep_grids(entry, index, self.level)))
+            self.parts.append(timestep_grids(entry, index, self.level, prefix=f'{entry["dir"]}/'))
         body = ['<Grid Name="TimeSeries" GridType="Collection" CollectionType="Temporal">', *self.parts, "</Grid>"]
         tmp = os.path.join(self.uda, "output.xdmf.tmp")
         with open(tmp, "w") as f:
