@@ -101,6 +101,7 @@ def main(argv=None):
         from .uda_tools import main as tool_main
         return tool_main(argv)
     args = parser().parse_args(argv)
+    args.deck = shipped_deck(args.deck)
     if args.np > 1 and not under_mpi():
         relaunch(args, argv)
     if not args.deck and not args.restart:
@@ -158,6 +159,16 @@ def main(argv=None):
             sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
         sys.stderr.write(prefix + failure_summary(e, ctl if "ctl" in locals() else None) + "\n")
         return _exit(comm, 1)
+
+
+def shipped_deck(path):
+    """The deck as given, or else the same relative path under pysus's own tree (the wheel
+    installs inputs/ beside framework/), so `pysus inputs/examples/quickstart.ups` runs anywhere."""
+    if path and not os.path.exists(path) and not os.path.isabs(path):
+        shipped = Path(__file__).resolve().parents[1] / path
+        if shipped.is_file():
+            return str(shipped)
+    return path
 
 
 def warm(args) -> int:
