@@ -164,7 +164,7 @@ class Archiver:
         for fn in sorted(os.listdir(old)):
             if fn.endswith(".dat"):
                 with open(os.path.join(old, fn)) as src, open(os.path.join(self.dir, fn), "w") as dst:
-                    dst.writelines(line for line in src if float(line.split()[0]) <= t * (1 + 1e-12))
+                    dst.writelines(line for line in src if _line_time(line) <= t * (1 + 1e-12))
         if move:
             shutil.rmtree(old)
 
@@ -309,6 +309,14 @@ class Archiver:
 
 
 CHECKPOINT_NAME = re.compile(r"^t\d{5,}$")     # a complete checkpoint; .tmp / .old are not
+
+
+def _line_time(line):
+    """The time a reduction (.dat) line starts with; infinite for a line cut short by a crash."""
+    try:
+        return float(line.split()[0]) if line.endswith("\n") else float("inf")
+    except (IndexError, ValueError):
+        return float("inf")
 
 
 def file_digest(path):
