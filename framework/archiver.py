@@ -90,6 +90,7 @@ def _write_dw(h5, dw, level, patches, names, region):
 
 
 TIMESTEPS_FILE = "timesteps.jsonl"
+RESTART_MODES = ("nocopy", "copy", "move")    # sus's -nocopy (its default), -copy, -move
 
 
 class Archiver:
@@ -115,20 +116,57 @@ class Archiver:
         self.xdmf = XdmfWriter(self.dir, level)
 
     # -- set-up ---------------------------------------------------------------------
-    def setup(self, t0, restart_from=None):
+    def setup(self, t0, restart_from=None, restart_timestep=None, restart_mode=RESTART_MODES[0]):
+        """Make the uda. A restart (as Uintah's sus) writes a new uda; with restart_mode "copy"
+        or "move" it starts with the old uda's outputs, checkpoints and reduction lines up to
+        the restart's timestep, so that one uda (one output.xdmf) holds the whole history,
+        and "move" then deletes the old uda."""
+        if restart_mode != "nocopy":
+            self.comm.barrier()             # every rank has read its checkpoint before any is moved
         if self.comm.rank == 0:
             os.makedirs(self.dir, exist_ok=True)
             with open(os.path.join(self.dir, "input.ups"), "wb") as f:
                 f.write(self.deck_text)
+            open(os.path.join(self.dir, TIMESTEPS_FILE), "w").close()
             if restart_from:
                 self.index["restarted_from"] = restart_from
-            open(os.path.join(self.dir, TIMESTEPS_FILE), "w").close()
+                if restart_mode != "nocopy":
+                    self._take_history(restart_from, restart_timestep, t0, move=restart_mode == "move")
             self._write_index()
         self.comm.barrier()
         if self.spec["outputInterval"] > 0:
             self.next_output_time = t0
         if self.spec["checkpoint_interval"] > 0:
             self.next_checkpoint_time = t0 + self.spec["checkpoint_interval"]
+
+    def _take_history(self, old, timestep, t, move):
+        """Copy (or move) the old uda's outputs and checkpoints at or before `timestep`, and its
+        reduction lines at or before time `t`, into this uda (Uintah's DataArchiver::restartSetup)."""
+        take = shutil.move if move else shutil.copytree
+        prev = DataArchive(old)
+        self.index["restarts"] = prev.index.get("restarts", []) + [{"from": os.path.abspath(old),
+                                                                    "timestep": timestep}]
+        for name, info in prev.index["labels"].items():
+            self.index["labels"].setdefault(name, info)
+        taken = [e for e in prev.index["timesteps"] if e["timestep"] <= timestep]
+        with open(os.path.join(self.dir, TIMESTEPS_FILE), "a") as f:
+            for entry in taken:
+                take(os.path.join(old, entry["dir"]), os.path.join(self.dir, entry["dir"]))
+                f.write(json.dumps(entry, separators=(",", ":")) + "\n")
+        self.index["timesteps"].extend(taken)
+        if taken:
+            self.xdmf.add(self.index, taken)
+        os.makedirs(os.path.join(self.dir, "checkpoints"), exist_ok=True)
+        for cp in prev.index["checkpoints"]:
+            if cp["timestep"] <= timestep and os.path.isdir(os.path.join(old, cp["dir"])):
+                take(os.path.join(old, cp["dir"]), os.path.join(self.dir, cp["dir"]))
+                self.index["checkpoints"].append(cp)
+        for fn in sorted(os.listdir(old)):
+            if fn.endswith(".dat"):
+                with open(os.path.join(old, fn)) as src, open(os.path.join(self.dir, fn), "w") as dst:
+                    dst.writelines(line for line in src if _line_time(line) <= t * (1 + 1e-12))
+        if move:
+            shutil.rmtree(old)
 
     @staticmethod
     def unique_dir(base, rank_comm):
@@ -221,6 +259,8 @@ class Archiver:
         if s["checkpoint_interval"] > 0:
             while self.next_checkpoint_time <= t * (1 + 1e-12):
                 self.next_checkpoint_time += s["checkpoint_interval"]
+        # the state taken before this call has the time of this checkpoint: a restart would write it again
+        state = {**state, "next_checkpoint_time": self.next_checkpoint_time}
         cdir = os.path.join(self.dir, "checkpoints")
         final = os.path.join(cdir, f"t{timestep:05d}")
         tmp = final + ".tmp"
@@ -269,6 +309,14 @@ class Archiver:
 
 
 CHECKPOINT_NAME = re.compile(r"^t\d{5,}$")     # a complete checkpoint; .tmp / .old are not
+
+
+def _line_time(line):
+    """The time a reduction (.dat) line starts with; infinite for a line cut short by a crash."""
+    try:
+        return float(line.split()[0]) if line.endswith("\n") else float("inf")
+    except (IndexError, ValueError):
+        return float("inf")
 
 
 def file_digest(path):

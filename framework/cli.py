@@ -3,7 +3,9 @@
     pysus deck.ups                    run on one rank
     pysus --np 4 deck.ups             run on 4 ranks (re-launches itself under mpiexec)
     mpiexec -n 4 pysus deck.ups       the same, launched by the user or a batch script
-    pysus -restart run.uda [-t -1]    continue from a checkpoint (any number of ranks)
+    pysus -restart run.uda [-t -1]    continue from a checkpoint (any number of ranks) into a new uda;
+                                      -copy / -move: the new uda starts with the old one's outputs
+                                      (moved: the old uda is deleted); -nocopy (default): it does not
     pysus --graph deck.ups [--dot f]  print the tasks the deck will run, in order
     pysus -validate deck.ups          check the deck (set-up, grid, task graphs) and exit
     pysus info|extract|plot RUN.uda   inspect a run's output (framework/uda_tools.py)
@@ -23,7 +25,7 @@ import sys
 import traceback
 from pathlib import Path
 
-from .archiver import CHECKPOINT_NAME
+from .archiver import CHECKPOINT_NAME, RESTART_MODES
 from .errors import RunStopped
 
 MPI_ENV = ("PMI_RANK", "PMI_SIZE", "PMIX_RANK", "OMPI_COMM_WORLD_SIZE", "MPI_LOCALNRANKS", "HYDI_CONTROL_FD")
@@ -47,6 +49,12 @@ def parser():
     p.add_argument("deck", nargs="?", help="the .ups input deck")
     p.add_argument("--np", type=int, default=1, help="number of MPI ranks (launches mpiexec)")
     p.add_argument("-restart", "--restart", dest="restart", metavar="UDA", help="continue from a checkpoint")
+    for mode in RESTART_MODES:
+        p.add_argument(f"-{mode}", dest="restart_mode", action="store_const", const=mode,
+                       help={"nocopy": "with -restart: the new uda holds only what the restart writes (default)",
+                             "copy": "with -restart: copy the old uda's outputs up to the checkpoint into the new one",
+                             "move": "with -restart: move them, and delete the old uda"}[mode])
+    p.set_defaults(restart_mode="nocopy")
     p.add_argument("-t", dest="t", type=int, default=-1, help="which checkpoint of -restart (index, default newest)")
     p.add_argument("--graph", action="store_true", help="print the scheduled tasks in order and exit")
     p.add_argument("-validate", "--validate", dest="validate", action="store_true",
@@ -93,6 +101,7 @@ def main(argv=None):
         from .uda_tools import main as tool_main
         return tool_main(argv)
     args = parser().parse_args(argv)
+    args.deck = shipped_deck(args.deck)
     if args.np > 1 and not under_mpi():
         relaunch(args, argv)
     if not args.deck and not args.restart:
@@ -110,7 +119,7 @@ def main(argv=None):
         from .controller import Controller
         ctl = Controller(args.deck, comm, restart=args.restart, restart_index=args.t, quiet=args.quiet,
                          filebase=args.filebase, max_timesteps=args.max_timesteps,
-                         max_time=args.max_time)
+                         max_time=args.max_time, restart_mode=args.restart_mode)
         if args.graph:
             if comm.rank == 0:
                 from .graphview import describe, write_dot
@@ -150,6 +159,16 @@ def main(argv=None):
             sys.stderr.write("".join(prefix + line + "\n" for line in msg.rstrip().split("\n")))
         sys.stderr.write(prefix + failure_summary(e, ctl if "ctl" in locals() else None) + "\n")
         return _exit(comm, 1)
+
+
+def shipped_deck(path):
+    """The deck as given, or else the same relative path under pysus's own tree (the wheel
+    installs inputs/ beside framework/), so `pysus inputs/examples/quickstart.ups` runs anywhere."""
+    if path and not os.path.exists(path) and not os.path.isabs(path):
+        shipped = Path(__file__).resolve().parents[1] / path
+        if shipped.is_file():
+            return str(shipped)
+    return path
 
 
 def warm(args) -> int:

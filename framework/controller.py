@@ -116,11 +116,13 @@ class Controller:
     """Sets up a run from a deck (or a checkpoint) and runs the time loop."""
 
     def __init__(self, deck=None, comm: Comm | None = None, restart=None, restart_index=-1,
-                 quiet=False, filebase=None, max_timesteps=None, deck_text=None, max_time=None):
+                 quiet=False, filebase=None, max_timesteps=None, deck_text=None, max_time=None,
+                 restart_mode="nocopy"):
         keep_freed_memory()
         self.comm = comm or Comm(None)
         self.quiet = quiet
         self.restart = restart
+        self.restart_mode = restart_mode    # what the new uda takes of the old: archiver.RESTART_MODES
         self.restart_info = None
         if restart is not None:
             notices = []
@@ -349,7 +351,8 @@ class Controller:
             st = info["state"]
             self.t, self.timestep, self.prev_delt = st["time"], st["timestep"], st["prev_delt"]
             if self.archiver is not None:
-                self.archiver.setup(self.t, restart_from=self.restart)
+                self.archiver.setup(self.t, restart_from=self.restart, restart_timestep=self.timestep,
+                                    restart_mode=self.restart_mode)
                 self.archiver.next_output_time = st.get("next_output_time")
                 self.archiver.next_checkpoint_time = st.get("next_checkpoint_time")
             return dw

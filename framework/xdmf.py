@@ -1,14 +1,16 @@
 """XDMF (version 2) descriptions of a `.uda` so ParaView and VisIt open it directly.
 
 Each output timestep is a spatial collection of one uniform grid per patch (a
-3DCoRectMesh for grid variables; when the grid is one cell thick in z, a slab FLAT_SLAB
-of a cell thick from the bottom face, so the particles at mid-cell show above it: XDMF's
-2DCoRectMesh lies in the y-z plane and one plane of points is refused by the legacy reader),
-and a Polyvertex set per material for particles, with explicit connectivity so the
-Xdmf3 readers make cells of them too), and `output.xdmf` is the temporal collection of
-all of them. HDF5 datasets are stored (z, y, x) so the XDMF dimensions are written
-slowest first. Naming rule, grid and particles alike: arrays are `<label>_<material>`
-(temp_CC_0, p.mass_1), blocks are `<cells|nodes|particles_m<material>>_patch<id>`.
+3DCoRectMesh for grid variables) and a Polyvertex set per material for particles, with
+explicit connectivity so the Xdmf3 readers make cells of them too; `output.xdmf` is the
+temporal collection of all of them. A grid one cell thick in z is drawn as a plane: the
+same 3DCoRectMesh with a z spacing of zero, lying at the domain's bottom face, so the
+particles (at mid-cell) show above it. That is the one 2D form every ParaView XDMF reader
+places right (ParaView 5.11): they put XDMF's 2DCoRectMesh in the y-z plane, and the legacy
+reader drops the cell data of a 3DCoRectMesh one point thick.
+HDF5 datasets are stored (z, y, x) so the XDMF dimensions are written slowest first.
+Naming rule, grid and particles alike: arrays are `<label>_<material>` (temp_CC_0,
+p.mass_1), blocks are `<cells|nodes|particles_m<material>>_patch<id>`.
 """
 from __future__ import annotations
 
@@ -19,7 +21,6 @@ import numpy as np
 from .variables import VarType
 
 CONNECTIVITY = "vertex_ids"   # per particle set: 0..n-1, the Polyvertex connectivity
-FLAT_SLAB = 0.4               # thickness of a one-cell-thick grid as drawn, in cells
 _ATYPE = {1: "Scalar", 3: "Vector", 9: "Tensor"}
 
 
@@ -65,11 +66,10 @@ def timestep_grids(entry, index, level, prefix=""):
                 origin = [level.anchor[d] + lo[d] * level.dx[d] for d in range(3)]
                 npts = dims
                 center = "Node"
-            flat = dims[2] == 1     # one cell (or node) thick in z: written as 2D
             out.append(f'<Grid Name="{kind}_patch{pid}" GridType="Uniform">')
             spacing = list(level.dx)
-            if flat:    # a thin slab under the particles' mid-plane, so they are drawn on top of it
-                spacing[2] = FLAT_SLAB * level.dx[2]
+            if level.ncells[2] == 1 and npts[2] == 2:     # one cell thick: a plane at the bottom face
+                spacing[2] = 0.0
             out.append(f'<Topology TopologyType="3DCoRectMesh" Dimensions="{npts[2]} {npts[1]} {npts[0]}"/>')
             out.append('<Geometry GeometryType="ORIGIN_DXDYDZ">'
                        f'<DataItem Dimensions="3" NumberType="Float" Precision="8" Format="XML">'
@@ -113,11 +113,12 @@ class XdmfWriter:
     def __init__(self, uda, level):
         self.uda, self.level, self.parts = uda, level, []
 
-    def add(self, index):
-        entry = index["timesteps"][-1]
-        with open(os.path.join(self.uda, entry["dir"], f'{entry["dir"]}.xdmf'), "w") as f:
-            f.write(_document(timestep_grids(entry, index, self.level)))
-        self.parts.append(timestep_grids(entry, index, self.level, prefix=f'{entry["dir"]}/'))
+    def add(self, index, entries=None):
+        """Describe the index's newest timestep (or each of `entries`), then rewrite output.xdmf."""
+        for entry in entries if entries is not None else index["timesteps"][-1:]:
+            with open(os.path.join(self.uda, entry["dir"], f'{entry["dir"]}.xdmf'), "w") as f:
+                f.write(_document(timestep_grids(entry, index, self.level)))
+            self.parts.append(timestep_grids(entry, index, self.level, prefix=f'{entry["dir"]}/'))
         body = ['<Grid Name="TimeSeries" GridType="Collection" CollectionType="Temporal">', *self.parts, "</Grid>"]
         tmp = os.path.join(self.uda, "output.xdmf.tmp")
         with open(tmp, "w") as f:

@@ -1,6 +1,6 @@
 """ParaView's XDMF readers (the legacy one and both Xdmf3 ones) load our output with the
-right values and draw the particles as cells, in 2D (a grid below the particles) and 3D
-(skipped without pvbatch)."""
+right values and draw the particles as cells, in 2D (a flat grid, zero z extent, under the
+particles, which lie inside its x-y bounds) and 3D (skipped without pvbatch)."""
 import shutil
 import subprocess
 
@@ -20,21 +20,26 @@ r = getattr(pv, sys.argv[1])(FileName=[sys.argv[2]]) if sys.argv[1] != "XDMFRead
 r.UpdatePipeline(float(sys.argv[3]))
 d = servermanager.Fetch(r)
 it = d.NewIterator(); it.InitTraversal()
-lo, hi, cells, parts, pcells, grid_top, parts_bottom = 1e300, -1e300, 0, 0, 0, -1e300, 1e300
+lo, hi, cells, parts, pcells = 1e300, -1e300, 0, 0, 0
+gb = [1e300, -1e300] * 3          # bounds of the grid blocks, of the particle blocks
+pb = [1e300, -1e300] * 3
+def grow(box, b):
+    for i in range(6):
+        box[i] = (min if i % 2 == 0 else max)(box[i], b[i])
 while not it.IsDoneWithTraversal():
     b = it.GetCurrentDataObject()
     a = b.GetCellData().GetArray("temp_CC_0")
     if a is not None:
         assert a.GetNumberOfComponents() == 1 and a.GetNumberOfTuples() == b.GetNumberOfCells()
         lo, hi = min(lo, a.GetRange()[0]), max(hi, a.GetRange()[1]); cells += b.GetNumberOfCells()
-        grid_top = max(grid_top, b.GetBounds()[5])
+        grow(gb, b.GetBounds())
     m = b.GetPointData().GetArray("p.mass_0")
     if m is not None:
-        parts_bottom = min(parts_bottom, b.GetBounds()[4])
+        grow(pb, b.GetBounds())
         assert m.GetNumberOfComponents() == 1 and m.GetNumberOfTuples() == b.GetNumberOfPoints()
         parts += b.GetNumberOfPoints(); pcells += b.GetNumberOfCells()
     it.GoToNextItem()
-print("RESULT", cells, parts, pcells, repr(lo), repr(hi), grid_top < parts_bottom)
+print("RESULT", cells, parts, pcells, repr(lo), repr(hi), " ".join(repr(x) for x in gb + pb))
 """
 
 
@@ -54,8 +59,15 @@ def test_paraview_readers_draw_cells_and_particles(tmp_path, nz):
                            capture_output=True, text=True, timeout=240)
         line = [l for l in r.stdout.splitlines() if l.startswith("RESULT")]
         assert line, reader + r.stdout + r.stderr
-        _, cells, parts, pcells, lo, hi, under = line[0].split()
+        _, cells, parts, pcells, lo, hi, *bounds = line[0].split()
+        grid, parts_box = [float(x) for x in bounds[:6]], [float(x) for x in bounds[6:]]
         assert int(cells) == T.size, reader
         assert int(parts) == nparts and int(pcells) == nparts, reader    # particles are drawable cells
         assert float(lo) == T.min() and float(hi) == T.max(), reader
-        assert under == str(nz == 1), reader     # in 2D the grid's top lies below every particle
+        assert grid[:4] == [0.0, 1.0, 0.0, 1.0], reader         # the unit square of the deck
+        for d in (0, 1):      # every particle inside the grid's x and y bounds
+            assert grid[2 * d] < parts_box[2 * d] and parts_box[2 * d + 1] < grid[2 * d + 1], reader
+        if nz == 1:           # 2D: a plane (zero z extent) under every particle
+            assert grid[4] == grid[5] == 0.0 and parts_box[4] > grid[5], reader
+        else:
+            assert (grid[4], grid[5]) == (0.0, 1.0) and grid[4] < parts_box[4] < parts_box[5] < grid[5], reader
