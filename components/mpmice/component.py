@@ -111,6 +111,12 @@ class MPMICE(MPMICETasks, Component):
                 "MPMICE with deformable solids needs the active directions first (x, xy or xyz; the "
                 "pressure force on the particles assumes it); rmpmice (prescribed solids) accepts any")
         nm = len(self.mpm.materials)
+        for mat in self.mpm.materials:          # visco_scram's own solid EOS options
+            flag = mat.params.eos_flag() if hasattr(mat.params, "eos_flag") else None
+            if flag:
+                raise mat.node.child("constitutive_model").child(flag).error(
+                    f"<{flag}> true is not implemented in MPMICE (the solid's EOS is the bulk modulus "
+                    "with the low-pressure threshold); accepted: false")
         self.mpm_matls = list(range(nm))
         bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]
