@@ -223,6 +223,10 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
+        if not ice.implicit:
+            sched.add_task(Task("ICE::computeDelP_MassX", ice.delp_mass_exchange, m0)     # only when saved
+                           .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
+                           .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
 
         if not self.rigid:
             ng = self.mpm.ng

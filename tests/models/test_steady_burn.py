@@ -103,3 +103,41 @@ def test_bad_value_refused(tmp_path):
     with pytest.raises(InputError) as e:
         Controller(str(tmp_path / "d.ups"), deck_text=text, quiet=True, filebase=str(tmp_path / "d.uda")).run()
     assert "SpecificHeatBoth" in str(e.value)
+
+
+VISCO_SCRAM = """<constitutive_model type="visco_scram">
+          <PR>0.3</PR> <CoeffThermalExpansion>12.5e-5</CoeffThermalExpansion>
+          <CrackParameterA>1.e-3</CrackParameterA> <CrackPowerValue>10.0</CrackPowerValue>
+          <CrackMaxGrowthRate>300.0</CrackMaxGrowthRate> <StressIntensityF>500.0</StressIntensityF>
+          <CrackFriction>0.35</CrackFriction> <InitialCrackRadius>3.e-5</InitialCrackRadius>
+          <CrackGrowthRate>12.</CrackGrowthRate>
+          <G1>3.5e8</G1> <G2>1.739e8</G2> <G3>5.212e8</G3> <G4>9.085e8</G4> <G5>6.875e8</G5>
+          <RTau1>0.0</RTau1> <RTau2>7.32e3</RTau2> <RTau3>7.32e4</RTau3> <RTau4>7.32e5</RTau4> <RTau5>2.e6</RTau5>
+          <Beta>1.5e-4</Beta> <Gamma>1.0</Gamma> <DCp_DTemperature>3.30773</DCp_DTemperature>
+          <useModifiedEOS> true </useModifiedEOS>
+        </constitutive_model>"""
+
+# sus on the deck below (visco_scram reactant, 10 steps): (time, totalMassBurned) of steps 1, 2, 10
+SUS_VS = [(1e-7, 8.4351543933243749e-09), (5e-7, 3.3751070193293241e-08), (3.7e-6, 3.3789946090222194e-08)]
+
+
+def test_visco_scram_reactant_in_mpmice(tmp_path):
+    """SteadyBurn_2dRT's pairing: a visco_scram (PBX 9501) reactant burning by Steady_Burn in
+    MPMICE. The model's 1 microsecond cap (times the multiplier 0.4) sets sus's 0.4 us steps;
+    step 1 burns what sus burned to 16 digits, step 10 within 3e-3 of sus (1.1e-3 measured:
+    the burning cells' pressure history differs)."""
+    from framework.archiver import DataArchive
+    from tests.conftest import run_deck
+    text = open(DECK).read()
+    a, b = text.index('<constitutive_model type="comp_neo_hook">'), text.index("</constitutive_model>")
+    text = (text[:a] + VISCO_SCRAM + text[b + len("</constitutive_model>"):]) \
+        .replace("<max_Timesteps> 20 </max_Timesteps>", "<max_Timesteps> 10 </max_Timesteps>") \
+        .replace('<save label="TotalMass"/>', '<save label="TotalMass"/><save label="p.stress"/>')
+    da = DataArchive(run_deck(text, tmp_path).archiver.dir)
+    t, burned = da.reduction("totalMassBurned")
+    np.testing.assert_allclose(np.diff(t), 4e-7, rtol=1e-9)
+    assert abs(burned[0] - SUS_VS[0][1]) < 1e-13 * burned[0]
+    assert abs(burned[1] - SUS_VS[1][1]) < 1e-3 * burned[1]
+    assert abs(burned[9] - SUS_VS[2][1]) < 3e-3 * burned[9] and abs(t[9] - SUS_VS[2][0]) < 1e-12
+    s = da.particles(0, -1)["p.stress"]
+    assert np.all(np.isfinite(s)) and np.abs(s).max() > 0.0
