@@ -41,6 +41,8 @@ MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
     "thermal_conductivity": Param("float", 0.0, doc="W/(m K) (thermal.py)", at_least=0.0),
     "specific_heat": Param("float", 0.0, doc="J/(kg K) (thermal.py, MPMICE exchange)", at_least=0.0),
+    "C_p": Param("float", 0.0, doc="J/(kg K), Uintah's constant-pressure specific heat; read, no model uses it",
+                 at_least=0.0),
     "room_temp": Param("float", 294.0, doc="K; read, no thermal model uses it", above=0.0),
     "melt_temp": Param("float", 1e30, doc="K; read, no thermal model uses it", above=0.0),
     "is_rigid": Param("bool", False, doc="rigid body for <contact type=rigid>"),

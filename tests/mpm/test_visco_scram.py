@@ -144,3 +144,35 @@ def test_not_implemented_options_refused(tmp_path):
     with pytest.raises(InputError) as e:
         run(text, tmp_path)
     assert "randomize_parameters" in str(e.value) and "false is accepted" in str(e.value)
+
+
+def test_material_from_include_files(tmp_path):
+    """PBX_Cylinder_Ext_Load's way: density (and Uintah's C_p) and the model's constants in
+    <include href> files; the first step is the inline deck's (sus's) stress."""
+    data = tmp_path / "MaterialData"
+    data.mkdir()
+    (data / "MatConstPBX9501.xml").write_text(
+        "<?xml version='1.0' encoding='ISO-8859-1' ?>\n<Uintah_Include>\n  <density> 1840.0 </density>\n"
+        "  <thermal_conductivity> 0.452 </thermal_conductivity>\n  <specific_heat> 996.0 </specific_heat>\n"
+        "  <C_p> 996.0 </C_p>\n  <room_temp> 294.0 </room_temp>\n  <melt_temp> 688.0 </melt_temp>\n</Uintah_Include>\n")
+    consts = "".join(f"  <{k}> {v} </{k}>\n" for k, v in PBX9501.items())
+    (data / "ViscoSCRAMPBX9501.xml").write_text(
+        "<?xml version='1.0' encoding='ISO-8859-1' ?>\n<Uintah_Include>\n" + consts
+        + "  <Chi> 0.95 </Chi>\n  <delH> 5.5e6 </delH>\n  <Z> 5.0e19 </Z>\n  <EoverR> 2.652e4 </EoverR>\n"
+        "  <dynamic_coeff_friction> 0.25 </dynamic_coeff_friction>\n  <volfracHE> 0.95 </volfracHE>\n"
+        "</Uintah_Include>\n")
+    text = deck_text(DECK, maxTime="1e-6").replace("<outputInterval>.0005</outputInterval>",
+                                                   "<outputTimestepInterval>1</outputTimestepInterval>")
+    a = text.index("<density>1828.0</density>")
+    b = text.index("<geom_object>", a)
+    text = text[:a] + ('<include href="MaterialData/MatConstPBX9501.xml"/>\n<constitutive_model type="visco_scram">'
+                       '<include href="MaterialData/ViscoSCRAMPBX9501.xml"/></constitutive_model>\n') + text[b:]
+    (tmp_path / "inc.ups").write_text(text)
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    ctl = Controller(str(tmp_path / "inc.ups"), quiet=True, filebase=str(tmp_path / "inc.uda"))
+    ctl.run()
+    p = DataArchive(ctl.archiver.dir).particles(1, 1)
+    np.testing.assert_allclose(p["p.mass"], 1840.0 * 1e-6, rtol=1e-12)
+    s = p["p.stress"][0]
+    np.testing.assert_allclose([s[0, 0], s[1, 1], s[2, 2]], SUS[0, 4:7], rtol=1e-8)
