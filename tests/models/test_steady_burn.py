@@ -6,7 +6,6 @@ PBX 9501's WSB constants. Both faces burn (A = 0.025^2 m^2 each).
 sus values: Uintah's sus on the same deck with <max_Timesteps> 10 and output every step
 (its totalMassBurned.dat).
 """
-import json
 import math
 import os
 

@@ -49,8 +49,6 @@ STATE = ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious")
 VRES_A, VRES_B = 0.90564746, -2.90178468        # PBX 9501 baseline crack-speed fit
 NOT_IMPLEMENTED = ("randomize_parameters", "useObjectiveRate")
 EOS_FLAGS = ("useJWLEOS", "useJWLCEOS", "useMurnahanEOS", "useBirchMurnaghanEOS")
-UNUSED = ("Beta", "Gamma", "DCp_DTemperature", "useModifiedEOS", "gamma", "P0", "bulkPrime", "A", "B", "C",
-          "Cv", "R1", "R2", "om", "Chi", "delH", "Z", "EoverR", "dynamic_coeff_friction", "volfracHE", "rho0")
 _REQUIRED = ("PR", "CrackParameterA", "CrackPowerValue", "CrackMaxGrowthRate", "StressIntensityF", "CrackFriction",
              "InitialCrackRadius", "CrackGrowthRate", "G1", "G2", "G3", "G4", "G5",
              "RTau1", "RTau2", "RTau3", "RTau4", "RTau5", "Beta", "Gamma", "DCp_DTemperature")
