@@ -152,7 +152,7 @@ def initial_state(params, n, temperature):
     return (np.zeros((n, 5, 3, 3)), np.full(n, params.InitialCrackRadius), np.array(temperature, float).copy())
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _maxwell_rate(Dp, Sk, Gk, tauk_inv, Ssum, Stau, G, c, cdot, a3, out):
     """dS_k/dt of one Maxwell element at crack radius c (the bracket of the module docstring)."""
     con1 = 3.0 * c * c * cdot / a3
@@ -164,7 +164,7 @@ def _maxwell_rate(Dp, Sk, Gk, tauk_inv, Ssum, Stau, G, c, cdot, a3, out):
             out[i, j] = 2.0 * Gk * Dp[i, j] - Sk[i, j] * tauk_inv - (Ssum[i, j] * con1 + inner * con3 / con2) * (Gk / G)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _stage(S, p, k, inc, scale, Dp, Gm, Rt, G, c, cdot, a3, Ssum, Stau, Sk, out, dt):
     """RK stage of element k with its previous increment `inc` * scale added to every element."""
     for i in range(3):
