@@ -10,6 +10,7 @@
       </Model>
     </Models>
 
+Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate.
 `read_models(root, mpmice)` reads the block (None without it); `Models.hook(sched)` wraps
 the scheduler so that each model's tasks are added right after the MPMICE tasks they
 follow (see simple_burn.py), leaving MPMICE's own schedule untouched.
@@ -17,8 +18,9 @@ follow (see simple_burn.py), leaving MPMICE's own schedule untouched.
 from __future__ import annotations
 
 from .simple_burn import SimpleBurn
+from .steady_burn import SteadyBurn
 
-MODELS = {"Simple_Burn": SimpleBurn}
+MODELS = {"Simple_Burn": SimpleBurn, "Steady_Burn": SteadyBurn}
 
 
 def read_models(root, component):

@@ -29,6 +29,36 @@ def bin_particles(px, pmass, pvel, anchor, dx, cc_low, shape, cell, mass_c, mom_
             mom_c[c, d] += pmass[p] * pvel[p, d]
 
 
+@njit(cache=True, inline="always")
+def _node_masses(gmass, node_low, gi, gj, gk, dims, n_lo, n_hi):
+    """Max, min and the gradient sums (plus - minus) of the reactant's node masses around a
+    cell, a domain-boundary node counted twice per boundary (Uintah's NC_CCweight)."""
+    mx = 1e-100
+    mn = 1e100
+    g0 = 0.0
+    g1 = 0.0
+    g2 = 0.0
+    for a in range(2 if dims[0] else 1):
+        for b in range(2 if dims[1] else 1):
+            for c in range(2 if dims[2] else 1):
+                x = gi + a - node_low[0] if dims[0] else 0
+                y = gj + b - node_low[1] if dims[1] else 0
+                z = gk + c - node_low[2] if dims[2] else 0
+                m = gmass[x, y, z]
+                if dims[0] and (gi + a == n_lo[0] or gi + a == n_hi[0]):
+                    m *= 2.0
+                if dims[1] and (gj + b == n_lo[1] or gj + b == n_hi[1]):
+                    m *= 2.0
+                if dims[2] and (gk + c == n_lo[2] or gk + c == n_hi[2]):
+                    m *= 2.0
+                mx = max(mx, m)
+                mn = min(mn, m)
+                g0 += m * (2 * a - 1) if dims[0] else 0.0
+                g1 += m * (2 * b - 1) if dims[1] else 0.0
+                g2 += m * (2 * c - 1) if dims[2] else 0.0
+    return mx, mn, g0, g1, g2
+
+
 @njit(cache=True)
 def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, temps, vfs, press, mass_c,
                T_thresh, p_thresh, coeff, p_ref, dt, burned, area):
@@ -47,30 +77,8 @@ def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, temps, vfs
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                gi, gj, gk = i + cc_low[0], j + cc_low[1], k + cc_low[2]
-                mx = 1e-100
-                mn = 1e100
-                g0 = 0.0
-                g1 = 0.0
-                g2 = 0.0
-                for a in range(2 if dims[0] else 1):
-                    for b in range(2 if dims[1] else 1):
-                        for c in range(2 if dims[2] else 1):
-                            x = gi + a - node_low[0] if dims[0] else 0
-                            y = gj + b - node_low[1] if dims[1] else 0
-                            z = gk + c - node_low[2] if dims[2] else 0
-                            m = gmass[x, y, z]
-                            if dims[0] and (gi + a == n_lo[0] or gi + a == n_hi[0]):
-                                m *= 2.0
-                            if dims[1] and (gj + b == n_lo[1] or gj + b == n_hi[1]):
-                                m *= 2.0
-                            if dims[2] and (gk + c == n_lo[2] or gk + c == n_hi[2]):
-                                m *= 2.0
-                            mx = max(mx, m)
-                            mn = min(mn, m)
-                            g0 += m * (2 * a - 1) if dims[0] else 0.0
-                            g1 += m * (2 * b - 1) if dims[1] else 0.0
-                            g2 += m * (2 * c - 1) if dims[2] else 0.0
+                mx, mn, g0, g1, g2 = _node_masses(gmass, node_low, i + cc_low[0], j + cc_low[1], k + cc_low[2],
+                                                  dims, n_lo, n_hi)
                 r = (mx - mn) / mx
                 if not (r > 0.4 and r < 1.0 and mx > 1e-12):
                     continue
@@ -156,3 +164,147 @@ def volume_source(mass_src, vol_src, sp_vol, lo, hi, sp_vol_L):
                 ms = mass_src[i, j, k]
                 if ms != 0.0:
                     sp_vol_L[i, j, k] = max(sp_vol_L[i, j, k] + vol_src[i, j, k] - ms * sp_vol[i, j, k], 1e-100)
+
+
+@njit(cache=True)
+def particles_per_cell(px, anchor, dx, cc_low, lo, hi, count):
+    """Steady_Burn's numPPC: the reactant's particles in each interior cell of the patch."""
+    for p in range(px.shape[0]):
+        i = int(np.floor((px[p, 0] - anchor[0]) / dx[0])) - cc_low[0]
+        j = int(np.floor((px[p, 1] - anchor[1]) / dx[1])) - cc_low[1]
+        k = int(np.floor((px[p, 2] - anchor[2]) / dx[2])) - cc_low[2]
+        if lo[0] <= i < hi[0] and lo[1] <= j < hi[1] and lo[2] <= k < hi[2]:
+            count[i, j, k] += 1.0
+
+
+@njit(cache=True, inline="always")
+def _ts_constants(T0, P, v_solid, CC1, CC2, CC3, CC4, CC5):
+    """C1..C5 of the Ward-Son-Brewster steady burn at solid temperature T0, pressure P."""
+    C3 = CC3 * P * P
+    return CC1 / v_solid, T0 + CC2, C3, T0 + CC4, CC5 * C3
+
+
+@njit(cache=True, inline="always")
+def wsb_mass_flux(Ts, C1, C2, Ec, R):
+    """m(Ts) = sqrt(C1 Ts^2 / (Ts - C2) exp(-Ec / (R Ts))): condensed-phase decomposition."""
+    return np.sqrt(C1 * Ts * Ts / (Ts - C2) * np.exp(-Ec / R / Ts))
+
+
+@njit(cache=True, inline="always")
+def _ts_of_m(m, C3, C4, C5):
+    """Ts(m) = C4 + C5 / (sqrt(m^2 + C3) + m)^2: the gas flame's heat feedback."""
+    d = np.sqrt(m * m + C3) + m
+    return C4 + C5 / (d * d)
+
+
+@njit(cache=True)
+def wsb_surface_temperature(Ts, C1, C2, C3, C4, C5, Ec, R, eps):
+    """Ts = Ts(m(Ts)) by Uintah's bisection-Newton: Newton steps while they stay in the bracket
+    and shrink by 0.7, else a bisection; |Ts - F(Ts)| < eps ends it (at most 100 steps)."""
+    Tmin = C4
+    Tsmax = 0.5 * (2.0 * R * C2 - Ec + np.sqrt(4.0 * R * R * C2 * C2 + Ec * Ec)) / R   # max of F
+    Tmax = _ts_of_m(wsb_mass_flux(Tsmax if Tmin < Tsmax else Tmin, C1, C2, Ec, R), C3, C4, C5)
+    IL, IR = Tmin, Tmax
+    if Ts > Tmax or Ts < Tmin:
+        Ts = 0.5 * (Tmin + Tmax)
+    it = 0
+    while it <= 100:
+        it += 1
+        y = Ts - _ts_of_m(wsb_mass_flux(Ts, C1, C2, Ec, R), C3, C4, C5)
+        if y < 0.0:
+            IL = Ts
+        elif y > 0.0:
+            IR = Ts
+        else:
+            IL = IR = Ts
+        if abs(y) < eps:
+            return Ts
+        delta_new = 1e100
+        while it <= 100:
+            m = wsb_mass_flux(Ts, C1, C2, Ec, R)
+            K1 = Ts - C2
+            K2 = np.sqrt(m * m + C3)
+            dF = 1.0 + (R * Ts * (K1 - C2) + Ec * K1) * m * C5 / ((K2 + m) * (K2 + m) * K1 * K2 * R * Ts * Ts)
+            if dF == 0.0:
+                break
+            delta_old = delta_new
+            delta_new = -y / dF                                  # Newton step
+            Ts += delta_new
+            y = Ts - _ts_of_m(wsb_mass_flux(Ts, C1, C2, Ec, R), C3, C4, C5)
+            if abs(y) < eps:
+                return Ts
+            if Ts < IL or Ts > IR or abs(delta_new) > abs(delta_old * 0.7):
+                break
+            it += 1
+            if y < 0.0:
+                IL = Ts
+            elif y > 0.0:
+                IR = Ts
+            else:
+                IL = IR = Ts
+        Ts = 0.5 * (IL + IR)                                     # bisection step
+    return Ts
+
+
+@njit(cache=True)
+def steady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, numppc, temps, vfs, press, v_solid,
+                      mass_c, react, prod, BP, T_ign, p_thresh, CC, Ec, R, eps, min_mass, dt, burned, burning, Ts_out):
+    """Steady_Burn (Ward, Son and Brewster's WSB law, as Uintah's Steady_Burn): a cell holding
+    reactant particles whose node masses vary (min/max < 0.7) burns when one of its 27
+    neighbours with at most BP particles has a material (volume fraction > 0.2) hotter than
+    T_ign and the pressure of the neighbour richest in product is >= p_thresh. T0: the
+    reactant temperature of the neighbour richest in reactant. Burned mass
+    dt A m(Ts), Ts from Ts = Ts(m(Ts)); A = V / ((sum_d |n_d| dx_d) max_d |n_d|^(-1/3)) with n
+    the unit gradient of the node masses; at most the cell's particle mass less min_mass."""
+    s1, s2 = burned.shape[1], burned.shape[2]
+    vol = dx[0] * dx[1] * dx[2]
+    nm = len(temps)
+    r0 = 1 if dims[0] else 0
+    r1 = 1 if dims[1] else 0
+    r2 = 1 if dims[2] else 0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                if numppc[i, j, k] <= 0.0:
+                    continue
+                mx, mn, g0, g1, g2 = _node_masses(gmass, node_low, i + cc_low[0], j + cc_low[1], k + cc_low[2],
+                                                  dims, n_lo, n_hi)
+                if not mn / mx < 0.7:
+                    continue
+                vf_r = -1.0
+                vf_p = -1.0
+                T0 = 0.0
+                P = 0.0
+                lit = False
+                for a in range(i - r0, i + r0 + 1):
+                    for b in range(j - r1, j + r1 + 1):
+                        for c in range(k - r2, k + r2 + 1):
+                            if vfs[react][a, b, c] > vf_r:
+                                vf_r = vfs[react][a, b, c]
+                                T0 = temps[react][a, b, c]
+                            if vfs[prod][a, b, c] > vf_p:
+                                vf_p = vfs[prod][a, b, c]
+                                P = press[a, b, c]
+                            if not lit and numppc[a, b, c] <= BP:
+                                for m in range(nm):
+                                    if vfs[m][a, b, c] > 0.2 and temps[m][a, b, c] > T_ign:
+                                        lit = True
+                                        break
+                if not (lit and P >= p_thresh):
+                    continue
+                burning[i, j, k] = 1.0
+                gx, gy, gz = g0 / dx[0], g1 / dx[1], g2 / dx[2]
+                gn = np.sqrt(gx * gx + gy * gy + gz * gz) + 1e-100
+                nx, ny, nz = abs(gx) / gn, abs(gy) / gn, abs(gz) / gn
+                A = 0.0
+                if nx + ny + nz > 0.0:
+                    coeff = (1.0 / max(nx, max(ny, nz))) ** (1.0 / 3.0)
+                    A = vol / ((dx[0] * nx + dx[1] * ny + dx[2] * nz) * coeff)
+                C1, C2, C3, C4, C5 = _ts_constants(T0, P, v_solid[i, j, k], CC[0], CC[1], CC[2], CC[3], CC[4])
+                Ts = wsb_surface_temperature(850.0, C1, C2, C3, C4, C5, Ec, R, eps)
+                Ts_out[i, j, k] = Ts
+                mb = dt * A * wsb_mass_flux(Ts, C1, C2, Ec, R)
+                have = mass_c[(i * s1 + j) * s2 + k]
+                if mb + min_mass > have:
+                    mb = max(have - min_mass, 0.0)
+                burned[i, j, k] = mb

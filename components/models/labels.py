@@ -12,3 +12,6 @@ burnArea = L.create("Simple_Burn::onSurface", CC)       # reactant: burning-surf
 pBurnFraction = L.create("p.burnFraction", P)           # reactant: fraction of its mass a particle gives
 totalMassBurned = L.create("totalMassBurned", R, reduction="sum")       # this step, all patches (kg)
 totalHeatReleased = L.create("totalHeatReleased", R, reduction="sum")   # this step: burned * Enthalpy (J)
+numPPC = L.create("SteadyBurn.numPPC", CC)              # reactant: its particles per cell
+burningCell = L.create("SteadyBurn.BurningCell", CC)    # reactant: 1 where a cell burns this step
+surfTemp = L.create("SteadyBurn.SurfTemp", CC)          # reactant: burning-surface temperature Ts (K)

@@ -71,7 +71,7 @@ class SimpleBurn:
         if self.cv_react <= 0:
             raise mat.error("Simple_Burn's reactant needs <specific_heat> > 0 (the energy its burned mass carries)")
         self.T_thresh, self.p_thresh = p["ThresholdTemp"], p["ThresholdPressure"]
-        self.enthalpy, self.coeff, self.p_ref = p["Enthalpy"], p["BurnCoeff"], p["refPressure"]
+        self.heat_of_reaction, self.coeff, self.p_ref = p["Enthalpy"], p["BurnCoeff"], p["refPressure"]
         if self.p_ref <= 0:
             raise sb.child("refPressure").error("<refPressure> must be positive")
         if self.coeff < 0:
@@ -86,37 +86,45 @@ class SimpleBurn:
                 ("MPM::computeStressTensor", self._particles_task)]
 
     def _volume_task(self):
-        return Task("Simple_Burn::addVolumeSource", self.volume_source, [self.prod]) \
+        return Task(f"{self.name}::addVolumeSource", self.volume_source, [self.prod]) \
             .requires(NEW, ML.modelMass_src).requires(NEW, ML.modelVol_src).requires(NEW, I.sp_vol_CC) \
             .modifies(I.sp_vol_L_CC)
 
+    name = "Simple_Burn"
+    volume_of_solid = False     # the product's new volume: at (p, T_product); True: burned * v_solid
+    cell_ghost = ()             # Steady_Burn reads the cell state of the 26 neighbours too
+
     def _sources_task(self):
-        c, r, g = self.comp, [self.react], [self.prod]
-        t = Task("Simple_Burn::computeModelSources", self.compute_sources, [self.react, self.prod]) \
+        c, r, g, gh = self.comp, [self.react], [self.prod], self.cell_ghost
+        t = Task(f"{self.name}::computeModelSources", self.compute_sources, [self.react, self.prod]) \
             .requires(OLD, FL.delT).requires(OLD, M.pX, matls=r).requires(OLD, M.pMass, matls=r) \
             .requires(OLD, M.pVelocity, matls=r).requires(NEW, M.gMass, Ghost.AROUND_CELLS, 1, matls=r) \
-            .requires(NEW, I.press_equil_CC, matls=[0]).requires(NEW, I.vol_frac_CC, matls=c.all_matls) \
-            .requires(NEW, I.temp_CC, matls=c.mpm_matls).requires(OLD, I.temp_CC, matls=c.ice.ice_matls) \
-            .computes(ML.pBurnFraction, matls=r).computes(ML.burnArea, matls=r) \
+            .requires(NEW, I.press_equil_CC, *gh, matls=[0]).requires(NEW, I.vol_frac_CC, *gh, matls=c.all_matls) \
+            .requires(NEW, I.temp_CC, *gh, matls=c.mpm_matls).requires(OLD, I.temp_CC, *gh, matls=c.ice.ice_matls) \
+            .computes(ML.pBurnFraction, matls=r) \
             .computes(ML.modelMass_src, matls=g).computes(ML.modelMom_src, matls=g) \
             .computes(ML.modelEng_src, matls=g).computes(ML.modelVol_src, matls=g).computes(ML.totalMassBurned).computes(ML.totalHeatReleased)
-        return t
+        return self._own_labels(t)
+
+    def _own_labels(self, t):
+        """The model's own requires and computes on the sources task (the burning area)."""
+        return t.computes(ML.burnArea, matls=[self.react])
 
     def _pressure_task(self):
         c = self.comp
-        return Task("Simple_Burn::addPressureSource", self.pressure_source, c.all_matls) \
+        return Task(f"{self.name}::addPressureSource", self.pressure_source, c.all_matls) \
             .requires(NEW, ML.modelMass_src, matls=[self.prod]).requires(NEW, ML.modelVol_src, matls=[self.prod]) \
             .requires(NEW, I.vol_frac_CC) \
             .requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC).modifies(I.press_CC, matls=[0])
 
     def _lagrangian_task(self):
         g = [self.prod]
-        return Task("Simple_Burn::addLagrangianSources", self.lagrangian_sources, g) \
+        return Task(f"{self.name}::addLagrangianSources", self.lagrangian_sources, g) \
             .requires(NEW, ML.modelMass_src).requires(NEW, ML.modelMom_src).requires(NEW, ML.modelEng_src) \
             .modifies(I.mass_L_CC).modifies(I.mom_L_CC).modifies(I.int_eng_L_CC)
 
     def _particles_task(self):
-        return Task("Simple_Burn::burnParticles", self.burn_particles, [self.react]) \
+        return Task(f"{self.name}::burnParticles", self.burn_particles, [self.react]) \
             .requires(NEW, ML.pBurnFraction).modifies(M.pMassPre).modifies(M.pVolumePre).modifies(M.pXpre)
 
     # -- task bodies -----------------------------------------------------------------------------
@@ -137,10 +145,7 @@ class SimpleBurn:
                       for m in c.all_matls)
         vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in c.all_matls)
         burned = np.zeros(shape)
-        area = new_dw.allocate(ML.burnArea, r, patch)
-        _, _, node_low, _, n_lo, n_hi = c._geom(patch)
-        K.burn_cells(new_dw.get(M.gMass, r, patch), node_low, cc_low, b.lo, b.hi, c.dims_i, lv.dx, n_lo, n_hi, temps, vfs, new_dw.get(I.press_equil_CC, 0, patch), mass_c,
-                     self.T_thresh, self.p_thresh, self.coeff, self.p_ref, dt, burned, area)
+        self.burned_mass(patch, old_dw, new_dw, temps, vfs, mass_c, dt, burned)
         frac = np.zeros(n)
         gm, gmom = np.zeros(ncell), np.zeros((ncell, 3))
         tiny = 1e-9 * c.mpm.materials[r].density * b.vol
@@ -148,19 +153,30 @@ class SimpleBurn:
         new_dw.put(ML.pBurnFraction, r, patch, frac)
         burned_total = float(gm.sum())
         new_dw.put_reduction(ML.totalMassBurned, burned_total)
-        new_dw.put_reduction(ML.totalHeatReleased, burned_total * self.enthalpy)
+        new_dw.put_reduction(ML.totalHeatReleased, burned_total * self.heat_of_reaction)
         ms = new_dw.allocate(ML.modelMass_src, g, patch)
         ms[...] = gm.reshape(shape)
         new_dw.allocate(ML.modelMom_src, g, patch)[...] = gmom.reshape(shape + (3,))
         e = new_dw.allocate(ML.modelEng_src, g, patch)
-        e[...] = ms * (self.cv_react * temps[r] + self.enthalpy)
+        e[...] = ms * (self.cv_react * temps[r] + self.heat_of_reaction)
         vs = new_dw.allocate(ML.modelVol_src, g, patch)
         on = ms > 0
-        if on.any():       # the product made at the cell's pressure and its own temperature
+        if self.volume_of_solid:       # the volume the burned solid held (Uintah's)
+            vs[...] = ms * new_dw.get(I.sp_vol_CC, r, patch)
+        elif on.any():       # the product made at the cell's pressure and its own temperature
             code, params, cv, gamma = c.ice._eos(g)
             t_prod = e[on] / (ms[on] * cv)
             rho = _rho_micro_array(new_dw.get(I.press_equil_CC, 0, patch)[on], t_prod, 1.0, code, params, cv, gamma)
             vs[on] = ms[on] / rho
+
+    def burned_mass(self, patch, old_dw, new_dw, temps, vfs, mass_c, dt, burned):
+        """001 eqs. 5-6: the reactant mass each surface cell burns this step (into `burned`)."""
+        c, r = self.comp, self.react
+        b, cc_low, node_low, _, n_lo, n_hi = c._geom(patch)
+        area = new_dw.allocate(ML.burnArea, r, patch)
+        K.burn_cells(new_dw.get(M.gMass, r, patch), node_low, cc_low, b.lo, b.hi, c.dims_i, patch.level.dx, n_lo,
+                     n_hi, temps, vfs, new_dw.get(I.press_equil_CC, 0, patch), mass_c,
+                     self.T_thresh, self.p_thresh, self.coeff, self.p_ref, dt, burned, area)
 
     def pressure_source(self, patch, matls, old_dw, new_dw):
         c = self.comp

@@ -39,8 +39,11 @@ pThickness, pThicknessPre = _pair("p.thickness")
 pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
 pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
 pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / MPMICE (thermal.py)
-STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model scalar state
-         "p.internalEnergy": (pIntEnergy, pIntEnergyPre)}
+STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model state
+         "p.internalEnergy": (pIntEnergy, pIntEnergyPre),
+         "p.pStatedata_vs": _pair("p.pStatedata_vs", (5, 3, 3)),        # visco_scram: Maxwell stresses
+         "p.crackRad": _pair("p.crackRad"),                              # visco_scram: crack radius
+         "p.tempPrevious": _pair("p.tempPrevious")}                      # visco_scram: T one step back
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)
 

@@ -26,18 +26,23 @@ MODELS = {
     "rigid": "rigid",
     "ideal_gas_fluid": "ideal_gas_fluid",
     "membrane": "membrane",
+    "visco_scram": "visco_scram",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
 NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid")
 
-# models with one scalar state per particle: the carried particle label holding it
-STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy"}
+# models with state per particle: the carried particle label holding it (one name), or the
+# labels (a tuple: the model's update gets tuples of old and new arrays in that order)
+STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy",
+         "visco_scram": ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious")}
 
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
     "thermal_conductivity": Param("float", 0.0, doc="W/(m K) (thermal.py)", at_least=0.0),
     "specific_heat": Param("float", 0.0, doc="J/(kg K) (thermal.py, MPMICE exchange)", at_least=0.0),
+    "C_p": Param("float", 0.0, doc="J/(kg K), Uintah's constant-pressure specific heat; read, no model uses it",
+                 at_least=0.0),
     "room_temp": Param("float", 294.0, doc="K; read, no thermal model uses it", above=0.0),
     "melt_temp": Param("float", 1e30, doc="K; read, no thermal model uses it", above=0.0),
     "is_rigid": Param("bool", False, doc="rigid body for <contact type=rigid>"),
@@ -100,7 +105,10 @@ class Material:
             self.params = self.model.read_failure(self.params, node, cm)
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
         self.uses_L = kind not in NO_L       # the model reads the velocity gradient
-        self.state = STATE.get(kind)          # name of the model's scalar state label, or None
+        self.state = STATE.get(kind)          # the model's state label name(s), or None
+        self.state_names = (self.state,) if isinstance(self.state, str) else tuple(self.state or ())
+        self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)
+        self.max_delT = getattr(self.model, "MAX_DELT", np.inf)
         if kind == "ideal_gas_fluid":
             # e0 = c_v T: the model's <specific_heat>, else the material's
             self.cv = self.params.specific_heat or props["specific_heat"]
@@ -128,7 +136,9 @@ class Material:
     def initial_state(self, d):
         """The model state of new particles: plastic strain 0; ideal gas: the specific
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
-        (unit tangent, thickness) from the chain."""
+        (unit tangent, thickness) from the chain; visco_scram: its tuple (initial_state)."""
+        if hasattr(self.model, "initial_state"):
+            return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":
             return self.cv * d["temp"]
         if self.is_membrane:

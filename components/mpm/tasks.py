@@ -73,9 +73,10 @@ class MPMTasks:
         return dw.get(L.pSize, m, patch) if self.kind == "gimp" else _zeros3(n)
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
-                      old=None, new=None, scale=None):
-        """Call the material's model; `old`/`new` are its state arrays (plastic strain);
-        membrane: (tangent, thickness, volume) before and after (the model sets the volume)."""
+                      old=None, new=None, scale=None, temperature=None):
+        """Call the material's model; `old`/`new` are its state arrays (plastic strain; a tuple
+        for a model with several); membrane: (tangent, thickness, volume) before and after (the
+        model sets the volume); `temperature`: p.temperature for the models that read it."""
         if mat.is_membrane:
             (t_old, h_old, v_old), (t_new, h_new, v_new) = old, new
             return mat.model.update(mat.params, Lg, F_old, F_new, v_old, mass, vel, dt, s_old, s_new,
@@ -83,6 +84,9 @@ class MPMTasks:
         if scale is not None:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new, scale)
+        if mat.uses_temperature:
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new, temperature)
         if mat.state:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new)
@@ -110,12 +114,14 @@ class MPMTasks:
             if mat.is_membrane:
                 state = state + (d["vol"],)
             ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
-                                                   d["vel"], 0.0, stress, stress, energy, state, state))
+                                                   d["vel"], 0.0, stress, stress, energy, state, state,
+                                                   temperature=d["temp"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
                    L.pStrainEnergy: energy}
+            own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for name, (lab, _) in L.STATE.items():
-                put[lab] = state if mat.state == name else np.zeros(n)
+                put[lab] = own[name] if name in own else np.zeros((n,) + lab.shape)
             put[L.pTangent] = state[0] if mat.is_membrane else np.zeros((n, 3))
             put[L.pThickness] = state[1] if mat.is_membrane else np.zeros(n)
             new_dw.put(L.pX, m, patch, d["x"])
@@ -145,6 +151,7 @@ class MPMTasks:
         for d in range(3):
             if self.dims[d] and ws[d] > 0:
                 dt = min(dt, self.level.dx[d] / ws[d])
+        dt = min([dt] + [mat.max_delT for mat in self.materials])    # visco_scram: at most 1 microsecond
         new_dw.put_reduction(FL.delT, dt if np.isfinite(dt) else 1e30)
 
     # -- particles -> grid ------------------------------------------------------------------
@@ -451,13 +458,19 @@ class MPMTasks:
                                        np.array(lv.periodic), np.array(patch.low_index(NC), np.int64),
                                        new_dw.get(L.gMass, m, patch), gvol[m], sum(gvol.values()), pm, vol_new)
             old = new = None
+            olds, news = {}, {}
             for final, pre in self.carry:
                 if final.name in L.STATE:
-                    if mat.state == final.name:
-                        old, new = old_dw.get(final, m, patch), np.empty(n)
-                        new_dw.put(pre, m, patch, new)
+                    if final.name in mat.state_names:
+                        olds[final.name] = old_dw.get(final, m, patch)
+                        news[final.name] = np.empty((n,) + final.shape)
+                        new_dw.put(pre, m, patch, news[final.name])
                     else:
                         new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            if len(mat.state_names) == 1:
+                old, new = olds[mat.state], news[mat.state]
+            elif mat.state_names:
+                old, new = tuple(olds[k] for k in mat.state_names), tuple(news[k] for k in mat.state_names)
             if mat.is_membrane:         # 004 sec. 3.2: the model convects t, h and sets V
                 t_new, h_new = np.empty((n, 3)), np.empty(n)
                 new_dw.put(L.pTangentPre, m, patch, t_new)
@@ -478,10 +491,11 @@ class MPMTasks:
             if fused:
                 ws = np.maximum(ws, w)
             else:
+                temp = old_dw.get(L.pTemperature, m, patch) if mat.uses_temperature and self.thermal else None
                 ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
                                                        new_dw.get(L.pVelocityPre, m, patch), dt,
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
-                                                       new, scale))
+                                                       new, scale, temp))
             if any(f is L.pStrainEnergy for f, _ in self.carry):
                 if mat.increment_energy:
                     energy = old_dw.get(L.pStrainEnergy, m, patch) + energy

@@ -111,6 +111,12 @@ class MPMICE(MPMICETasks, Component):
                 "MPMICE with deformable solids needs the active directions first (x, xy or xyz; the "
                 "pressure force on the particles assumes it); rmpmice (prescribed solids) accepts any")
         nm = len(self.mpm.materials)
+        for mat in self.mpm.materials:          # visco_scram's own solid EOS options
+            flag = mat.params.eos_flag() if hasattr(mat.params, "eos_flag") else None
+            if flag:
+                raise mat.node.child("constitutive_model").child(flag).error(
+                    f"<{flag}> true is not implemented in MPMICE (the solid's EOS is the bulk modulus "
+                    "with the low-pressure threshold); accepted: false")
         self.mpm_matls = list(range(nm))
         bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]
@@ -217,6 +223,10 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
+        if not ice.implicit:
+            sched.add_task(Task("ICE::computeDelP_MassX", ice.delp_mass_exchange, m0)     # only when saved
+                           .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
+                           .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
 
         if not self.rigid:
             ng = self.mpm.ng

@@ -129,3 +129,22 @@ def test_first_step_follows_the_burn_law(tmp_path):
     c.run()
     t, burned = DataArchive(c.archiver.dir).reduction("totalMassBurned")
     assert abs(float(np.atleast_1d(burned)[0]) - 2 * 1e-7 * 300.0 * 0.025 ** 2) < 1e-12 * 3.75e-8
+
+
+def test_delp_massx_saved_in_mpmice(tmp_path):
+    """<save label="delP_MassX"/> in MPMICE: press_CC less p_eq and delP_Dilatate, i.e. the
+    burn's pressure source (Uintah's diagnostic); nonzero only where the slab burns."""
+    from framework.archiver import DataArchive
+    from tests.conftest import run_deck
+    with open(DECK) as f:
+        text = f.read()
+    text = text.replace("<max_Timesteps> 160 </max_Timesteps>", "<max_Timesteps> 4 </max_Timesteps>") \
+        .replace("<outputTimestepInterval> 20 </outputTimestepInterval>", "<outputTimestepInterval> 4 </outputTimestepInterval>") \
+        .replace('<save label="press_CC"/>', '<save label="press_CC"/><save label="delP_MassX"/>'
+                 '<save label="press_equil_CC"/><save label="delP_Dilatate"/>')
+    a = DataArchive(run_deck(text, tmp_path).archiver.dir)
+    get = lambda lab: a.read(lab, 0, -1)[0].ravel()
+    dpx = get("delP_MassX")
+    np.testing.assert_allclose(dpx, get("press_CC") - get("press_equil_CC") - get("delP_Dilatate"),
+                               rtol=0, atol=1e-9 * get("press_CC").max())
+    assert dpx[[18, 21]].min() > 100.0 and np.abs(dpx[:17]).max() < 1e-6
