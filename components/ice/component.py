@@ -8,8 +8,10 @@ more materials with a non-zero coefficient; the viscous and heat-conduction task
 non-zero <dynamic_viscosity> / <thermal_conductivity>; gravity enters only when non-zero.
 The viscous task (ICE::viscousShearStress, kernels.viscous_stress_source) adds the
 divergence of the full Newtonian stress tau = mu (grad v + grad v^T) - 2/3 mu div v I,
-computed on the faces as Uintah's computeTauX/Y/Z, to the momentum; like Uintah's ICE it
-adds no viscous heating to the energy. Heat conduction: div(theta k grad T) (eq. 9).
+computed on the faces as Uintah's computeTauX/Y/Z from its velTau_CC (the extra cells on
+the domain's faces hold 2 v_boundary - v_interior, so a wall sits on the boundary face), to
+the momentum; like Uintah's ICE it adds no viscous heating to the energy. The face stresses
+tau_X_FC, tau_Y_FC, tau_Z_FC are computed only when a deck saves them. Heat conduction: div(theta k grad T) (eq. 9).
 """
 from __future__ import annotations
 
@@ -320,6 +322,11 @@ class ICE(ImplicitICE, IceTasks, Component):
             sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)
                            .requires(OLD, L.delT).requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
                            .computes(I.viscous_src_CC))
+            t = Task("ICE::computeTauFC", self.tau_fc, self.matls) \
+                .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)    # only when saved
+            for d in dirs:
+                t.computes(I.TAU_FC[d])
+            sched.add_task(t)
         if self.conduction:
             sched.add_task(Task("ICE::computeHeatFlux", self.conduction_source, self.matls)
                            .requires(OLD, L.delT).requires(OLD, I.temp_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)

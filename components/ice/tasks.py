@@ -305,14 +305,43 @@ class IceTasks:
                 K.face_pressure(v(press), v(rho), v(pf), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a])
 
     # -- step 7: fluid stresses and heat flux (only when the deck has them) -----------------------
+    def vel_tau(self, patch, vel):
+        """Uintah's velTau_CC: a copy of vel_CC whose extra cells on the domain's faces make
+        the face value the boundary value (kernels.vel_tau_boundary)."""
+        b = self.boxes(patch)
+        vt = vel.copy()
+        tlo, thi = b.lo.copy(), b.hi.copy()
+        for d in range(3):          # along a face: into the halo, but not the domain's edge cells
+            if self.dims[d]:
+                tlo[d] = b.lo[d] if patch.at_low[d] else 0
+                thi[d] = b.hi[d] if patch.at_high[d] else vel.shape[d]
+        for d in range(3):
+            for side, at in ((0, patch.at_low[d]), (1, patch.at_high[d])):
+                if at and self.dims[d]:
+                    K.vel_tau_boundary(vt, d, side, b.lo, b.hi, tlo, thi)
+        return vt
+
     def viscous_source(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
         dt = old_dw.get_reduction(L.delT)
         for m in matls:
             out = new_dw.allocate(I.viscous_src_CC, m, patch)
-            K.viscous_stress_source(old_dw.get(I.vel_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
-                                    self.materials[m].viscosity, out, self.dims, b.lo, b.hi, patch.level.dx,
-                                    dt, b.vol)
+            K.viscous_stress_source(self.vel_tau(patch, old_dw.get(I.vel_CC, m, patch)),
+                                    new_dw.get(I.vol_frac_CC, m, patch), self.materials[m].viscosity, out,
+                                    self.dims, b.lo, b.hi, patch.level.dx, dt, b.vol)
+
+    def tau_fc(self, patch, matls, old_dw, new_dw):
+        """Uintah's tau_X_FC, tau_Y_FC, tau_Z_FC (the face stresses of viscous_source), computed
+        only when a deck saves them."""
+        b = self.boxes(patch)
+        for m in matls:
+            vt = self.vel_tau(patch, old_dw.get(I.vel_CC, m, patch))
+            vf = new_dw.get(I.vol_frac_CC, m, patch)
+            for d in range(3):
+                if self.dims[d]:
+                    tau = new_dw.allocate(I.TAU_FC[d], m, patch)
+                    K.tau_face(vt, vf, self.materials[m].viscosity, tau, d, b.sh[d], b.flo[d], b.fhi[d],
+                               self.dims, patch.level.dx)
 
     def conduction_source(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
