@@ -317,6 +317,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         sched.add_task(Task("ICE::computeDelP_MassX", self.delp_mass_exchange, m0)   # only when saved
                        .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
                        .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
+        sched.add_task(Task("ICE::computeTerm2", self.mass_exchange_term, self.matls)   # only when saved
+                       .requires(NEW, I.delP_MassX, matls=m0).requires(NEW, I.vol_frac_CC)
+                       .requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC).computes(I.term2, matls=m0))
 
         if self.viscous:
             sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)

@@ -287,6 +287,17 @@ def pressure_from_mass_exchange(press, press_eq, delP, out, lo, hi):
                 out[i, j, k] = press[i, j, k] - press_eq[i, j, k] - delP[i, j, k]
 
 
+@njit(cache=True)
+def add_kappa_times(vf, sp_vol, cs, delP_MassX, out, lo, hi):
+    """out += theta v / c^2 delP_MassX for one material: summed over materials, Uintah's
+    term2 (impICE's massExchTerm = sumKappa delP_MassX), interior cells."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                c = cs[i, j, k]
+                out[i, j, k] += vf[i, j, k] * sp_vol[i, j, k] / (c * c) * delP_MassX[i, j, k]
+
+
 @njit(cache=True, error_model="numpy")
 def momentum_source(mom_L, rho, vel, vol, out, lo, hi):
     """mom_source_CC = mom_L - m u^n, m = rho^n V (eq. 34's sources times dt), interior cells."""

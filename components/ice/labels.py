@@ -28,6 +28,7 @@ FC_VEL_ME = (L.create("uvel_FCME", X), L.create("vvel_FCME", Y), L.create("wvel_
 # steps 5-6: pressure increment (eq. 29-30), face pressure (eq. 31)
 delP_Dilatate = L.create("delP_Dilatate", CC)
 delP_MassX = L.create("delP_MassX", CC)          # diagnostic: the pressure that mass exchange adds
+term2 = L.create("term2", CC)                    # diagnostic: sumKappa delP_MassX (Uintah's impICE)
 PRESS_FC = (L.create("pressX_FC", X), L.create("pressY_FC", Y), L.create("pressZ_FC", Z))
 
 # optional physics sources (viscous stress, heat conduction)

@@ -280,6 +280,16 @@ class IceTasks:
         K.pressure_from_mass_exchange(new_dw.get(I.press_CC, 0, patch), new_dw.get(I.press_equil_CC, 0, patch),
                                       new_dw.get(I.delP_Dilatate, 0, patch), out, b.lo, b.hi)
 
+    def mass_exchange_term(self, patch, matls, old_dw, new_dw):
+        """Uintah's term2 diagnostic (the mass-exchange term of the pressure equation,
+        sumKappa delP_MassX), computed only when a deck saves it."""
+        b = self.boxes(patch)
+        out = new_dw.allocate(I.term2, 0, patch)
+        dpm = new_dw.get(I.delP_MassX, 0, patch)
+        for m in matls:
+            K.add_kappa_times(new_dw.get(I.vol_frac_CC, m, patch), new_dw.get(I.sp_vol_CC, m, patch),
+                              new_dw.get(I.speedSound_CC, m, patch), dpm, out, b.lo, b.hi)
+
     def momentum_source(self, patch, matls, old_dw, new_dw):
         """Uintah's mom_source_CC diagnostic, computed only when a deck saves it: the Lagrangian
         momentum less the old momentum (pressure, viscous and gravity sources times delT)."""

@@ -200,3 +200,14 @@ def test_couette_wall_stress_as_uintah(run_deck):
     tx = da.read("tau_X_FC", 0, -1)[0][25, 17:20, 0, 1]
     assert np.allclose(ty, SUS_XY_TAU_Y, rtol=1e-10, atol=0)
     assert np.allclose(tx, SUS_XY_TAU_X, rtol=1e-10, atol=0)
+
+
+def test_imp_advect_term2(run_deck):
+    """impAdvect saves term2, impICE's mass-exchange term of the pressure equation (sumKappa
+    delP_MassX): without a model that exchanges mass, Uintah's is 0 in every cell (its massExchTerm
+    sums only the models' burnedMass terms); so is pysus's, with delP_MassX."""
+    da = run_deck(str(REF / "impAdvect_small.ups"))
+    assert len(da.times) == 3
+    for label in ("term2", "delP_MassX"):
+        a, _ = da.read(label, 0, -1)
+        assert a.shape == (10, 10, 10) and np.abs(a).max() < 1e-9, (label, np.abs(a).max())
