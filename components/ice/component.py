@@ -116,6 +116,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         # "false" with limiter="BarthJespersen" is Uintah's SecondOrderAdvector
         self.dissipation_heating = adv.attr("dissipationHeating", "bool", self.n_before == 0)
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100, at_least=1)
+        # Uintah's <ClampSpecificVolume>: the Lagrangian m v kept >= tiny_rho V v (MPMICE too)
+        self.clamp_sp_vol = ice.get("ClampSpecificVolume", "bool", False)
         # pysus extension: advect a conservative total energy and take e = E/m - |u|^2/2,
         # so that mass, momentum and total energy are conserved to round-off on closed
         # domains (Uintah's ICE, the default, advects internal energy: see tasks.py)

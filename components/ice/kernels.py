@@ -288,6 +288,16 @@ def pressure_from_mass_exchange(press, press_eq, delP, out, lo, hi):
 
 
 @njit(cache=True)
+def clamp_sp_vol_lagrangian(sp_vol_L, sp_vol, tiny_rho, vol, lo, hi):
+    """<ClampSpecificVolume>: m v >= tiny_rho V v in the interior cells (Uintah's
+    computeLagrangianSpecificVolume), so that a draining cell keeps a positive volume."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                sp_vol_L[i, j, k] = max(sp_vol_L[i, j, k], tiny_rho * vol * sp_vol[i, j, k])
+
+
+@njit(cache=True)
 def add_kappa_times(vf, sp_vol, cs, delP_MassX, out, lo, hi):
     """out += theta v / c^2 delP_MassX for one material: summed over materials, Uintah's
     term2 (impICE's massExchTerm = sumKappa delP_MassX), interior cells."""

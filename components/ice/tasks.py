@@ -432,20 +432,25 @@ class IceTasks:
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
         delP = new_dw.get(I.delP_Dilatate, 0, patch)
+        outs = [new_dw.allocate(I.sp_vol_L_CC, m, patch, fill=None) for m in matls]
         if len(matls) == 1:
-            out = new_dw.allocate(I.sp_vol_L_CC, 0, patch, fill=None)
             K.sp_vol_lagrangian_one(new_dw.get(I.mass_L_CC, 0, patch), new_dw.get(I.sp_vol_CC, 0, patch),
                                     new_dw.get(I.vol_frac_CC, 0, patch), new_dw.get(I.speedSound_CC, 0, patch),
-                                    delP, out, b.olo, b.ohi, b.vol)
-            return
-        dt = old_dw.get_reduction(L.delT)
-        v = b.view
-        get = lambda lab: tuple(v(new_dw.get(lab, m, patch)) for m in matls)
-        outs = tuple(v(new_dw.allocate(I.sp_vol_L_CC, m, patch, fill=None)) for m in matls)
-        K.sp_vol_lagrangian_many(get(I.mass_L_CC), get(I.sp_vol_CC), get(I.vol_frac_CC), get(I.speedSound_CC),
-                                 v(delP), get(I.int_eng_L_ME_CC),
-                                 tuple(v(old_dw.get(I.temp_CC, m, patch)) for m in matls),
-                                 self.codes, self.params, self.cvs, self.gammas, outs, b.v_olo, b.v_ohi, b.vol, dt)
+                                    delP, outs[0], b.olo, b.ohi, b.vol)
+        else:
+            dt = old_dw.get_reduction(L.delT)
+            v = b.view
+            get = lambda lab: tuple(v(new_dw.get(lab, m, patch)) for m in matls)
+            K.sp_vol_lagrangian_many(get(I.mass_L_CC), get(I.sp_vol_CC), get(I.vol_frac_CC), get(I.speedSound_CC),
+                                     v(delP), get(I.int_eng_L_ME_CC),
+                                     tuple(v(old_dw.get(I.temp_CC, m, patch)) for m in matls),
+                                     self.codes, self.params, self.cvs, self.gammas, tuple(v(o) for o in outs),
+                                     b.v_olo, b.v_ohi, b.vol, dt)
+        if self.clamp_sp_vol:
+            for m, out in zip(matls, outs):
+                k = m - self.n_before           # MPMICE: solids first, whose tiny_rho is Uintah's 1e-12
+                tiny_rho = self.materials[k].tiny_rho if 0 <= k < len(self.materials) else 1e-12
+                K.clamp_sp_vol_lagrangian(out, new_dw.get(I.sp_vol_CC, m, patch), tiny_rho, b.vol, b.lo, b.hi)
 
     # -- step 12: advection and the new state ----------------------------------------------------
     def advect_and_advance(self, patch, matls, old_dw, new_dw):

@@ -211,3 +211,36 @@ def test_imp_advect_term2(run_deck):
     for label in ("term2", "delP_MassX"):
         a, _ = da.read(label, 0, -1)
         assert a.shape == (10, 10, 10) and np.abs(a).max() < 1e-9, (label, np.abs(a).max())
+
+
+# Uintah's sus on uintah_reference/waterAirOscillator_explicit.ups: its lineExtract file (P/L-0/i20_j10_k0,
+# written after step 1; the next sample is due 1e-3 s later) and press_CC's min and max after step 3
+SUS_WATER_AIR_LINE = (
+    "# X_CC           Y_CC             Z_CC             Timestep         Time [s]        press_CC_0      "
+    "rho_CC_0        temp_CC_0       delPDilatate_0  vel_CC_0.x       vel_CC_0.y       vel_CC_0.z      \n"
+    "1.250000E-02     2.625000E-01     0.000000E+00     1                1.000000E-09    1.013250E+05    "
+    "9.957490E+02    3.000000E+02    -0.000000E+00   0.000000E+00     0.000000E+00     0.000000E+00    \n")
+SUS_WATER_AIR_PRESS = (101325.00000020266, 111457.50000022262)
+
+
+def test_water_air_line_extract_as_uintah(run_deck):
+    """lineExtract writes sus's file byte for byte (cell choice, columns, names abbreviated as
+    Uintah's, %E format); the water-air state follows sus to 1e-8 (the two materials' pressure
+    equilibration converges to a tolerance, so not to round-off)."""
+    da = run_deck(str(REF / "waterAirOscillator_explicit.ups"))
+    assert np.allclose(np.diff(da.times), [1e-9, 2e-9, 4e-9], rtol=1e-12)
+    files = list(pathlib.Path(da.path).glob("P/L-0/*"))
+    assert [f.name for f in files] == ["i20_j10_k0"]
+    assert files[0].read_text() == SUS_WATER_AIR_LINE
+    p, _ = da.read("press_CC", 0, -1)
+    assert np.allclose((p.min(), p.max()), SUS_WATER_AIR_PRESS, rtol=1e-8, atol=0)
+
+
+def test_clamp_specific_volume():
+    """<ClampSpecificVolume> (Uintah's computeLagrangianSpecificVolume): m v >= tiny_rho V v in the
+    interior cells; extra cells untouched."""
+    from components.ice.kernels import clamp_sp_vol_lagrangian
+    spl = np.array([-1.0, 1e-15, 5.0, -2.0]).reshape(4, 1, 1)
+    spv = np.full((4, 1, 1), 2.0)
+    clamp_sp_vol_lagrangian(spl, spv, 1e-12, 0.5, np.array([1, 0, 0]), np.array([3, 1, 1]))
+    assert spl.ravel().tolist() == [-1.0, 1e-12, 5.0, -2.0]
