@@ -29,6 +29,7 @@ from framework.variables import Ghost
 from . import labels as I
 from .advection import EXTREMA, VAN_LEER
 from .bc import BoundaryConditions, read_bcs
+from .custom_init import CustomInitialization
 from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .tasks import IceTasks
@@ -136,7 +137,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         n = len(self.materials)
         self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n)
         self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
-        self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n), level)
+        self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before),
+                                      level)
         self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)
         if self.conserve_energy and n > 1 and np.any(self.codes != IDEAL_GAS):
             # the equilibration (eq. 13) changes each material's rho_micro at fixed T; with
@@ -157,6 +159,9 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.viscous = any(m.viscosity > 0 for m in self.materials)
         self.conduction = any(m.conductivity > 0 for m in self.materials)
         self._geom_cache = {}
+        ci = ice.child("customInitialization")
+        self.custom_init = CustomInitialization(ci, level) if ci is not None else None
+        self.custom_profiles = [self.custom_init.resolve(m) for m in self.materials] if ci is not None else None
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)

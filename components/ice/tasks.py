@@ -153,13 +153,16 @@ class IceTasks:
                                                                 I.speedSound_CC)]
             arrs[0][sl] = rho_micro * theta + mat.tiny_rho * rho_micro
             arrs[1][sl] = vel
+            if self.custom_init is not None:        # <customInitialization>: profiles over the geometry's velocity
+                self.custom_init.apply(arrs[1], self.custom_profiles[m], b.olo, b.ohi,
+                                       np.array(patch.low_index(VarType.CC), dtype=np.int64))
             arrs[2][sl] = temp
             arrs[3][sl] = 1.0 / rho_micro
             p_arr[sl] = _press_array(rho_micro, temp, *self._eos(m))
             # extra cells outside every geometry object get their boundary values
             self.bcs.scalar(patch, arrs[0], "Density", m, b)
             self.bcs.scalar(patch, arrs[2], "Temperature", m, b)
-            self.bcs.velocity(patch, arrs[1], m, b)
+            self.bcs.velocity(patch, arrs[1], m, b, initial=True)
             self.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
             _speed_sound(arrs[3], arrs[2], arrs[4], *self._eos(m))
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
@@ -387,6 +390,7 @@ class IceTasks:
             if self.conduction:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
             if not self.exchange:
+                self.bcs.inlet_momentum(patch, mom, mass, m, b)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
             if self.conserve_energy:
@@ -425,6 +429,8 @@ class IceTasks:
         vs = lambda arrs: tuple(v(x) for x in arrs)
         K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
                          vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
+        for m, mom, mass in zip(matls, mom_out, get(I.mass_L_CC)):
+            self.bcs.inlet_momentum(patch, mom, mass, m, b)
         if self.conserve_energy:
             self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
 

@@ -244,3 +244,67 @@ def test_clamp_specific_volume():
     spv = np.full((4, 1, 1), 2.0)
     clamp_sp_vol_lagrangian(spl, spv, 1e-12, 0.5, np.array([1, 0, 0]), np.array([3, 1, 1]))
     assert spl.ravel().tolist() == [-1.0, 1e-12, 5.0, -2.0]
+
+
+# Uintah's sus on uintah_reference/chanFlow_*_explicit.ups (R_Tester's three channel-flow tests):
+# vel_CC.x of the first column (i = 0, k = 0, the inlet's neighbours) after step 3 (sus's uda)
+SUS_CHANNEL_U = {
+    "powerLaw": [2.413339995494323, 3.0395827526383044, 3.3837806697745507, 3.631525436885262, 3.8283305371083394,
+                 3.9931071429613723, 4.13567690297095, 4.261845142035695, 4.319999571755169, 4.319999635215934,
+                 4.319999695932431, 4.319999754753998, 4.31999981184762, 4.3199998673582085, 4.319999921412081,
+                 4.319999876590783],
+    "powerLaw2": [10.739377691183334, 14.419123258517944, 16.130110484288306, 17.2571097021415, 18.09887681197905,
+                  18.771015002816718, 19.330555817131117, 19.809867249434284, 19.80986726153001, 19.33055546673454,
+                  18.77101430266016, 18.09887559071331, 17.257107639644694, 16.130106901775505, 14.419116456761305,
+                  10.739358842658277],
+    "LogLaw": [4.819958050165894, 16.684920196018588, 22.201828425224992, 25.835725305541416, 28.549919758527498,
+               30.71716269166916, 32.52134659919507, 34.06683568941322, 35.418597708693326, 36.619834693660124,
+               37.700736197258784, 38.68323156444622, 39.583753106902705, 40.4149325158037, 41.186689487506996,
+               41.90696118453586]}
+
+
+@pytest.mark.parametrize("variant", sorted(SUS_CHANNEL_U))
+def test_channel_inlet_profiles_as_uintah(run_deck, variant):
+    """powerLawProfile / logLawProfile inlet velocity and the customInitialization profiles
+    (powerLawProfile, powerLawProfile2, logLawProfile), read through <include section type>:
+    round-off agreement with sus after 3 steps. The first step needs Uintah's order: the
+    inlet's extra cells keep the initial profile at t = 0 and take the inlet profile after the
+    exchange (mom_L_ME = m u there), before the advection."""
+    da = run_deck(str(REF / f"chanFlow_{variant}_explicit.ups"))
+    assert np.allclose(da.times, [0.0, 1e-9, 4e-9, 1.3e-8], rtol=1e-12, atol=0)
+    u = da.read("vel_CC", 0, -1)[0][0, :, 0, 0]
+    assert np.allclose(u, SUS_CHANNEL_U[variant], rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (("<material>          atmosphere  </material>\n    </inletVelocity>\n\n    <inletVelocity type=\"powerLawProfile\">",
+      "<material>          water  </material>\n    </inletVelocity>\n\n    <inletVelocity type=\"powerLawProfile\">"),
+     None),
+    (('<BCType id="0" label="Velocity" var="logLawProfile">',
+      '<BCType id="all" label="Velocity" var="logLawProfile">'), 'not id="all"'),
+    (("<roughness>          0.01          </roughness>", "<roughness>          -1          </roughness>"),
+     "roughness"),
+])
+def test_channel_inlet_bad_values(tmp_path, edit, message):
+    """Bad inlet-profile input: one clean line naming the file and line (the include's file for
+    its parameters), never a traceback."""
+    import shutil
+    from framework.controller import Controller
+    from framework.problemspec import InputError
+    shutil.copytree(REF / "inputs", tmp_path / "inputs")
+    deck = (REF / "chanFlow_LogLaw_explicit.ups").read_text()
+    xml = (REF / "inputs/ICE/channelFlow.xml").read_text()
+    old, new = edit
+    if old in deck:
+        deck = deck.replace(old, new)
+    else:
+        assert old in xml
+        (tmp_path / "inputs/ICE/channelFlow.xml").write_text(xml.replace(old, new))
+    (tmp_path / "d.ups").write_text(deck)
+    with pytest.raises(InputError) as e:
+        Controller(str(tmp_path / "d.ups"), quiet=True, filebase=str(tmp_path / "run.uda"))
+    text = str(e.value)
+    assert "\n" not in text.strip() and ("channelFlow.xml" in text or "d.ups" in text)
+    assert message is None or message in text, text
+    if message is None:
+        assert "no ICE material named 'water'" in text
