@@ -119,6 +119,28 @@ def bc_inlet_momentum(mom, mass, vel, d, side, lo, hi, olo, ohi):
                 mom[ie[0], ie[1], ie[2], c] = mass[ie] * vel[ie[0], ie[1], ie[2], c]
 
 
+@njit(cache=True)
+def bc_hydrostatic(press, sp_vol, d, side, dirichlet, g, origin, anchor, dx, lo, hi, olo, ohi):
+    """The hydrostatic term of one face's extra-cell layer (BoundaryConditions.hydrostatic_pressure);
+    origin: the position of the patch's first interior cell's low corner."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    n = lo[d] if side == 0 else hi[d] - 1
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    sign = -1.0 if side == 0 else 1.0
+    for a in range(olo[d1], ohi[d1]):
+        for b in range(olo[d2], ohi[d2]):
+            ie = _idx(d, e, a, b)
+            if dirichlet:
+                corr = 0.0
+                for c in range(3):
+                    x = origin[c] + (ie[c] - lo[c] + 0.5) * dx[c]
+                    corr += g[c] * (x - (anchor[c] + 0.5 * dx[c]))
+                press[ie] += corr / sp_vol[ie]
+            else:
+                rho = 0.5 * (1.0 / sp_vol[ie] + 1.0 / sp_vol[_idx(d, n, a, b)])
+                press[ie] += g[d] * sign * dx[d] * rho
+
+
 def read_bcs(root, level, nmat, material_names=(), n_before=0):
     """{face: {var: [(kind, value) per material]}} for every physical face of the level, and the
     inlet profiles' parameters (an InletProfile, or None) under the key "inletVelocity"."""
@@ -330,6 +352,20 @@ class BoundaryConditions:
                              lv.dx, b.lo, b.hi, b.olo, b.ohi)
                 continue
             bc_vector(q, d, s, kind, v, lv.dx[d], b.lo, b.hi, b.olo, b.ohi)
+
+    def hydrostatic_pressure(self, patch, press, sp_vol, g, b):
+        """Uintah's HydrostaticPressureAdjustment of press_CC's extra cells (after the first
+        step): on a Neumann or symmetry face normal to gravity the extra cell adds
+        g.n dx (rho_in + rho_ec) / 2; on a Dirichlet face rho_ec g.(x_ec - x_ref), x_ref the
+        centre of cell 0. rho: the surrounding material's 1 / sp_vol."""
+        lv = self.level
+        origin = lv.anchor + np.array(patch.lo) * lv.dx
+        for name, d, s in self._faces(patch):
+            kind = self.table[name]["Pressure"][0][0]
+            if kind in (NEUMANN, SYMMETRY) and g[d] != 0.0:
+                bc_hydrostatic(press, sp_vol, d, s, 0, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
+            elif kind == DIRICHLET:
+                bc_hydrostatic(press, sp_vol, d, s, 1, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
 
     def inlet_momentum(self, patch, mom, mass, m, b):
         """Uintah sets vel_CC's conditions after the exchange and takes mom_L_ME = m u in the

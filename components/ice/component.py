@@ -10,7 +10,9 @@ The viscous task (ICE::viscousShearStress, kernels.viscous_stress_source) adds t
 divergence of the full Newtonian stress tau = mu (grad v + grad v^T) - 2/3 mu div v I,
 computed on the faces as Uintah's computeTauX/Y/Z from its velTau_CC (the extra cells on
 the domain's faces hold 2 v_boundary - v_interior, so a wall sits on the boundary face), to
-the momentum; like Uintah's ICE it adds no viscous heating to the energy. The face stresses
+the momentum; like Uintah's ICE it adds no viscous heating to the energy. With gravity, the
+<isSurroundingMatl> material's rho_micro sets Uintah's hydrostatic pressure: press_CC at t = 0
+(rho_micro g.(x - x_0)) and the pressure's extra cells on every later step (bc.py). The face stresses
 tau_X_FC, tau_Y_FC, tau_Z_FC are computed only when a deck saves them. Heat conduction: div(theta k grad T) (eq. 9).
 """
 from __future__ import annotations
@@ -48,6 +50,7 @@ MATERIAL = {
     "specific_heat": Param("float", above=0.0),
     "gamma": Param("float", above=0.0),     # > 1 where the EOS uses it (_read_material)
     "tiny_rho": Param("float", 1e-12, above=0.0),
+    "isSurroundingMatl": Param("bool", False),
 }
 GEOM = {
     "res": Param("ivector", (2, 2, 2), at_least=1),
@@ -70,6 +73,7 @@ class Material:
         self.viscosity = props["dynamic_viscosity"]
         self.conductivity = props["thermal_conductivity"]
         self.tiny_rho = props["tiny_rho"]
+        self.is_surrounding = props["isSurroundingMatl"]
         self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
 
 
@@ -137,6 +141,16 @@ class ICE(ImplicitICE, IceTasks, Component):
         n = len(self.materials)
         self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n)
         self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
+        # Uintah's hydrostatic pressure (gravity): initial press_CC and the pressure's extra cells
+        # from the <isSurroundingMatl> material's rho_micro; ICE alone (MPMICE: not yet)
+        surr = [m for m, mat in enumerate(self.materials) if mat.is_surrounding]
+        self.surrounding = surr[-1] if surr else None
+        apply_hydro = ice.get("applyHydrostaticPressure", "bool", True)
+        self.hydrostatic = self.use_gravity and apply_hydro and self.n_before == 0
+        if self.hydrostatic and self.surrounding is None:
+            raise icen.error("with gravity, one ICE material needs <isSurroundingMatl> true </isSurroundingMatl> "
+                             "(the background material of the hydrostatic pressure, as Uintah); or give "
+                             "<CFD><ICE><applyHydrostaticPressure> false")
         self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before),
                                       level)
         self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)

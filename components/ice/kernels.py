@@ -288,6 +288,24 @@ def pressure_from_mass_exchange(press, press_eq, delP, out, lo, hi):
 
 
 @njit(cache=True)
+def hydrostatic_adjust(press, rho_micro, g, origin, anchor, dx, olo, ohi):
+    """p += rho_micro g_d (x_d - x_ref,d) in cells olo..ohi (origin: the position of local cell
+    0's low corner), d the (last) direction of gravity, x_ref the centre of cell 0 (Uintah's
+    hydrostaticPressureAdjustment at initialization)."""
+    d = 0
+    for a in range(3):
+        if g[a] != 0.0:
+            d = a
+    ref = anchor[d] + 0.5 * dx[d]
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                n = (i, j, k)[d]
+                x = origin[d] + (n + 0.5) * dx[d]
+                press[i, j, k] += rho_micro[i, j, k] * g[d] * (x - ref)
+
+
+@njit(cache=True)
 def clamp_sp_vol_lagrangian(sp_vol_L, sp_vol, tiny_rho, vol, lo, hi):
     """<ClampSpecificVolume>: m v >= tiny_rho V v in the interior cells (Uintah's
     computeLagrangianSpecificVolume), so that a draining cell keeps a positive volume."""

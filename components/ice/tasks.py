@@ -148,6 +148,7 @@ class IceTasks:
                     rho_micro[trace] = _rho_micro_array(p_cover[trace], temp[trace], float(rho_micro[trace][0]),
                                                         *self._eos(m))
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
+        arrs_by_m = {}
         for m, (mat, (theta, rho_micro, temp, vel)) in enumerate(zip(self.materials, state)):
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
                                                                 I.speedSound_CC)]
@@ -164,8 +165,13 @@ class IceTasks:
             self.bcs.scalar(patch, arrs[2], "Temperature", m, b)
             self.bcs.velocity(patch, arrs[1], m, b, initial=True)
             self.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
+            arrs_by_m[m] = arrs[3]
             _speed_sound(arrs[3], arrs[2], arrs[4], *self._eos(m))
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
+        if self.hydrostatic:        # Uintah's initializeSubTask_hydrostaticAdj, extra cells included
+            K.hydrostatic_adjust(p_arr, 1.0 / arrs_by_m[self.surrounding], self.gravity,
+                                 patch.level.anchor + np.array(patch.low_index(VarType.CC)) * patch.level.dx,
+                                 patch.level.anchor, patch.level.dx, b.olo, b.ohi)
 
     def stable_timestep(self, patch, matls, old_dw, new_dw):
         """Uintah's delT (ICE::actuallyComputeStableTimestep): 'aggressive' (the default) is
@@ -217,7 +223,17 @@ class IceTasks:
                               tuple(v(a) for a in get(I.sp_vol_CC)), v(old_dw.get(I.press_CC, 0, patch)),
                               tuple(v(a) for a in spv), tuple(v(a) for a in vfs), tuple(v(a) for a in css), v(peq),
                               self.codes, self.params, self.cvs, self.gammas, b.v_olo, b.v_ohi, 1e-11, self.max_iter)
-        self.bcs.scalar(patch, peq, "Pressure", 0, b)
+        if self.hydrostatic:
+            sp_vol_surr = out[0] if len(matls) == 1 else spv[self.surrounding]
+        self.press_bc(patch, peq, sp_vol_surr if self.hydrostatic else None)
+
+    def press_bc(self, patch, press, sp_vol_surr=None):
+        """press_CC's boundary conditions; with gravity, Uintah's hydrostatic adjustment of the
+        extra cells from the surrounding material's rho_micro = 1 / sp_vol (BoundaryCond.cc)."""
+        b = self.boxes(patch)
+        self.bcs.scalar(patch, press, "Pressure", 0, b)
+        if self.hydrostatic:
+            self.bcs.hydrostatic_pressure(patch, press, sp_vol_surr, self.gravity, b)
 
     # -- step 3: face velocities (eq. 28) and their exchange --------------------------------------
     def vel_fc(self, patch, matls, old_dw, new_dw):
@@ -273,7 +289,7 @@ class IceTasks:
         press = new_dw.allocate(I.press_CC, 0, patch)
         K.update_pressure(v(new_dw.get(I.press_equil_CC, 0, patch)), v(div), v(ksum), v(delP), v(press),
                           b.v_lo, b.v_hi, self.press_floor)
-        self.bcs.scalar(patch, press, "Pressure", 0, b)
+        self.press_bc(patch, press, new_dw.get(I.sp_vol_CC, self.surrounding, patch) if self.hydrostatic else None)
 
     def delp_mass_exchange(self, patch, matls, old_dw, new_dw):
         """Uintah's delP_MassX diagnostic, computed only when a deck saves it: what press_CC holds
