@@ -6,7 +6,8 @@ the CC field vorticity = curl(vel_CC) (second-order central differences over the
 at its sampling times within [timeStart, timeStop], one line per analysed variable to
 <uda>/MinMax/L-0/<label>_<matl>: "time min max" (Vectors componentwise, in brackets), over the
 interior cells (CC) or the faces of interior cells (FC), in Uintah's format. `lineExtract` writes
-the values along axis-parallel lines, one file per cell (LineExtract).
+the values along axis-parallel lines, one file per cell (LineExtract); `controlVolFluxes` the mass
+in boxes and the mass fluxes through their faces (ControlVolFluxes).
 """
 from __future__ import annotations
 
@@ -316,7 +317,141 @@ class LineExtract:
         pass
 
 
-MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract}
+@njit(cache=True)
+def mass_in_cells(rho, lo, hi, vol):
+    """sum rho V over the cells lo..hi."""
+    total = 0.0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                total += rho[i, j, k] * vol
+    return total
+
+
+@njit(cache=True)
+def mass_flux_faces(vel_fc, rho, d, flo, fhi, sh, area):
+    """sum u_f rho_upwind A over the faces flo..fhi of direction d (face f below cell f + sh;
+    upwind: the cell below where u_f > 0), Uintah's controlVolFluxes::integrate_Q_overFace."""
+    q = 0.0
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                u = vel_fc[i, j, k]
+                c0, c1, c2 = i + sh[0], j + sh[1], k + sh[2]
+                if u > 0.0:
+                    if d == 0:
+                        c0 -= 1
+                    elif d == 1:
+                        c1 -= 1
+                    else:
+                        c2 -= 1
+                q += u * rho[c0, c1, c2] * area
+    return q
+
+
+class ControlVolFluxes:
+    """Uintah's controlVolFluxes module: for each <box> control volume, the mass it holds and
+    the mass fluxes through its six faces (face velocity times the upwind density times the
+    face area), written at the sampling times to <uda>/<label>.dat in Uintah's format."""
+
+    WIDTH, PRECISION = 18, 12
+    FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
+
+    def __init__(self, node, component, level):
+        self.matl = _material(node, component)
+        self.level = level
+        self.freq = node.get("samplingFrequency", above=0.0)
+        self.start = node.get("timeStart")
+        self.stop = node.get("timeStop")
+        self.prev = self.start - 1.0 / self.freq
+        self.cvs = []
+        for box in node.child("controlVolumes", required=True).children("box"):
+            name = box.attr("label")
+            lo = np.array(box.get("min", "vector"), dtype=np.float64)
+            hi = np.array(box.get("max", "vector"), dtype=np.float64)
+            if np.any(np.abs(hi - lo) < 10 * np.finfo(float).tiny):
+                raise box.error(f"box '{name}': max must differ from min in every direction")
+            lo, hi = np.maximum(level.anchor, lo), np.minimum(level.upper, hi)      # clipped to the domain
+            ilo = np.floor((lo - level.anchor) / level.dx + 0.5).astype(np.int64)
+            ihi = np.floor((hi - level.anchor) / level.dx + 0.5).astype(np.int64)
+            if np.any(ihi - ilo < 1):
+                raise box.error(f"box '{name}' holds no cell in some direction; accepted: at least one cell "
+                                "between min and max")
+            labels = [L.create(f"{name}_controlVolFluxes{id(self)}_{tag}", VarType.REDUCTION, reduction="sum")
+                      for tag in ("total",) + self.FACES]
+            self.cvs.append((name, lo, hi, ilo, ihi, labels))
+        self.needed = {lab.name for cv in self.cvs for lab in cv[5]}
+
+    def schedule(self, sched):
+        t = Task("controlVolFluxes::integrate_Q_overCV", self.integrate, [self.matl]) \
+            .requires(NEW, L.find("rho_CC"), Ghost.AROUND_CELLS, 1)
+        for d, name in enumerate(("uvel_FCME", "vvel_FCME", "wvel_FCME")):
+            if not self.level.collapsed[d]:
+                t.requires(NEW, L.find(name))
+        for cv in self.cvs:
+            for lab in cv[5]:
+                t.computes(lab)
+        sched.add_task(t)
+
+    def integrate(self, patch, matls, old_dw, new_dw):
+        m = self.matl
+        lv = self.level
+        rho = new_dw.get(L.find("rho_CC"), m, patch)
+        c0 = np.array(patch.low_index(VarType.CC))
+        olo, ohi = (np.array(x) for x in patch.owned_local(VarType.CC))
+        elo, ehi = olo + c0, ohi + c0                       # the patch's cells, extra cells included
+        plo, phi = np.array(patch.lo), np.array(patch.hi)
+        vol = float(np.prod(lv.dx))
+        for name, lo, hi, ilo, ihi, labels in self.cvs:
+            a, b = np.maximum(ilo, plo), np.minimum(ihi, phi)
+            total = mass_in_cells(rho, a - c0, b - c0, vol) if np.all(b > a) else 0.0
+            new_dw.put_reduction(labels[0], total)
+            for f in range(6):
+                d, plus = f // 2, f % 2
+                q = 0.0
+                face = ihi[d] if plus else ilo[d]
+                if not lv.collapsed[d] and elo[d] <= face < ehi[d]:
+                    a, b = np.maximum(ilo, elo), np.minimum(ihi, ehi)       # along the face: the CV's cells here
+                    a[d], b[d] = face, face + 1
+                    if np.all(b > a):
+                        vt = FACE_TYPES[d]
+                        f0 = np.array(patch.low_index(vt))
+                        area = vol / lv.dx[d]
+                        q = mass_flux_faces(new_dw.get(L.find(("uvel_FCME", "vvel_FCME", "wvel_FCME")[d]), m, patch),
+                                            rho, d, a - f0, b - f0, f0 - c0, area)
+                new_dw.put_reduction(labels[1 + f], q)
+
+    def after_step(self, dw, timestep, t, uda):
+        if t < self.start or t > self.stop or t < self.prev + 1.0 / self.freq:
+            return
+        self.prev = t
+        if uda is None:
+            return
+        w, p = self.WIDTH, self.PRECISION
+        for name, lo, hi, ilo, ihi, labels in self.cvs:
+            path = os.path.join(uda, f"{name}.dat")
+            vals = [float(dw.get_reduction(lab)) for lab in labels]
+            with open(path, "a") as f:
+                if f.tell() == 0:
+                    f.write(self._header(name, lo, hi, ilo, ihi))
+                q = vals[1:]
+                row = [t, vals[0], q[0] - q[1], q[2] - q[3], q[4] - q[5]] + q
+                f.write(" ".join(f"{v:<{w}.{p}E}" for v in row) + " \n")
+
+    def _header(self, name, lo, hi, ilo, ihi):
+        w = self.WIDTH
+        pt = lambda x: "[" + " ".join(f"{v:.4e}" for v in x) + "]"                  # Uintah's Point
+        iv = lambda x: "[int " + ", ".join(str(int(v)) for v in x) + "]"             # and IntVector
+        text = (f"#  controlVolume ({name}) box lower: {pt(lo)} upper: {pt(hi)}, lowIndex: {iv(ilo)}, "
+                f"highIndex: {iv(ihi)} \n")
+        text += " ".join(f"{c:<{w}}" for c in ("# ", "ControlVol", "Net face fluxes", " ", " ", "Face fluxes")) + "\n"
+        text += " ".join(f"{c:<{w}}" for c in ("#Time [s]", "Total", "X faces", "Y faces", "Z faces"))
+        text += " " + " ".join(f"{c:<{w}}" for c in self.FACES) + "\n"
+        return text
+
+
+MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract,
+           "controlVolFluxes": ControlVolFluxes}
 
 
 def read_analysis(root, component, level) -> list:
