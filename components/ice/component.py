@@ -5,7 +5,8 @@
 schedules one timestep as the tasks of paper 000 sec. 3.3, steps 2-12 (tasks.py).
 Physics a deck does not call for is not scheduled: the exchange tasks need two or
 more materials with a non-zero coefficient; the viscous and heat-conduction tasks a
-non-zero <dynamic_viscosity> / <thermal_conductivity>; gravity enters only when non-zero.
+non-zero <dynamic_viscosity> (or <dynamicViscosityModels>: Sutherland, SpongeLayer) /
+<thermal_conductivity>; gravity enters only when non-zero.
 The viscous task (ICE::viscousShearStress, kernels.viscous_stress_source) adds the
 divergence of the full Newtonian stress tau = mu (grad v + grad v^T) - 2/3 mu div v I,
 computed on the faces as Uintah's computeTauX/Y/Z from its velTau_CC (the extra cells on
@@ -170,7 +171,7 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.all_ideal = self.n_before == 0 and n > 1 and bool(np.all(self.codes == IDEAL_GAS))
         self.gammas = np.array([m.gamma for m in self.materials])
         self.matls = list(range(n))
-        self.viscous = any(m.viscosity > 0 for m in self.materials)
+        self.viscous = any(m.viscosity > 0 or m.viscosity_models for m in self.materials)
         self.conduction = any(m.conductivity > 0 for m in self.materials)
         self._geom_cache = {}
         ci = ice.child("customInitialization")
@@ -215,13 +216,48 @@ class ICE(ImplicitICE, IceTasks, Component):
                                             f"number > 1 (the {etype} EOS)")
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
+        models = self._read_viscosity_models(node, props)
         objects = []
         for go in node.children("geom_object"):
             objects.append((geo.read_object(go), go.read(GEOM)))
             self._check_initial_state(go, objects[-1][1], eos, props)
         if not objects:
             raise node.error("material has no <geom_object> (initial condition)")
-        return Material(name, eos, props, objects)
+        mat = Material(name, eos, props, objects)
+        mat.viscosity_models = models
+        return mat
+
+    def _read_viscosity_models(self, node, props):
+        """<dynamicViscosityModels>: Uintah's Sutherland (a, b) and SpongeLayer (maxDynamicViscosity
+        in a box's cells), applied in that order (Uintah's call order) to the interior cells of
+        the viscosity field; [("Sutherland", a, b) | ("SpongeLayer", mu, lo_index, hi_index)]."""
+        vm = node.child("dynamicViscosityModels")
+        if vm is None:
+            return []
+        lv = self.level
+        out = []
+        for mn in vm.children("Model"):
+            kind = mn.attr("name", choices=("Sutherland", "SpongeLayer"))
+            if kind == "Sutherland":
+                out.append((0, ("Sutherland", mn.get("a", "float", 0.0), mn.get("b", "float", 0.0))))
+                continue
+            mu = mn.get("maxDynamicViscosity", "float", at_least=0.0)
+            box = mn.child("box", required=True)
+            box.attr("label", default="")
+            lo = np.maximum(np.array(box.get("min", "vector"), dtype=np.float64), lv.anchor)
+            hi = np.minimum(np.array(box.get("max", "vector"), dtype=np.float64), lv.upper)
+            ilo = np.floor((lo - lv.anchor) / lv.dx + 0.5).astype(np.int64)
+            ihi = np.floor((hi - lv.anchor) / lv.dx + 0.5).astype(np.int64)
+            if np.any(ihi - ilo < 1):
+                raise box.error("the sponge layer's box holds no cell in some direction; accepted: at least "
+                                "one cell between min and max")
+            out.append((1, ("SpongeLayer", mu, ilo, ihi)))
+        if out and self.n_before:
+            raise vm.error("<dynamicViscosityModels> are available for ICE alone, not in MPMICE")
+        if out and props["dynamic_viscosity"] > 0.0:
+            raise vm.error("<dynamicViscosityModels> with a non-zero <dynamic_viscosity> is not available "
+                           "(its per-cell diffusion step limit); accepted: the models with dynamic_viscosity 0")
+        return [m for _, m in sorted(out, key=lambda e: e[0])]
 
     def _check_initial_state(self, go, values, eos, props):
         """Say when <pressure> is not the EOS pressure at <density> and <temperature>: like
@@ -343,11 +379,14 @@ class ICE(ImplicitICE, IceTasks, Component):
                        .requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC).computes(I.term2, matls=m0))
 
         if self.viscous:
+            sched.add_task(Task("ICE::computeThermoTransportProperties", self.viscosity_field, self.matls)
+                           .requires(OLD, I.temp_CC).computes(I.viscosity))                 # only when saved
             sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)
-                           .requires(OLD, L.delT).requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
-                           .computes(I.viscous_src_CC))
+                           .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
+                           .requires(OLD, I.temp_CC, G, 1).computes(I.viscous_src_CC))
             t = Task("ICE::computeTauFC", self.tau_fc, self.matls) \
-                .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)    # only when saved
+                .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1) \
+                .requires(OLD, I.temp_CC, G, 1)    # only when saved
             for d in dirs:
                 t.computes(I.TAU_FC[d])
             sched.add_task(t)

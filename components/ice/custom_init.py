@@ -5,6 +5,9 @@ objects' initial velocity (ICE's customInitialize.cc), in every cell, extra cell
   powerLawProfile2   u_p = u_tau / 0.4 ln(Re_tau r), r the distance to the nearer channel wall
                      over the half height, u_tau = mu Re_tau / (rho h_half)
   logLawProfile      u = u_*, u_p = u_*,p / kappa ln((h - d) / z0)
+  gaussianTemperature  T = 300 K + A exp(-(x-x0)^2 / 2 sx^2 - (y-y0)^2 / 2 sy^2) in the
+                     interior cells, before the EOS sets pressure and sound speed (at the
+                     geometry's density: the pulse starts as a pressure peak)
 h is the cell centre's height along <verticalDir> above the domain floor; outside the
 domain's height the velocity is 0 (power laws). Uintah applies them in reverse reading order.
 """
@@ -15,8 +18,8 @@ from numba import njit
 
 POWER_LAW, POWER_LAW2, LOG_LAW = 0, 1, 2
 ORDER = ("logLawProfile", "powerLawProfile", "powerLawProfile2")     # Uintah's reading order
-KNOWN = ("vortices", "vortexPairs", "gaussianTemperature", "manufacturedSolution", "counterflow",
-         "DNS_Moser") + ORDER
+ACCEPTED = ORDER + ("gaussianTemperature",)
+KNOWN = ("vortices", "vortexPairs", "manufacturedSolution", "counterflow", "DNS_Moser") + ACCEPTED
 
 
 @njit(cache=True)
@@ -49,6 +52,19 @@ def apply_profile(vel, kind, vdir, pdir, u_vec, p, anchor, dx, olo, ohi, c0):
                     vel[i, j, k, pdir] = u_vec[pdir] / p[4] * np.log((y - p[5]) / p[3])
 
 
+@njit(cache=True)
+def gaussian_temperature(temp, amp, origin, sx, sy, anchor, dx, lo, hi, c0):
+    """Uintah's gaussianTemperature: T = 300 + A exp(-(a + b)) at the cell centres."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                x = anchor[0] + (i + c0[0] + 0.5) * dx[0]
+                y = anchor[1] + (j + c0[1] + 0.5) * dx[1]
+                a = (x - origin[0]) * (x - origin[0]) / (2.0 * sx * sx + 1e-100)
+                b = (y - origin[1]) * (y - origin[1]) / (2.0 * sy * sy + 1e-100)
+                temp[i, j, k] = 300.0 + amp * np.exp(-(a + b))
+
+
 class CustomInitialization:
     """The profiles of one <customInitialization> block, applied to one material's vel_CC."""
 
@@ -56,15 +72,19 @@ class CustomInitialization:
         self.level = level
         self.methods = []
         for child in node.children():
-            if child.tag not in ORDER:
-                accepted = ", ".join(ORDER)
+            if child.tag not in ACCEPTED:
+                accepted = ", ".join(ACCEPTED)
                 raise child.error(f"<{child.tag}> is not available; accepted: {accepted}"
                                   if child.tag in KNOWN else f"unsupported tag <{child.tag}>; accepted: {accepted}")
         for tag in ORDER:
             c = node.child(tag)
             if c is not None:
                 self.methods.append((tag, c))
-        self.read = []
+        self.gauss = None
+        g = node.child("gaussianTemperature")
+        if g is not None:
+            self.gauss = (g.get("amplitude", "float"), np.array(g.get("origin", "vector"), dtype=np.float64),
+                          g.get("spread_x", "float"), g.get("spread_y", "float"))
 
     def _vdir(self, c, tag):
         v = c.get(tag, "int", at_least=0)
@@ -103,6 +123,12 @@ class CustomInitialization:
                 d = c.get("d", "float", lv.anchor[vdir])
                 out.append((LOG_LAW, vdir, pdir, u, np.array([0.0, 0.0, 0.0, z0, kappa, d])))
         return out[::-1]                 # Uintah applies them in reverse order
+
+    def temperature(self, temp, lo, hi, c0):
+        """gaussianTemperature on the interior cells lo..hi (c0: the global index of local 0)."""
+        if self.gauss is not None:
+            amp, origin, sx, sy = self.gauss
+            gaussian_temperature(temp, amp, origin, sx, sy, self.level.anchor, self.level.dx, lo, hi, c0)
 
     def apply(self, vel, profiles, olo, ohi, c0):
         lv = self.level

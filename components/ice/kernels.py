@@ -713,9 +713,21 @@ def diffusion_source(q, vf, coef, out, dims, lo, hi, dx, dt, vol):
 
 
 @njit(cache=True)
+def sutherland_viscosity(mu, temp, a, b, lo, hi):
+    """Uintah's Sutherland model: mu = a sqrt(T) / (1 + b / T), T clamped to [300, 5000] K,
+    interior cells."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                t = min(max(temp[i, j, k], 300.0), 5000.0)
+                mu[i, j, k] = a * np.sqrt(t) / (1.0 + b / t)
+
+
+@njit(cache=True)
 def face_stress(vel, vf, mu, i, j, k, d, dims, dx, t):
     """t = tau . n_d, the Newtonian stress mu (grad v + grad v^T) - 2/3 mu (div v) I on the
-    d-face between cells L = (i, j, k) - e_d and R = (i, j, k), as Uintah's computeTauX/Y/Z.
+    d-face between cells L = (i, j, k) - e_d and R = (i, j, k), as Uintah's computeTauX/Y/Z;
+    mu: the cells' dynamic viscosity (Uintah's viscosity label).
 
     dv_c/dx_d = (v_R - v_L) / dx_d; across the face (e != d) the difference of the two edge
     means (each the mean of the 4 cells around the edge). Face viscosity: harmonic mean of
@@ -723,8 +735,8 @@ def face_stress(vel, vf, mu, i, j, k, d, dims, dx, t):
     """
     di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     il, jl, kl = i - di, j - dj, k - dk
-    c0 = mu * vf[i, j, k]
-    c1 = mu * vf[il, jl, kl]
+    c0 = mu[i, j, k] * vf[i, j, k]
+    c1 = mu[il, jl, kl] * vf[il, jl, kl]
     mf = 2.0 * c0 * c1 / (c0 + c1 + TINY)
     g = np.zeros((3, 3))                       # g[c, e] = dv_c / dx_e on the face
     for e in range(3):
@@ -747,12 +759,11 @@ def face_stress(vel, vf, mu, i, j, k, d, dims, dx, t):
 
 
 @njit(cache=True)
-def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, dt, vol):
-    """Newtonian viscous momentum source out = dt V div(tau) (Uintah's viscousShearStress):
+def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, vol):
+    """Newtonian viscous force out = V div(tau), Uintah's viscous_src_CC (viscousShearStress):
     each face stress (face_stress) is computed once and leaves L as it enters R
     (conservative). No bulk viscosity; no viscous heating (Uintah's ICE has none either).
-    vel: Uintah's velTau_CC (vel_tau_boundary on the domain's faces).
-    """
+    vel: Uintah's velTau_CC (vel_tau_boundary on the domain's faces)."""
     t = np.zeros(3)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -764,7 +775,7 @@ def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, dt, vol):
         if not dims[d]:
             continue
         di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
-        f = dt * vol / dx[d]
+        f = vol / dx[d]
         for i in range(lo[0], hi[0] + di):
             for j in range(lo[1], hi[1] + dj):
                 for k in range(lo[2], hi[2] + dk):

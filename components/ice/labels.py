@@ -33,6 +33,7 @@ PRESS_FC = (L.create("pressX_FC", X), L.create("pressY_FC", Y), L.create("pressZ
 
 # optional physics sources (viscous stress, heat conduction)
 viscous_src_CC = L.create("viscous_src_CC", CC, (3,))
+viscosity = L.create("viscosity", CC)            # dynamic viscosity (<dynamic_viscosity> and its models)
 heatCond_src_CC = L.create("heatCond_src_CC", CC)
 TAU_FC = tuple(L.create(f"tau_{a}_FC", t, (3,)) for a, t in (("X", X), ("Y", Y), ("Z", Z)))   # diagnostic
 

@@ -158,6 +158,10 @@ class IceTasks:
                 self.custom_init.apply(arrs[1], self.custom_profiles[m], b.olo, b.ohi,
                                        np.array(patch.low_index(VarType.CC), dtype=np.int64))
             arrs[2][sl] = temp
+            if self.custom_init is not None and self.custom_init.gauss is not None:
+                # gaussianTemperature: before the EOS pressure and sound speed, as Uintah's (interior cells)
+                self.custom_init.temperature(arrs[2], b.lo, b.hi, np.array(patch.low_index(VarType.CC)))
+                temp = arrs[2][sl]
             arrs[3][sl] = 1.0 / rho_micro
             p_arr[sl] = _press_array(rho_micro, temp, *self._eos(m))
             # extra cells outside every geometry object get their boundary values
@@ -350,14 +354,60 @@ class IceTasks:
                     K.vel_tau_boundary(vt, d, side, b.lo, b.hi, tlo, thi)
         return vt
 
-    def viscous_source(self, patch, matls, old_dw, new_dw):
+    def viscosity_array(self, patch, m, old_dw):
+        """Uintah's computeThermoTransportProperties (viscosity): <dynamic_viscosity> in every cell
+        (ghost and extra cells too), then the material's models on the interior cells from the
+        old temperature (Sutherland), or in a box (SpongeLayer)."""
         b = self.boxes(patch)
-        dt = old_dw.get_reduction(L.delT)
+        mat = self.materials[m]
+        mu = np.full(patch.alloc_shape(VarType.CC), float(mat.viscosity))
+        c0 = np.array(patch.low_index(VarType.CC))
+        for model in getattr(mat, "viscosity_models", ()):      # MPMICE's solids have none
+            if model[0] == "Sutherland":
+                K.sutherland_viscosity(mu, old_dw.get(I.temp_CC, m, patch), model[1], model[2], b.lo, b.hi)
+            else:
+                a = np.maximum(model[2] - c0, b.lo)
+                z = np.minimum(model[3] - c0, b.hi)
+                if np.all(z > a):
+                    mu[a[0]:z[0], a[1]:z[1], a[2]:z[2]] = model[1]
+        return mu
+
+    def viscosity_field(self, patch, matls, old_dw, new_dw):
+        """Uintah's viscosity label, computed only when a deck saves it."""
+        for m in matls:
+            new_dw.put(I.viscosity, m, patch, self.viscosity_array(patch, m, old_dw))
+
+    def _viscous_here(self, patch, m):
+        """Uintah's isViscosityDefinedFlag: a constant viscosity, a Sutherland model, or a sponge
+        layer with cells on this patch."""
+        mat = self.materials[m]
+        models = getattr(mat, "viscosity_models", ())
+        if mat.viscosity > 0 or any(model[0] == "Sutherland" for model in models):
+            return True
+        c0 = np.array(patch.lo)
+        c1 = np.array(patch.hi)
+        return any(model[1] > 0 and np.all(np.minimum(model[3], c1) > np.maximum(model[2], c0))
+                   for model in models)
+
+    def _mu(self, patch, m, old_dw):
+        """The cells' viscosity: with models each step's field, else a cached constant array."""
+        if getattr(self.materials[m], "viscosity_models", ()):
+            return self.viscosity_array(patch, m, old_dw)
+        key = ("mu", m, patch.id, patch.alloc_shape(VarType.CC))
+        if key not in self._geom_cache:
+            self._geom_cache[key] = np.full(patch.alloc_shape(VarType.CC), float(self.materials[m].viscosity))
+        return self._geom_cache[key]
+
+    def viscous_source(self, patch, matls, old_dw, new_dw):
+        """Uintah's viscous_src_CC = V div(tau) (a force: the Lagrangian momentum adds dt times it)."""
+        b = self.boxes(patch)
         for m in matls:
             out = new_dw.allocate(I.viscous_src_CC, m, patch)
+            if not self._viscous_here(patch, m):
+                continue
             K.viscous_stress_source(self.vel_tau(patch, old_dw.get(I.vel_CC, m, patch)),
-                                    new_dw.get(I.vol_frac_CC, m, patch), self.materials[m].viscosity, out,
-                                    self.dims, b.lo, b.hi, patch.level.dx, dt, b.vol)
+                                    new_dw.get(I.vol_frac_CC, m, patch), self._mu(patch, m, old_dw), out,
+                                    self.dims, b.lo, b.hi, patch.level.dx, b.vol)
 
     def tau_fc(self, patch, matls, old_dw, new_dw):
         """Uintah's tau_X_FC, tau_Y_FC, tau_Z_FC (the face stresses of viscous_source), computed
@@ -369,8 +419,9 @@ class IceTasks:
             for d in range(3):
                 if self.dims[d]:
                     tau = new_dw.allocate(I.TAU_FC[d], m, patch)
-                    K.tau_face(vt, vf, self.materials[m].viscosity, tau, d, b.sh[d], b.flo[d], b.fhi[d],
-                               self.dims, patch.level.dx)
+                    if self._viscous_here(patch, m):
+                        K.tau_face(vt, vf, self._mu(patch, m, old_dw), tau, d, b.sh[d], b.flo[d],
+                                   b.fhi[d], self.dims, patch.level.dx)
 
     def conduction_source(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
@@ -402,7 +453,7 @@ class IceTasks:
                          self.gravity, self.use_gravity, self.codes[m], self.params[m], self.gammas[m], b.perm)
             sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
             if self.viscous:
-                mom[sl] += new_dw.get(I.viscous_src_CC, m, patch)[sl]
+                mom[sl] += dt * new_dw.get(I.viscous_src_CC, m, patch)[sl]
             if self.conduction:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
             if not self.exchange:
@@ -470,8 +521,7 @@ class IceTasks:
                                      b.v_olo, b.v_ohi, b.vol, dt)
         if self.clamp_sp_vol:
             for m, out in zip(matls, outs):
-                k = m - self.n_before           # MPMICE: solids first, whose tiny_rho is Uintah's 1e-12
-                tiny_rho = self.materials[k].tiny_rho if 0 <= k < len(self.materials) else 1e-12
+                tiny_rho = getattr(self.materials[m], "tiny_rho", 1e-12)    # MPMICE's solids: Uintah's 1e-12
                 K.clamp_sp_vol_lagrangian(out, new_dw.get(I.sp_vol_CC, m, patch), tiny_rho, b.vol, b.lo, b.hi)
 
     # -- step 12: advection and the new state ----------------------------------------------------

@@ -364,3 +364,28 @@ def test_control_volume_fluxes_as_uintah(run_deck):
         assert np.allclose(b, a, rtol=1e-7, atol=1e-7 * np.abs(a).max()), (name, b - a)
     line = (data / "X_line_i0_j6_k6").read_text()
     assert (pathlib.Path(da.path) / "X_line/L-0/i0_j6_k6").read_text() == line
+
+
+# Uintah's sus on uintah_reference/viscousSpongeLayers_explicit.ups: min and max after step 3
+# (the uda; vectors: the x component) and press_CC's at t = 0
+SUS_SPONGE = {"vel_CC": (-4.822252174393002, 4.8222521743929985),
+              "viscous_src_CC": (-5.343282608738776e-05, 5.343282608738776e-05),
+              "press_CC": (101325.00003853808, 323125.2312052898),
+              "viscosity": (1.8460041071060184e-05, 1.0)}
+SUS_SPONGE_PRESS_0 = (101325.00003757719, 323425.7333756761)
+
+
+def test_viscous_sponge_layers_as_uintah(run_deck):
+    """gaussianTemperature (the pulse: T before the EOS pressure, so it starts as a pressure
+    peak), Sutherland's viscosity, SpongeLayer boxes of viscosity 1, and viscous_src_CC saved
+    as Uintah's force V div(tau): 3 steps as sus, to 1e-9 (velocities, round-off growth) and
+    1e-12 (pressure, viscosity)."""
+    da = run_deck(str(REF / "viscousSpongeLayers_explicit.ups"))
+    assert np.allclose(np.diff(da.times), [1e-6, 2e-6, 4e-6], rtol=1e-12)
+    p0, _ = da.read("press_CC", 0, 0)
+    assert np.allclose((p0.min(), p0.max()), SUS_SPONGE_PRESS_0, rtol=1e-12, atol=0)
+    for label, (lo, hi) in SUS_SPONGE.items():
+        a = da.read(label, 0, -1)[0]
+        a = a[..., 0] if a.ndim == 4 else a
+        tol = 1e-9 if label in ("vel_CC", "viscous_src_CC") else 1e-12
+        assert np.allclose((a.min(), a.max()), (lo, hi), rtol=tol, atol=0), (label, a.min(), a.max())

@@ -144,7 +144,7 @@ def test_no_slip_walls_second_order(run_deck):
 
 
 def _source(vel_fn, n=64, mu=0.7):
-    """The kernel's source / (dt V) on a periodic unit square, n cells, one ghost layer."""
+    """The kernel's force / V on a periodic unit square, n cells, one ghost layer."""
     h = 1.0 / n
     xc = (np.arange(-1, n + 1) + 0.5) * h
     X, Y = np.meshgrid(xc, xc, indexing="ij")
@@ -156,8 +156,8 @@ def _source(vel_fn, n=64, mu=0.7):
     vf = np.ones(vel.shape[:3])
     out = np.zeros_like(vel)
     lo, hi = np.array([1, 1, 1]), np.array([n + 1, n + 1, 2])
-    K.viscous_stress_source(vel, vf, mu, out, np.array([True, True, False]), lo, hi, np.array([h, h, 1.0]),
-                            1.0, 1.0)
+    K.viscous_stress_source(vel, vf, np.full(vf.shape, mu), out, np.array([True, True, False]), lo, hi,
+                            np.array([h, h, 1.0]), 1.0)
     return out[1:-1, 1:-1, 1, :], X[1:-1, 1:-1], Y[1:-1, 1:-1]
 
 
@@ -203,8 +203,8 @@ def test_kernel_3d_dilatation_and_shear():
                            ((sy, sz, sx), -mu * k * k)):
         vel = np.stack(fields, axis=-1)
         out = np.zeros_like(vel)
-        K.viscous_stress_source(vel, np.ones(X.shape), mu, out, np.array([True, True, True]), lo, hi,
-                                np.array([h, h, h]), 1.0, 1.0)
+        K.viscous_stress_source(vel, np.ones(X.shape), np.full(X.shape, mu), out, np.array([True, True, True]),
+                                lo, hi, np.array([h, h, h]), 1.0)
         exact = factor * vel[inner]
         err = np.max(np.abs(out[inner] - exact)) / np.max(np.abs(exact))
         assert err < 0.01, (factor, err)
