@@ -1,11 +1,11 @@
-"""Uintah's advect.ups and hotBlob2mat.ups run unchanged and conserve.
+"""Uintah's R_Tester ICE.py decks run on pysus and agree with Uintah's sus.
 
-advect.ups: uniform flow [1,1,1] m/s through a 5^3 box with zero-gradient faces: the
-compatible advection keeps the state exactly uniform, so inflow equals outflow and
-mass and internal energy stay constant. hotBlob2mat.ups: a 400 K blob of the
-surroundings' density expands, as in Uintah's sus (values stored below). The decks in
-uintah_reference/ are Uintah's, edited as their header comment says (XY_freeSlip_explicit:
-the FreeSlipWall velocity condition).
+Each test says which sus run its values come from (stored here or in data/, small extracts)
+and its tolerance. The decks in uintah_reference/ are Uintah's, edited as their header
+comment says: the implicit ones made explicit (the reference sus has no hypre), some
+coarsened, Uintah's advection chosen (limiter="BarthJespersen" dissipationHeating="false").
+advect.ups: uniform flow [1,1,1] m/s through a 5^3 box stays exactly uniform.
+hotBlob2mat.ups: a 400 K blob of the surroundings' density expands, as in sus.
 """
 import pathlib
 
