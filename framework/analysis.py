@@ -5,7 +5,9 @@ the CC field vorticity = curl(vel_CC) (second-order central differences over the
 0 in the extra cells), a task the graph keeps only when a deck saves "vorticity". `minMax` writes,
 at its sampling times within [timeStart, timeStop], one line per analysed variable to
 <uda>/MinMax/L-0/<label>_<matl>: "time min max" (Vectors componentwise, in brackets), over the
-interior cells (CC) or the faces of interior cells (FC), in Uintah's format.
+interior cells (CC) or the faces of interior cells (FC), in Uintah's format. `lineExtract` writes
+the values along axis-parallel lines, one file per cell (LineExtract); `controlVolFluxes` the mass
+in boxes and the mass fluxes through their faces (ControlVolFluxes).
 """
 from __future__ import annotations
 
@@ -15,7 +17,7 @@ import numpy as np
 from numba import njit
 
 from . import labels as L
-from .task import NEW, Task
+from .task import NEW, OLD, Task
 from .variables import Ghost, VarType
 
 FACE_TYPES = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)
@@ -148,7 +150,308 @@ class MinMax:
                             f"[{hi[0]:16.15E} {hi[1]:16.15E} {hi[2]:16.15E}]\n")
 
 
-MODULES = {"vorticity": Vorticity, "minMax": MinMax}
+def abbreviate(name, max_len):
+    """Uintah's AnalysisModule::abbreviateName: snake_case to camelCase, then the middle cut
+    out (not splitting at a capital) when still max_len or longer."""
+    out = name
+    if len(out) >= max_len:
+        parts = out.split("_")
+        out = parts[0] + "".join(p[:1].upper() + p[1:] for p in parts[1:])
+    if len(out) >= max_len:
+        cut = len(out) - max_len
+        start = len(out) // 2 - cut // 2
+        if out[start - 1].isupper():
+            start -= 1
+        if out[start + cut - 1].isupper():
+            start -= 1
+        out = out[:start] + out[start + cut:]
+    return out
+
+
+class LineExtract:
+    """Uintah's lineExtract module: at its sampling times the values of CC and FC variables in
+    the cells of axis-parallel lines, one file per cell <uda>/<line>/L-0/i<i>_j<j>_k<k> with
+    the rows "x y z timestep time values...", in Uintah's format (16-wide %E columns). Each
+    rank writes the cells of its own patches (extra cells included) during the step."""
+
+    WIDTH = 16
+    ORDER = (VarType.CC, VarType.NC, VarType.SFCX, VarType.SFCY, VarType.SFCZ)   # Uintah's column order
+
+    def __init__(self, node, component, level):
+        matl = _material(node, component)
+        self.level = level
+        self.freq = node.get("samplingFrequency", above=0.0)
+        self.start = node.get("timeStart")
+        self.stop = node.get("timeStop")
+        if self.start > self.stop:
+            raise node.child("timeStart").error("timeStart is after timeStop; accepted: timeStart <= timeStop")
+        self.prev = self.start - 1.0 / self.freq
+        self.uda = None                 # set by the controller once the archive exists
+        self.vars = []
+        for a in node.child("Variables", required=True).children("analyze"):
+            name = a.attr("label")
+            label = L.find(name)
+            if label is None or label.vartype not in (VarType.CC, VarType.NC) + FACE_TYPES or \
+                    label.shape not in ((), (3,)):
+                raise a.error(f'label="{name}" is not a cell-, node- or face-centred double or Vector of this '
+                              "deck; accepted: a grid variable the component computes")
+            if name == "press_CC" and a.attr("matl", default=None) is None:
+                raise a.error('press_CC needs matl="0" (as Uintah\'s lineExtract)')
+            self.vars.append((label, a.attr("matl", "int", matl, at_least=0)))
+        kinds = {lab.vartype for lab, _ in self.vars}
+        self.common = kinds.pop() if len(kinds) == 1 else None
+        self.lines = []
+        for ln in node.child("lines", required=True).children("line"):
+            name = ln.attr("name")
+            p0 = np.array(ln.get("startingPt", "vector"), dtype=np.float64)
+            p1 = np.array(ln.get("endingPt", "vector"), dtype=np.float64)
+            step = ln.get("stepSize", "float", 0.0, at_least=0.0)
+            moving = [d for d in range(3) if p0[d] != p1[d]]
+            if len(moving) != 1:
+                raise ln.error("a line must be parallel to one coordinate axis; accepted: startingPt and "
+                               "endingPt differing in one coordinate")
+            lo, hi = level.anchor, level.upper
+            if np.any(p0 < lo - 1e-12 * abs(hi - lo)) or np.any(p1 > hi + 1e-12 * abs(hi - lo)) \
+                    or p0[moving[0]] > p1[moving[0]]:
+                raise ln.error(f"the line from {p0.tolist()} to {p1.tolist()} is not inside the domain "
+                               f"{lo.tolist()} - {hi.tolist()} from low to high")
+            d = moving[0]
+            self.lines.append((name, p0, p1, d, max(int(np.ceil(step / level.dx[d])), 1)))
+        self.done = {}
+        # the time of the last write, as Uintah's lastWriteTime: the task's output, which keeps it in the graph
+        self.last_write = L.create(f"lastWriteTime_lineExtract{id(self)}", VarType.REDUCTION, reduction="max")
+        self.needed = {self.last_write.name}
+
+    def schedule(self, sched):
+        t = Task("lineExtract::doAnalysis", self.write, sorted({m for _, m in self.vars})) \
+            .requires(OLD, L.simTime).requires(OLD, L.delT).computes(self.last_write)
+        for label, m in self.vars:
+            t.requires(NEW, label, matls=[m])
+        sched.add_task(t)
+
+    def _offset(self):
+        half = 0.5 * np.asarray(self.level.dx)
+        if self.common in FACE_TYPES:
+            half[FACE_TYPES.index(self.common)] = 0.0
+        elif self.common is VarType.NC:
+            half[:] = 0.0
+        return half
+
+    def _due(self, now):
+        """Uintah's getTimeVars, decided once per step (every patch of it sees the same now)."""
+        if now not in self.done:
+            due = self.start <= now <= self.stop and now >= self.prev + 1.0 / self.freq
+            if due:
+                self.prev = now
+            self.done = {now: due}
+        return self.done[now]
+
+    def write(self, patch, matls, old_dw, new_dw):
+        now = old_dw.get_reduction(L.simTime) + old_dw.get_reduction(L.delT)
+        due = self._due(now)
+        new_dw.put_reduction(self.last_write, self.prev)
+        if not due or self.uda is None:
+            return
+        lv = self.level
+        olo, ohi = (np.array(x) for x in patch.owned_local(VarType.CC))
+        c0 = np.array(patch.low_index(VarType.CC))
+        elo, ehi = olo + c0, ohi + c0               # this patch's cells, extra cells included
+        offset = self._offset()
+        arrays = [(lab, new_dw.get(lab, m, patch), np.array(patch.low_index(lab.vartype))) for lab, m in self.vars]
+        for name, p0, p1, d, step in self.lines:
+            folder = os.path.join(self.uda, name, "L-0")
+            os.makedirs(folder, exist_ok=True)
+            box_lo = lv.anchor + elo * lv.dx
+            box_hi = lv.anchor + ehi * lv.dx
+            a, b = np.maximum(box_lo, p0), np.minimum(box_hi, p1)
+            if np.any(a > b):
+                continue
+            i0 = np.floor((a - lv.anchor) / lv.dx).astype(np.int64)
+            i1 = np.floor((b - lv.anchor) / lv.dx).astype(np.int64)
+            for n in range(i0[d], i1[d], step):
+                c = i0.copy()
+                c[d] = n
+                if np.any(c < elo) or np.any(c >= ehi):
+                    continue
+                self._write_row(folder, c, new_dw.dw.generation, now, lv.anchor + c * lv.dx + offset, arrays)
+
+    def _write_row(self, folder, c, timestep, now, here, arrays):
+        w = self.WIDTH
+        path = os.path.join(folder, f"i{c[0]}_j{c[1]}_k{c[2]}")
+        if not os.path.exists(path):
+            with open(path, "w") as f:
+                f.write(self._header())
+        row = f"{here[0]:<{w}E} {here[1]:<{w}E} {here[2]:<{w}E} {timestep:<{w}d} {now:<{w}E}"
+        for vt in self.ORDER:
+            for want_vector in (False, True):
+                for lab, arr, low in arrays:
+                    if lab.vartype is not vt or (lab.shape == (3,)) != want_vector:
+                        continue
+                    v = arr[tuple(c - low)]
+                    row += f"{v[0]:<{w}E} {v[1]:<{w}E} {v[2]:<{w}E}" if want_vector else f"{float(v):<{w}E}"
+        with open(path, "a") as f:
+            f.write(row + "\n")
+
+    def _header(self):
+        w = self.WIDTH
+        tags = {VarType.CC: "CC", VarType.NC: "NC", VarType.SFCX: "SFCX", VarType.SFCY: "SFCY",
+                VarType.SFCZ: "SFCZ"}
+        text = ""
+        loc = tags.get(self.common, "CC")
+        if self.common is None:
+            dx = self.level.dx
+            text += ("# WARNING:  not all variables are at the cell center, you'll need apply an offset to them\n"
+                     f"# dx: [{dx[0]:g}, {dx[1]:g}, {dx[2]:g}]\n")
+        text += f"{'# X_' + loc:<{w}} {'Y_' + loc:<{w}} {'Z_' + loc:<{w}} {'Timestep':<{w}} {'Time [s]':<{w}}"
+        for vt in self.ORDER:
+            for lab, m in self.vars:
+                if lab.vartype is vt and lab.shape == ():
+                    text += f"{abbreviate(lab.name, w - 3) + '_' + str(m):<{w}}"
+            for lab, m in self.vars:
+                if lab.vartype is vt and lab.shape == (3,):
+                    base = abbreviate(lab.name, w - 4) + "_" + str(m)
+                    text += " ".join(f"{base + s:<{w}}" for s in (".x", ".y", ".z"))
+        return text + "\n"
+
+    def after_step(self, dw, timestep, t, uda):
+        pass
+
+
+@njit(cache=True)
+def mass_in_cells(rho, lo, hi, vol):
+    """sum rho V over the cells lo..hi."""
+    total = 0.0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                total += rho[i, j, k] * vol
+    return total
+
+
+@njit(cache=True)
+def mass_flux_faces(vel_fc, rho, d, flo, fhi, sh, area):
+    """sum u_f rho_upwind A over the faces flo..fhi of direction d (face f below cell f + sh;
+    upwind: the cell below where u_f > 0), Uintah's controlVolFluxes::integrate_Q_overFace."""
+    q = 0.0
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                u = vel_fc[i, j, k]
+                c0, c1, c2 = i + sh[0], j + sh[1], k + sh[2]
+                if u > 0.0:
+                    if d == 0:
+                        c0 -= 1
+                    elif d == 1:
+                        c1 -= 1
+                    else:
+                        c2 -= 1
+                q += u * rho[c0, c1, c2] * area
+    return q
+
+
+class ControlVolFluxes:
+    """Uintah's controlVolFluxes module: for each <box> control volume, the mass it holds and
+    the mass fluxes through its six faces (face velocity times the upwind density times the
+    face area), written at the sampling times to <uda>/<label>.dat in Uintah's format."""
+
+    WIDTH, PRECISION = 18, 12
+    FACES = ("x-", "x+", "y-", "y+", "z-", "z+")
+
+    def __init__(self, node, component, level):
+        self.matl = _material(node, component)
+        self.level = level
+        self.freq = node.get("samplingFrequency", above=0.0)
+        self.start = node.get("timeStart")
+        self.stop = node.get("timeStop")
+        self.prev = self.start - 1.0 / self.freq
+        self.cvs = []
+        for box in node.child("controlVolumes", required=True).children("box"):
+            name = box.attr("label")
+            lo = np.array(box.get("min", "vector"), dtype=np.float64)
+            hi = np.array(box.get("max", "vector"), dtype=np.float64)
+            if np.any(np.abs(hi - lo) < 10 * np.finfo(float).tiny):
+                raise box.error(f"box '{name}': max must differ from min in every direction")
+            lo, hi = np.maximum(level.anchor, lo), np.minimum(level.upper, hi)      # clipped to the domain
+            ilo = np.floor((lo - level.anchor) / level.dx + 0.5).astype(np.int64)
+            ihi = np.floor((hi - level.anchor) / level.dx + 0.5).astype(np.int64)
+            if np.any(ihi - ilo < 1):
+                raise box.error(f"box '{name}' holds no cell in some direction; accepted: at least one cell "
+                                "between min and max")
+            labels = [L.create(f"{name}_controlVolFluxes{id(self)}_{tag}", VarType.REDUCTION, reduction="sum")
+                      for tag in ("total",) + self.FACES]
+            self.cvs.append((name, lo, hi, ilo, ihi, labels))
+        self.needed = {lab.name for cv in self.cvs for lab in cv[5]}
+
+    def schedule(self, sched):
+        t = Task("controlVolFluxes::integrate_Q_overCV", self.integrate, [self.matl]) \
+            .requires(NEW, L.find("rho_CC"), Ghost.AROUND_CELLS, 1)
+        for d, name in enumerate(("uvel_FCME", "vvel_FCME", "wvel_FCME")):
+            if not self.level.collapsed[d]:
+                t.requires(NEW, L.find(name))
+        for cv in self.cvs:
+            for lab in cv[5]:
+                t.computes(lab)
+        sched.add_task(t)
+
+    def integrate(self, patch, matls, old_dw, new_dw):
+        m = self.matl
+        lv = self.level
+        rho = new_dw.get(L.find("rho_CC"), m, patch)
+        c0 = np.array(patch.low_index(VarType.CC))
+        olo, ohi = (np.array(x) for x in patch.owned_local(VarType.CC))
+        elo, ehi = olo + c0, ohi + c0                       # the patch's cells, extra cells included
+        plo, phi = np.array(patch.lo), np.array(patch.hi)
+        vol = float(np.prod(lv.dx))
+        for name, lo, hi, ilo, ihi, labels in self.cvs:
+            a, b = np.maximum(ilo, plo), np.minimum(ihi, phi)
+            total = mass_in_cells(rho, a - c0, b - c0, vol) if np.all(b > a) else 0.0
+            new_dw.put_reduction(labels[0], total)
+            for f in range(6):
+                d, plus = f // 2, f % 2
+                q = 0.0
+                face = ihi[d] if plus else ilo[d]
+                if not lv.collapsed[d] and elo[d] <= face < ehi[d]:
+                    a, b = np.maximum(ilo, elo), np.minimum(ihi, ehi)       # along the face: the CV's cells here
+                    a[d], b[d] = face, face + 1
+                    if np.all(b > a):
+                        vt = FACE_TYPES[d]
+                        f0 = np.array(patch.low_index(vt))
+                        area = vol / lv.dx[d]
+                        q = mass_flux_faces(new_dw.get(L.find(("uvel_FCME", "vvel_FCME", "wvel_FCME")[d]), m, patch),
+                                            rho, d, a - f0, b - f0, f0 - c0, area)
+                new_dw.put_reduction(labels[1 + f], q)
+
+    def after_step(self, dw, timestep, t, uda):
+        if t < self.start or t > self.stop or t < self.prev + 1.0 / self.freq:
+            return
+        self.prev = t
+        if uda is None:
+            return
+        w, p = self.WIDTH, self.PRECISION
+        for name, lo, hi, ilo, ihi, labels in self.cvs:
+            path = os.path.join(uda, f"{name}.dat")
+            vals = [float(dw.get_reduction(lab)) for lab in labels]
+            with open(path, "a") as f:
+                if f.tell() == 0:
+                    f.write(self._header(name, lo, hi, ilo, ihi))
+                q = vals[1:]
+                row = [t, vals[0], q[0] - q[1], q[2] - q[3], q[4] - q[5]] + q
+                f.write(" ".join(f"{v:<{w}.{p}E}" for v in row) + " \n")
+
+    def _header(self, name, lo, hi, ilo, ihi):
+        w = self.WIDTH
+        pt = lambda x: "[" + " ".join(f"{v:.4e}" for v in x) + "]"                  # Uintah's Point
+        iv = lambda x: "[int " + ", ".join(str(int(v)) for v in x) + "]"             # and IntVector
+        text = (f"#  controlVolume ({name}) box lower: {pt(lo)} upper: {pt(hi)}, lowIndex: {iv(ilo)}, "
+                f"highIndex: {iv(ihi)} \n")
+        text += " ".join(f"{c:<{w}}" for c in ("# ", "ControlVol", "Net face fluxes", " ", " ", "Face fluxes")) + "\n"
+        text += " ".join(f"{c:<{w}}" for c in ("#Time [s]", "Total", "X faces", "Y faces", "Z faces"))
+        text += " " + " ".join(f"{c:<{w}}" for c in self.FACES) + "\n"
+        return text
+
+
+MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract,
+           "controlVolFluxes": ControlVolFluxes}
 
 
 def read_analysis(root, component, level) -> list:

@@ -229,6 +229,9 @@ class Controller:
             self.archive_spec["filebase"] = Archiver.unique_dir(base, comm)
             self.archiver = Archiver(self.archive_spec, level, comm, self.deck_text, self.component_name,
                                      self.component.material_names())
+            for module in self.analysis:          # modules that write files of their own in the uda
+                if hasattr(module, "uda"):
+                    module.uda = self.archiver.dir
 
     def compile(self):
         """Compile the initialization and timestep graphs and check they fit together."""

@@ -9,6 +9,10 @@ Extra cells hold the boundary values of CC variables, as in Uintah:
   computeFromDensity   (SpecificVol only) v = theta / rho in the extra cell
   FreeSlipWall         (Velocity only) the first interior cell's velocity with its normal
                        component zero; the normal face velocity is zero
+  powerLawProfile,     (Velocity only) Uintah's inlet profiles (CustomBCs/inletVelocity.cc)
+  logLawProfile        u_n = U (h/H)^n or u_* / kappa ln(h / z0) at the cell's height h
+                       above the domain floor, in the extra cells and on the face; their
+                       parameters in <BoundaryConditions><inletVelocity> (InletProfile)
 Face velocities on a boundary face: Dirichlet sets the normal component, symmetry and
 FreeSlipWall zero, Neumann keeps the value computed from the extra cells.
 A `<BCType id="all">` applies to every material; Pressure is one field (material 0).
@@ -19,16 +23,127 @@ import numpy as np
 from numba import njit
 
 from framework.gridspec import boundary_faces
+from framework.variables import VarType
 
-NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY, FREE_SLIP = 0, 1, 2, 3, 4
+NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY, FREE_SLIP, POWER_LAW, LOG_LAW = 0, 1, 2, 3, 4, 5, 6
 KINDS = {"Neumann": NEUMANN, "Dirichlet": DIRICHLET, "symmetry": SYMMETRY, "computeFromDensity": FROM_DENSITY,
-         "FreeSlipWall": FREE_SLIP}
+         "FreeSlipWall": FREE_SLIP, "powerLawProfile": POWER_LAW, "logLawProfile": LOG_LAW}
+INLET = (POWER_LAW, LOG_LAW)
 VARS = ("Pressure", "Velocity", "Temperature", "Density", "SpecificVol")
 FACE_NAMES = ("x-", "x+", "y-", "y+", "z-", "z+")
 
 
-def read_bcs(root, level, nmat):
-    """{face: {var: [(kind, value) per material]}} for every physical face of the level."""
+class InletProfile:
+    """<BoundaryConditions><inletVelocity>: the parameters of the powerLaw/logLaw inlet profiles
+    (Uintah's read_inletVel_BC_inputs): vertical direction, exponent n, the profile's height H
+    (<maxHeight>, default the domain's height), roughness z0, von Karman constant, material."""
+
+    def __init__(self, node, level, material_names, n_before):
+        node.attr("type", default="", choices=("", "powerLawProfile", "logLawProfile"))
+        self.vdir = node.get("verticalDirection", "int", at_least=0)
+        if self.vdir > 2:
+            raise node.child("verticalDirection").error("verticalDirection must be 0, 1 or 2 (x, y, z)")
+        self.exponent = node.get("exponent", "float", 0.0)
+        self.roughness = node.get("roughness", "float", 0.0, at_least=0.0)
+        self.von_karman = node.get("vonKarmanConstant", "float", 0.4, above=0.0)
+        floor, top = level.anchor[self.vdir], level.upper[self.vdir]
+        self.height = node.get("maxHeight", "float", top - floor) - floor
+        self.floor, self.top = floor, top
+        mn = node.child("material", required=True)
+        name = mn.text().strip().replace('"', "")
+        if name not in material_names:
+            raise mn.error(f"no ICE material named '{name}'; accepted: {', '.join(material_names)}")
+        self.matl = n_before + material_names.index(name)
+
+    def params(self):
+        return np.array([self.floor, self.top, self.height, self.exponent, self.roughness, self.von_karman])
+
+
+@njit(cache=True)
+def inlet_profile(kind, value, h, p, out):
+    """Uintah's set_inletVelocity_BC at height h: out = value with its component n (out's last
+    index, the face normal) from the profile; 0 outside the domain's height. p = params()."""
+    floor, top, height, n, z0, kappa = p[0], p[1], p[2], p[3], p[4], p[5]
+    nd = out.shape[0] - 1
+    if kind == 5:
+        ratio = min(max((h - floor) / height, 0.0), 1.0)
+        out[nd] = value * ratio ** n if floor < h < height else value
+    else:
+        out[nd] = value / kappa * np.log((h - floor) / z0)
+    if h < floor or h > top:
+        out[nd] = 0.0
+        return False
+    return True
+
+
+@njit(cache=True)
+def bc_inlet(q, d, side, kind, value, vdir, p, anchor, dx, lo, hi, olo, ohi):
+    """Fill the extra-cell layer of face (d, side) of vel_CC with an inlet profile."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    ijk = np.zeros(3, dtype=np.int64)
+    u = np.zeros(1)
+    for a in range(olo[d1], ohi[d1]):
+        for b in range(olo[d2], ohi[d2]):
+            ijk[d], ijk[d1], ijk[d2] = e, a, b
+            h = anchor[vdir] + (ijk[vdir] - lo[vdir] + 0.5) * dx[vdir]
+            inside = inlet_profile(kind, value[d], h, p, u)
+            for c in range(3):
+                q[ijk[0], ijk[1], ijk[2], c] = (value[c] if inside else 0.0) if c != d else u[0]
+
+
+@njit(cache=True)
+def bc_inlet_face(uf, d, index, kind, value, vdir, p, anchor, dx, f0):
+    """The normal face velocity of an inlet face (layer `index` along d) from the profile at
+    each face's height; f0: the global index of uf[0, 0, 0] along vdir."""
+    sh = uf.shape
+    u = np.zeros(1)
+    ijk = np.zeros(3, dtype=np.int64)
+    for a in range(sh[(d + 1) % 3]):
+        for b in range(sh[(d + 2) % 3]):
+            ijk[d], ijk[(d + 1) % 3], ijk[(d + 2) % 3] = index, a, b
+            h = anchor[vdir] + (ijk[vdir] + f0 + 0.5) * dx[vdir]
+            inlet_profile(kind, value, h, p, u)
+            uf[ijk[0], ijk[1], ijk[2]] = u[0]
+
+
+@njit(cache=True)
+def bc_inlet_momentum(mom, mass, vel, d, side, lo, hi, olo, ohi):
+    """mom = mass vel in the extra-cell layer of face (d, side)."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    for a in range(olo[d1], ohi[d1]):
+        for b in range(olo[d2], ohi[d2]):
+            ie = _idx(d, e, a, b)
+            for c in range(3):
+                mom[ie[0], ie[1], ie[2], c] = mass[ie] * vel[ie[0], ie[1], ie[2], c]
+
+
+@njit(cache=True)
+def bc_hydrostatic(press, sp_vol, d, side, dirichlet, g, origin, anchor, dx, lo, hi, olo, ohi):
+    """The hydrostatic term of one face's extra-cell layer (BoundaryConditions.hydrostatic_pressure);
+    origin: the position of the patch's first interior cell's low corner."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    n = lo[d] if side == 0 else hi[d] - 1
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    sign = -1.0 if side == 0 else 1.0
+    for a in range(olo[d1], ohi[d1]):
+        for b in range(olo[d2], ohi[d2]):
+            ie = _idx(d, e, a, b)
+            if dirichlet:
+                corr = 0.0
+                for c in range(3):
+                    x = origin[c] + (ie[c] - lo[c] + 0.5) * dx[c]
+                    corr += g[c] * (x - (anchor[c] + 0.5 * dx[c]))
+                press[ie] += corr / sp_vol[ie]
+            else:
+                rho = 0.5 * (1.0 / sp_vol[ie] + 1.0 / sp_vol[_idx(d, n, a, b)])
+                press[ie] += g[d] * sign * dx[d] * rho
+
+
+def read_bcs(root, level, nmat, material_names=(), n_before=0):
+    """{face: {var: [(kind, value) per material]}} for every physical face of the level, and the
+    inlet profiles' parameters (an InletProfile, or None) under the key "inletVelocity"."""
     grid = root.child("Grid", required=True)
     bcn = grid.child("BoundaryConditions")
     found = {}
@@ -64,6 +179,17 @@ def read_bcs(root, level, nmat):
                                               '" var="Dirichlet|Neumann"> or a symmetry BCType')
                 face[var] = per
             out[name] = face
+    used = any(e is not None and e[0] in INLET for t in found.values() for per in t.values()
+               if isinstance(per, list) for e in per)
+    out["inletVelocity"] = None
+    if used:
+        node = bcn.child("inletVelocity")
+        if node is None:
+            raise bcn.error('a powerLawProfile or logLawProfile velocity condition needs '
+                            '<inletVelocity type="..."> with its parameters in <BoundaryConditions>')
+        out["inletVelocity"] = InletProfile(node, level, list(material_names), n_before)
+    elif bcn is not None and bcn.has("inletVelocity"):
+        bcn.child("inletVelocity").mark_used()
     return out
 
 
@@ -95,8 +221,10 @@ def _read_bctype(bt, table, nmat):
         raise bt.error('var="computeFromDensity" applies only to label="SpecificVol"')
     if label == "SpecificVol" and kind not in ("computeFromDensity",):
         raise bt.error('SpecificVol accepts only var="computeFromDensity"')
-    if kind == "FreeSlipWall" and label != "Velocity":
-        raise bt.error('var="FreeSlipWall" applies only to label="Velocity"')
+    if kind in ("FreeSlipWall", "powerLawProfile", "logLawProfile") and label != "Velocity":
+        raise bt.error(f'var="{kind}" applies only to label="Velocity"')
+    if kind in ("powerLawProfile", "logLawProfile") and ident == "all":
+        raise bt.error(f'var="{kind}" needs the ICE material\'s id, not id="all" (as Uintah)')
     vtype = "vector" if label == "Velocity" else "float"
     # a fixed pressure, temperature or density on a face is a state of matter: positive
     positive = 0.0 if kind == "Dirichlet" and label in ("Pressure", "Temperature", "Density") else None
@@ -185,6 +313,7 @@ class BoundaryConditions:
     """The boundary conditions of one deck, applied to one patch's arrays."""
 
     def __init__(self, table, level):
+        self.inlet = table.pop("inletVelocity", None)
         self.table = table
         self.level = level
 
@@ -209,11 +338,49 @@ class BoundaryConditions:
             else:
                 bc_scalar(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], b.lo, b.hi, b.olo, b.ohi)
 
-    def velocity(self, patch, q, m, b):
+    def velocity(self, patch, q, m, b, initial=False):
+        """vel_CC's extra cells. initial: at t = 0 the inlet profiles leave them as the
+        initialization made them (Uintah sets those only from the first step)."""
+        lv = self.level
         for name, d, s in self._faces(patch):
             kind, value = self.table[name]["Velocity"][m]
             v = np.zeros(3) if value is None else value
-            bc_vector(q, d, s, kind, v, self.level.dx[d], b.lo, b.hi, b.olo, b.ohi)
+            if kind in INLET:
+                if not initial:
+                    ip = self.inlet
+                    bc_inlet(q, d, s, kind, v, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
+                             lv.dx, b.lo, b.hi, b.olo, b.ohi)
+                continue
+            bc_vector(q, d, s, kind, v, lv.dx[d], b.lo, b.hi, b.olo, b.ohi)
+
+    def hydrostatic_pressure(self, patch, press, sp_vol, g, b):
+        """Uintah's HydrostaticPressureAdjustment of press_CC's extra cells (after the first
+        step): on a Neumann or symmetry face normal to gravity the extra cell adds
+        g.n dx (rho_in + rho_ec) / 2; on a Dirichlet face rho_ec g.(x_ec - x_ref), x_ref the
+        centre of cell 0. rho: the surrounding material's 1 / sp_vol."""
+        lv = self.level
+        origin = lv.anchor + np.array(patch.lo) * lv.dx
+        for name, d, s in self._faces(patch):
+            kind = self.table[name]["Pressure"][0][0]
+            if kind in (NEUMANN, SYMMETRY) and g[d] != 0.0:
+                bc_hydrostatic(press, sp_vol, d, s, 0, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
+            elif kind == DIRICHLET:
+                bc_hydrostatic(press, sp_vol, d, s, 1, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
+
+    def inlet_momentum(self, patch, mom, mass, m, b):
+        """Uintah sets vel_CC's conditions after the exchange and takes mom_L_ME = m u in the
+        extra cells; on inlet-profile faces that is m times the profile (elsewhere the extra
+        cells already hold their condition)."""
+        if self.inlet is None:
+            return
+        lv, ip = self.level, self.inlet
+        for name, d, s in self._faces(patch):
+            kind, value = self.table[name]["Velocity"][m]
+            if kind in INLET:
+                vel = np.zeros(mom.shape)
+                bc_inlet(vel, d, s, kind, value, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
+                         lv.dx, b.lo, b.hi, b.olo, b.ohi)
+                bc_inlet_momentum(mom, mass, vel, d, s, b.lo, b.hi, b.olo, b.ohi)
 
     def sp_vol(self, patch, spv, vf, rho, m, b):
         for name, d, s in self._faces(patch):
@@ -230,3 +397,8 @@ class BoundaryConditions:
                 bc_face_velocity(uf, d, idx, float(value[d]))
             elif kind in (SYMMETRY, FREE_SLIP):
                 bc_face_velocity(uf, d, idx, 0.0)
+            elif kind in INLET:
+                ip, lv = self.inlet, self.level
+                vt = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)[d]
+                bc_inlet_face(uf, d, idx, kind, float(value[d]), ip.vdir, ip.params(), lv.anchor, lv.dx,
+                              int(patch.low_index(vt)[ip.vdir]))

@@ -5,11 +5,16 @@
 schedules one timestep as the tasks of paper 000 sec. 3.3, steps 2-12 (tasks.py).
 Physics a deck does not call for is not scheduled: the exchange tasks need two or
 more materials with a non-zero coefficient; the viscous and heat-conduction tasks a
-non-zero <dynamic_viscosity> / <thermal_conductivity>; gravity enters only when non-zero.
+non-zero <dynamic_viscosity> (or <dynamicViscosityModels>: Sutherland, SpongeLayer) /
+<thermal_conductivity>; gravity enters only when non-zero.
 The viscous task (ICE::viscousShearStress, kernels.viscous_stress_source) adds the
 divergence of the full Newtonian stress tau = mu (grad v + grad v^T) - 2/3 mu div v I,
-computed on the faces as Uintah's computeTauX/Y/Z, to the momentum; like Uintah's ICE it
-adds no viscous heating to the energy. Heat conduction: div(theta k grad T) (eq. 9).
+computed on the faces as Uintah's computeTauX/Y/Z from its velTau_CC (the extra cells on
+the domain's faces hold 2 v_boundary - v_interior, so a wall sits on the boundary face), to
+the momentum; like Uintah's ICE it adds no viscous heating to the energy. With gravity, the
+<isSurroundingMatl> material's rho_micro sets Uintah's hydrostatic pressure: press_CC at t = 0
+(rho_micro g.(x - x_0)) and the pressure's extra cells on every later step (bc.py). The face stresses
+tau_X_FC, tau_Y_FC, tau_Z_FC are computed only when a deck saves them. Heat conduction: div(theta k grad T) (eq. 9).
 """
 from __future__ import annotations
 
@@ -27,6 +32,7 @@ from framework.variables import Ghost
 from . import labels as I
 from .advection import EXTREMA, VAN_LEER
 from .bc import BoundaryConditions, read_bcs
+from .custom_init import CustomInitialization
 from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .tasks import IceTasks
@@ -45,6 +51,7 @@ MATERIAL = {
     "specific_heat": Param("float", above=0.0),
     "gamma": Param("float", above=0.0),     # > 1 where the EOS uses it (_read_material)
     "tiny_rho": Param("float", 1e-12, above=0.0),
+    "isSurroundingMatl": Param("bool", False),
 }
 GEOM = {
     "res": Param("ivector", (2, 2, 2), at_least=1),
@@ -67,6 +74,7 @@ class Material:
         self.viscosity = props["dynamic_viscosity"]
         self.conductivity = props["thermal_conductivity"]
         self.tiny_rho = props["tiny_rho"]
+        self.is_surrounding = props["isSurroundingMatl"]
         self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
 
 
@@ -114,6 +122,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         # "false" with limiter="BarthJespersen" is Uintah's SecondOrderAdvector
         self.dissipation_heating = adv.attr("dissipationHeating", "bool", self.n_before == 0)
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100, at_least=1)
+        # Uintah's <ClampSpecificVolume>: the Lagrangian m v kept >= tiny_rho V v (MPMICE too)
+        self.clamp_sp_vol = ice.get("ClampSpecificVolume", "bool", False)
         # pysus extension: advect a conservative total energy and take e = E/m - |u|^2/2,
         # so that mass, momentum and total energy are conserved to round-off on closed
         # domains (Uintah's ICE, the default, advects internal energy: see tasks.py)
@@ -132,7 +142,18 @@ class ICE(ImplicitICE, IceTasks, Component):
         n = len(self.materials)
         self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n)
         self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
-        self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n), level)
+        # Uintah's hydrostatic pressure (gravity): initial press_CC and the pressure's extra cells
+        # from the <isSurroundingMatl> material's rho_micro; ICE alone (MPMICE: not yet)
+        surr = [m for m, mat in enumerate(self.materials) if mat.is_surrounding]
+        self.surrounding = surr[-1] if surr else None
+        apply_hydro = ice.get("applyHydrostaticPressure", "bool", True)
+        self.hydrostatic = self.use_gravity and apply_hydro and self.n_before == 0
+        if self.hydrostatic and self.surrounding is None:
+            raise icen.error("with gravity, one ICE material needs <isSurroundingMatl> true </isSurroundingMatl> "
+                             "(the background material of the hydrostatic pressure, as Uintah); or give "
+                             "<CFD><ICE><applyHydrostaticPressure> false")
+        self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before),
+                                      level)
         self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)
         if self.conserve_energy and n > 1 and np.any(self.codes != IDEAL_GAS):
             # the equilibration (eq. 13) changes each material's rho_micro at fixed T; with
@@ -150,9 +171,12 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.all_ideal = self.n_before == 0 and n > 1 and bool(np.all(self.codes == IDEAL_GAS))
         self.gammas = np.array([m.gamma for m in self.materials])
         self.matls = list(range(n))
-        self.viscous = any(m.viscosity > 0 for m in self.materials)
+        self.viscous = any(m.viscosity > 0 or m.viscosity_models for m in self.materials)
         self.conduction = any(m.conductivity > 0 for m in self.materials)
         self._geom_cache = {}
+        ci = ice.child("customInitialization")
+        self.custom_init = CustomInitialization(ci, level) if ci is not None else None
+        self.custom_profiles = [self.custom_init.resolve(m) for m in self.materials] if ci is not None else None
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
@@ -192,13 +216,48 @@ class ICE(ImplicitICE, IceTasks, Component):
                                             f"number > 1 (the {etype} EOS)")
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
+        models = self._read_viscosity_models(node, props)
         objects = []
         for go in node.children("geom_object"):
             objects.append((geo.read_object(go), go.read(GEOM)))
             self._check_initial_state(go, objects[-1][1], eos, props)
         if not objects:
             raise node.error("material has no <geom_object> (initial condition)")
-        return Material(name, eos, props, objects)
+        mat = Material(name, eos, props, objects)
+        mat.viscosity_models = models
+        return mat
+
+    def _read_viscosity_models(self, node, props):
+        """<dynamicViscosityModels>: Uintah's Sutherland (a, b) and SpongeLayer (maxDynamicViscosity
+        in a box's cells), applied in that order (Uintah's call order) to the interior cells of
+        the viscosity field; [("Sutherland", a, b) | ("SpongeLayer", mu, lo_index, hi_index)]."""
+        vm = node.child("dynamicViscosityModels")
+        if vm is None:
+            return []
+        lv = self.level
+        out = []
+        for mn in vm.children("Model"):
+            kind = mn.attr("name", choices=("Sutherland", "SpongeLayer"))
+            if kind == "Sutherland":
+                out.append((0, ("Sutherland", mn.get("a", "float", 0.0), mn.get("b", "float", 0.0))))
+                continue
+            mu = mn.get("maxDynamicViscosity", "float", at_least=0.0)
+            box = mn.child("box", required=True)
+            box.attr("label", default="")
+            lo = np.maximum(np.array(box.get("min", "vector"), dtype=np.float64), lv.anchor)
+            hi = np.minimum(np.array(box.get("max", "vector"), dtype=np.float64), lv.upper)
+            ilo = np.floor((lo - lv.anchor) / lv.dx + 0.5).astype(np.int64)
+            ihi = np.floor((hi - lv.anchor) / lv.dx + 0.5).astype(np.int64)
+            if np.any(ihi - ilo < 1):
+                raise box.error("the sponge layer's box holds no cell in some direction; accepted: at least "
+                                "one cell between min and max")
+            out.append((1, ("SpongeLayer", mu, ilo, ihi)))
+        if out and self.n_before:
+            raise vm.error("<dynamicViscosityModels> are available for ICE alone, not in MPMICE")
+        if out and props["dynamic_viscosity"] > 0.0:
+            raise vm.error("<dynamicViscosityModels> with a non-zero <dynamic_viscosity> is not available "
+                           "(its per-cell diffusion step limit); accepted: the models with dynamic_viscosity 0")
+        return [m for _, m in sorted(out, key=lambda e: e[0])]
 
     def _check_initial_state(self, go, values, eos, props):
         """Say when <pressure> is not the EOS pressure at <density> and <temperature>: like
@@ -315,11 +374,22 @@ class ICE(ImplicitICE, IceTasks, Component):
         sched.add_task(Task("ICE::computeDelP_MassX", self.delp_mass_exchange, m0)   # only when saved
                        .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
                        .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
+        sched.add_task(Task("ICE::computeTerm2", self.mass_exchange_term, self.matls)   # only when saved
+                       .requires(NEW, I.delP_MassX, matls=m0).requires(NEW, I.vol_frac_CC)
+                       .requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC).computes(I.term2, matls=m0))
 
         if self.viscous:
+            sched.add_task(Task("ICE::computeThermoTransportProperties", self.viscosity_field, self.matls)
+                           .requires(OLD, I.temp_CC).computes(I.viscosity))                 # only when saved
             sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)
-                           .requires(OLD, L.delT).requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
-                           .computes(I.viscous_src_CC))
+                           .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
+                           .requires(OLD, I.temp_CC, G, 1).computes(I.viscous_src_CC))
+            t = Task("ICE::computeTauFC", self.tau_fc, self.matls) \
+                .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1) \
+                .requires(OLD, I.temp_CC, G, 1)    # only when saved
+            for d in dirs:
+                t.computes(I.TAU_FC[d])
+            sched.add_task(t)
         if self.conduction:
             sched.add_task(Task("ICE::computeHeatFlux", self.conduction_source, self.matls)
                            .requires(OLD, L.delT).requires(OLD, I.temp_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)

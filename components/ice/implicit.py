@@ -208,9 +208,12 @@ class ImplicitICE:
                           converged=lambda dw, k, pn: dw.get_reduction(max_RHS) <= tol,
                           max_iterations=self.imp.max_outer, fail="continue")
         sched.add_task(self.outer)
-        sched.add_task(Task("ICE::updatePressCC", self.imp_press, m0)
-                       .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0)
-                       .computes(I.press_CC, matls=m0))
+        t = Task("ICE::updatePressCC", self.imp_press, m0) \
+            .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
+            .computes(I.press_CC, matls=m0)
+        if getattr(self, "hydrostatic", False):
+            t.requires(NEW, I.sp_vol_CC, matls=[self.surrounding])
+        sched.add_task(t)
 
     # -- task bodies -------------------------------------------------------------------------------
     def _keep(self, m):
@@ -321,7 +324,7 @@ class ImplicitICE:
         press = new_dw.allocate(I.press_CC, 0, patch)
         IK.add_increment(new_dw.get(I.press_equil_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch), press,
                          b.lo, b.hi)
-        self.bcs.scalar(patch, press, "Pressure", 0, b)
+        self.press_bc(patch, press, new_dw.get(I.sp_vol_CC, self.surrounding, patch) if self.hydrostatic else None)
         if self._step_seen is not new_dw.dw:                # once per rank and step
             self._step_seen = new_dw.dw
             self.outer_iterations.append(self.outer.iterations)

@@ -287,6 +287,45 @@ def pressure_from_mass_exchange(press, press_eq, delP, out, lo, hi):
                 out[i, j, k] = press[i, j, k] - press_eq[i, j, k] - delP[i, j, k]
 
 
+@njit(cache=True)
+def hydrostatic_adjust(press, rho_micro, g, origin, anchor, dx, olo, ohi):
+    """p += rho_micro g_d (x_d - x_ref,d) in cells olo..ohi (origin: the position of local cell
+    0's low corner), d the (last) direction of gravity, x_ref the centre of cell 0 (Uintah's
+    hydrostaticPressureAdjustment at initialization)."""
+    d = 0
+    for a in range(3):
+        if g[a] != 0.0:
+            d = a
+    ref = anchor[d] + 0.5 * dx[d]
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                n = (i, j, k)[d]
+                x = origin[d] + (n + 0.5) * dx[d]
+                press[i, j, k] += rho_micro[i, j, k] * g[d] * (x - ref)
+
+
+@njit(cache=True)
+def clamp_sp_vol_lagrangian(sp_vol_L, sp_vol, tiny_rho, vol, lo, hi):
+    """<ClampSpecificVolume>: m v >= tiny_rho V v in the interior cells (Uintah's
+    computeLagrangianSpecificVolume), so that a draining cell keeps a positive volume."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                sp_vol_L[i, j, k] = max(sp_vol_L[i, j, k], tiny_rho * vol * sp_vol[i, j, k])
+
+
+@njit(cache=True)
+def add_kappa_times(vf, sp_vol, cs, delP_MassX, out, lo, hi):
+    """out += theta v / c^2 delP_MassX for one material: summed over materials, Uintah's
+    term2 (impICE's massExchTerm = sumKappa delP_MassX), interior cells."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                c = cs[i, j, k]
+                out[i, j, k] += vf[i, j, k] * sp_vol[i, j, k] / (c * c) * delP_MassX[i, j, k]
+
+
 @njit(cache=True, error_model="numpy")
 def momentum_source(mom_L, rho, vel, vol, out, lo, hi):
     """mom_source_CC = mom_L - m u^n, m = rho^n V (eq. 34's sources times dt), interior cells."""
@@ -674,20 +713,58 @@ def diffusion_source(q, vf, coef, out, dims, lo, hi, dx, dt, vol):
 
 
 @njit(cache=True)
-def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, dt, vol):
-    """Newtonian viscous momentum source out = dt V div(tau), tau = mu (grad v + grad v^T)
-    - 2/3 mu (div v) I evaluated on the cell faces (as Uintah's computeTauX/Y/Z).
+def sutherland_viscosity(mu, temp, a, b, lo, hi):
+    """Uintah's Sutherland model: mu = a sqrt(T) / (1 + b / T), T clamped to [300, 5000] K,
+    interior cells."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                t = min(max(temp[i, j, k], 300.0), 5000.0)
+                mu[i, j, k] = a * np.sqrt(t) / (1.0 + b / t)
 
-    On a d-face between cells L and R: dv_c/dx_d = (v_R - v_L) / dx_d; across the face
-    (e != d) the mean of the two cells' central differences (edge neighbours: one ghost
-    layer). Face viscosity: harmonic mean of theta mu of L and R. Each face stress is
-    computed once and leaves L as it enters R (conservative). No bulk viscosity; no
-    viscous heating (Uintah's ICE has none either).
+
+@njit(cache=True)
+def face_stress(vel, vf, mu, i, j, k, d, dims, dx, t):
+    """t = tau . n_d, the Newtonian stress mu (grad v + grad v^T) - 2/3 mu (div v) I on the
+    d-face between cells L = (i, j, k) - e_d and R = (i, j, k), as Uintah's computeTauX/Y/Z;
+    mu: the cells' dynamic viscosity (Uintah's viscosity label).
+
+    dv_c/dx_d = (v_R - v_L) / dx_d; across the face (e != d) the difference of the two edge
+    means (each the mean of the 4 cells around the edge). Face viscosity: harmonic mean of
+    theta mu of L and R. One-cell directions add no gradient.
     """
-    unit = np.zeros((3, 3), dtype=np.int64)
-    for d in range(3):
-        unit[d, d] = 1
+    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    il, jl, kl = i - di, j - dj, k - dk
+    c0 = mu[i, j, k] * vf[i, j, k]
+    c1 = mu[il, jl, kl] * vf[il, jl, kl]
+    mf = 2.0 * c0 * c1 / (c0 + c1 + TINY)
     g = np.zeros((3, 3))                       # g[c, e] = dv_c / dx_e on the face
+    for e in range(3):
+        if not dims[e]:
+            continue
+        if e == d:
+            for c in range(3):
+                g[c, e] = (vel[i, j, k, c] - vel[il, jl, kl, c]) / dx[d]
+        else:
+            ei, ej, ek = (1, 0, 0) if e == 0 else ((0, 1, 0) if e == 1 else (0, 0, 1))
+            q = 0.25 / dx[e]
+            for c in range(3):
+                g[c, e] = q * (vel[i + ei, j + ej, k + ek, c] - vel[i - ei, j - ej, k - ek, c]
+                               + vel[il + ei, jl + ej, kl + ek, c] - vel[il - ei, jl - ej, kl - ek, c])
+    div = g[0, 0] + g[1, 1] + g[2, 2]
+    for c in range(3):
+        t[c] = mf * (g[c, d] + g[d, c])
+        if c == d:
+            t[c] -= 2.0 / 3.0 * mf * div
+
+
+@njit(cache=True)
+def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, vol):
+    """Newtonian viscous force out = V div(tau), Uintah's viscous_src_CC (viscousShearStress):
+    each face stress (face_stress) is computed once and leaves L as it enters R
+    (conservative). No bulk viscosity; no viscous heating (Uintah's ICE has none either).
+    vel: Uintah's velTau_CC (vel_tau_boundary on the domain's faces)."""
+    t = np.zeros(3)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
@@ -697,41 +774,55 @@ def viscous_stress_source(vel, vf, mu, out, dims, lo, hi, dx, dt, vol):
     for d in range(3):
         if not dims[d]:
             continue
-        di, dj, dk = unit[d, 0], unit[d, 1], unit[d, 2]
-        f = dt * vol / dx[d]
+        di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+        f = vol / dx[d]
         for i in range(lo[0], hi[0] + di):
             for j in range(lo[1], hi[1] + dj):
                 for k in range(lo[2], hi[2] + dk):
-                    il, jl, kl = i - di, j - dj, k - dk          # the cell below the face
-                    c0 = mu * vf[i, j, k]
-                    c1 = mu * vf[il, jl, kl]
-                    mf = 2.0 * c0 * c1 / (c0 + c1 + TINY)
-                    for e in range(3):
-                        if not dims[e]:
-                            for c in range(3):
-                                g[c, e] = 0.0
-                        elif e == d:
-                            for c in range(3):
-                                g[c, e] = (vel[i, j, k, c] - vel[il, jl, kl, c]) / dx[d]
-                        else:
-                            ei, ej, ek = unit[e, 0], unit[e, 1], unit[e, 2]
-                            q = 0.25 / dx[e]
-                            for c in range(3):
-                                g[c, e] = q * (vel[i + ei, j + ej, k + ek, c] - vel[i - ei, j - ej, k - ek, c]
-                                               + vel[il + ei, jl + ej, kl + ek, c]
-                                               - vel[il - ei, jl - ej, kl - ek, c])
-                    div = g[0, 0] + g[1, 1] + g[2, 2]
+                    face_stress(vel, vf, mu, i, j, k, d, dims, dx, t)
                     up = i < hi[0] and j < hi[1] and k < hi[2]          # R is interior
-                    dn = il >= lo[0] and jl >= lo[1] and kl >= lo[2]    # L is interior
+                    dn = i - di >= lo[0] and j - dj >= lo[1] and k - dk >= lo[2]    # L is interior
                     for c in range(3):
-                        t = mf * (g[c, d] + g[d, c])
-                        if c == d:
-                            t -= 2.0 / 3.0 * mf * div
-                        t *= f
                         if up:
-                            out[i, j, k, c] -= t
+                            out[i, j, k, c] -= f * t[c]
                         if dn:
-                            out[il, jl, kl, c] += t
+                            out[i - di, j - dj, k - dk, c] += f * t[c]
+
+
+@njit(cache=True)
+def tau_face(vel, vf, mu, tau, d, sh, flo, fhi, dims, dx):
+    """Uintah's tau_X_FC / tau_Y_FC / tau_Z_FC diagnostic: face_stress on every face of
+    direction d (face index f is the face below cell f + sh)."""
+    t = np.zeros(3)
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                face_stress(vel, vf, mu, i + sh[0], j + sh[1], k + sh[2], d, dims, dx, t)
+                for c in range(3):
+                    tau[i, j, k, c] = t[c]
+
+
+@njit(cache=True)
+def vel_tau_boundary(vel, d, side, lo, hi, tlo, thi):
+    """Uintah's velTau_CC on one domain face: the extra cell becomes 2 v_ec - v_in, so that the
+    face value (v_in + v_tau) / 2 is the boundary value v_ec and a wall's gradient is taken
+    over half a cell (ICE::computeVelTau_CCFace). Along the face: cells tlo..thi (the
+    domain's edge cells left out; ghost cells of neighbours and periodic images included, as
+    Uintah's ghost exchange of velTau_CC gives them)."""
+    e = lo[d] - 1 if side == 0 else hi[d]
+    n = lo[d] if side == 0 else hi[d] - 1
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    ijk = np.zeros(3, dtype=np.int64)
+    for a in range(tlo[d1], thi[d1]):
+        for b in range(tlo[d2], thi[d2]):
+            ijk[d1], ijk[d2] = a, b
+            for c in range(3):
+                ijk[d] = e
+                ve = vel[ijk[0], ijk[1], ijk[2], c]
+                ijk[d] = n
+                vi = vel[ijk[0], ijk[1], ijk[2], c]
+                ijk[d] = e
+                vel[ijk[0], ijk[1], ijk[2], c] = 2.0 * ve - vi
 
 
 # -- optional conservative total energy (<conserveTotalEnergy>, a pysus extension) ---------------

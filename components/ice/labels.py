@@ -28,11 +28,14 @@ FC_VEL_ME = (L.create("uvel_FCME", X), L.create("vvel_FCME", Y), L.create("wvel_
 # steps 5-6: pressure increment (eq. 29-30), face pressure (eq. 31)
 delP_Dilatate = L.create("delP_Dilatate", CC)
 delP_MassX = L.create("delP_MassX", CC)          # diagnostic: the pressure that mass exchange adds
+term2 = L.create("term2", CC)                    # diagnostic: sumKappa delP_MassX (Uintah's impICE)
 PRESS_FC = (L.create("pressX_FC", X), L.create("pressY_FC", Y), L.create("pressZ_FC", Z))
 
 # optional physics sources (viscous stress, heat conduction)
 viscous_src_CC = L.create("viscous_src_CC", CC, (3,))
+viscosity = L.create("viscosity", CC)            # dynamic viscosity (<dynamic_viscosity> and its models)
 heatCond_src_CC = L.create("heatCond_src_CC", CC)
+TAU_FC = tuple(L.create(f"tau_{a}_FC", t, (3,)) for a, t in (("X", X), ("Y", Y), ("Z", Z)))   # diagnostic
 
 # steps 8-11: Lagrangian values (eq. 35-37), exchange (38-39), specific volume (40)
 mass_L_CC = L.create("mass_L_CC", CC)

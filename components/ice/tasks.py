@@ -148,21 +148,34 @@ class IceTasks:
                     rho_micro[trace] = _rho_micro_array(p_cover[trace], temp[trace], float(rho_micro[trace][0]),
                                                         *self._eos(m))
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
+        arrs_by_m = {}
         for m, (mat, (theta, rho_micro, temp, vel)) in enumerate(zip(self.materials, state)):
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
                                                                 I.speedSound_CC)]
             arrs[0][sl] = rho_micro * theta + mat.tiny_rho * rho_micro
             arrs[1][sl] = vel
+            if self.custom_init is not None:        # <customInitialization>: profiles over the geometry's velocity
+                self.custom_init.apply(arrs[1], self.custom_profiles[m], b.olo, b.ohi,
+                                       np.array(patch.low_index(VarType.CC), dtype=np.int64))
             arrs[2][sl] = temp
+            if self.custom_init is not None and self.custom_init.gauss is not None:
+                # gaussianTemperature: before the EOS pressure and sound speed, as Uintah's (interior cells)
+                self.custom_init.temperature(arrs[2], b.lo, b.hi, np.array(patch.low_index(VarType.CC)))
+                temp = arrs[2][sl]
             arrs[3][sl] = 1.0 / rho_micro
             p_arr[sl] = _press_array(rho_micro, temp, *self._eos(m))
             # extra cells outside every geometry object get their boundary values
             self.bcs.scalar(patch, arrs[0], "Density", m, b)
             self.bcs.scalar(patch, arrs[2], "Temperature", m, b)
-            self.bcs.velocity(patch, arrs[1], m, b)
+            self.bcs.velocity(patch, arrs[1], m, b, initial=True)
             self.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
+            arrs_by_m[m] = arrs[3]
             _speed_sound(arrs[3], arrs[2], arrs[4], *self._eos(m))
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
+        if self.hydrostatic:        # Uintah's initializeSubTask_hydrostaticAdj, extra cells included
+            K.hydrostatic_adjust(p_arr, 1.0 / arrs_by_m[self.surrounding], self.gravity,
+                                 patch.level.anchor + np.array(patch.low_index(VarType.CC)) * patch.level.dx,
+                                 patch.level.anchor, patch.level.dx, b.olo, b.ohi)
 
     def stable_timestep(self, patch, matls, old_dw, new_dw):
         """Uintah's delT (ICE::actuallyComputeStableTimestep): 'aggressive' (the default) is
@@ -214,7 +227,17 @@ class IceTasks:
                               tuple(v(a) for a in get(I.sp_vol_CC)), v(old_dw.get(I.press_CC, 0, patch)),
                               tuple(v(a) for a in spv), tuple(v(a) for a in vfs), tuple(v(a) for a in css), v(peq),
                               self.codes, self.params, self.cvs, self.gammas, b.v_olo, b.v_ohi, 1e-11, self.max_iter)
-        self.bcs.scalar(patch, peq, "Pressure", 0, b)
+        if self.hydrostatic:
+            sp_vol_surr = out[0] if len(matls) == 1 else spv[self.surrounding]
+        self.press_bc(patch, peq, sp_vol_surr if self.hydrostatic else None)
+
+    def press_bc(self, patch, press, sp_vol_surr=None):
+        """press_CC's boundary conditions; with gravity, Uintah's hydrostatic adjustment of the
+        extra cells from the surrounding material's rho_micro = 1 / sp_vol (BoundaryCond.cc)."""
+        b = self.boxes(patch)
+        self.bcs.scalar(patch, press, "Pressure", 0, b)
+        if self.hydrostatic:
+            self.bcs.hydrostatic_pressure(patch, press, sp_vol_surr, self.gravity, b)
 
     # -- step 3: face velocities (eq. 28) and their exchange --------------------------------------
     def vel_fc(self, patch, matls, old_dw, new_dw):
@@ -270,7 +293,7 @@ class IceTasks:
         press = new_dw.allocate(I.press_CC, 0, patch)
         K.update_pressure(v(new_dw.get(I.press_equil_CC, 0, patch)), v(div), v(ksum), v(delP), v(press),
                           b.v_lo, b.v_hi, self.press_floor)
-        self.bcs.scalar(patch, press, "Pressure", 0, b)
+        self.press_bc(patch, press, new_dw.get(I.sp_vol_CC, self.surrounding, patch) if self.hydrostatic else None)
 
     def delp_mass_exchange(self, patch, matls, old_dw, new_dw):
         """Uintah's delP_MassX diagnostic, computed only when a deck saves it: what press_CC holds
@@ -279,6 +302,16 @@ class IceTasks:
         out = new_dw.allocate(I.delP_MassX, 0, patch)
         K.pressure_from_mass_exchange(new_dw.get(I.press_CC, 0, patch), new_dw.get(I.press_equil_CC, 0, patch),
                                       new_dw.get(I.delP_Dilatate, 0, patch), out, b.lo, b.hi)
+
+    def mass_exchange_term(self, patch, matls, old_dw, new_dw):
+        """Uintah's term2 diagnostic (the mass-exchange term of the pressure equation,
+        sumKappa delP_MassX), computed only when a deck saves it."""
+        b = self.boxes(patch)
+        out = new_dw.allocate(I.term2, 0, patch)
+        dpm = new_dw.get(I.delP_MassX, 0, patch)
+        for m in matls:
+            K.add_kappa_times(new_dw.get(I.vol_frac_CC, m, patch), new_dw.get(I.sp_vol_CC, m, patch),
+                              new_dw.get(I.speedSound_CC, m, patch), dpm, out, b.lo, b.hi)
 
     def momentum_source(self, patch, matls, old_dw, new_dw):
         """Uintah's mom_source_CC diagnostic, computed only when a deck saves it: the Lagrangian
@@ -305,14 +338,90 @@ class IceTasks:
                 K.face_pressure(v(press), v(rho), v(pf), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a])
 
     # -- step 7: fluid stresses and heat flux (only when the deck has them) -----------------------
-    def viscous_source(self, patch, matls, old_dw, new_dw):
+    def vel_tau(self, patch, vel):
+        """Uintah's velTau_CC: a copy of vel_CC whose extra cells on the domain's faces make
+        the face value the boundary value (kernels.vel_tau_boundary)."""
         b = self.boxes(patch)
-        dt = old_dw.get_reduction(L.delT)
+        vt = vel.copy()
+        tlo, thi = b.lo.copy(), b.hi.copy()
+        for d in range(3):          # along a face: into the halo, but not the domain's edge cells
+            if self.dims[d]:
+                tlo[d] = b.lo[d] if patch.at_low[d] else 0
+                thi[d] = b.hi[d] if patch.at_high[d] else vel.shape[d]
+        for d in range(3):
+            for side, at in ((0, patch.at_low[d]), (1, patch.at_high[d])):
+                if at and self.dims[d]:
+                    K.vel_tau_boundary(vt, d, side, b.lo, b.hi, tlo, thi)
+        return vt
+
+    def viscosity_array(self, patch, m, old_dw):
+        """Uintah's computeThermoTransportProperties (viscosity): <dynamic_viscosity> in every cell
+        (ghost and extra cells too), then the material's models on the interior cells from the
+        old temperature (Sutherland), or in a box (SpongeLayer)."""
+        b = self.boxes(patch)
+        mat = self.materials[m]
+        mu = np.full(patch.alloc_shape(VarType.CC), float(mat.viscosity))
+        c0 = np.array(patch.low_index(VarType.CC))
+        for model in getattr(mat, "viscosity_models", ()):      # MPMICE's solids have none
+            if model[0] == "Sutherland":
+                K.sutherland_viscosity(mu, old_dw.get(I.temp_CC, m, patch), model[1], model[2], b.lo, b.hi)
+            else:
+                a = np.maximum(model[2] - c0, b.lo)
+                z = np.minimum(model[3] - c0, b.hi)
+                if np.all(z > a):
+                    mu[a[0]:z[0], a[1]:z[1], a[2]:z[2]] = model[1]
+        return mu
+
+    def viscosity_field(self, patch, matls, old_dw, new_dw):
+        """Uintah's viscosity label, computed only when a deck saves it."""
+        for m in matls:
+            new_dw.put(I.viscosity, m, patch, self.viscosity_array(patch, m, old_dw))
+
+    def _viscous_here(self, patch, m):
+        """Uintah's isViscosityDefinedFlag: a constant viscosity, a Sutherland model, or a sponge
+        layer with cells on this patch."""
+        mat = self.materials[m]
+        models = getattr(mat, "viscosity_models", ())
+        if mat.viscosity > 0 or any(model[0] == "Sutherland" for model in models):
+            return True
+        c0 = np.array(patch.lo)
+        c1 = np.array(patch.hi)
+        return any(model[1] > 0 and np.all(np.minimum(model[3], c1) > np.maximum(model[2], c0))
+                   for model in models)
+
+    def _mu(self, patch, m, old_dw):
+        """The cells' viscosity: with models each step's field, else a cached constant array."""
+        if getattr(self.materials[m], "viscosity_models", ()):
+            return self.viscosity_array(patch, m, old_dw)
+        key = ("mu", m, patch.id, patch.alloc_shape(VarType.CC))
+        if key not in self._geom_cache:
+            self._geom_cache[key] = np.full(patch.alloc_shape(VarType.CC), float(self.materials[m].viscosity))
+        return self._geom_cache[key]
+
+    def viscous_source(self, patch, matls, old_dw, new_dw):
+        """Uintah's viscous_src_CC = V div(tau) (a force: the Lagrangian momentum adds dt times it)."""
+        b = self.boxes(patch)
         for m in matls:
             out = new_dw.allocate(I.viscous_src_CC, m, patch)
-            K.viscous_stress_source(old_dw.get(I.vel_CC, m, patch), new_dw.get(I.vol_frac_CC, m, patch),
-                                    self.materials[m].viscosity, out, self.dims, b.lo, b.hi, patch.level.dx,
-                                    dt, b.vol)
+            if not self._viscous_here(patch, m):
+                continue
+            K.viscous_stress_source(self.vel_tau(patch, old_dw.get(I.vel_CC, m, patch)),
+                                    new_dw.get(I.vol_frac_CC, m, patch), self._mu(patch, m, old_dw), out,
+                                    self.dims, b.lo, b.hi, patch.level.dx, b.vol)
+
+    def tau_fc(self, patch, matls, old_dw, new_dw):
+        """Uintah's tau_X_FC, tau_Y_FC, tau_Z_FC (the face stresses of viscous_source), computed
+        only when a deck saves them."""
+        b = self.boxes(patch)
+        for m in matls:
+            vt = self.vel_tau(patch, old_dw.get(I.vel_CC, m, patch))
+            vf = new_dw.get(I.vol_frac_CC, m, patch)
+            for d in range(3):
+                if self.dims[d]:
+                    tau = new_dw.allocate(I.TAU_FC[d], m, patch)
+                    if self._viscous_here(patch, m):
+                        K.tau_face(vt, vf, self._mu(patch, m, old_dw), tau, d, b.sh[d], b.flo[d],
+                                   b.fhi[d], self.dims, patch.level.dx)
 
     def conduction_source(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
@@ -344,10 +453,11 @@ class IceTasks:
                          self.gravity, self.use_gravity, self.codes[m], self.params[m], self.gammas[m], b.perm)
             sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
             if self.viscous:
-                mom[sl] += new_dw.get(I.viscous_src_CC, m, patch)[sl]
+                mom[sl] += dt * new_dw.get(I.viscous_src_CC, m, patch)[sl]
             if self.conduction:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
             if not self.exchange:
+                self.bcs.inlet_momentum(patch, mom, mass, m, b)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
             if self.conserve_energy:
@@ -386,6 +496,8 @@ class IceTasks:
         vs = lambda arrs: tuple(v(x) for x in arrs)
         K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
                          vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
+        for m, mom, mass in zip(matls, mom_out, get(I.mass_L_CC)):
+            self.bcs.inlet_momentum(patch, mom, mass, m, b)
         if self.conserve_energy:
             self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
 
@@ -393,20 +505,24 @@ class IceTasks:
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
         delP = new_dw.get(I.delP_Dilatate, 0, patch)
+        outs = [new_dw.allocate(I.sp_vol_L_CC, m, patch, fill=None) for m in matls]
         if len(matls) == 1:
-            out = new_dw.allocate(I.sp_vol_L_CC, 0, patch, fill=None)
             K.sp_vol_lagrangian_one(new_dw.get(I.mass_L_CC, 0, patch), new_dw.get(I.sp_vol_CC, 0, patch),
                                     new_dw.get(I.vol_frac_CC, 0, patch), new_dw.get(I.speedSound_CC, 0, patch),
-                                    delP, out, b.olo, b.ohi, b.vol)
-            return
-        dt = old_dw.get_reduction(L.delT)
-        v = b.view
-        get = lambda lab: tuple(v(new_dw.get(lab, m, patch)) for m in matls)
-        outs = tuple(v(new_dw.allocate(I.sp_vol_L_CC, m, patch, fill=None)) for m in matls)
-        K.sp_vol_lagrangian_many(get(I.mass_L_CC), get(I.sp_vol_CC), get(I.vol_frac_CC), get(I.speedSound_CC),
-                                 v(delP), get(I.int_eng_L_ME_CC),
-                                 tuple(v(old_dw.get(I.temp_CC, m, patch)) for m in matls),
-                                 self.codes, self.params, self.cvs, self.gammas, outs, b.v_olo, b.v_ohi, b.vol, dt)
+                                    delP, outs[0], b.olo, b.ohi, b.vol)
+        else:
+            dt = old_dw.get_reduction(L.delT)
+            v = b.view
+            get = lambda lab: tuple(v(new_dw.get(lab, m, patch)) for m in matls)
+            K.sp_vol_lagrangian_many(get(I.mass_L_CC), get(I.sp_vol_CC), get(I.vol_frac_CC), get(I.speedSound_CC),
+                                     v(delP), get(I.int_eng_L_ME_CC),
+                                     tuple(v(old_dw.get(I.temp_CC, m, patch)) for m in matls),
+                                     self.codes, self.params, self.cvs, self.gammas, tuple(v(o) for o in outs),
+                                     b.v_olo, b.v_ohi, b.vol, dt)
+        if self.clamp_sp_vol:
+            for m, out in zip(matls, outs):
+                tiny_rho = getattr(self.materials[m], "tiny_rho", 1e-12)    # MPMICE's solids: Uintah's 1e-12
+                K.clamp_sp_vol_lagrangian(out, new_dw.get(I.sp_vol_CC, m, patch), tiny_rho, b.vol, b.lo, b.hi)
 
     # -- step 12: advection and the new state ----------------------------------------------------
     def advect_and_advance(self, patch, matls, old_dw, new_dw):

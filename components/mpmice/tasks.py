@@ -170,7 +170,7 @@ class MPMICETasks:
             arrs[3][sl] = 1.0 / rho_micro
             ice.bcs.scalar(patch, arrs[0], "Density", m, b)
             ice.bcs.scalar(patch, arrs[2], "Temperature", m, b)
-            ice.bcs.velocity(patch, arrs[1], m, b)
+            ice.bcs.velocity(patch, arrs[1], m, b, initial=True)
             ice.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
             _speed_sound(arrs[3], arrs[2], arrs[4], *ice._eos(m))
         ice.bcs.scalar(patch, p_arr, "Pressure", 0, b)
