@@ -140,7 +140,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             c.append((L.pColor, L.pColorPre))
         if any(m.increment_energy for m in self.materials):
             c.append((L.pStrainEnergy, L.pStrainEnergyPre))
-        for name in dict.fromkeys(m.state for m in self.materials if m.state):
+        for name in dict.fromkeys(n for m in self.materials for n in m.states):
             c.append(L.STATE[name])
         if self.has_membrane:                 # 004 sec. 3.2: tangent and thickness per point
             c += [(L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)]
@@ -263,6 +263,10 @@ class MPM(ThermalTasks, MPMTasks, Component):
             if final.name not in moved:
                 t.requires(OLD, final).computes(pre)
         t.computes(L.WaveSpeed).computes(L.StrainEnergy)
+        hot = [m for m, mt in enumerate(self.materials) if mt.needs_temperature]
+        if hot:                         # elastic_plastic_hp: p.temperature+ += p.dTdt dt
+            t.requires(OLD, L.pTemperature, matls=hot).modifies(L.pTemperaturePre, matls=hot)
+            t.computes(L.pdTdt, matls=hot)
         if self.pressure_bcs:
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
             if not self.musl:

@@ -23,6 +23,7 @@ MODELS = {
     "comp_mooney_rivlin": "comp_mooney_rivlin",
     "hypo_elastic": "hypo_elastic",
     "elastic_plastic": "elastic_plastic",
+    "elastic_plastic_hp": "elastic_plastic_hp",
     "rigid": "rigid",
     "ideal_gas_fluid": "ideal_gas_fluid",
     "membrane": "membrane",
@@ -31,8 +32,8 @@ MODELS = {
 # models whose stress needs only F (their velocity gradient need not be stored)
 NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid")
 
-# models with one scalar state per particle: the carried particle label holding it
-STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy"}
+# models with scalar state per particle: the carried particle labels holding it
+STATE = {"elastic_plastic": ("p.plasticStrain",), "ideal_gas_fluid": ("p.internalEnergy",)}
 
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
@@ -80,8 +81,15 @@ class Material:
         if kind not in MODELS:
             raise cm.error(f'constitutive_model type="{kind}" is not supported; accepted: '
                            f"{', '.join(MODELS)}")
+        if kind == "elastic_plastic" and cm.has("flow_model"):     # Uintah's: elastic_plastic_hp
+            kind = "elastic_plastic_hp"
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
+        self.states = getattr(self.model, "STATE", STATE.get(kind, ()))    # its state labels' names
+        self.needs_temperature = getattr(self.model, "NEEDS_TEMPERATURE", False)   # reads p.temperature
+        if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp)
+            self._finish(node, props, self.model.read_params(cm, node, props), kind, with_color, geom_reader)
+            return
         fields = dataclasses.fields(self.model.Params)
         accepted = [f.name for f in fields]
         values = {}
@@ -98,9 +106,14 @@ class Material:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
+        self._finish(node, props, self.params, kind, with_color, geom_reader)
+
+    def _finish(self, node, props, params, kind, with_color, geom_reader):
+        """The model's params, its flags and the geometry objects."""
+        self.params = params
+        cm = node.child("constitutive_model")
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
         self.uses_L = kind not in NO_L       # the model reads the velocity gradient
-        self.state = STATE.get(kind)          # name of the model's scalar state label, or None
         if kind == "ideal_gas_fluid":
             # e0 = c_v T: the model's <specific_heat>, else the material's
             self.cv = self.params.specific_heat or props["specific_heat"]
@@ -133,6 +146,8 @@ class Material:
             return self.cv * d["temp"]
         if self.is_membrane:
             return d["tangent"], d["thickness"]
+        if hasattr(self.model, "initial_state"):
+            return self.model.initial_state(self.params, len(d["id"]))
         return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------

@@ -82,8 +82,11 @@ class MPMTasks:
                                     energy, t_old, t_new, h_old, h_new, v_new)
         if scale is not None:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
-                                    energy, old, new, scale)
-        if mat.state:
+                                    energy, old[0], new[0], scale)
+        if len(mat.states) == 1:
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old[0], new[0])
+        if mat.states:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new)
         return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy)
@@ -109,13 +112,18 @@ class MPMTasks:
             state = mat.initial_state(d)
             if mat.is_membrane:
                 state = state + (d["vol"],)
+            elif len(mat.states) == 1:
+                state = (state,)
+            old = new = state
+            if mat.needs_temperature:           # (p.temperature, p.dTdt) follow the state
+                old, new = state + (d["temp"],), state + (np.zeros(n),)
             ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
-                                                   d["vel"], 0.0, stress, stress, energy, state, state))
+                                                   d["vel"], 0.0, stress, stress, energy, old, new))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
                    L.pStrainEnergy: energy}
             for name, (lab, _) in L.STATE.items():
-                put[lab] = state if mat.state == name else np.zeros(n)
+                put[lab] = state[mat.states.index(name)] if name in mat.states else np.zeros(n)
             put[L.pTangent] = state[0] if mat.is_membrane else np.zeros((n, 3))
             put[L.pThickness] = state[1] if mat.is_membrane else np.zeros(n)
             new_dw.put(L.pX, m, patch, d["x"])
@@ -450,14 +458,18 @@ class MPMTasks:
                 mat.model.grid_volumes(old_dw.get(L.pX, m, patch), lv.anchor, lv.dx, np.array(lv.ncells),
                                        np.array(lv.periodic), np.array(patch.low_index(NC), np.int64),
                                        new_dw.get(L.gMass, m, patch), gvol[m], sum(gvol.values()), pm, vol_new)
-            old = new = None
+            old, new = {}, {}
             for final, pre in self.carry:
                 if final.name in L.STATE:
-                    if mat.state == final.name:
-                        old, new = old_dw.get(final, m, patch), np.empty(n)
-                        new_dw.put(pre, m, patch, new)
+                    if final.name in mat.states:
+                        old[final.name], new[final.name] = old_dw.get(final, m, patch), np.empty(n)
+                        new_dw.put(pre, m, patch, new[final.name])
                     else:
                         new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            old, new = tuple(old[k] for k in mat.states), tuple(new[k] for k in mat.states)
+            if mat.needs_temperature:   # the model's p.dTdt is added to p.temperature+ below
+                dTdt = np.empty(n)
+                old, new = old + (old_dw.get(L.pTemperature, m, patch),), new + (dTdt,)
             if mat.is_membrane:         # 004 sec. 3.2: the model convects t, h and sets V
                 t_new, h_new = np.empty((n, 3)), np.empty(n)
                 new_dw.put(L.pTangentPre, m, patch, t_new)
@@ -482,6 +494,10 @@ class MPMTasks:
                                                        new_dw.get(L.pVelocityPre, m, patch), dt,
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
                                                        new, scale))
+            if mat.needs_temperature:   # Uintah's finalParticleUpdate: T += dT/dt dt
+                new_dw.put(L.pdTdt, m, patch, dTdt)
+                T_new = new_dw.get(L.pTemperaturePre, m, patch)
+                T_new += dTdt * dt
             if any(f is L.pStrainEnergy for f, _ in self.carry):
                 if mat.increment_energy:
                     energy = old_dw.get(L.pStrainEnergy, m, patch) + energy
