@@ -76,6 +76,10 @@ FLOW = {
                                                             "Y_max", "T_m0", "a", "Gamma_0")}
                                  | {"C1": _opt(0.0), "C2": _opt(0.0), "energy_to_form_kink_pair": _F(),
                                     "Boltzmann_constant": _F(), "Peierls_stress": _F()}),
+    "preston_tonks_wallace": (pk.PTW, {k: _F() for k in ("theta", "p", "s0", "sinf", "kappa", "gamma", "y0", "yinf",
+                                                         "y1", "y2", "beta", "M")}
+                              | {k: _opt(0.0, "in Uintah's decks, not read by its PTWFlow")
+                                 for k in ("G0", "alpha", "alphap")}),
 }
 # ZA without c_0: c_0 = sigma_g + k_H sqrt_l_inv; SCG without C1, C2: from the dislocation data
 ZA_C0 = {"sigma_g": _F(), "k_H": _F(), "sqrt_l_inv": _F()}
@@ -247,17 +251,19 @@ def polar_rotation(F, R, Rinv):
 
 
 @njit(cache=True)
-def _rotate(R, A, out, forward):
-    """out = R A R^T (forward) or R^T A R."""
+def _rotate(R, A, out, forward, B):
+    """out = R A R^T (forward) or R^T A R, as two products (B: scratch)."""
+    for i in range(3):
+        for m in range(3):
+            s = 0.0
+            for k in range(3):
+                s += (R[i, k] if forward else R[k, i]) * A[k, m]
+            B[i, m] = s
     for i in range(3):
         for j in range(3):
             s = 0.0
-            for k in range(3):
-                for m in range(3):
-                    if forward:
-                        s += R[i, k] * A[k, m] * R[j, m]
-                    else:
-                        s += R[k, i] * A[k, m] * R[m, j]
+            for m in range(3):
+                s += B[i, m] * (R[j, m] if forward else R[m, j])
             out[i, j] = s
 
 
@@ -277,7 +283,7 @@ def kernel_for(codes):
                work):
         ws = np.zeros(3)
         R, Rinv = np.empty((3, 3)), np.empty((3, 3))
-        D, sig, tmp = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
+        D, sig, tmp, B = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
         s23 = math.sqrt(2.0 / 3.0)
         for p in range(L.shape[0]):
             J = det3(F_new[p])
@@ -286,8 +292,8 @@ def kernel_for(codes):
                 for j in range(3):
                     tmp[i, j] = 0.5 * (L[p, i, j] + L[p, j, i])
             polar_rotation(F_old[p], R, Rinv)
-            _rotate(R, tmp, D, False)                    # D in the material frame
-            _rotate(R, s_old[p], sig, False)
+            _rotate(R, tmp, D, False, B)                    # D in the material frame
+            _rotate(R, s_old[p], sig, False, B)
             trD = D[0, 0] + D[1, 1] + D[2, 2]
             pres = (sig[0, 0] + sig[1, 1] + sig[2, 2]) / 3.0
             DD = 0.0
@@ -310,7 +316,7 @@ def kernel_for(codes):
                     ss += tmp[i, j] * tmp[i, j]
             norm_s = math.sqrt(ss)
             ep, epdot = ep_old[p] + epdot_old[p] * dt, epdot_old[p]
-            sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu)[0]
+            sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)[0]
             plastic = False
             fac = 1.0
             if T > Tm:                                   # melted: no deviatoric stress
@@ -323,7 +329,7 @@ def kernel_for(codes):
                 count = 0
                 while True:
                     count += 1
-                    sy, dsy_dep, dsy_depdot = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu)
+                    sy, dsy_dep, dsy_depdot = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)
                     g = norm_s - s23 * sy - 2.0 * mu * dg
                     Dg = -2.0 / 3.0 * (dsy_depdot / dt + dsy_dep) - 2.0 * mu
                     dg_old = dg
@@ -333,7 +339,7 @@ def kernel_for(codes):
                     ep = ep_old[p] + inc
                     if abs(dg - dg_old) < tol or count > 100 or not abs(g) > sy / 1000.0:
                         break
-                sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu)[0]
+                sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)[0]
                 fac = 1.0 - 2.0 * mu * dg / norm_s
             p_new = pk.eos_pressure(EOS_C, qp, K, pres, trD, dt, rho, rho0, e_old[p])
             rate = pk.isentropic_dTdt(EOS_C, qp, T, rho0, rho, trD)
@@ -347,8 +353,8 @@ def kernel_for(codes):
                 for j in range(3):
                     sig[i, j] = fac * tmp[i, j] + (p_new if i == j else 0.0)
             polar_rotation(F_new[p], R, Rinv)
-            _rotate(R, sig, s_new[p], True)
-            _rotate(R, D, tmp, True)
+            _rotate(R, sig, s_new[p], True, B)
+            _rotate(R, D, tmp, True, B)
             vol_old = mass[p] / rho0 * det3(F_old[p])
             w = 0.0
             for i in range(3):

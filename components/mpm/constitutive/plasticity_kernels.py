@@ -11,7 +11,7 @@ import math
 from numba import njit
 
 # flow stress models (FLOW table order)
-ISO, JC, ZA, MTS, SCG = 0, 1, 2, 3, 4
+ISO, JC, ZA, MTS, SCG, PTW = 0, 1, 2, 3, 4, 5
 # shear modulus, melting temperature, equation of state, specific heat
 CONST_SHEAR, MTS_SHEAR, SCG_SHEAR, NP_SHEAR = 0, 1, 2, 3
 CONST_TM, SCG_TM, BPS_TM, LINEAR_TM = 0, 1, 2, 3
@@ -181,9 +181,61 @@ def _scg(fp, ep, epdot, T, mu):
 
 
 @njit(cache=True)
-def flow_stress(code, fp, ep, epdot, edot, T, mu):
+def _ptw(fp, ep, epdot, T, mu, Tm, rho):
+    """Preston, Tonks and Wallace (2003): 2 mu tauhat with the thermal and overdriven-shock
+    saturation and yield stresses (PTWFlow, its derivatives as there)."""
+    theta, p, s0, sinf, kappa, gamma, y0, yinf, y1, y2, beta, M = (fp[0], fp[1], fp[2], fp[3], fp[4], fp[5],
+                                                                  fp[6], fp[7], fp[8], fp[9], fp[10], fp[11])
+    epd = 1.0e-8 if epdot <= 0.0 else epdot
+    xidot = 0.5 * (4.0 * math.pi * rho / (3.0 * M * 1.66043998903379e-27)) ** (1.0 / 3.0) * math.sqrt(mu / rho)
+    edot = epd / xidot
+    That = T / Tm
+    ups = kappa * That * math.log(gamma / edot)
+    zeta = math.erf(ups)
+    th_s, th_y = s0 - (s0 - sinf) * zeta, y0 - (y0 - yinf) * zeta
+    sh_s = s0 * (edot / gamma) ** beta
+    sh_y = min(y1 * (edot / gamma) ** y2, sh_s)
+    ts, ty = th_s, th_y
+    if epd > 1.0e3:
+        ts, ty = max(th_s, sh_s), max(th_y, sh_y)
+    tauhat = ts
+    if ts != ty:
+        A = (s0 - ty) / p
+        C = math.exp((ts - ty) / A) - 1.0
+        tauhat = ts + A * math.log(1.0 - C / (C + 1.0) * math.exp(-theta / (A * C) * ep))
+    ts, ty = max(th_s, sh_s), max(th_y, sh_y)        # d/d ep: with the shock terms always
+    dsig_dep = 0.0
+    if ts != ty:
+        A = (s0 - ty) / p
+        C = math.exp((ts - ty) / A) - 1.0
+        E = theta / (A * C)
+        dsig_dep = A * E / (math.exp(E * ep) / (C / (C + 1.0)) - 1.0)
+    alpha, bet = s0 - sinf, y0 - yinf
+    delta, phi = s0 - y0, alpha - bet
+    eta, lam = phi * zeta, bet * zeta
+    sig = delta + lam
+    Xi = delta - eta
+    iota = p * Xi / sig
+    Phi, Lam = phi + bet, eta + Xi
+    Dl = math.exp(iota) - 1.0
+    Th = theta * p * ep / (sig * Dl)
+    Om = math.exp(-Th) / math.exp(iota)
+    Z1 = -Dl * Om + 1.0
+    Z2 = Phi * Lam * p
+    Z8 = Z1 * sig
+    Z9 = Om * Dl
+    Z12 = math.exp(-ups * ups) * 2.0 * kappa * That / (p * epd) / (Z1 * sig * math.sqrt(math.pi))
+    d = Z12 * ((Phi - phi) * (Th * sig * Z9 - math.log(Z1) * Z8) - Th * Z2 * (Z9 + Om) + (alpha * p * Z8 - Om * Z2))
+    if epd > 1.0e3:
+        d = max(d, beta * s0 * (edot / gamma) ** beta / epd)
+    return 2.0 * tauhat * mu, 2.0 * mu * dsig_dep, 2.0 * mu * d
+
+
+@njit(cache=True)
+def flow_stress(code, fp, ep, epdot, edot, T, mu, Tm, rho):
     """(sigma_y, d sigma_y/d ep, d sigma_y/d epdot) of flow model `code` at plastic strain ep,
-    plastic strain rate epdot, total strain rate edot, temperature T, shear modulus mu."""
+    plastic strain rate epdot, total strain rate edot, temperature T, shear modulus mu,
+    melting temperature Tm and density rho."""
     if code == ISO:          # IsoHardeningFlow: sigma_Y + K ep
         return fp[1] + fp[0] * ep, fp[0], 0.0
     if code == JC:
@@ -192,7 +244,9 @@ def flow_stress(code, fp, ep, epdot, edot, T, mu):
         return _za(fp, ep, epdot, T)
     if code == MTS:
         return _mts(fp, ep, edot, T, mu)
-    return _scg(fp, ep, epdot, T, mu)
+    if code == SCG:
+        return _scg(fp, ep, epdot, T, mu)
+    return _ptw(fp, ep, epdot, T, mu, Tm, rho)
 
 
 @njit(cache=True)
