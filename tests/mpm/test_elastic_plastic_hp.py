@@ -81,7 +81,11 @@ def params(model, replace=None):
     if replace:
         text = text.replace(*replace)
     mat = ProblemSpec.from_string(text)
-    return hp.read_params(mat.child("constitutive_model"), mat, mat.read(MATERIAL))
+    P = hp.read_params(mat.child("constitutive_model"), mat, mat.read(MATERIAL))
+    mat.attr("name")
+    mat.child("constitutive_model").attr("type")         # read by Material
+    mat.check_all_used()            # every tag of the deck's model is read
+    return P
 
 
 def step(P, L, F_old, F_new, stress, state, T, dt, mass=8.93e-3):
@@ -219,6 +223,8 @@ def test_adiabatic_uniaxial_stress_follows_closed_form(model):
      ("biswajit", "radialReturn")),
     (("<shear_modulus>46.0e9", "<shear_modulus>-46.0e9"), ("shear_modulus", "-46.0e9")),
     (('type="mie_gruneisen"', 'type="tillotson"'), ("equation_of_state", "tillotson", "mie_gruneisen")),
+    (("<m>1.09</m>", "<m>1.09</m><T_m>200</T_m>"), ("johnson_cook", "T_m", "T_r")),
+    (("<n>0.31</n>", "<n>0.31</n><rate_exponent>2</rate_exponent>"), ("rate_exponent",)),
 ])
 def test_bad_input_is_one_clean_line(replace, words):
     with pytest.raises(InputError) as e:

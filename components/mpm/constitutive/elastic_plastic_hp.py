@@ -186,6 +186,10 @@ def read_params(cm, material, props):
     kind = node.attr("type", choices=tuple(FLOW))
     code, table = FLOW[kind]
     vals, flow = _vector(node, table)
+    if code == pk.JC and not vals["T_m"] > vals["T_r"]:
+        raise node.error("johnson_cook needs <T_m> > <T_r> (T* = (T - T_r)/(T_m - T_r))")
+    if code == pk.JC and not vals["epdot_0"] > 0.0:
+        raise node.child("epdot_0").error("<epdot_0> must be positive")
     if code == pk.ZA and vals["c_0"] == 0.0:
         z = node.read(ZA_C0)
         flow[0] = z["sigma_g"] + z["k_H"] * z["sqrt_l_inv"]
