@@ -39,7 +39,7 @@ def case(P, n, steps, dt=1.0e-6):
     new = [np.empty(n) for _ in range(5)]
     rates = []
     for k in range(steps + 1):
-        F2 = np.einsum("pij,pjk->pik", np.eye(3) + L * dt, F)
+        F2 = np.ascontiguousarray(np.einsum("pij,pjk->pik", np.eye(3) + L * dt, F))
         vol = mass / 8930.0 * np.linalg.det(F2)
         t = time.perf_counter()
         if P is None:

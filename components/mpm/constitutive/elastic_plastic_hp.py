@@ -281,7 +281,6 @@ def kernel_for(codes):
         return _KERNELS[codes]
     FLOW_C, SHEAR_C, MELT_C, EOS_C, CP_C = codes
 
-    @njit(cache=True)
     def kernel(G0, K, rho0, Tm0, cp0, chi, L, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                fp, sp, mp, qp, cpp, T_p, ep_old, epdot_old, e_old, ep_new, epdot_new, e_new, edot_new, dTdt,
                work):
@@ -370,8 +369,11 @@ def kernel_for(codes):
             max_wavespeed(ws, c, vel, p)
         return ws
 
-    _KERNELS[codes] = kernel
-    return kernel
+    # its own name per choice: numba's cache keeps one file and one environment per name (two
+    # cached closures of one name clash when both are loaded in a process)
+    kernel.__name__ = kernel.__qualname__ = "elastic_plastic_kernel_" + "_".join(map(str, codes))
+    _KERNELS[codes] = njit(cache=True)(kernel)
+    return _KERNELS[codes]
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new):
