@@ -263,6 +263,10 @@ class MPM(ThermalTasks, MPMTasks, Component):
             if final.name not in moved:
                 t.requires(OLD, final).computes(pre)
         t.computes(L.WaveSpeed).computes(L.StrainEnergy)
+        hot = [m for m, mt in enumerate(self.materials) if mt.needs_temperature]
+        if hot:                         # elastic_plastic_hp: p.temperature+ += p.dTdt dt
+            t.requires(OLD, L.pTemperature, matls=hot).modifies(L.pTemperaturePre, matls=hot)
+            t.computes(L.pdTdt, matls=hot)
         if self.pressure_bcs:
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
             if not self.musl:

@@ -39,11 +39,18 @@ pThickness, pThicknessPre = _pair("p.thickness")
 pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
 pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
 pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / MPMICE (thermal.py)
+pPlasticStrainRate, pPlasticStrainRatePre = _pair("p.plasticStrainRate")   # elastic_plastic_hp
+pEnergy, pEnergyPre = _pair("p.energy")                  # elastic_plastic_hp: specific internal energy
+pStrainRate, pStrainRatePre = _pair("p.strainRate")      # elastic_plastic_hp: sqrt(2/3) |D|
 STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model state
          "p.internalEnergy": (pIntEnergy, pIntEnergyPre),
          "p.pStatedata_vs": _pair("p.pStatedata_vs", (5, 3, 3)),        # visco_scram: Maxwell stresses
          "p.crackRad": _pair("p.crackRad"),                              # visco_scram: crack radius
-         "p.tempPrevious": _pair("p.tempPrevious")}                      # visco_scram: T one step back
+         "p.tempPrevious": _pair("p.tempPrevious"),                      # visco_scram: T one step back
+         "p.plasticStrainRate": (pPlasticStrainRate, pPlasticStrainRatePre),
+         "p.energy": (pEnergy, pEnergyPre),
+         "p.strainRate": (pStrainRate, pStrainRatePre)}
+pdTdt = L.create("p.dTdt", P)                      # elastic_plastic_hp: the model's temperature rate (not carried)
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)
 

@@ -23,6 +23,7 @@ MODELS = {
     "comp_mooney_rivlin": "comp_mooney_rivlin",
     "hypo_elastic": "hypo_elastic",
     "elastic_plastic": "elastic_plastic",
+    "elastic_plastic_hp": "elastic_plastic_hp",
     "rigid": "rigid",
     "ideal_gas_fluid": "ideal_gas_fluid",
     "membrane": "membrane",
@@ -85,8 +86,13 @@ class Material:
         if kind not in MODELS:
             raise cm.error(f'constitutive_model type="{kind}" is not supported; accepted: '
                            f"{', '.join(MODELS)}")
+        if kind == "elastic_plastic" and cm.has("flow_model"):     # Uintah's: elastic_plastic_hp
+            kind = "elastic_plastic_hp"
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
+        if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp)
+            self._finish(node, props, self.model.read_params(cm, node, props), kind, with_color, geom_reader)
+            return
         fields = dataclasses.fields(self.model.Params)
         accepted = [f.name for f in fields]
         values = {}
@@ -103,11 +109,19 @@ class Material:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
+        self._finish(node, props, self.params, kind, with_color, geom_reader)
+
+    def _finish(self, node, props, params, kind, with_color, geom_reader):
+        """The model's params, its flags and the geometry objects."""
+        self.params = params
+        cm = node.child("constitutive_model")
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
         self.uses_L = kind not in NO_L       # the model reads the velocity gradient
-        self.state = STATE.get(kind)          # the model's state label name(s), or None
-        self.state_names = (self.state,) if isinstance(self.state, str) else tuple(self.state or ())
-        self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)
+        st = getattr(self.model, "STATE", STATE.get(kind))
+        self.state = st                       # the model's state label name(s), or None
+        self.state_names = (st,) if isinstance(st, str) else tuple(st or ())
+        self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
+        self.needs_temperature = getattr(self.model, "NEEDS_TEMPERATURE", False)   # p.temperature / p.dTdt in the state
         self.max_delT = getattr(self.model, "MAX_DELT", np.inf)
         if kind == "ideal_gas_fluid":
             # e0 = c_v T: the model's <specific_heat>, else the material's
@@ -136,7 +150,8 @@ class Material:
     def initial_state(self, d):
         """The model state of new particles: plastic strain 0; ideal gas: the specific
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
-        (unit tangent, thickness) from the chain; visco_scram: its tuple (initial_state)."""
+        (unit tangent, thickness) from the chain; visco_scram, elastic_plastic_hp: their tuple
+        (the model's initial_state)."""
         if hasattr(self.model, "initial_state"):
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":

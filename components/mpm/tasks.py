@@ -113,8 +113,11 @@ class MPMTasks:
             state = mat.initial_state(d)
             if mat.is_membrane:
                 state = state + (d["vol"],)
+            old = new = state
+            if mat.needs_temperature:           # (p.temperature, p.dTdt) follow the state
+                old, new = state + (d["temp"],), state + (np.zeros(n),)
             ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
-                                                   d["vel"], 0.0, stress, stress, energy, state, state,
+                                                   d["vel"], 0.0, stress, stress, energy, old, new,
                                                    temperature=d["temp"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
@@ -471,6 +474,9 @@ class MPMTasks:
                 old, new = olds[mat.state], news[mat.state]
             elif mat.state_names:
                 old, new = tuple(olds[k] for k in mat.state_names), tuple(news[k] for k in mat.state_names)
+            if mat.needs_temperature:   # the model's p.dTdt is added to p.temperature+ below
+                dTdt = np.empty(n)
+                old, new = old + (old_dw.get(L.pTemperature, m, patch),), new + (dTdt,)
             if mat.is_membrane:         # 004 sec. 3.2: the model convects t, h and sets V
                 t_new, h_new = np.empty((n, 3)), np.empty(n)
                 new_dw.put(L.pTangentPre, m, patch, t_new)
@@ -496,6 +502,10 @@ class MPMTasks:
                                                        new_dw.get(L.pVelocityPre, m, patch), dt,
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
                                                        new, scale, temp))
+            if mat.needs_temperature:   # Uintah's finalParticleUpdate: T += dT/dt dt
+                new_dw.put(L.pdTdt, m, patch, dTdt)
+                T_new = new_dw.get(L.pTemperaturePre, m, patch)
+                T_new += dTdt * dt
             if any(f is L.pStrainEnergy for f, _ in self.carry):
                 if mat.increment_energy:
                     energy = old_dw.get(L.pStrainEnergy, m, patch) + energy

@@ -18,8 +18,9 @@ step. The grad T of a ghost particle needs g.temperature at nodes one stencil be
 patch: they come from the neighbours (AroundCells 2 ng), so every patch computes its own
 nodes in particle-ID order and 1, 2, 3 ranks agree bitwise.
 
-The tasks run only when `<MPM><DoExplicitHeatConduction>` is true or MPMICE needs the
-solid temperature (heat exchange with a fluid); the conduction task only for materials
+The tasks run only when `<MPM><DoExplicitHeatConduction>` is true, MPMICE needs the
+solid temperature (heat exchange with a fluid) or a constitutive model reads it
+(elastic_plastic with sub-models, which adds its own p.dTdt dt afterwards); the conduction task only for materials
 with thermal_conductivity > 0. The explicit step is stable for
 dt <= rho cv / (2 k sum_d 1/dx_d^2) (the finite-difference limit, which the lumped-mass
 linear element shares); the stable timestep takes it into account.
@@ -168,7 +169,8 @@ class ThermalTasks:
 
     def thermal_setup(self):
         """After the materials are read: which tasks this deck needs."""
-        self.thermal = bool(self.flags["DoExplicitHeatConduction"]) or self.thermal_needed
+        self.thermal = (bool(self.flags["DoExplicitHeatConduction"]) or self.thermal_needed
+                        or any(m.needs_temperature for m in self.materials))     # elastic_plastic_hp
         self.conducting = [m for m, mat in enumerate(self.materials) if self.thermal and mat.conductivity > 0]
         for m in self.conducting:
             if self.materials[m].specific_heat <= 0:

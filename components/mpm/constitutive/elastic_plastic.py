@@ -5,7 +5,8 @@ classical radial return:  q = sqrt(3/2 s:s),  sigma_y = yield_stress +
 hardening_modulus * eps_p,  d_eps_p = (q_trial - sigma_y) / (3G + H).
 
 Deck tags (``<constitutive_model type="elastic_plastic">``): ``shear_modulus``,
-``bulk_modulus``, ``yield_stress``, ``hardening_modulus``.  State: equivalent
+``bulk_modulus``, ``yield_stress``, ``hardening_modulus``. (With a ``<flow_model>`` the
+deck is Uintah's model with sub-models instead: elastic_plastic_hp.py.)  State: equivalent
 plastic strain per particle.  ``energy`` receives the stress-work INCREMENT.
 
 Failure (Uintah's tags, read by ``read_failure``): with ``<evolve_damage>true`` and a

@@ -1,7 +1,8 @@
 """Rigid material: stress stays zero (Uintah ``type="rigid"``).
 
 Optional tags ``shear_modulus``, ``bulk_modulus`` (default 0) only enter the
-wave speed c = sqrt((K + 4G/3) V/m) used for the stable timestep.
+wave speed c = sqrt((K + 4G/3) V/m) used for the stable timestep;
+``coeff_thermal_expansion`` is accepted and, as by Uintah's rigid model, not used.
 """
 from dataclasses import dataclass
 
@@ -17,6 +18,7 @@ ENERGY_IS_INCREMENT = True
 class Params:
     shear_modulus: float = 0.0
     bulk_modulus: float = 0.0
+    coeff_thermal_expansion: float = 0.0
 
     @classmethod
     def from_ups(cls, d):

@@ -1,0 +1,390 @@
+"""Uintah's elastic_plastic with sub-models (ElasticPlasticHP): hypoelastic-plastic J2 flow
+with temperature-, rate- and pressure-dependent flow stress, shear modulus and melting.
+
+Per particle and step, as Uintah's explicit computeStressTensor: rotate D and sigma into the
+material frame with the R of F^n = R U (polar decomposition); the shear modulus and melting
+temperature at the start of the step; trial deviatoric stress s* = s + 2 mu dev(D) dt; the
+von Mises check f = q*^2 - sigma_y^2 with sigma_y at the plastic strain ep + epdot dt; if f >= 0
+the radial return s = s* - 2 mu dgamma s*/|s*| with dgamma from Newton iterations on
+g = |s*| - sqrt(2/3) sigma_y(ep + sqrt(2/3) dgamma, epdot = sqrt(2/3) dgamma/dt) - 2 mu dgamma
+(Simo and Hughes 1998, box 3.1, with Uintah's tolerances); above the melting temperature
+s = 0; the pressure from the equation of state; the stress rotated back with the R of
+F^{n+1}. The temperature rate p.dTdt = chi sigma_y epdot/(rho c_p) (plastic work to heat,
+<taylor_quinney_coeff> chi) + the isentropic rate of the EOS; the MPM component adds
+p.dTdt dt to p.temperature (Uintah's finalParticleUpdate). p.energy, the specific internal
+energy the Mie-Gruneisen EOS reads, accumulates the stress work.
+
+Deck (``<constitutive_model type="elastic_plastic">`` with a ``<flow_model>``, or
+``type="elastic_plastic_hp"``): ``shear_modulus``, ``bulk_modulus``,
+``taylor_quinney_coeff`` (0.9), ``tolerance``, ``initial_material_temperature`` (294 K, the
+reference temperature of T-dependent sub-models), ``compute_specific_heat``,
+sub-models ``flow_model`` (FLOW), ``yield_condition`` (vonMises), ``equation_of_state``
+(EOS; none: Uintah's default hyperelastic K/2 (J - 1/J)), ``shear_modulus_model`` (SHEAR),
+``melting_temp_model`` (MELT), ``specific_heat_model`` (CP), ``stability_check`` (only
+used by Uintah's erosion, which pysus does not couple to this model: "none" is accepted).
+Tags Uintah's model reads and uses only in code pysus does not have (implicit MPM, MPMICE's
+modified EOS, porosity for Gurson and the TEPLA erosion check) are accepted and recorded;
+a deck whose run would need them (a Gurson yield condition, the biswajit algorithm, a
+porosity-driven erosion) is refused.
+Uintah's artificial bulk viscosity of this model is not implemented (refused with <MPM>
+<artificial_viscosity> by the component). The kernel for a deck's choice of sub-models
+is made by `kernel_for` (one compiled kernel per choice, cached).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from framework.problemspec import Param
+
+from . import plasticity_kernels as pk
+from ._common import det3, inv3, max_wavespeed
+
+ENERGY_IS_INCREMENT = True
+# carried per-particle state (labels.STATE names), in the order of `old`/`new` in update()
+STATE = ("p.plasticStrain", "p.plasticStrainRate", "p.energy", "p.strainRate")
+NEEDS_TEMPERATURE = True
+
+def _F(doc=""):
+    """A required float tag."""
+    return Param("float", doc=doc)
+
+
+def _opt(default, doc=""):
+    return Param("float", default, doc=doc)
+
+
+# deck type -> (code, {tag: Param}); the parameter vector holds the tags in this order
+FLOW = {
+    "isotropic_hardening": (pk.ISO, {"K": _F("hardening modulus (Pa)"), "sigma_Y": _F("yield stress (Pa)")}),
+    "johnson_cook": (pk.JC, {"A": _F(), "B": _F(), "C": _F(), "n": _F(), "m": _F(), "epdot_0": _opt(1.0),
+                             "T_r": _opt(298.0), "T_m": _opt(1793.0)}),
+    "zerilli_armstrong": (pk.ZA, {"c_0": _opt(0.0, "else sigma_g + k_H sqrt_l_inv"), "B": _F(), "beta_0": _F(),
+                                  "beta_1": _F(), "B_0": _F(), "alpha_0": _F(), "alpha_1": _F(), "K": _F(),
+                                  "n": _F()}),
+    "mts_model": (pk.MTS, {k: _F() for k in ("sigma_a", "mu_0", "D", "T_0", "koverbcubed", "g_0i", "g_0e",
+                                             "edot_0i", "edot_0e", "p_i", "q_i", "p_e", "q_e", "sigma_i", "a_0",
+                                             "a_1", "a_2", "a_3", "theta_IV", "alpha", "edot_es0", "g_0es",
+                                             "sigma_es0")}
+                  | {"T_c": _opt(10400.0), "g_0i_c": _opt(0.57582), "sigma_i_c": _opt(896.14e6),
+                     "g_0es_c": _opt(0.294), "sigma_es0_c": _opt(478.36e6), "a_0_c": _opt(7.5159e9),
+                     "a_3_c": _opt(3.7796e6)}),
+    "steinberg_cochran_guinan": (pk.SCG, {k: _F() for k in ("mu_0", "A", "B", "sigma_0", "beta", "n", "epsilon_p0",
+                                                            "Y_max", "T_m0", "a", "Gamma_0")}
+                                 | {"C1": _opt(0.0), "C2": _opt(0.0), "energy_to_form_kink_pair": _F(),
+                                    "Boltzmann_constant": _F(), "Peierls_stress": _F()}),
+    "preston_tonks_wallace": (pk.PTW, {k: _F() for k in ("theta", "p", "s0", "sinf", "kappa", "gamma", "y0", "yinf",
+                                                         "y1", "y2", "beta", "M")}
+                              | {k: _opt(0.0, "in Uintah's decks, not read by its PTWFlow")
+                                 for k in ("G0", "alpha", "alphap")}),
+}
+# ZA without c_0: c_0 = sigma_g + k_H sqrt_l_inv; SCG without C1, C2: from the dislocation data
+ZA_C0 = {"sigma_g": _F(), "k_H": _F(), "sqrt_l_inv": _F()}
+SCG_C = {k: _F() for k in ("dislocation_density", "length_of_dislocation_segment",
+                           "distance_between_Peierls_valleys", "length_of_Burger_vector", "Debye_frequency",
+                           "width_of_kink_loop", "drag_coefficient")}
+SHEAR = {"constant_shear": (pk.CONST_SHEAR, {}),
+         "mts_shear": (pk.MTS_SHEAR, {"mu_0": _F(), "D": _F(), "T_0": _F()}),
+         "scg_shear": (pk.SCG_SHEAR, {"mu_0": _F(), "A": _F(), "B": _F()}),
+         "np_shear": (pk.NP_SHEAR, {"mu_0": _F(), "zeta": _F(), "slope_mu_p_over_mu0": _F(), "C": _F(), "m": _F()})}
+MELT = {"constant_Tm": (pk.CONST_TM, {}),
+        "scg_Tm": (pk.SCG_TM, {"Gamma_0": _F(), "a": _F(), "T_m0": _F()}),
+        "bps_Tm": (pk.BPS_TM, {k: _F() for k in ("B0", "dB_dp0", "G0", "dG_dp0", "kappa", "z", "b2rhoTm", "alpha",
+                                                 "lambda", "a", "v_ws_a3_factor", "Boltzmann_Constant")}),
+        "linear_Tm": (pk.LINEAR_TM, {})}
+EOS = {"default_hyper": (pk.HYPER_EOS, {}), "default_hypo": (pk.HYPO_EOS, {}),
+       "mie_gruneisen": (pk.MIE_GRUNEISEN, {"C_0": _F(), "Gamma_0": _F(), "S_alpha": _F(), "S_2": _opt(0.0),
+                                            "S_3": _opt(0.0)})}
+CP = {"constant_Cp": (pk.CONST_CP, {}),
+      "copper_Cp": (pk.COPPER_CP, {"T_transition": _opt(270.0), "A_LowT": _opt(0.0000416), "B_LowT": _opt(0.027),
+                                   "C_LowT": _opt(6.21), "D_LowT": _opt(142.6), "A_HighT": _opt(0.1009),
+                                   "B_HighT": _opt(358.4)})}
+YIELD = ("vonMises",)
+# <stability_check> types: Uintah consults them only for erosion, which this model refuses
+STABILITY = ("none", "drucker", "becker", "drucker_becker")
+
+TOP = {
+    "shear_modulus": Param("float", doc="mu at the reference state (Pa)", above=0.0),
+    "bulk_modulus": Param("float", doc="K (Pa)", above=0.0),
+    "taylor_quinney_coeff": Param("float", 0.9, doc="fraction of plastic work turned to heat", at_least=0.0),
+    "tolerance": Param("float", 1.0e-10, doc="read as in Uintah (its flow models ignore it)", above=0.0),
+    "initial_material_temperature": Param("float", 294.0, doc="reference T of the EOS energy (K)", above=0.0),
+    "compute_specific_heat": Param("bool", False, doc="c_p from <specific_heat_model>, else the material's"),
+    "plastic_convergence_algo": Param("str", "radialReturn", ("radialReturn",),
+                                      "radialReturn (Uintah's biswajit algorithm is not implemented)"),
+    "evolve_porosity": Param("bool", True, doc="porosity only feeds Gurson yield and TEPLA erosion"),
+    "check_TEPLA_failure_criterion": Param("bool", True, doc="with erosion only"),
+    "do_melting": Param("bool", True, doc="read; Uintah's model does not use it"),
+    "useModifiedEOS": Param("bool", False, doc="MPMICE's rho(p) only"),
+    "coeff_thermal_expansion": Param("float", 0.0, doc="implicit MPM only"),
+    "isothermal": Param("bool", False, doc="read; Uintah's model does not use it"),
+    "check_max_stress_failure": Param("bool", False, (False,), "read; Uintah's model does not use it"),
+    "critical_stress": Param("float", 0.0, doc="read; Uintah's model does not use it"),
+}
+for _k in ("initial_mean_porosity", "initial_std_porosity", "critical_porosity", "frac_nucleation",
+           "meanstrain_nucleation", "stddevstrain_nucleation"):
+    TOP[_k] = Param("float", 0.0, doc="porosity (Gurson, TEPLA): read, not used by von Mises")
+TOP["initial_porosity_distrib"] = Param("str", "constant", ("constant", "gauss"), "porosity: read, not used")
+
+
+@dataclass(frozen=True)
+class Params:
+    shear_modulus: float
+    bulk_modulus: float
+    density: float
+    melt_temp: float
+    specific_heat: float
+    taylor_quinney: float
+    initial_temperature: float
+    codes: tuple                     # (flow, shear, melt, eos, cp) sub-model codes
+    flow: np.ndarray
+    shear: np.ndarray
+    melt: np.ndarray
+    eos: np.ndarray
+    cp: np.ndarray
+
+
+def _vector(node, table):
+    vals = node.read(table) if node is not None else {k: p.default for k, p in table.items()}
+    return vals, np.array([float(v) for v in vals.values()])
+
+
+def _submodel(cm, tag, table, default):
+    """(code, parameter vector, node) of the sub-model <tag type="...">; `default` if absent."""
+    node = cm.child(tag)
+    if node is None:
+        if default is None:
+            raise cm.error(f'missing <{tag} type="..."> ; accepted types: {", ".join(table)}')
+        code, params = table[default]
+        return code, _vector(None, params)[1], None
+    kind = node.attr("type", choices=tuple(table))
+    code, params = table[kind]
+    return code, _vector(node, params)[1], node
+
+
+def read_params(cm, material, props):
+    """Params from the <constitutive_model> node `cm` of `material` (props: the material's
+    density, melt_temp, specific_heat)."""
+    top = cm.read(TOP)
+    yc = cm.child("yield_condition", required=True)
+    yc.attr("type", choices=YIELD)
+    st = cm.child("stability_check")
+    if st is not None:
+        st.attr("type", choices=STABILITY)
+    dm = material.child("damage_model")      # Uintah: deprecated, "does not influence the stress state"
+    if dm is not None:
+        dm.attr("type", choices=("hancock_mackenzie", "johnson_cook"))
+        dm.mark_used()
+    er = material.child("erosion")
+    if er is not None and er.attr("algorithm") != "none":
+        raise er.error("<erosion> of an elastic_plastic material with sub-models (melting, TEPLA, stability "
+                       "failure) is not implemented; accepted: no <erosion> or algorithm=\"none\"")
+    node = cm.child("flow_model", required=True)
+    kind = node.attr("type", choices=tuple(FLOW))
+    code, table = FLOW[kind]
+    vals, flow = _vector(node, table)
+    if code == pk.JC and not vals["T_m"] > vals["T_r"]:
+        raise node.error("johnson_cook needs <T_m> > <T_r> (T* = (T - T_r)/(T_m - T_r))")
+    if code == pk.JC and not vals["epdot_0"] > 0.0:
+        raise node.child("epdot_0").error("<epdot_0> must be positive")
+    if code == pk.ZA and vals["c_0"] == 0.0:
+        z = node.read(ZA_C0)
+        flow[0] = z["sigma_g"] + z["k_H"] * z["sqrt_l_inv"]
+    if code == pk.SCG and (vals["C1"] == 0.0 or vals["C2"] == 0.0):
+        d = node.read(SCG_C)
+        rho, L, a, b = (d["dislocation_density"], d["length_of_dislocation_segment"],
+                        d["distance_between_Peierls_valleys"], d["length_of_Burger_vector"])
+        flow[11] = rho * L * a * b * b * d["Debye_frequency"] / (2.0 * d["width_of_kink_loop"] ** 2)
+        flow[12] = d["drag_coefficient"] / (rho * b * b)
+    shear_code, shear, _ = _submodel(cm, "shear_modulus_model", SHEAR, "constant_shear")
+    melt_code, melt, mnode = _submodel(cm, "melting_temp_model", MELT, "constant_Tm")
+    if melt_code == pk.LINEAR_TM:
+        melt = _linear_melt(mnode)
+    eos_code, eos, _ = _submodel(cm, "equation_of_state", EOS, "default_hyper")
+    cp_code, cp, _ = _submodel(cm, "specific_heat_model", CP, "constant_Cp")
+    if not top["compute_specific_heat"]:
+        cp_code = pk.CONST_CP
+    if props["specific_heat"] <= 0.0 and cp_code == pk.CONST_CP:
+        raise material.error("elastic_plastic needs the material's <specific_heat> > 0 (plastic heating)")
+    if props["melt_temp"] <= 0.0:
+        raise material.child("melt_temp").error("<melt_temp> must be positive")
+    return Params(top["shear_modulus"], top["bulk_modulus"], props["density"], props["melt_temp"],
+                  props["specific_heat"], top["taylor_quinney_coeff"], top["initial_material_temperature"],
+                  (code, shear_code, melt_code, eos_code, cp_code), flow, shear, melt, eos, cp)
+
+
+def _linear_melt(node):
+    """LinearMeltTemp's forms: T_m0 + b p (b, or a T_m0/K_T), T_m0 (1 + a rho_0/rho), or T_m0."""
+    v = node.read({"T_m0": _F(), "a": _opt(-999.0), "b": _opt(-999.0), "Gamma_0": _opt(-999.0),
+                   "K_T": _opt(-999.0)})
+    if v["a"] != -999.0 and v["K_T"] != -999.0:
+        return np.array([v["T_m0"], 1.0, v["a"] * v["T_m0"] / v["K_T"]])
+    if v["b"] != -999.0:
+        return np.array([v["T_m0"], 1.0, v["b"]])
+    if v["a"] != -999.0:
+        return np.array([v["T_m0"], 2.0, v["a"]])
+    if v["Gamma_0"] != -999.0:
+        return np.array([v["T_m0"], 0.0, 0.0])
+    raise node.error("linear_Tm needs <a> and <K_T>, <b>, <a>, or <Gamma_0>")
+
+
+def initial_state(params, n, temperature=None):
+    """Plastic strain, its rate, specific energy and strain rate of new particles: zero
+    (whatever their temperature)."""
+    return tuple(np.zeros(n) for _ in STATE)
+
+
+@njit(cache=True)
+def polar_rotation(F, R, Rinv):
+    """R of F = R U (Higham's Newton iteration R <- (R + R^-T)/2, to round-off)."""
+    for i in range(3):
+        for j in range(3):
+            R[i, j] = F[i, j]
+    for _ in range(100):
+        inv3(R, Rinv)
+        change = 0.0
+        for i in range(3):
+            for j in range(3):
+                r = 0.5 * (R[i, j] + Rinv[j, i])
+                change = max(change, abs(r - R[i, j]))
+                R[i, j] = r
+        if change < 1.0e-15:
+            break
+
+
+@njit(cache=True)
+def _rotate(R, A, out, forward, B):
+    """out = R A R^T (forward) or R^T A R, as two products (B: scratch)."""
+    for i in range(3):
+        for m in range(3):
+            s = 0.0
+            for k in range(3):
+                s += (R[i, k] if forward else R[k, i]) * A[k, m]
+            B[i, m] = s
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for m in range(3):
+                s += B[i, m] * (R[j, m] if forward else R[m, j])
+            out[i, j] = s
+
+
+_KERNELS = {}
+
+
+def kernel_for(codes):
+    """The stress kernel of one choice of sub-models (flow, shear, melt, eos, cp): the codes
+    are compile-time constants of the closure, so each choice compiles (and caches) its own."""
+    if codes in _KERNELS:
+        return _KERNELS[codes]
+    FLOW_C, SHEAR_C, MELT_C, EOS_C, CP_C = codes
+
+    def kernel(G0, K, rho0, Tm0, cp0, chi, L, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+               fp, sp, mp, qp, cpp, T_p, ep_old, epdot_old, e_old, ep_new, epdot_new, e_new, edot_new, dTdt,
+               work):
+        ws = np.zeros(3)
+        R, Rinv = np.empty((3, 3)), np.empty((3, 3))
+        D, sig, tmp, B = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
+        s23 = math.sqrt(2.0 / 3.0)
+        for p in range(L.shape[0]):
+            J = det3(F_new[p])
+            rho = rho0 / J
+            for i in range(3):
+                for j in range(3):
+                    tmp[i, j] = 0.5 * (L[p, i, j] + L[p, j, i])
+            polar_rotation(F_old[p], R, Rinv)
+            _rotate(R, tmp, D, False, B)                    # D in the material frame
+            _rotate(R, s_old[p], sig, False, B)
+            trD = D[0, 0] + D[1, 1] + D[2, 2]
+            pres = (sig[0, 0] + sig[1, 1] + sig[2, 2]) / 3.0
+            DD = 0.0
+            for i in range(3):
+                for j in range(3):
+                    DD += D[i, j] * D[i, j]
+            edot = s23 * math.sqrt(DD)
+            edot_new[p] = edot
+            T = T_p[p]
+            cp = pk.specific_heat(CP_C, cpp, cp0, T)
+            Tm = pk.melt_temperature(MELT_C, mp, Tm0, pres, rho, rho0)
+            mu = pk.shear_modulus(SHEAR_C, sp, G0, T, Tm, pres, rho, rho0)
+            c = math.sqrt((K + 4.0 * mu / 3.0) / rho)
+            # trial deviatoric stress s* = s + 2 mu dev(D) dt, q* = sqrt(3/2) |s*|
+            ss = 0.0
+            for i in range(3):
+                for j in range(3):
+                    tmp[i, j] = sig[i, j] - (pres if i == j else 0.0) + 2.0 * mu * dt * (
+                        D[i, j] - (trD / 3.0 if i == j else 0.0))
+                    ss += tmp[i, j] * tmp[i, j]
+            norm_s = math.sqrt(ss)
+            ep, epdot = ep_old[p] + epdot_old[p] * dt, epdot_old[p]
+            sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)[0]
+            plastic = False
+            fac = 1.0
+            if T > Tm:                                   # melted: no deviatoric stress
+                fac = 0.0
+            elif 1.5 * ss - sy * sy >= 0.0:              # von Mises: radial return (Newton on dgamma)
+                plastic = True
+                tol = min(dt, 1.0e-6)
+                epdot, ep = edot, ep_old[p]
+                dg = epdot * dt / s23
+                count = 0
+                while True:
+                    count += 1
+                    sy, dsy_dep, dsy_depdot = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)
+                    g = norm_s - s23 * sy - 2.0 * mu * dg
+                    Dg = -2.0 / 3.0 * (dsy_depdot / dt + dsy_dep) - 2.0 * mu
+                    dg_old = dg
+                    dg -= g / Dg
+                    inc = max(s23 * dg, 0.0)
+                    epdot = inc / dt
+                    ep = ep_old[p] + inc
+                    if abs(dg - dg_old) < tol or count > 100 or not abs(g) > sy / 1000.0:
+                        break
+                sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)[0]
+                fac = 1.0 - 2.0 * mu * dg / norm_s
+            p_new = pk.eos_pressure(EOS_C, qp, K, pres, trD, dt, rho, rho0, e_old[p])
+            rate = pk.isentropic_dTdt(EOS_C, qp, T, rho0, rho, trD)
+            if plastic:
+                ep_new[p], epdot_new[p] = ep, epdot
+                rate += sy * epdot * chi / (rho * cp)        # plastic work to heat
+            else:
+                ep_new[p], epdot_new[p] = ep_old[p], 0.0
+            dTdt[p] = rate
+            for i in range(3):
+                for j in range(3):
+                    sig[i, j] = fac * tmp[i, j] + (p_new if i == j else 0.0)
+            polar_rotation(F_new[p], R, Rinv)
+            _rotate(R, sig, s_new[p], True, B)
+            _rotate(R, D, tmp, True, B)
+            vol_old = mass[p] / rho0 * det3(F_old[p])
+            w = 0.0
+            for i in range(3):
+                for j in range(3):
+                    w += tmp[i, j] * 0.5 * (s_new[p, i, j] + s_old[p, i, j])
+            w *= 0.5 * (vol[p] + vol_old) * dt              # stress work of the step
+            work[p] = w
+            e_new[p] = e_old[p] + w / mass[p]
+            max_wavespeed(ws, c, vel, p)
+        return ws
+
+    # its own name per choice: numba's cache keeps one file and one environment per name (two
+    # cached closures of one name clash when both are loaded in a process)
+    kernel.__name__ = kernel.__qualname__ = "elastic_plastic_kernel_" + "_".join(map(str, codes))
+    _KERNELS[codes] = njit(cache=True)(kernel)
+    return _KERNELS[codes]
+
+
+def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new):
+    """Stress, state and temperature rate of one material's particles; returns the wave speed.
+    old = (p.plasticStrain, p.plasticStrainRate, p.energy, p.strainRate, p.temperature);
+    new = the first four updated and p.dTdt; `energy` receives the stress-work increment."""
+    ep, epdot, e, _, T = old
+    ep_n, epdot_n, e_n, edot_n, dTdt = new
+    kern = kernel_for(params.codes)
+    return kern(params.shear_modulus, params.bulk_modulus, params.density, params.melt_temp, params.specific_heat,
+                params.taylor_quinney, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
+                params.flow, params.shear, params.melt, params.eos, params.cp, T, ep, epdot, e,
+                ep_n, epdot_n, e_n, edot_n, dTdt, energy)
