@@ -61,7 +61,9 @@ FLAGS = {
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
-    "use_load_curves": Param("bool", False, doc="pressure BCs follow <PhysicalBC> load curves"),
+    "use_load_curves": Param("bool", False, doc="pressure and torque BCs follow <PhysicalBC> load curves"),
+    "boundary_traction_faces": Param("str", "[]", doc="read: Uintah sums BndyForce_<face> reductions there "
+                                     "for output; pysus computes none, and a <save> of them is refused"),
     "particles_leaving_domain": Param("str", "warn", ("warn", "error"),
                                       "pysus: particles leaving through a face without a wall are deleted "
                                       "(as in Uintah) with a warning line, or stop the run"),

@@ -47,7 +47,8 @@ MATERIAL = {
 GEOM = {
     "res": Param("ivector", doc="particles per cell in each direction", at_least=1),
     "velocity": Param("vector", (0.0, 0.0, 0.0)),
-    "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py)", above=0.0),
+    "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py); 0 as Uintah allows",
+                         at_least=0.0),
 }
 
 
@@ -168,7 +169,8 @@ class Material:
             n = len(x)
             dxpp = lv.dx / res
             out.append(dict(x=x, id=ids.astype(np.int64), vol=np.full(n, vol), temp=np.full(n, obj["temperature"]),
-                            lcid=pressure.flag(x, obj["piece"], dxpp) if pressure else np.zeros(n),
+                            lcid=pressure.flag(x, obj["piece"], dxpp, self.index) if pressure
+                                 else np.zeros((n, 3)),
                             vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                             size=np.tile(0.5 * lv.dx / res, (n, 1)),
                             color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))
@@ -216,7 +218,7 @@ def read_membrane_object(g, with_color):
         g.child("res").mark_used()
     return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"], closed=spec["closed"],
                 velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
-                temperature=g.get("temperature", "float", 294.0, above=0.0),
+                temperature=g.get("temperature", "float", 294.0, at_least=0.0),
                 color=g.get("color", "float", 0.0) if with_color else None)
 
 
@@ -236,7 +238,7 @@ def membrane_points(obj, patch, obj_id):
     depth = float(np.prod([lv.dx[d] for d in range(3) if lv.collapsed[d]])) if any(lv.collapsed) else 1.0
     vol = obj["ds"] * obj["thickness"] * depth
     return dict(x=x[idx], id=(obj_id * (1 << 40) + idx).astype(np.int64), vol=np.full(n, vol),
-                temp=np.full(n, obj["temperature"]), lcid=np.zeros(n),
+                temp=np.full(n, obj["temperature"]), lcid=np.zeros((n, 3)),
                 vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                 size=np.tile(0.5 * lv.dx / 2, (n, 1)),
                 color=np.full(n, obj["color"] if obj["color"] is not None else 0.0),

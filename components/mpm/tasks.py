@@ -268,7 +268,8 @@ class MPMTasks:
         ga = {m: new_dw.get_modifiable(L.gAcceleration, m, patch) for m in matls}
         normals = {m: new_dw.get(L.gSurfNorm, m, patch) for m in c.materials} if c.needs_normals else None
         t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
-        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx)
+        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx,
+                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)))
 
     def set_grid_bcs(self, patch, matls, old_dw, new_dw):
         dt = old_dw.get_reduction(FL.delT)
@@ -333,7 +334,8 @@ class MPMTasks:
         gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
         normals = {m: new_dw.get(L.gSurfNorm, m, patch) for m in c.materials} if c.needs_normals else None
         t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
-        c.exchange(gm, gvl, None, None, dt, t=t, normals=normals, dx=self.level.dx)
+        c.exchange(gm, gvl, None, None, dt, t=t, normals=normals, dx=self.level.dx,
+                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)))
         for m in matls:
             self.bcs.apply(patch, m, gvl[m], np.empty_like(gvl[m]), gvl[m], dt)
 
