@@ -82,3 +82,21 @@ class GridBCs:
             hi = np.minimum(hi, hi_all)
             kernels.velocity_bc(gvs, gacc, gvel, dt, np.asarray(lo, np.int64), np.asarray(hi, np.int64),
                                 comps, value)
+
+    def symmetric_normal(self, patch, normal):
+        """Remove the component into the face from a nodal normal on every symmetry face of
+        material 0 (Uintah's "Symmetric" condition on g.normAlphaToBeta)."""
+        own_lo, own_hi = patch.owned_local(VarType.NC)
+        inner = patch.level.interior_box(VarType.NC)
+        base = patch.low_index(VarType.NC)
+        for d, s, comps, value, mats in self.items:
+            if 0 not in mats or comps.sum() != 1 or not (patch.at_high if s else patch.at_low)[d]:
+                continue
+            lo, hi = list(own_lo), list(own_hi)
+            if s == 0:
+                hi[d] = inner[0][d] - base[d] + 1
+            else:
+                lo[d] = inner[1][d] - 1 - base[d]
+            lo = np.maximum(lo, 0)
+            hi = np.minimum(hi, normal.shape[:3])
+            normal[lo[0]:hi[0], lo[1]:hi[1], lo[2]:hi[2], d] = 0.0

@@ -125,6 +125,9 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if len(self.materials) > 16 and self.av_matls:
             raise mp.error("artificial viscosity supports at most 16 MPM materials")
         self.contact = self.contact_class(mp, len(self.materials))
+        if self.contact.needs_color and not self.flags["withColor"]:
+            raise mp.child("contact").child("type").error(
+                "friction_LRVar takes mu from the colour: it needs <MPM><withColor>true</withColor>")
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
@@ -136,8 +139,10 @@ class MPM(ThermalTasks, MPMTasks, Component):
         """(final, pre-relocation) particle labels this deck carries, besides p.x."""
         c = [(L.pVelocity, L.pVelocityPre), (L.pMass, L.pMassPre), (L.pVolume, L.pVolumePre),
              (L.pStress, L.pStressPre), (L.pF, L.pFPre), (L.pID, L.pIDPre)]
-        if self.kind == "gimp":
+        if self.kind == "gimp" or self.contact.needs_lr:     # friction_LR: the particle faces
             c.append((L.pSize, L.pSizePre))
+        if self.contact.needs_lr:
+            c.append((L.pSurface, L.pSurfacePre))
         if self.flags["withColor"]:
             c.append((L.pColor, L.pColorPre))
         if any(m.increment_energy for m in self.materials):
@@ -165,6 +170,27 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.schedule_thermal_initialize(sched)
         sched.register_particle_labels(L.pX, L.pID)
 
+    def _schedule_logistic_regression(self, sched):
+        """friction_LR's normals and prominences (contact.py), once per step after the
+        particles reach the grid, before the first contact task."""
+        g, ng = Ghost.AROUND_NODES, self.ng
+        t = Task("MPM::computeLogisticRegression", self.logistic_regression, self.matls).requires(NEW, L.gMass)
+        for lab in (L.pX, L.pSize, L.pSurface):
+            t.requires(OLD, lab, g, ng)
+        t.computes(L.gAlphaMaterial, [0]).computes(L.gNormAlphaToBeta, [0]).computes(L.gMatlProminence)
+        if self.contact.needs_color:
+            m = self.contact.master
+            t.requires(OLD, L.pMass, g, ng, [m]).requires(OLD, L.pColor, g, ng, [m]).computes(L.gColor, [m])
+        sched.add_task(t)
+
+    def _requires_lr(self, t):
+        c = self.contact
+        if c.needs_lr:
+            t.requires(NEW, L.gAlphaMaterial, matls=[0]).requires(NEW, L.gNormAlphaToBeta, matls=[0])
+            t.requires(NEW, L.gMatlProminence)
+            if c.needs_color:
+                t.requires(NEW, L.gColor, matls=[c.master])
+
     def schedule_compute_stable_timestep(self, level, sched):
         sched.add_task(Task("MPM::computeStableTimestep", self.compute_stable_timestep, self.matls)
                        .requires(NEW, L.WaveSpeed).computes(FL.delT))
@@ -185,6 +211,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(OLD, lab, g, ng)
         sched.add_task(t.computes(L.gStressFS))       # pruned unless g.stressFS is saved
         self.schedule_heat_conduction(sched)
+        if self.contact.needs_lr:
+            self._schedule_logistic_regression(sched)
         if self.contact.interpolated:
             t = Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms) \
                 .requires(NEW, L.gMass).modifies(L.gVelocity).requires(OLD, FL.delT)
@@ -192,6 +220,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 for lab in [L.pX, L.pMass] + ([L.pSize] if self.kind == "gimp" else []):
                     t.requires(OLD, lab, g, ng)
                 t.computes(L.gSurfNorm)
+            self._requires_lr(t)
             sched.add_task(t)
         sched.add_task(Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
                        .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
@@ -205,6 +234,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(NEW, L.gSurfNorm)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
+            self._requires_lr(t)
             sched.add_task(t)
         if self.bcs.items:
             sched.add_task(Task("MPM::setGridBoundaryConditions", self.set_grid_bcs, ms)
@@ -223,6 +253,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(NEW, L.gSurfNorm)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
+            if self.contact.active:
+                self._requires_lr(t)
         else:       # USL: F and V in the same pass (transfer.py)
             t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):

@@ -4,9 +4,9 @@
   single_velocity  at nodes shared by the listed materials all take the centre-of-mass
                    velocity, after interpolation and again after integration: the
                    materials stick (one velocity field, as in paper 004)
-  friction         Coulomb friction (Uintah's friction_bard, also accepted by that name;
-  (friction_bard)  <mu>): at a node shared by the listed materials, a material whose
-                   velocity relative to the centre of mass points along its outward
+  friction         Coulomb friction (Uintah's friction_bard and approach, also accepted by
+  (friction_bard,  those names; <mu>): at a node shared by the listed materials, a
+  approach)        material whose velocity relative to the centre of mass points along its outward
                    normal (approaching) loses that normal part and, of its tangential
                    part, up to mu times the normal part (sticks when that is enough).
                    Normals as Uintah's computeNormals: g_m = sum m_p grad S (outward),
@@ -14,6 +14,9 @@
                    mean of the others' g)), unit length. The change is scaled down where it would impose a
                    strain dt |dv|/dx above 0.5 (Uintah's limiter). Applied after
                    interpolation and after integration (Uintah's OneOrTwoStep = 2).
+                   This is Uintah's ApproachContact (with its volume constraint 0);
+                   friction_bard adds a separation test pysus does not make. A legacy
+                   <vel_fields> is read: Uintah does not use it.
   rigid            Uintah's SpecifiedBodyContact (also `specified`, `specified_velocity`):
   (specified)      <master_material> (default 0) moves with a prescribed velocity: its
                    own initial (grid) velocity, or a <filename> profile of lines
@@ -27,9 +30,6 @@
                    wz" (origin o, angular velocity w, linear in t) and a node at x takes
                    v + the rotation part: exact over dt, (R(w dt) x - x)/dt, when w lies
                    within 0.99 of a coordinate axis, else w x (x - o) (Uintah's two cases).
-<materials>[a,b,..] lists the materials in contact (default all). As Uintah's
-ContactMaterialSpec, an index beyond the last MPM material names no material and is
-passed over (a pysus warning says so); a negative index is refused.
   friction_LR      Nairn & Hammerquist's logistic-regression contact (Uintah's
   (friction_LRVar) FrictionContactLR, <mu>): at every node where two or more materials
                    have mass (and particles), the one with the most mass is alpha
@@ -48,9 +48,13 @@ passed over (a pysus warning says so); a negative index is refused.
                    (g.color, needs <withColor>): linear in the <variable_friction>
                    <entry><color>..</color><mu>..</mu></entry> table (at least two,
                    colours increasing), held above its last colour and, as Uintah's
-                   findMuFromColor, extrapolated from the first two below the first. <volume_constraint> and
-                   <separation_factor> are read: Uintah's friction_LR uses neither.
-Other Uintah types (approach, penalty, nodal_svf) are refused by name.
+                   findMuFromColor, extrapolated from the first two below the first.
+                   <volume_constraint> and <separation_factor> are read: Uintah's
+                   friction_LR uses neither.
+<materials>[a,b,..] lists the materials in contact (default all). As Uintah's
+ContactMaterialSpec, an index beyond the last MPM material names no material and is
+passed over (a pysus warning says so); a negative index is refused.
+Other Uintah types (penalty, nodal_svf, ...) are refused by name.
 With one listed material, or with null, no contact task is scheduled.
 """
 from __future__ import annotations
@@ -61,12 +65,13 @@ from framework.problemspec import Param
 
 from . import kernels
 
-TYPES = ("null", "single_velocity", "friction", "friction_bard", "rigid", "specified",
+TYPES = ("null", "single_velocity", "friction", "friction_bard", "approach", "rigid", "specified",
          "specified_velocity", "friction_LR", "friction_LRVar")
 CONTACT = {"type": Param("str", "null", TYPES)}
 FRICTION = {"mu": Param("float", doc="Coulomb friction coefficient", at_least=0.0),
             "volume_constraint": Param("float", 0.0, (0.0,), "only 0 (no constraint)"),
-            "OneOrTwoStep": Param("int", 2, (2,), "contact after interpolation and integration")}
+            "OneOrTwoStep": Param("int", 2, (2,), "contact after interpolation and integration"),
+            "vel_fields": Param("str", "", doc="read; Uintah does not use it")}
 FRICTION_LR = {"mu": Param("float", doc="Coulomb friction coefficient", at_least=0.0),
                "volume_constraint": Param("float", 0.0, doc="read; Uintah's friction_LR does not use it"),
                "separation_factor": Param("float", 0.0, doc="read; Uintah's friction_LR does not use it"),
@@ -112,7 +117,7 @@ class Contact:
         node = nodes[0] if nodes else None
         spec = node.read(CONTACT) if node is not None else {"type": "null"}
         kind = spec["type"]
-        self.type = {"friction_bard": "friction", "specified": "rigid",
+        self.type = {"friction_bard": "friction", "approach": "friction", "specified": "rigid",
                      "specified_velocity": "rigid"}.get(kind, kind)
         mnode = node.child("materials") if node is not None else None
         mats = _int_list(mnode) if mnode is not None else tuple(range(nmat))

@@ -137,19 +137,23 @@ class Material:
         return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------
-    def create(self, patch, obj_base, pressure=None):
+    def create(self, patch, obj_base, pressure=None, surface=False):
         """Particles of this material in one patch: dict of arrays sorted by ID.
 
         IDs: object number (global over all materials, `obj_base` + k) times 2^40 plus
         the index of the particle's sub-cell on the level-wide lattice of that object,
         so they do not depend on the patch layout. With pressure BCs (pressure.py), "lcid"
-        is p.loadCurveID of the particles on a loaded surface."""
+        is p.loadCurveID of the particles on a loaded surface; with surface, "surf" is
+        p.surface (1: a neighbour one particle spacing away along an active direction is
+        outside the object, Uintah's checkForSurface)."""
         lv = patch.level
         taken = None
         out = []
         for k, obj in enumerate(self.objects):
             if "chain" in obj:
                 out.append(membrane_points(obj, patch, obj_base + k))
+                if surface:
+                    out[-1]["surf"] = np.ones(len(out[-1]["x"]))      # a membrane is all surface
                 continue
             res = np.array([1 if lv.collapsed[d] else obj["res"][d] for d in range(3)])
             axes = []
@@ -174,6 +178,8 @@ class Material:
                             vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                             size=np.tile(0.5 * lv.dx / res, (n, 1)),
                             color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))
+            if surface:
+                out[-1]["surf"] = on_surface(x, obj["piece"], dxpp, ~np.asarray(lv.collapsed)).astype(float)
             from framework.geometry import Union
             taken = obj["piece"] if taken is None else Union([taken, obj["piece"]])
         data = {key: np.concatenate([o[key] for o in out]) for key in out[0]}
@@ -220,6 +226,18 @@ def read_membrane_object(g, with_color):
                 velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
                 temperature=g.get("temperature", "float", 294.0, at_least=0.0),
                 color=g.get("color", "float", 0.0) if with_color else None)
+
+
+def on_surface(x, piece, dxpp, active):
+    """Points whose neighbour one spacing away along an active direction lies outside piece."""
+    surface = np.zeros(len(x), bool)
+    for d in range(3):
+        if active[d]:
+            for sgn in (-1.0, 1.0):
+                y = x.copy()
+                y[:, d] += sgn * dxpp[d]
+                surface |= ~piece.inside(y)
+    return surface
 
 
 def membrane_points(obj, patch, obj_id):

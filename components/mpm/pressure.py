@@ -228,13 +228,8 @@ class PressureBCs:
     def flag(self, x, piece, dxpp, matl):
         """p.loadCurveID, (n, 3): the ids (0: none) of the BCs loading the new particles of
         one geometry object of material matl, at most three, in deck order."""
-        surface = np.zeros(len(x), bool)
-        for d in range(3):
-            if self.dims[d]:
-                for sgn in (-1.0, 1.0):
-                    y = x.copy()
-                    y[:, d] += sgn * dxpp[d]
-                    surface |= ~piece.inside(y)
+        from .materials import on_surface
+        surface = on_surface(x, piece, dxpp, self.dims)
         ids = np.zeros((len(x), IDS_PER_PARTICLE))
         used = np.zeros(len(x), np.int64)
         for b in self.bcs:
