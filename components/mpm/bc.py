@@ -3,6 +3,8 @@
 Accepted per `<Face side="x-|x+|y-|y+|z-|z+">`:
   <BCType id="all|N" var="Dirichlet" label="Velocity"><value>[u,v,w]</value></BCType>
   <BCType id="all|N" var="symmetry"  label="Symmetric"/>   (normal velocity zero)
+  <BCType id="all|N" var="Neumann"   label="Velocity">       (free: Uintah's MPMBoundCond
+                                                              applies nothing for it)
 They are applied to g.velocity_star on the face's nodes and on the extra-cell nodes
 beyond it, after the acceleration is integrated, and the acceleration there is
 recomputed as (v* - v)/dt, as Uintah's setGridBoundaryConditions. Faces of collapsed
@@ -32,7 +34,7 @@ class GridBCs:
             given = set()
             for bc in face.children("BCType"):
                 ident = bc.attr("id")
-                var = bc.attr("var", choices=("Dirichlet", "symmetry"))
+                var = bc.attr("var", choices=("Dirichlet", "symmetry", "Neumann"))
                 label = bc.attr("label", choices=("Velocity", "Symmetric"))
                 if ident == "all":
                     mats = tuple(range(nmat))
@@ -48,7 +50,11 @@ class GridBCs:
                                    "accepted: one condition per material on a face")
                 given |= set(mats)
                 if (var == "symmetry") != (label == "Symmetric"):
-                    raise bc.error('accepted: var="Dirichlet" label="Velocity" or var="symmetry" label="Symmetric"')
+                    raise bc.error('accepted: var="Dirichlet" or "Neumann" label="Velocity", '
+                                   'or var="symmetry" label="Symmetric"')
+                if var == "Neumann":
+                    bc.get("value", "vector", (0.0, 0.0, 0.0))       # read: a free face has no value to set
+                    continue
                 if var == "symmetry":
                     comps = np.zeros(3, np.bool_)
                     comps[d] = True

@@ -131,8 +131,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
-        self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure> (pressure.py)
         self.thermal_setup()
+        self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
         self._carried()
 
     def _carried(self):

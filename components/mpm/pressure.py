@@ -1,5 +1,6 @@
-"""Load-curve boundary conditions on MPM particles, `<PhysicalBC><MPM><pressure>` and
-`<torque>` (Uintah's PressureBC and TorqueBC with `<MPM><use_load_curves>true</use_load_curves>`).
+"""Load-curve boundary conditions on MPM particles, `<PhysicalBC><MPM><pressure>`, `<torque>`
+and `<heat_flux>` (Uintah's PressureBC, TorqueBC and HeatFluxBC with
+`<MPM><use_load_curves>true</use_load_curves>`).
 
     <PhysicalBC><MPM>
       <pressure>
@@ -20,7 +21,9 @@ As Uintah does it:
   loaded surface: a box face, the box widened by one particle spacing in its thinnest
   direction; the side of a cylinder, the annulus radius +- 0.9 times the smallest
   particle spacing; with <cylinder_end>true</cylinder_end> in the cylinder, its end:
-  the cylinder lengthened by 1.2 times the smallest spacing at both ends.
+  the cylinder lengthened by 1.2 times the smallest spacing at both ends. A heat flux
+  flags the box widened by one particle spacing in every direction, or the annulus
+  radius +- half the length of the particle-spacing vector.
 * Each step, at the time t of its start, every flagged particle gets the external force
   p(t) A / N along the surface normal: +thinnest axis of the box, the outward radial
   direction of the cylinder, the axis (bottom to top) for a cylinder end (A = pi r^2);
@@ -31,6 +34,11 @@ As Uintah does it:
 * A torque T(t) on the side of a cylinder: each of its N particles gets the force
   T/N * (x - bottom) x a / r^2, a the unit axis, r the distance from the axis (magnitude
   T/(N r), sum of moments -T a: Uintah's TorqueBC sign).
+* A heat flux q(t) (W/m^2) gives each of its N particles the heat rate q A / N (W,
+  p.externalHeatRate in Uintah), A the box face or the cylinder's side; it reaches the
+  nodes as sum S_ip q_p and adds sum S_ip q_p / (m_i c_v) to g.temperatureRate
+  (thermal.py; Uintah's HeatConduction::solveHeatEquations). It needs heat conduction
+  in the loaded material.
 * The force enters fext_i of particle-to-grid (000 eq. 22) and is saved as
   p.externalforce.
 
@@ -183,6 +191,25 @@ class TorqueBC(PressureBC):
         return arm * (self.pressure(t) / count / np.where(r2 > 0, r2, np.inf))[:, None]
 
 
+class HeatFluxBC(PressureBC):
+    """Uintah's HeatFluxBC: a heat flux through a box face or a cylinder's side."""
+    kind = "heat_flux"
+
+    def on_surface(self, x, dxpp, dims):
+        if isinstance(self.piece, Box):
+            return Box(self.piece.lo - dxpp, self.piece.hi + dxpp).inside(x)
+        c = self.piece
+        tol = 0.5 * np.linalg.norm(dxpp)
+        rel = x - c.bottom
+        s = rel @ c.axis / c.length2
+        r = np.sqrt(np.maximum(np.sum(rel ** 2, axis=1) - s ** 2 * c.length2, 0.0))
+        return (s >= 0) & (s <= 1) & (r <= c.radius + tol) & (r > c.radius - tol)
+
+    def load(self, x, t, count):
+        """The heat rate (W) on each of `count` flagged particles."""
+        return np.full(len(x), self.pressure(t) * self.area / count)
+
+
 class PressureBCs:
     """All pressure BCs of a deck; p.loadCurveID holds the id of the BC loading a particle."""
 
@@ -204,9 +231,10 @@ class PressureBCs:
             return None
         items = [(PressureBC, it) for it in node.children("pressure")]
         items += [(TorqueBC, it) for it in node.children("torque")]
-        for tag in ("force", "normal_force", "crack", "heat_flux", "arches_heat_flux", "scalar_flux", "pressure_pts"):
+        items += [(HeatFluxBC, it) for it in node.children("heat_flux")]
+        for tag in ("force", "normal_force", "crack", "arches_heat_flux", "scalar_flux", "pressure_pts"):
             if node.has(tag):
-                raise node.child(tag).error(f"<{tag}> is not supported; accepted: <pressure>, <torque>")
+                raise node.child(tag).error(f"<{tag}> is not supported; accepted: <pressure>, <torque>, <heat_flux>")
         if not items:
             return None
         if not mpm.flags["use_load_curves"]:
@@ -223,6 +251,13 @@ class PressureBCs:
         for k, i in enumerate(ids):
             if i in ids[:k]:
                 raise items[k][1].child("load_curve").child("id").error(f"load curve id {i} is used twice")
+        for b, (_, it) in zip(bcs, items):
+            if b.kind == "heat_flux":
+                mats = range(len(mpm.materials)) if b.material < 0 else [b.material]
+                cold = [m for m in mats if m not in mpm.conducting]
+                if cold:
+                    raise it.error(f"a <heat_flux> needs heat conduction in material {cold[0]} "
+                                   "(<DoExplicitHeatConduction>true and <thermal_conductivity> > 0)")
         return cls(bcs, mpm)
 
     def flag(self, x, piece, dxpp, matl):
@@ -250,6 +285,19 @@ class PressureBCs:
         f = np.zeros((len(x), 3))
         for k, b in enumerate(self.bcs):
             sel = np.flatnonzero(np.any(ids == b.id, axis=1))
-            if len(sel) and totals[k] > 0:
+            if len(sel) and totals[k] > 0 and b.kind != "heat_flux":
                 f[sel] += b.load(x[sel], t, totals[k])
         return f
+
+    @property
+    def heat_flux(self):
+        return any(b.kind == "heat_flux" for b in self.bcs)
+
+    def heat_rates(self, x, ids, t, totals):
+        """p.externalHeatRate (W) at time t of particles x with p.loadCurveID ids."""
+        q = np.zeros(len(x))
+        for k, b in enumerate(self.bcs):
+            sel = np.flatnonzero(np.any(ids == b.id, axis=1))
+            if len(sel) and totals[k] > 0 and b.kind == "heat_flux":
+                q[sel] += b.load(x[sel], t, totals[k])
+        return q

@@ -203,6 +203,8 @@ class ThermalTasks:
                  .requires(NEW, L.gMass).requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, 2 * ng))
             for lab in [L.pX, L.pVolume] + lp:
                 t.requires(OLD, lab, g, ng)
+            if self.pressure_bcs and self.pressure_bcs.heat_flux:
+                t.requires(OLD, L.pLoadCurveID, g, ng).requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
             sched.add_task(t.computes(L.gTemperatureRate))
 
     def schedule_temperature_update(self, sched):
@@ -246,8 +248,10 @@ class ThermalTasks:
             divide_by_mass(new_dw.get(L.gMass, m, patch), gmT, new_dw.allocate(L.gTemperature, m, patch, None))
 
     def internal_heat_rate(self, patch, matls, old_dw, new_dw):
-        """g.temperatureRate = -sum_p (k/cv) V_p grad S_ip . grad T_p / m_i (Uintah's
-        computeInternalHeatRate and solveHeatEquations, no external heat)."""
+        """g.temperatureRate = (-sum_p k V_p grad S_ip . grad T_p + sum_p S_ip q_p) / (m_i cv)
+        (Uintah's computeInternalHeatRate and solveHeatEquations); q_p the heat rates of
+        the <heat_flux> BCs at the step's start (pressure.py), when the deck has any."""
+        flux = self.pressure_bcs is not None and self.pressure_bcs.heat_flux
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
         kind = 0 if self.kind == "linear" else 1
@@ -258,6 +262,12 @@ class ThermalTasks:
             heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch), self._lp(old_dw, m, patch, len(px)),
                       lv.anchor, lv.dx, low, new_dw.get(L.gTemperature, m, patch),
                       mat.conductivity / mat.specific_heat, acc)
+            if flux:
+                q = self.pressure_bcs.heat_rates(px, old_dw.get(L.pLoadCurveID, m, patch),
+                                                 old_dw.get_reduction(FL.simTime),
+                                                 old_dw.get_reduction(L.PressureBCParticles))
+                p2g_heat(kind, self.th_act, px, q / mat.specific_heat, np.ones(len(px)),
+                         self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, acc)
             divide_by_mass(new_dw.get(L.gMass, m, patch), acc, new_dw.allocate(L.gTemperatureRate, m, patch, None))
 
     def update_particle_temperature(self, patch, matls, old_dw, new_dw):
