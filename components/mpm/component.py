@@ -131,6 +131,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
+        self.thermal_contact_node = mp.child("thermal_contact")
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
         self._carried()

@@ -61,6 +61,8 @@ gVelocityStar = L.create("g.velocity_star", NC, (3,))
 gAcceleration = L.create("g.acceleration", NC, (3,))
 gTemperature = L.create("g.temperature", NC)            # mass-weighted nodal temperature (thermal.py)
 gTemperatureRate = L.create("g.temperatureRate", NC)    # conduction dT/dt at the nodes (thermal.py)
+gTemperatureNoBC = L.create("g.temperatureNoBC", NC)    # g.temperature before the Temperature BCs
+gThermalContactRate = L.create("g.thermalContactTemperatureRate", NC)   # <thermal_contact> (thermal.py)
 
 KineticEnergy = L.create("KineticEnergy", R, reduction="sum")
 StrainEnergy = L.create("StrainEnergy", R, reduction="sum")
