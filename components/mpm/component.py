@@ -235,6 +235,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(NEW, L.gSurfNorm)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
+            if self.contact.type == "rigid":
+                t.requires(NEW, L.gIntForce).computes(L.RigidReactionForce).computes(L.RigidReactionTorque)
             self._requires_lr(t)
             sched.add_task(t)
         if self.bcs.items:

@@ -30,6 +30,10 @@
                    wz" (origin o, angular velocity w, linear in t) and a node at x takes
                    v + the rotation part: exact over dt, (R(w dt) x - x)/dt, when w lies
                    within 0.99 of a coordinate axis, else w x (x - o) (Uintah's two cases).
+                   RigidReactionForce / RigidReactionTorque (reductions, all materials
+                   together): the sum over the nodes where the master has mass of minus
+                   the other contact materials' internal force, and of (x - o) x that
+                   (0 without include_rotation, as Uintah).
   friction_LR      Nairn & Hammerquist's logistic-regression contact (Uintah's
   (friction_LRVar) FrictionContactLR, <mu>): at every node where two or more materials
                    have mass (and particles), the one with the most mass is alpha
@@ -125,7 +129,9 @@ class Contact:
             raise mnode.error(f"material index {min(mats)} is negative; accepted: indices 0 to {nmat - 1}")
         if any(m >= nmat for m in mats):
             gone = [m for m in mats if m >= nmat]
-            print(f"pysus: warning: {mnode.error(f'materials {gone} do not exist (there are {nmat} MPM materials); passed over as Uintah does')}")
+            note = mnode.error(f"materials {gone} do not exist (there are {nmat} MPM materials); "
+                               "passed over as Uintah does")
+            print(f"pysus: warning: {note}")
             mats = tuple(m for m in mats if m < nmat)
         if self.type == "friction":
             self.mu = node.read(FRICTION)["mu"]
@@ -224,6 +230,21 @@ class Contact:
             gvel[i].reshape(-1, 3)[...] = v[k]
             if integrated:
                 gacc[i].reshape(-1, 3)[...] = a[k]
+
+    def reaction(self, gmass, fint, t, node_x, own):
+        """(RigidReactionForce, RigidReactionTorque) of one patch: see the module doc."""
+        idx = list(self.materials)
+        master = gmass[self.master].reshape(-1)
+        f = np.stack([fint[i].reshape(-1, 3) for i in idx])
+        others = np.array([i != self.master for i in idx], np.bool_)
+        _, origin, _, _ = self.rigid_velocity(t)
+        anchor, spacing, low = node_x
+        force, torque = np.zeros(3), np.zeros(3)
+        kernels.rigid_reaction(master, f, others, np.asarray(own[0], np.int64), np.asarray(own[1], np.int64),
+                               np.array(gmass[self.master].shape, np.int64), np.asarray(anchor, float),
+                               np.asarray(spacing, float), np.asarray(low, np.int64), origin,
+                               bool(self.rotation), force, torque)
+        return force, torque
 
     def rigid_velocity(self, t):
         """(velocity, origin, angular velocity, use the master's own grid velocity) at sim

@@ -492,3 +492,33 @@ def friction_lr(gmass, gvel, requested, alpha, normal, prom, mu, gacc, gvel_old,
             for m in range(nm):
                 for d in range(3):
                     gacc[m, i, d] = (gvel[m, i, d] - gvel_old[m, i, d]) / dt
+
+
+@njit(cache=True)
+def rigid_reaction(master_mass, fint, others, own_lo, own_hi, shape, anchor, spacing, low, origin,
+                   with_arm, force, torque):
+    """Uintah's RigidReactionForce/Torque: at the owned nodes where the rigid (master)
+    material has mass, force += -fint of the other contact materials and torque +=
+    (x_i - origin) x -fint (with include_rotation; Uintah's arm is 0 without it)."""
+    nyz = shape[1] * shape[2]
+    for i in range(master_mass.shape[0]):
+        if not master_mass[i] > 0.0:
+            continue
+        a, b, c = i // nyz, (i // shape[2]) % shape[1], i % shape[2]
+        if not (own_lo[0] <= a < own_hi[0] and own_lo[1] <= b < own_hi[1] and own_lo[2] <= c < own_hi[2]):
+            continue
+        r0 = r1 = r2 = 0.0
+        if with_arm:
+            r0 = anchor[0] + (low[0] + a) * spacing[0] - origin[0]
+            r1 = anchor[1] + (low[1] + b) * spacing[1] - origin[1]
+            r2 = anchor[2] + (low[2] + c) * spacing[2] - origin[2]
+        for m in range(fint.shape[0]):
+            if not others[m]:
+                continue
+            f0, f1, f2 = -fint[m, i, 0], -fint[m, i, 1], -fint[m, i, 2]
+            force[0] += f0
+            force[1] += f1
+            force[2] += f2
+            torque[0] += r1 * f2 - r2 * f1
+            torque[1] += r2 * f0 - r0 * f2
+            torque[2] += r0 * f1 - r1 * f0

@@ -70,6 +70,8 @@ TotalMass = L.create("TotalMass", R, reduction="sum")
 TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")
 CenterOfMassPosition = L.create("CenterOfMassPosition", R, (3,), reduction="sum")
 ThermalEnergy = L.create("ThermalEnergy", R, reduction="sum")   # sum m_p cv T_p (thermal.py)
+RigidReactionForce = L.create("RigidReactionForce", R, (3,), reduction="sum")     # specified contact (contact.py)
+RigidReactionTorque = L.create("RigidReactionTorque", R, (3,), reduction="sum")
 WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")
 # fluid points' artificial viscosity (004 eq. 24): per material m, [2m] the largest sound
 # speed and [2m+1] the largest |div v| over the whole level (MPM materials <= 16)

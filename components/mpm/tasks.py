@@ -337,8 +337,13 @@ class MPMTasks:
         normals = {m: new_dw.get(L.gSurfNorm, m, patch) for m in c.materials} if c.needs_normals else None
         t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
         lr, color = self._lr(patch, new_dw)
-        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx,
-                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)), lr=lr, color=color)
+        node_x = (self.level.anchor, self.level.dx, patch.low_index(NC))
+        if c.type == "rigid":          # the reaction on the rigid body, before its velocity is imposed
+            force, torque = c.reaction(gm, {m: new_dw.get(L.gIntForce, m, patch) for m in c.materials}, t,
+                                       node_x, patch.owned_local(NC))
+            new_dw.put_reduction(L.RigidReactionForce, force)
+            new_dw.put_reduction(L.RigidReactionTorque, torque)
+        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx, node_x=node_x, lr=lr, color=color)
 
     def set_grid_bcs(self, patch, matls, old_dw, new_dw):
         dt = old_dw.get_reduction(FL.delT)

@@ -102,7 +102,8 @@ def test_friction_lrvar_takes_mu_from_the_colour(tmp_path):
     """friction_LRVar with the plane (master) coloured 1.5, where its table gives mu = 0.5,
     runs as friction_LR with mu 0.5 does; coloured 1 (mu 0.1) the block slides faster."""
     steps = {"<max_Timesteps>3</max_Timesteps>": "<max_Timesteps>40</max_Timesteps>",
-             "<outputTimestepInterval>1</outputTimestepInterval>": "<outputTimestepInterval>40</outputTimestepInterval>"}
+             "<outputTimestepInterval>1</outputTimestepInterval>":
+             "<outputTimestepInterval>40</outputTimestepInterval>"}
 
     def var(color):
         return deck(**steps, **{

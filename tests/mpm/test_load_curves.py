@@ -117,3 +117,19 @@ def test_heat_flux_energy_is_q_area_time(heat):
         p = da.particles(1, step)
         gained = CV * np.sum(p["p.mass"] * (p["p.temperature"] - 300.0))
         assert gained == pytest.approx(HEAT_FLUX * 1.0 * 0.5 * da.times[step], rel=1e-9)
+
+
+def test_rigid_reaction_equals_uintahs_sus(spin):
+    """RigidReactionForce and RigidReactionTorque (the other materials' internal force at
+    the stem's nodes, and its moment about the spin origin) against sus: 0 in step 1 (no
+    stress yet), step 2's from the stress after step 1 (the same in both)."""
+    da, ref = spin
+    t, force = da.reduction("RigidReactionForce")
+    _, torque = da.reduction("RigidReactionTorque")
+    force, torque = np.asarray(force), np.asarray(torque)
+    first, second = (int(np.argmin(np.abs(np.asarray(t) - da.times[k]))) for k in (1, 2))
+    assert np.all(force[first] == 0) and np.all(torque[first] == 0)
+    for mine, sus in ((force[second], ref["rigid_reaction_force"][1, 1:]),
+                      (torque[second], ref["rigid_reaction_torque"][1, 1:])):
+        assert abs(sus[2]) > 1e3
+        assert np.abs(mine - sus).max() < 1e-7 * abs(sus[2])
