@@ -6,10 +6,13 @@
   <PhysicalConstants>   <gravity>
   <MaterialProperties><MPM>  <material> (materials.py; models incl. ideal_gas_fluid, the
                         fluid points of paper 004, and membrane, its membrane/string points
-                        laid along a <membrane_polygon>) and <contact> null | single_velocity |
-                        friction | rigid (contact.py)
-  <Grid><BoundaryConditions> velocity Dirichlet / symmetry faces (bc.py)
-  <PhysicalBC><MPM><pressure>  load-curve pressure on surface particles (pressure.py)
+                        laid along a <membrane_polygon>), <contact> null | single_velocity |
+                        friction (friction_bard, approach) | friction_LR(Var) | rigid
+                        (specified) (contact.py), <thermal_contact> (thermal.py)
+  <Grid><BoundaryConditions> velocity Dirichlet / Neumann / symmetry faces, Dirichlet
+                        temperature (bc.py)
+  <PhysicalBC><MPM>     <pressure>, <torque>, <heat_flux> load curves on surface
+                        particles (pressure.py)
   <DataAnalysis>        <Module name="particleExtract"> (analysis.py)
 
 The particle<->grid transfers are fused numba kernels (transfer.py): p2g scatters into
@@ -19,6 +22,7 @@ remaps the new momentum in that pass and finds L, F, V in one more.
 One timestep (tasks.py), all MPM materials in each task:
   interpolateParticlesToGrid      m_i, v_i, V_i, fext_i, fint_i from the particles
                                   and their stress (update stress last)
+  computeLogisticRegression       friction_LR's alpha material, normal, prominences
   exMomInterpolated               contact on v_i          (only with contact)
   computeAndIntegrateAcceleration a_i, v*_i
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)

@@ -5,7 +5,8 @@ p.deformationMeasure (F), p.particleID, p.externalforce (pressure BCs only), p.s
 (uGIMP half-widths, GIMP only), p.color (withColor only) and per-model state
 (plastic strain, internal energy, membrane tangent/thickness, accumulated strain
 energy of rate models), p.temperature (with heat conduction or MPMICE heat
-exchange, thermal.py). Each has a "+" twin written by the update before relocation.
+exchange, thermal.py), p.loadCurveID (load curves, 3 ids), p.surface (friction_LR).
+Each has a "+" twin written by the update before relocation.
 Grid: g.mass, g.velocity, g.volume, g.externalforce, g.internalforce,
 g.velocity_star, g.acceleration, g.temperature, g.temperatureRate. Reductions as in Uintah.
 """
