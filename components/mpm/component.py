@@ -158,6 +158,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             c += [(L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)]
         if self.pressure_bcs:
             c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
+            if self.pressure_bcs.heat_flux:
+                c.append((L.pExternalHeatRate, L.pExternalHeatRatePre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
 

@@ -39,6 +39,7 @@ pTangent, pTangentPre = _pair("p.tangent", (3,))
 pThickness, pThicknessPre = _pair("p.thickness")
 pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
 pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID", (3,))     # up to 3 load-curve ids (pressure.py)
+pExternalHeatRate, pExternalHeatRatePre = _pair("p.externalHeatRate")   # W, <heat_flux> (pressure.py)
 pSurface, pSurfacePre = _pair("p.surface")        # 1 on its object's surface (friction_LR prominence)
 pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / MPMICE (thermal.py)
 STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model scalar state

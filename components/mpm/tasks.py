@@ -126,6 +126,8 @@ class MPMTasks:
             if self.pressure_bcs:
                 new_dw.put(L.pLoadCurveID, m, patch, d["lcid"])
                 new_dw.put(L.pExtForce, m, patch, np.zeros((n, 3)))
+                if self.pressure_bcs.heat_flux:
+                    new_dw.put(L.pExternalHeatRate, m, patch, np.zeros(n))
                 new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(d["lcid"]))
             kernels.sums(d["mass"], d["vel"], d["x"], tot)
             se += energy.sum()
@@ -569,7 +571,11 @@ class MPMTasks:
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
             if self.pressure_bcs:
                 lcid = old_dw.get(L.pLoadCurveID, m, patch)
-                new_dw.put(L.pExtForcePre, m, patch, self._ext_force(old_dw, m, patch, old_dw.get(L.pX, m, patch)))
+                px_old = old_dw.get(L.pX, m, patch)
+                new_dw.put(L.pExtForcePre, m, patch, self._ext_force(old_dw, m, patch, px_old))
+                if self.pressure_bcs.heat_flux:        # this step's heat rates (thermal.py), for output
+                    new_dw.put(L.pExternalHeatRatePre, m, patch, self.pressure_bcs.heat_rates(
+                        px_old, lcid, old_dw.get_reduction(FL.simTime), old_dw.get_reduction(L.PressureBCParticles)))
                 new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(lcid))
         new_dw.put_reduction(L.StrainEnergy, se)
         new_dw.put_reduction(L.WaveSpeed, ws)

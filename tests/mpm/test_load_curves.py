@@ -111,12 +111,16 @@ def test_heat_flux_temperatures_equal_uintahs_sus(heat):
 
 
 def test_heat_flux_energy_is_q_area_time(heat):
-    """sum m cv (T - T0) over the stem = q A t: conduction moves heat, the flux adds it."""
+    """sum m cv (T - T0) over the stem = q A t: conduction moves heat, the flux adds it;
+    the saved p.externalHeatRate of each step sums to q A, on the x- face particles only."""
     da, _ = heat
     for step in (1, 2, 3):
         p = da.particles(1, step)
         gained = CV * np.sum(p["p.mass"] * (p["p.temperature"] - 300.0))
         assert gained == pytest.approx(HEAT_FLUX * 1.0 * 0.5 * da.times[step], rel=1e-9)
+        q = p["p.externalHeatRate"]
+        assert q.sum() == pytest.approx(HEAT_FLUX * 1.0 * 0.5, rel=1e-12)
+        assert np.all(p["p.x"][q > 0, 0] < -0.4)
 
 
 def test_rigid_reaction_equals_uintahs_sus(spin):
