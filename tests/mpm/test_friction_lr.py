@@ -143,3 +143,46 @@ def test_bad_contact_input_is_one_clean_error(tmp_path, edit, message):
     from framework.controller import Controller
     with pytest.raises(InputError, match=message.replace("(", r"\(").replace("[", r"\[")):
         Controller(str(tmp_path / "d.ups"), quiet=True, filebase=str(tmp_path / "r.uda"))
+
+
+def test_logistic_regression_finds_the_separating_plane():
+    """kernels.lr_normals: particles of alpha below the plane n.x = 0.3 and of the other
+    material above it (n oblique in x-y) give back n as the alpha -> beta normal."""
+    from components.mpm import kernels
+    rng = np.random.default_rng(3)
+    n = np.array([0.6, 0.8, 0.0])
+    pts = rng.uniform(-1, 1, (400, 3)) * [1, 1, 0.1]
+    side = pts @ n - 0.3
+    pts = pts[np.abs(side) > 0.05]
+    below, above = pts[pts @ n < 0.3], pts[pts @ n >= 0.3]
+    xs = np.ascontiguousarray(np.concatenate([below, above]))
+    count = np.array([[len(below), len(above)]], np.int64)
+    start = np.array([[0, len(below)]], np.int64)
+    alpha = np.zeros(1, np.int64)
+    normal = np.zeros((1, 3))
+    kernels.lr_normals(alpha, start, count, xs, 1e-7, normal)
+    assert alpha[0] == 0
+    assert normal[0] @ n > 0.999
+
+
+def test_rigid_rotation_off_axis_is_omega_cross_r():
+    """kernels.rigid with omega off every coordinate axis: the node velocity is omega x (x - o)
+    (Uintah's approximate case); about z it is the exact turn over dt."""
+    from components.mpm import kernels
+    from components.mpm.contact import rotation_axis
+    shape = np.array([2, 2, 2], np.int64)
+    gmass = np.ones((1, 8))
+    origin = np.array([0.1, -0.2, 0.3])
+    for omega in (np.array([1.0, 2.0, 3.0]), np.array([0.0, 0.0, 5.0])):
+        gvel = np.zeros((1, 8, 3))
+        dt = 1e-3
+        kernels.rigid(gmass, gvel, gvel, gvel, 0.0, dt, 0, np.ones(3, np.bool_), np.zeros(3), False, origin, omega,
+                      rotation_axis(omega), shape, np.zeros(3), np.ones(3), np.zeros(3, np.int64))
+        x = np.array([[i, j, k] for i in range(2) for j in range(2) for k in range(2)], float) - origin
+        if rotation_axis(omega) < 0:
+            assert np.allclose(gvel[0], np.cross(omega, x), rtol=0, atol=1e-12)
+        else:
+            turn = omega[2] * dt
+            exact = np.stack([x[:, 0] * np.cos(turn) - x[:, 1] * np.sin(turn) - x[:, 0],
+                              x[:, 0] * np.sin(turn) + x[:, 1] * np.cos(turn) - x[:, 1], 0 * x[:, 2]], axis=1) / dt
+            assert np.allclose(gvel[0], exact, rtol=0, atol=1e-9)
