@@ -26,8 +26,11 @@ def level_from_spec(root):
         raise levels[1].error("only one <Level> is supported (no AMR in pysus)")
     lv = levels[0]
     boxes = lv.children("Box")
-    if len(boxes) != 1:
-        raise (boxes[1] if boxes else lv).error("exactly one <Box> per <Level> is supported")
+    if not boxes:
+        raise lv.error("missing required tag <Box>")
+    if len(boxes) > 1:
+        raise boxes[1].error(f"a <Level> made of {len(boxes)} <Box>es is not supported (a pysus level is one "
+                             "box of cells, split into patches); accepted: one <Box> per <Level>")
     box = boxes[0]
     box.attr("label", default=None)
     b = box.read(BOX)

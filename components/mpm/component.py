@@ -6,10 +6,13 @@
   <PhysicalConstants>   <gravity>
   <MaterialProperties><MPM>  <material> (materials.py; models incl. ideal_gas_fluid, the
                         fluid points of paper 004, and membrane, its membrane/string points
-                        laid along a <membrane_polygon>) and <contact> null | single_velocity |
-                        friction | rigid (contact.py)
-  <Grid><BoundaryConditions> velocity Dirichlet / symmetry faces (bc.py)
-  <PhysicalBC><MPM><pressure>  load-curve pressure on surface particles (pressure.py)
+                        laid along a <membrane_polygon>), <contact> null | single_velocity |
+                        friction (friction_bard, approach) | friction_LR(Var) | rigid
+                        (specified) (contact.py), <thermal_contact> (thermal.py)
+  <Grid><BoundaryConditions> velocity Dirichlet / Neumann / symmetry faces, Dirichlet
+                        temperature (bc.py)
+  <PhysicalBC><MPM>     <pressure>, <torque>, <heat_flux> load curves on surface
+                        particles (pressure.py)
   <DataAnalysis>        <Module name="particleExtract"> (analysis.py)
 
 The particle<->grid transfers are fused numba kernels (transfer.py): p2g scatters into
@@ -19,6 +22,7 @@ remaps the new momentum in that pass and finds L, F, V in one more.
 One timestep (tasks.py), all MPM materials in each task:
   interpolateParticlesToGrid      m_i, v_i, V_i, fext_i, fint_i from the particles
                                   and their stress (update stress last)
+  computeLogisticRegression       friction_LR's alpha material, normal, prominences
   exMomInterpolated               contact on v_i          (only with contact)
   computeAndIntegrateAcceleration a_i, v*_i
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
@@ -61,7 +65,9 @@ FLAGS = {
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
-    "use_load_curves": Param("bool", False, doc="pressure BCs follow <PhysicalBC> load curves"),
+    "use_load_curves": Param("bool", False, doc="pressure and torque BCs follow <PhysicalBC> load curves"),
+    "boundary_traction_faces": Param("str", "[]", doc="read: Uintah sums BndyForce_<face> reductions there "
+                                     "for output; pysus computes none, and a <save> of them is refused"),
     "particles_leaving_domain": Param("str", "warn", ("warn", "error"),
                                       "pysus: particles leaving through a face without a wall are deleted "
                                       "(as in Uintah) with a warning line, or stop the run"),
@@ -123,19 +129,25 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if len(self.materials) > 16 and self.av_matls:
             raise mp.error("artificial viscosity supports at most 16 MPM materials")
         self.contact = self.contact_class(mp, len(self.materials))
+        if self.contact.needs_color and not self.flags["withColor"]:
+            raise mp.child("contact").child("type").error(
+                "friction_LRVar takes mu from the colour: it needs <MPM><withColor>true</withColor>")
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
-        self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure> (pressure.py)
+        self.thermal_contact_node = mp.child("thermal_contact")
         self.thermal_setup()
+        self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
         self._carried()
 
     def _carried(self):
         """(final, pre-relocation) particle labels this deck carries, besides p.x."""
         c = [(L.pVelocity, L.pVelocityPre), (L.pMass, L.pMassPre), (L.pVolume, L.pVolumePre),
              (L.pStress, L.pStressPre), (L.pF, L.pFPre), (L.pID, L.pIDPre)]
-        if self.kind == "gimp":
+        if self.kind == "gimp" or self.contact.needs_lr:     # friction_LR: the particle faces
             c.append((L.pSize, L.pSizePre))
+        if self.contact.needs_lr:
+            c.append((L.pSurface, L.pSurfacePre))
         if self.flags["withColor"]:
             c.append((L.pColor, L.pColorPre))
         if any(m.increment_energy for m in self.materials):
@@ -146,6 +158,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             c += [(L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)]
         if self.pressure_bcs:
             c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
+            if self.pressure_bcs.heat_flux:
+                c.append((L.pExternalHeatRate, L.pExternalHeatRatePre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
 
@@ -162,6 +176,27 @@ class MPM(ThermalTasks, MPMTasks, Component):
         sched.add_task(t)
         self.schedule_thermal_initialize(sched)
         sched.register_particle_labels(L.pX, L.pID)
+
+    def _schedule_logistic_regression(self, sched):
+        """friction_LR's normals and prominences (contact.py), once per step after the
+        particles reach the grid, before the first contact task."""
+        g, ng = Ghost.AROUND_NODES, self.ng
+        t = Task("MPM::computeLogisticRegression", self.logistic_regression, self.matls).requires(NEW, L.gMass)
+        for lab in (L.pX, L.pSize, L.pSurface):
+            t.requires(OLD, lab, g, ng)
+        t.computes(L.gAlphaMaterial, [0]).computes(L.gNormAlphaToBeta, [0]).computes(L.gMatlProminence)
+        if self.contact.needs_color:
+            m = self.contact.master
+            t.requires(OLD, L.pMass, g, ng, [m]).requires(OLD, L.pColor, g, ng, [m]).computes(L.gColor, [m])
+        sched.add_task(t)
+
+    def _requires_lr(self, t):
+        c = self.contact
+        if c.needs_lr:
+            t.requires(NEW, L.gAlphaMaterial, matls=[0]).requires(NEW, L.gNormAlphaToBeta, matls=[0])
+            t.requires(NEW, L.gMatlProminence)
+            if c.needs_color:
+                t.requires(NEW, L.gColor, matls=[c.master])
 
     def schedule_compute_stable_timestep(self, level, sched):
         sched.add_task(Task("MPM::computeStableTimestep", self.compute_stable_timestep, self.matls)
@@ -183,6 +218,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(OLD, lab, g, ng)
         sched.add_task(t.computes(L.gStressFS))       # pruned unless g.stressFS is saved
         self.schedule_heat_conduction(sched)
+        if self.contact.needs_lr:
+            self._schedule_logistic_regression(sched)
         if self.contact.interpolated:
             t = Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms) \
                 .requires(NEW, L.gMass).modifies(L.gVelocity).requires(OLD, FL.delT)
@@ -190,6 +227,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 for lab in [L.pX, L.pMass] + ([L.pSize] if self.kind == "gimp" else []):
                     t.requires(OLD, lab, g, ng)
                 t.computes(L.gSurfNorm)
+            self._requires_lr(t)
             sched.add_task(t)
         sched.add_task(Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
                        .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
@@ -203,6 +241,9 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(NEW, L.gSurfNorm)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
+            if self.contact.type == "rigid":
+                t.requires(NEW, L.gIntForce).computes(L.RigidReactionForce).computes(L.RigidReactionTorque)
+            self._requires_lr(t)
             sched.add_task(t)
         if self.bcs.items:
             sched.add_task(Task("MPM::setGridBoundaryConditions", self.set_grid_bcs, ms)
@@ -221,6 +262,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(NEW, L.gSurfNorm)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
+            if self.contact.active:
+                self._requires_lr(t)
         else:       # USL: F and V in the same pass (transfer.py)
             t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):

@@ -5,7 +5,8 @@ p.deformationMeasure (F), p.particleID, p.externalforce (pressure BCs only), p.s
 (uGIMP half-widths, GIMP only), p.color (withColor only) and per-model state
 (plastic strain, internal energy, membrane tangent/thickness, accumulated strain
 energy of rate models), p.temperature (with heat conduction or MPMICE heat
-exchange, thermal.py). Each has a "+" twin written by the update before relocation.
+exchange, thermal.py), p.loadCurveID (load curves, 3 ids), p.surface (friction_LR).
+Each has a "+" twin written by the update before relocation.
 Grid: g.mass, g.velocity, g.volume, g.externalforce, g.internalforce,
 g.velocity_star, g.acceleration, g.temperature, g.temperatureRate. Reductions as in Uintah.
 """
@@ -37,7 +38,9 @@ pIntEnergy, pIntEnergyPre = _pair("p.internalEnergy")
 pTangent, pTangentPre = _pair("p.tangent", (3,))
 pThickness, pThicknessPre = _pair("p.thickness")
 pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
-pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
+pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID", (3,))     # up to 3 load-curve ids (pressure.py)
+pExternalHeatRate, pExternalHeatRatePre = _pair("p.externalHeatRate")   # W, <heat_flux> (pressure.py)
+pSurface, pSurfacePre = _pair("p.surface")        # 1 on its object's surface (friction_LR prominence)
 pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / MPMICE (thermal.py)
 pPlasticStrainRate, pPlasticStrainRatePre = _pair("p.plasticStrainRate")   # elastic_plastic_hp
 pEnergy, pEnergyPre = _pair("p.energy")                  # elastic_plastic_hp: specific internal energy
@@ -62,10 +65,16 @@ gIntForce = L.create("g.internalforce", NC, (3,))
 gStressFS = L.create("g.stressFS", NC, (3, 3))     # mass-weighted nodal stress (output)
 gVelocityL = L.create("g.velocity_L", NC, (3,))     # remapped updated velocity (MUSL, 004 eq. 13)
 gSurfNorm = L.create("g.surfNorm", NC, (3,))       # outward unit normal (friction contact)
+gAlphaMaterial = L.create("g.alphaMaterial", NC)           # friction_LR: the alpha material, -99 none (matl 0)
+gNormAlphaToBeta = L.create("g.normAlphaToBeta", NC, (3,))  # friction_LR: unit normal alpha -> beta (matl 0)
+gMatlProminence = L.create("g.matlProminence", NC)         # friction_LR: extreme face projection, -99 none
+gColor = L.create("g.color", NC)                           # friction_LRVar: mass-weighted p.color
 gVelocityStar = L.create("g.velocity_star", NC, (3,))
 gAcceleration = L.create("g.acceleration", NC, (3,))
 gTemperature = L.create("g.temperature", NC)            # mass-weighted nodal temperature (thermal.py)
 gTemperatureRate = L.create("g.temperatureRate", NC)    # conduction dT/dt at the nodes (thermal.py)
+gTemperatureNoBC = L.create("g.temperatureNoBC", NC)    # g.temperature before the Temperature BCs
+gThermalContactRate = L.create("g.thermalContactTemperatureRate", NC)   # <thermal_contact> (thermal.py)
 
 KineticEnergy = L.create("KineticEnergy", R, reduction="sum")
 StrainEnergy = L.create("StrainEnergy", R, reduction="sum")
@@ -73,6 +82,8 @@ TotalMass = L.create("TotalMass", R, reduction="sum")
 TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")
 CenterOfMassPosition = L.create("CenterOfMassPosition", R, (3,), reduction="sum")
 ThermalEnergy = L.create("ThermalEnergy", R, reduction="sum")   # sum m_p cv T_p (thermal.py)
+RigidReactionForce = L.create("RigidReactionForce", R, (3,), reduction="sum")     # specified contact (contact.py)
+RigidReactionTorque = L.create("RigidReactionTorque", R, (3,), reduction="sum")
 WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")
 # fluid points' artificial viscosity (004 eq. 24): per material m, [2m] the largest sound
 # speed and [2m+1] the largest |div v| over the whole level (MPM materials <= 16)

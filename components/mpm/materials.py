@@ -53,7 +53,8 @@ MATERIAL = {
 GEOM = {
     "res": Param("ivector", doc="particles per cell in each direction", at_least=1),
     "velocity": Param("vector", (0.0, 0.0, 0.0)),
-    "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py)", above=0.0),
+    "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py); 0 as Uintah allows",
+                         at_least=0.0),
 }
 
 
@@ -161,19 +162,23 @@ class Material:
         return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------
-    def create(self, patch, obj_base, pressure=None):
+    def create(self, patch, obj_base, pressure=None, surface=False):
         """Particles of this material in one patch: dict of arrays sorted by ID.
 
         IDs: object number (global over all materials, `obj_base` + k) times 2^40 plus
         the index of the particle's sub-cell on the level-wide lattice of that object,
         so they do not depend on the patch layout. With pressure BCs (pressure.py), "lcid"
-        is p.loadCurveID of the particles on a loaded surface."""
+        is p.loadCurveID of the particles on a loaded surface; with surface, "surf" is
+        p.surface (1: a neighbour one particle spacing away along an active direction is
+        outside the object, Uintah's checkForSurface)."""
         lv = patch.level
         taken = None
         out = []
         for k, obj in enumerate(self.objects):
             if "chain" in obj:
                 out.append(membrane_points(obj, patch, obj_base + k))
+                if surface:
+                    out[-1]["surf"] = np.ones(len(out[-1]["x"]))      # a membrane is all surface
                 continue
             res = np.array([1 if lv.collapsed[d] else obj["res"][d] for d in range(3)])
             axes = []
@@ -193,10 +198,13 @@ class Material:
             n = len(x)
             dxpp = lv.dx / res
             out.append(dict(x=x, id=ids.astype(np.int64), vol=np.full(n, vol), temp=np.full(n, obj["temperature"]),
-                            lcid=pressure.flag(x, obj["piece"], dxpp) if pressure else np.zeros(n),
+                            lcid=pressure.flag(x, obj["piece"], dxpp, self.index) if pressure
+                                 else np.zeros((n, 3)),
                             vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                             size=np.tile(0.5 * lv.dx / res, (n, 1)),
                             color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))
+            if surface:
+                out[-1]["surf"] = on_surface(x, obj["piece"], dxpp, ~np.asarray(lv.collapsed)).astype(float)
             from framework.geometry import Union
             taken = obj["piece"] if taken is None else Union([taken, obj["piece"]])
         data = {key: np.concatenate([o[key] for o in out]) for key in out[0]}
@@ -241,8 +249,20 @@ def read_membrane_object(g, with_color):
         g.child("res").mark_used()
     return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"], closed=spec["closed"],
                 velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
-                temperature=g.get("temperature", "float", 294.0, above=0.0),
+                temperature=g.get("temperature", "float", 294.0, at_least=0.0),
                 color=g.get("color", "float", 0.0) if with_color else None)
+
+
+def on_surface(x, piece, dxpp, active):
+    """Points whose neighbour one spacing away along an active direction lies outside piece."""
+    surface = np.zeros(len(x), bool)
+    for d in range(3):
+        if active[d]:
+            for sgn in (-1.0, 1.0):
+                y = x.copy()
+                y[:, d] += sgn * dxpp[d]
+                surface |= ~piece.inside(y)
+    return surface
 
 
 def membrane_points(obj, patch, obj_id):
@@ -261,7 +281,7 @@ def membrane_points(obj, patch, obj_id):
     depth = float(np.prod([lv.dx[d] for d in range(3) if lv.collapsed[d]])) if any(lv.collapsed) else 1.0
     vol = obj["ds"] * obj["thickness"] * depth
     return dict(x=x[idx], id=(obj_id * (1 << 40) + idx).astype(np.int64), vol=np.full(n, vol),
-                temp=np.full(n, obj["temperature"]), lcid=np.zeros(n),
+                temp=np.full(n, obj["temperature"]), lcid=np.zeros((n, 3)),
                 vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                 size=np.tile(0.5 * lv.dx / 2, (n, 1)),
                 color=np.full(n, obj["color"] if obj["color"] is not None else 0.0),

@@ -14,6 +14,7 @@ from framework.variables import VarType
 
 from . import kernels, transfer
 from . import labels as L
+from .thermal import divide_by_mass, p2g_heat
 
 NC = VarType.NC
 
@@ -103,7 +104,7 @@ class MPMTasks:
         se = 0.0
         for m in matls:
             mat = self.materials[m]
-            d = mat.create(patch, self._obj_base(m), self.pressure_bcs)
+            d = mat.create(patch, self._obj_base(m), self.pressure_bcs, surface=self.contact.needs_lr)
             n = len(d["id"])
             new_dw.create_particles(m, patch, n)
             F = np.zeros((n, 3, 3))
@@ -121,7 +122,7 @@ class MPMTasks:
                                                    temperature=d["temp"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
-                   L.pStrainEnergy: energy}
+                   L.pStrainEnergy: energy, L.pSurface: d.get("surf")}
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for name, (lab, _) in L.STATE.items():
                 put[lab] = own[name] if name in own else np.zeros((n,) + lab.shape)
@@ -134,6 +135,8 @@ class MPMTasks:
             if self.pressure_bcs:
                 new_dw.put(L.pLoadCurveID, m, patch, d["lcid"])
                 new_dw.put(L.pExtForce, m, patch, np.zeros((n, 3)))
+                if self.pressure_bcs.heat_flux:
+                    new_dw.put(L.pExternalHeatRate, m, patch, np.zeros(n))
                 new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(d["lcid"]))
             kernels.sums(d["mass"], d["vel"], d["x"], tot)
             se += energy.sum()
@@ -223,8 +226,75 @@ class MPMTasks:
         gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
         gv = {m: new_dw.get_modifiable(L.gVelocity, m, patch) for m in matls}
         normals = self._normals(patch, old_dw, new_dw) if self.contact.needs_normals else None
+        lr, color = self._lr(patch, new_dw)
         self.contact.exchange(gm, gv, None, None, old_dw.get_reduction(FL.delT), normals=normals,
-                              dx=self.level.dx)
+                              dx=self.level.dx, lr=lr, color=color)
+
+    def logistic_regression(self, patch, matls, old_dw, new_dw):
+        """friction_LR's g.alphaMaterial, g.normAlphaToBeta (material 0) and each material's
+        g.matlProminence (Uintah's computeLogisticRegression; contact.py), and for
+        friction_LRVar the master material's g.color."""
+        lv, c = self.level, self.contact
+        low = np.array(patch.low_index(NC), np.int64)
+        shape = np.array(patch.alloc_shape(NC), np.int64)
+        own_lo, own_hi = (np.array(b, np.int64) for b in patch.owned_local(NC))
+        kind = 0 if self.kind == "linear" else 1
+        nm, nn = len(matls), int(np.prod(shape))
+        gmass = np.stack([new_dw.get(L.gMass, m, patch).reshape(-1) for m in matls])
+        possible = np.ones(nm, np.bool_)
+        rigid = np.array([self.materials[m].is_rigid for m in matls], np.bool_)
+        alpha = np.empty(nn, np.int64)
+        n_matls = np.empty(nn, np.int64)
+        kernels.lr_alpha(gmass, possible, rigid, alpha, n_matls)
+        px = {m: old_dw.get(L.pX, m, patch) for m in matls}
+        size = {m: old_dw.get(L.pSize, m, patch) for m in matls}
+        lp = {m: size[m] if self.kind == "gimp" else _zeros3(len(px[m])) for m in matls}
+        count = np.zeros((nn, nm), np.int64)
+        for k, m in enumerate(matls):         # particles of each material near each node
+            col = np.zeros(nn, np.int64)
+            kernels.lr_near(kind, self.axes, px[m], lp[m], lv.anchor, lv.dx, low, shape, own_lo, own_hi,
+                            n_matls, 1e-8, col, False, col, np.empty((0, 3)))
+            count[:, k] = col
+        start = (np.cumsum(count.reshape(-1)) - count.reshape(-1)).reshape(nn, nm)
+        xs = np.empty((int(count.sum()), 3))
+        for k, m in enumerate(matls):
+            col = np.zeros(nn, np.int64)
+            kernels.lr_near(kind, self.axes, px[m], lp[m], lv.anchor, lv.dx, low, shape, own_lo, own_hi,
+                            n_matls, 1e-8, col, True, np.ascontiguousarray(start[:, k]), xs)
+        normal = new_dw.allocate(L.gNormAlphaToBeta, 0, patch, 0.0)
+        flat_normal = normal.reshape(-1, 3)
+        kernels.lr_normals(alpha, start, count, xs, 1e-7 * lv.dx[0] ** 2, flat_normal)
+        self.bcs.symmetric_normal(patch, normal)     # and no component along a collapsed direction
+        flat_normal[:, ~np.asarray(self.dims, bool)] = 0.0
+        length = np.linalg.norm(flat_normal, axis=1, keepdims=True)
+        flat_normal /= length + 1e-100
+        flat_normal[alpha < 0] = 0.0
+        near = count.sum(axis=1)
+        for k, m in enumerate(matls):
+            pmax = np.full(nn, -9.0e99)
+            pmin = np.full(nn, 9.0e99)
+            kernels.lr_prominence(kind, self.axes, px[m], lp[m], size[m], old_dw.get(L.pSurface, m, patch),
+                                  lv.anchor, lv.dx, low, shape, own_lo, own_hi, near, alpha, flat_normal, k,
+                                  pmax, pmin)
+            prom = new_dw.allocate(L.gMatlProminence, m, patch, -99.0).reshape(-1)
+            np.copyto(prom, pmax, where=(alpha == k) & (pmax > -9.0e99))
+            np.copyto(prom, pmin, where=(alpha != k) & (pmin < 9.0e99))
+        new_dw.allocate(L.gAlphaMaterial, 0, patch, None).reshape(-1)[...] = alpha
+        if c.needs_color:
+            m = c.master
+            gmc = np.zeros(patch.alloc_shape(NC))
+            p2g_heat(kind, self.axes, px[m], old_dw.get(L.pMass, m, patch), old_dw.get(L.pColor, m, patch),
+                             lp[m], lv.anchor, lv.dx, low, gmc)
+            divide_by_mass(new_dw.get(L.gMass, m, patch), gmc, new_dw.allocate(L.gColor, m, patch, None))
+
+    def _lr(self, patch, new_dw):
+        """(alpha, normal, {material: prominence}), master's g.color: friction_LR's inputs."""
+        c = self.contact
+        if not c.needs_lr:
+            return None, None
+        lr = (new_dw.get(L.gAlphaMaterial, 0, patch), new_dw.get(L.gNormAlphaToBeta, 0, patch),
+              {m: new_dw.get(L.gMatlProminence, m, patch) for m in self.matls})
+        return lr, (new_dw.get(L.gColor, c.master, patch) if c.needs_color else None)
 
     def _normals(self, patch, old_dw, new_dw):
         """g.surfNorm per contact material, as Uintah's computeNormals: g_m = sum m_p grad S
@@ -278,7 +348,14 @@ class MPMTasks:
         ga = {m: new_dw.get_modifiable(L.gAcceleration, m, patch) for m in matls}
         normals = {m: new_dw.get(L.gSurfNorm, m, patch) for m in c.materials} if c.needs_normals else None
         t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
-        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx)
+        lr, color = self._lr(patch, new_dw)
+        node_x = (self.level.anchor, self.level.dx, patch.low_index(NC))
+        if c.type == "rigid":          # the reaction on the rigid body, before its velocity is imposed
+            force, torque = c.reaction(gm, {m: new_dw.get(L.gIntForce, m, patch) for m in c.materials}, t,
+                                       node_x, patch.owned_local(NC))
+            new_dw.put_reduction(L.RigidReactionForce, force)
+            new_dw.put_reduction(L.RigidReactionTorque, torque)
+        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx, node_x=node_x, lr=lr, color=color)
 
     def set_grid_bcs(self, patch, matls, old_dw, new_dw):
         dt = old_dw.get_reduction(FL.delT)
@@ -343,7 +420,9 @@ class MPMTasks:
         gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
         normals = {m: new_dw.get(L.gSurfNorm, m, patch) for m in c.materials} if c.needs_normals else None
         t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
-        c.exchange(gm, gvl, None, None, dt, t=t, normals=normals, dx=self.level.dx)
+        lr, color = self._lr(patch, new_dw)
+        c.exchange(gm, gvl, None, None, dt, t=t, normals=normals, dx=self.level.dx,
+                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)), lr=lr, color=color)
         for m in matls:
             self.bcs.apply(patch, m, gvl[m], np.empty_like(gvl[m]), gvl[m], dt)
 
@@ -512,11 +591,15 @@ class MPMTasks:
                 new_dw.put(L.pStrainEnergyPre, m, patch, energy)
             se += energy.sum()
             for final, pre in self.carry:
-                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID):
+                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID, L.pSurface):
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
             if self.pressure_bcs:
                 lcid = old_dw.get(L.pLoadCurveID, m, patch)
-                new_dw.put(L.pExtForcePre, m, patch, self._ext_force(old_dw, m, patch, old_dw.get(L.pX, m, patch)))
+                px_old = old_dw.get(L.pX, m, patch)
+                new_dw.put(L.pExtForcePre, m, patch, self._ext_force(old_dw, m, patch, px_old))
+                if self.pressure_bcs.heat_flux:        # this step's heat rates (thermal.py), for output
+                    new_dw.put(L.pExternalHeatRatePre, m, patch, self.pressure_bcs.heat_rates(
+                        px_old, lcid, old_dw.get_reduction(FL.simTime), old_dw.get_reduction(L.PressureBCParticles)))
                 new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(lcid))
         new_dw.put_reduction(L.StrainEnergy, se)
         new_dw.put_reduction(L.WaveSpeed, ws)

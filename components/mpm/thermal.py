@@ -138,6 +138,22 @@ def g2p_heat(kind, act, px, pT, pm, lp, anchor, dx, node_low, rate, dt, T_out, c
 
 
 @njit(cache=True)
+def contact_temperature_rate(gmass, gT, cv, dt, out):
+    """Uintah's STThermalContact: every material's nodal temperature relaxes in one step to
+    the heat-capacity-weighted mean, out_m = (sum m cv T / sum m cv - T_m)/dt (0 where no
+    material has mass). gmass, gT, out: (materials, nodes)."""
+    nm, nn = gmass.shape
+    for i in range(nn):
+        num = 0.0
+        den = 0.0
+        for m in range(nm):
+            num += gT[m, i] * gmass[m, i] * cv[m]
+            den += gmass[m, i] * cv[m]
+        for m in range(nm):
+            out[m, i] = (num / den - gT[m, i]) / dt if den > 0.0 else 0.0
+
+
+@njit(cache=True)
 def divide_by_mass(gm, q, out):
     """out_i = q_i / m_i where m_i > 0, else 0 (g.temperature, g.temperatureRate)."""
     f, fm, fo = q.reshape(-1), gm.reshape(-1), out.reshape(-1)
@@ -162,10 +178,19 @@ class ThermalTasks:
     """Mixed into the MPM component (before MPMTasks): the heat tasks and their scheduling.
 
     `thermal_rates` lists extra NC rate labels (MPMICE: dTdt_NC) that the particle update
-    adds to the conduction rate; `thermal_needed` turns the model on without the flag."""
+    adds to the conduction rate; `thermal_needed` turns the model on without the flag.
+
+    `<MaterialProperties><MPM><thermal_contact/>` (Uintah's STThermalContact, no tags): at
+    every node the materials' temperatures relax to their heat-capacity-weighted mean
+    in one step (g.thermalContactTemperatureRate, one more of the rates). Dirichlet
+    "Temperature" grid BCs (bc.py) set g.temperature on their nodes (the interpolated
+    one kept as g.temperatureNoBC), and the particle update takes the total nodal rate
+    as (T* - g.temperatureNoBC)/dt with T* = g.temperature + rate dt and the BC applied
+    to T* (Uintah's integrateTemperatureRate). Both need heat conduction on."""
 
     thermal_needed = False
     thermal_rates = ()
+    thermal_contact_node = None
 
     def thermal_setup(self):
         """After the materials are read: which tasks this deck needs."""
@@ -177,6 +202,18 @@ class ThermalTasks:
                 raise self.materials[m].node.error(
                     "heat conduction needs <specific_heat> > 0 (thermal_conductivity is positive)")
         self.th_act = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask of the kernels
+        node = self.thermal_contact_node
+        self.thermal_contact = node is not None and len(self.materials) > 1
+        self.temperature_bcs = bool(self.bcs.temperature_items)
+        for what, given, where in (("<thermal_contact>", node is not None, node),
+                                   ("a Temperature grid BC", self.temperature_bcs, None)):
+            if given and not self.thermal:
+                where = where or self.bcs.temperature_node
+                raise where.error(f"{what} needs heat conduction: <MPM><DoExplicitHeatConduction>true"
+                                  "</DoExplicitHeatConduction> (Uintah's default; pysus's is false)")
+        if node is not None:
+            for child in node.children():
+                raise child.error("<thermal_contact> takes no tags (Uintah's STThermalContact)")
         self.dt_thermal = np.inf
         ih2 = sum(1.0 / self.level.dx[d] ** 2 for d in range(3) if self.dims[d])
         for m in self.conducting:
@@ -199,13 +236,21 @@ class ThermalTasks:
         t = Task("MPM::interpolateTemperatureToGrid", self.interpolate_temperature, ms).requires(NEW, L.gMass)
         for lab in [L.pX, L.pMass, L.pTemperature] + lp:
             t.requires(OLD, lab, g, ng)
+        if self.temperature_bcs:
+            t.computes(L.gTemperatureNoBC)
         sched.add_task(t.computes(L.gTemperature))
         if self.conducting:
             t = (Task("MPM::computeInternalHeatRate", self.internal_heat_rate, self.conducting)
                  .requires(NEW, L.gMass).requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, 2 * ng))
             for lab in [L.pX, L.pVolume] + lp:
                 t.requires(OLD, lab, g, ng)
+            if self.pressure_bcs and self.pressure_bcs.heat_flux:
+                t.requires(OLD, L.pLoadCurveID, g, ng).requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
             sched.add_task(t.computes(L.gTemperatureRate))
+        if self.thermal_contact:
+            sched.add_task(Task("MPM::computeHeatExchange", self.heat_exchange, ms).requires(OLD, FL.delT)
+                           .requires(NEW, L.gMass).requires(NEW, L.gTemperature)
+                           .computes(L.gThermalContactRate))
 
     def schedule_temperature_update(self, sched):
         """p.temperature+ from the nodal rates, after the exchange has added its own."""
@@ -217,8 +262,11 @@ class ThermalTasks:
             t.requires(OLD, lab)
         if self.conducting:
             t.requires(NEW, L.gTemperatureRate, Ghost.AROUND_CELLS, self.ng, matls=self.conducting)
-        for lab in self.thermal_rates:
+        for lab in self.thermal_rates + ((L.gThermalContactRate,) if self.thermal_contact else ()):
             t.requires(NEW, lab, Ghost.AROUND_CELLS, self.ng)
+        if self.temperature_bcs:
+            t.requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, self.ng)
+            t.requires(NEW, L.gTemperatureNoBC, Ghost.AROUND_CELLS, self.ng)
         sched.add_task(t.computes(L.pTemperaturePre).computes(L.ThermalEnergy))
 
     # -- task bodies ----------------------------------------------------------------------------
@@ -245,11 +293,28 @@ class ThermalTasks:
             gmT = np.zeros(patch.alloc_shape(NC))
             p2g_heat(kind, self.th_act, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pTemperature, m, patch),
                      self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, gmT)
-            divide_by_mass(new_dw.get(L.gMass, m, patch), gmT, new_dw.allocate(L.gTemperature, m, patch, None))
+            T = new_dw.allocate(L.gTemperature, m, patch, None)
+            divide_by_mass(new_dw.get(L.gMass, m, patch), gmT, T)
+            if self.temperature_bcs:
+                new_dw.put(L.gTemperatureNoBC, m, patch, T.copy())
+                self.bcs.apply_temperature(patch, m, T)
+
+    def heat_exchange(self, patch, matls, old_dw, new_dw):
+        """g.thermalContactTemperatureRate of every material (Uintah's STThermalContact)."""
+        dt = old_dw.get_reduction(FL.delT)
+        gmass = np.stack([new_dw.get(L.gMass, m, patch).reshape(-1) for m in matls])
+        gT = np.stack([new_dw.get(L.gTemperature, m, patch).reshape(-1) for m in matls])
+        cv = np.array([self.materials[m].specific_heat for m in matls])
+        out = np.empty_like(gT)
+        contact_temperature_rate(gmass, gT, cv, dt, out)
+        for k, m in enumerate(matls):
+            new_dw.put(L.gThermalContactRate, m, patch, out[k].reshape(patch.alloc_shape(NC)))
 
     def internal_heat_rate(self, patch, matls, old_dw, new_dw):
-        """g.temperatureRate = -sum_p (k/cv) V_p grad S_ip . grad T_p / m_i (Uintah's
-        computeInternalHeatRate and solveHeatEquations, no external heat)."""
+        """g.temperatureRate = (-sum_p k V_p grad S_ip . grad T_p + sum_p S_ip q_p) / (m_i cv)
+        (Uintah's computeInternalHeatRate and solveHeatEquations); q_p the heat rates of
+        the <heat_flux> BCs at the step's start (pressure.py), when the deck has any."""
+        flux = self.pressure_bcs is not None and self.pressure_bcs.heat_flux
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
         kind = 0 if self.kind == "linear" else 1
@@ -260,6 +325,12 @@ class ThermalTasks:
             heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch), self._lp(old_dw, m, patch, len(px)),
                       lv.anchor, lv.dx, low, new_dw.get(L.gTemperature, m, patch),
                       mat.conductivity / mat.specific_heat, acc)
+            if flux:
+                q = self.pressure_bcs.heat_rates(px, old_dw.get(L.pLoadCurveID, m, patch),
+                                                 old_dw.get_reduction(FL.simTime),
+                                                 old_dw.get_reduction(L.PressureBCParticles))
+                p2g_heat(kind, self.th_act, px, q / mat.specific_heat, np.ones(len(px)),
+                         self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, acc)
             divide_by_mass(new_dw.get(L.gMass, m, patch), acc, new_dw.allocate(L.gTemperatureRate, m, patch, None))
 
     def update_particle_temperature(self, patch, matls, old_dw, new_dw):
@@ -272,9 +343,15 @@ class ThermalTasks:
         for m in matls:
             mat = self.materials[m]
             rates = [new_dw.get(lab, m, patch) for lab in self.thermal_rates]
+            if self.thermal_contact:
+                rates.append(new_dw.get(L.gThermalContactRate, m, patch))
             if m in self.conducting:
                 rates.append(new_dw.get(L.gTemperatureRate, m, patch))
             rate = rates[0] if len(rates) == 1 else (sum(rates) if rates else np.zeros(patch.alloc_shape(NC)))
+            if self.temperature_bcs:
+                t_star = new_dw.get(L.gTemperature, m, patch) + rate * dt
+                self.bcs.apply_temperature(patch, m, t_star)
+                rate = (t_star - new_dw.get(L.gTemperatureNoBC, m, patch)) / dt
             px = old_dw.get(L.pX, m, patch)
             T_new = np.empty(len(px))
             e += g2p_heat(kind, self.th_act, px, old_dw.get(L.pTemperature, m, patch), old_dw.get(L.pMass, m, patch),

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import UINTAH_INPUTS, pysus
+from tests.conftest import ROOT, UINTAH_INPUTS, pysus
 
 CASES = {
     "disks_sulsky": (UINTAH_INPUTS / "MPM" / "disks_sulsky.ups",
@@ -18,6 +18,14 @@ CASES = {
     "disks_gimp": (UINTAH_INPUTS / "MPM" / "disks.ups", [("<maxTime>0.2</maxTime>", "<maxTime>0.01</maxTime>"),
                                                          ('<save label = "p.x"/>',
                                                           '<save label = "p.x"/><save label="p.particleID"/>')]),
+    # friction_LR contact (normals from ghost particles of the other patches), 4 patches
+    "nairn_friction_lr": (ROOT / "tests" / "mpm" / "nairn_friction.ups",
+                          [("<patches>[2,1,1]</patches>", "<patches>[4,1,1]</patches>"),
+                           ("<max_Timesteps>3</max_Timesteps>", "<max_Timesteps>20</max_Timesteps>"),
+                           ("<outputTimestepInterval>1<", "<outputTimestepInterval>20<")]),
+    # pressure + torque load curves, a spinning rigid stem (include_rotation), 4 patches
+    "load_curve_spin": (ROOT / "tests" / "mpm" / "load_curve_spin.ups",
+                        [("<max_Timesteps>2</max_Timesteps>", "<max_Timesteps>4</max_Timesteps>")]),
 }
 
 
@@ -30,6 +38,7 @@ def test_mpm_ranks_equal_one_rank(tmp_path, case):
         text = text.replace(a, b)
     path = tmp_path / f"{case}.ups"
     path.write_text(text)
+    (tmp_path / "spin.txt").write_text("0 0 0 0 0 0 0 0 0 50\n9.9 0 0 0 0 0 0 0 0 50\n")
     runs = {}
     for n in (1, 2, 3):
         uda = tmp_path / f"{case}_{n}.uda"

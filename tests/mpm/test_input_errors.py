@@ -23,8 +23,8 @@ def test_unknown_constitutive_model(tmp_path):
 
 
 def test_unknown_contact(tmp_path):
-    text = open(SULSKY).read().replace("<type>null</type>", "<type>approach</type>")
-    _fails(tmp_path, text, "approach", "single_velocity")
+    text = open(SULSKY).read().replace("<type>null</type>", "<type>penalty</type>")
+    _fails(tmp_path, text, "penalty", "single_velocity")
 
 
 def test_unknown_mpm_tag(tmp_path):
