@@ -448,12 +448,10 @@ def advect(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi
     q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6; buf: (nq, row length).
     """
     _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
-    if dims[0]:
-        _sweep(q, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
-    if dims[1]:
-        _sweep(q, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
-    if dims[2]:
-        _sweep(q, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
+    for d in range(3):                  # d a run-time value: one compiled _sweep, not one per axis
+        if dims[d]:
+            uf = ux if d == 0 else (uy if d == 1 else uz)
+            _sweep(q, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
     _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
 
 
@@ -467,12 +465,10 @@ def advect_extrema(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, 
     limited_gradients(q, dims, dxs, compatible, grad)
     if int(dims[0]) + int(dims[1]) + int(dims[2]) > 1:
         _slab_offsets(ux, uy, uz, shs, dims, dt, rc)
-    if dims[0]:
-        _sweep_extrema(q, grad, rc, ux, 0, shs[0], flo[0], fhi[0], lo, hi, dt, dxs, dims, compatible, acc, buf)
-    if dims[1]:
-        _sweep_extrema(q, grad, rc, uy, 1, shs[1], flo[1], fhi[1], lo, hi, dt, dxs, dims, compatible, acc, buf)
-    if dims[2]:
-        _sweep_extrema(q, grad, rc, uz, 2, shs[2], flo[2], fhi[2], lo, hi, dt, dxs, dims, compatible, acc, buf)
+    for d in range(3):
+        if dims[d]:
+            uf = ux if d == 0 else (uy if d == 1 else uz)
+            _sweep_extrema(q, grad, rc, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, compatible, acc, buf)
     _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
 
 
