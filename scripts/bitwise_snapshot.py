@@ -53,7 +53,7 @@ def run(name, tmp):
     uda = Path(tmp) / f"{name}.uda"
     code = "import sys; from framework.cli import main; sys.exit(main())"
     r = subprocess.run([sys.executable, "-c", code, str(ups), "--filebase", str(uda), "--max-timesteps", str(steps),
-                        "-q"], cwd=ROOT, capture_output=True, text=True, timeout=900)
+                        "-q"], cwd=ROOT, capture_output=True, text=True, timeout=3600)
     if r.returncode:
         raise SystemExit(f"{name}: {r.stderr[-2000:]}")
     da = DataArchive(uda)
