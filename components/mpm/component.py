@@ -140,7 +140,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             c.append((L.pColor, L.pColorPre))
         if any(m.increment_energy for m in self.materials):
             c.append((L.pStrainEnergy, L.pStrainEnergyPre))
-        for name in dict.fromkeys(m.state for m in self.materials if m.state):
+        for name in dict.fromkeys(s for m in self.materials for s in m.state):
             c.append(L.STATE[name])
         if self.has_membrane:                 # 004 sec. 3.2: tangent and thickness per point
             c += [(L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)]

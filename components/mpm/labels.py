@@ -3,7 +3,7 @@
 Particle state carried between steps: p.x, p.velocity, p.mass, p.volume, p.stress,
 p.deformationMeasure (F), p.particleID, p.externalforce (pressure BCs only), p.size
 (uGIMP half-widths, GIMP only), p.color (withColor only) and per-model state
-(plastic strain, internal energy, membrane tangent/thickness, accumulated strain
+(plastic strain, elastic left Cauchy-Green tensor, internal energy, membrane tangent/thickness, accumulated strain
 energy of rate models), p.temperature (with heat conduction or MPMICE heat
 exchange, thermal.py). Each has a "+" twin written by the update before relocation.
 Grid: g.mass, g.velocity, g.volume, g.externalforce, g.internalforce,
@@ -33,14 +33,16 @@ pExtForce, pExtForcePre = _pair("p.externalforce", (3,))
 pSize, pSizePre = _pair("p.size", (3,))
 pColor, pColorPre = _pair("p.color")
 pPlasticStrain, pPlasticStrainPre = _pair("p.plasticStrain")
+pBElBar, pBElBarPre = _pair("p.bElBar", (3, 3))       # elastic volume-preserving b (UCNH plasticity)
 pIntEnergy, pIntEnergyPre = _pair("p.internalEnergy")
 pTangent, pTangentPre = _pair("p.tangent", (3,))
 pThickness, pThicknessPre = _pair("p.thickness")
 pStrainEnergy, pStrainEnergyPre = _pair("p.strainEnergy")
 pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID")
 pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / MPMICE (thermal.py)
-STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model scalar state
-         "p.internalEnergy": (pIntEnergy, pIntEnergyPre)}
+STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model state (materials.STATE)
+         "p.internalEnergy": (pIntEnergy, pIntEnergyPre),
+         "p.bElBar": (pBElBar, pBElBarPre)}
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)
 

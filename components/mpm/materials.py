@@ -26,13 +26,17 @@ MODELS = {
     "rigid": "rigid",
     "ideal_gas_fluid": "ideal_gas_fluid",
     "membrane": "membrane",
+    "comp_neo_hook_plastic": "comp_neo_hook_plastic",
+    "UCNH": "ucnh",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
-NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid")
+NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH")
 
-# models with one scalar state per particle: the carried particle label holding it
-STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy"}
+# models with state per particle: the carried particle labels holding it, in the order the
+# model's update takes them (old values, then new values)
+STATE = {"elastic_plastic": ("p.plasticStrain",), "ideal_gas_fluid": ("p.internalEnergy",),
+         "comp_neo_hook_plastic": ("p.plasticStrain", "p.bElBar"), "UCNH": ("p.plasticStrain", "p.bElBar")}
 
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
@@ -56,7 +60,7 @@ GEOM = {
 MODEL_RANGES = {"bulk_modulus": (0.0, None), "shear_modulus": (None, 0.0), "K": (0.0, None), "G": (None, 0.0),
                 "yield_stress": (0.0, None), "hardening_modulus": (None, 0.0), "gamma": (1.0, None),
                 "viscosity": (None, 0.0), "specific_heat": (None, 0.0), "he_constant_1": (None, 0.0),
-                "he_constant_2": (None, 0.0)}
+                "he_constant_2": (None, 0.0), "alpha": (None, 0.0)}
 
 
 class Material:
@@ -100,7 +104,8 @@ class Material:
             self.params = self.model.read_failure(self.params, node, cm)
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
         self.uses_L = kind not in NO_L       # the model reads the velocity gradient
-        self.state = STATE.get(kind)          # name of the model's scalar state label, or None
+        # names of the model's state labels (UCNH without plasticity has none)
+        self.state = STATE.get(kind, ()) if getattr(self.params, "usePlasticity", True) else ()
         if kind == "ideal_gas_fluid":
             # e0 = c_v T: the model's <specific_heat>, else the material's
             self.cv = self.params.specific_heat or props["specific_heat"]
@@ -126,14 +131,17 @@ class Material:
             raise node.error("a material needs at least one <geom_object>")
 
     def initial_state(self, d):
-        """The model state of new particles: plastic strain 0; ideal gas: the specific
-        internal energy e = specific_heat * <temperature> of the geometry object; membrane:
-        (unit tangent, thickness) from the chain."""
+        """The model state of new particles, one array per label of self.state: plastic
+        strain 0; ideal gas: the specific internal energy e = specific_heat * <temperature>
+        of the geometry object; the model's own (initial_state(params, n)) where it has one;
+        membrane: (unit tangent, thickness) from the chain."""
         if self.model_name == "ideal_gas_fluid":
-            return self.cv * d["temp"]
+            return (self.cv * d["temp"],)
         if self.is_membrane:
             return d["tangent"], d["thickness"]
-        return np.zeros(len(d["id"]))
+        if self.state and hasattr(self.model, "initial_state"):
+            return self.model.initial_state(self.params, len(d["id"]))
+        return tuple(np.zeros(len(d["id"])) for _ in self.state)
 
     # -- particles -------------------------------------------------------------------
     def create(self, patch, obj_base, pressure=None):

@@ -74,18 +74,19 @@ class MPMTasks:
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
                       old=None, new=None, scale=None):
-        """Call the material's model; `old`/`new` are its state arrays (plastic strain);
-        membrane: (tangent, thickness, volume) before and after (the model sets the volume)."""
+        """Call the material's model; `old`/`new` are tuples of its state arrays (mat.state:
+        plastic strain, ...); membrane: (tangent, thickness, volume) before and after (the
+        model sets the volume)."""
         if mat.is_membrane:
             (t_old, h_old, v_old), (t_new, h_new, v_new) = old, new
             return mat.model.update(mat.params, Lg, F_old, F_new, v_old, mass, vel, dt, s_old, s_new,
                                     energy, t_old, t_new, h_old, h_new, v_new)
         if scale is not None:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
-                                    energy, old, new, scale)
+                                    energy, *old, *new, scale)
         if mat.state:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
-                                    energy, old, new)
+                                    energy, *old, *new)
         return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy)
 
     def _obj_base(self, m):
@@ -115,7 +116,7 @@ class MPMTasks:
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
                    L.pStrainEnergy: energy}
             for name, (lab, _) in L.STATE.items():
-                put[lab] = state if mat.state == name else np.zeros(n)
+                put[lab] = state[mat.state.index(name)] if name in mat.state else np.zeros((n,) + lab.shape)
             put[L.pTangent] = state[0] if mat.is_membrane else np.zeros((n, 3))
             put[L.pThickness] = state[1] if mat.is_membrane else np.zeros(n)
             new_dw.put(L.pX, m, patch, d["x"])
@@ -451,13 +452,16 @@ class MPMTasks:
                                        np.array(lv.periodic), np.array(patch.low_index(NC), np.int64),
                                        new_dw.get(L.gMass, m, patch), gvol[m], sum(gvol.values()), pm, vol_new)
             old = new = None
+            olds, news = {}, {}
             for final, pre in self.carry:
                 if final.name in L.STATE:
-                    if mat.state == final.name:
-                        old, new = old_dw.get(final, m, patch), np.empty(n)
-                        new_dw.put(pre, m, patch, new)
+                    if final.name in mat.state:
+                        olds[final.name], news[final.name] = old_dw.get(final, m, patch), np.empty((n,) + final.shape)
+                        new_dw.put(pre, m, patch, news[final.name])
                     else:
                         new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            if mat.state:
+                old, new = tuple(olds[s] for s in mat.state), tuple(news[s] for s in mat.state)
             if mat.is_membrane:         # 004 sec. 3.2: the model convects t, h and sets V
                 t_new, h_new = np.empty((n, 3)), np.empty(n)
                 new_dw.put(L.pTangentPre, m, patch, t_new)
