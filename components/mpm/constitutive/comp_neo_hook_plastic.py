@@ -71,7 +71,7 @@ def kernel(K, mu, sy, H, F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_
     fb = np.empty((3, 3))
     bt = np.empty((3, 3))
     for p in range(F_new.shape[0]):
-        inv3(F_old[p], Fi)
+        inv3(F_old[p], Fi)                       # f = F_new F_old^-1
         for i in range(3):
             for j in range(3):
                 f[i, j] = F_new[p, i, 0] * Fi[0, j] + F_new[p, i, 1] * Fi[1, j] + F_new[p, i, 2] * Fi[2, j]
@@ -83,7 +83,7 @@ def kernel(K, mu, sy, H, F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_
             for j in range(3):
                 bt[i, j] = c3 * (fb[i, 0] * f[j, 0] + fb[i, 1] * f[j, 1] + fb[i, 2] * f[j, 2])
         Ie = (bt[0, 0] + bt[1, 1] + bt[2, 2]) / 3.0
-        ss = 0.0
+        ss = 0.0                                 # |s_trial|^2, s_trial = mu dev(bbar_trial)
         for i in range(3):
             for j in range(3):
                 s = mu * (bt[i, j] - (Ie if i == j else 0.0))
