@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 from . import comp_neo_hook
-from ._common import _get, det3, inv3, max_wavespeed
+from ._common import _get, max_wavespeed
 
 ENERGY_IS_INCREMENT = False
 SQ23 = np.sqrt(2.0 / 3.0)
@@ -60,57 +60,89 @@ def initial_state(params, n):
     return np.full(n, params.alpha), be
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def _load(A, p):
+    """Row-major 9-tuple of A[p]."""
+    return (A[p, 0, 0], A[p, 0, 1], A[p, 0, 2], A[p, 1, 0], A[p, 1, 1], A[p, 1, 2], A[p, 2, 0], A[p, 2, 1],
+            A[p, 2, 2])
+
+
+@njit(cache=True, inline="always")
+def _mul(a, b):
+    """a b of row-major 9-tuples."""
+    return (a[0] * b[0] + a[1] * b[3] + a[2] * b[6], a[0] * b[1] + a[1] * b[4] + a[2] * b[7],
+            a[0] * b[2] + a[1] * b[5] + a[2] * b[8], a[3] * b[0] + a[4] * b[3] + a[5] * b[6],
+            a[3] * b[1] + a[4] * b[4] + a[5] * b[7], a[3] * b[2] + a[4] * b[5] + a[5] * b[8],
+            a[6] * b[0] + a[7] * b[3] + a[8] * b[6], a[6] * b[1] + a[7] * b[4] + a[8] * b[7],
+            a[6] * b[2] + a[7] * b[5] + a[8] * b[8])
+
+
+@njit(cache=True, inline="always")
+def _det(a):
+    return a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) + a[2] * (a[3] * a[7] - a[4] * a[6])
+
+
+@njit(cache=True, inline="always")
+def _inv(a):
+    d = 1.0 / _det(a)
+    return ((a[4] * a[8] - a[5] * a[7]) * d, (a[2] * a[7] - a[1] * a[8]) * d, (a[1] * a[5] - a[2] * a[4]) * d,
+            (a[5] * a[6] - a[3] * a[8]) * d, (a[0] * a[8] - a[2] * a[6]) * d, (a[2] * a[3] - a[0] * a[5]) * d,
+            (a[3] * a[7] - a[4] * a[6]) * d, (a[1] * a[6] - a[0] * a[7]) * d, (a[0] * a[4] - a[1] * a[3]) * d)
+
+
+@njit(cache=True, inline="always")
+def _abt(a, b):
+    """a b^T of row-major 9-tuples."""
+    return _mul(a, (b[0], b[3], b[6], b[1], b[4], b[7], b[2], b[5], b[8]))
+
+
+@njit(cache=True, fastmath={'contract'})
 def kernel(K, mu, sy, H, F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_new, be_new,
            stress_new, energy):
-    """Every particle's stress, plastic strain, bElBar and energy; the wave speed (3,)."""
+    """Every particle's stress, plastic strain, bElBar and energy; the wave speed (3,).
+    Scalar locals (9-tuples) only."""
     ws = np.zeros(3)
     cK = K + 4.0 * mu / 3.0
-    Fi = np.empty((3, 3))
-    f = np.empty((3, 3))
-    fb = np.empty((3, 3))
-    bt = np.empty((3, 3))
     for p in range(F_new.shape[0]):
-        inv3(F_old[p], Fi)                       # f = F_new F_old^-1
-        for i in range(3):
-            for j in range(3):
-                f[i, j] = F_new[p, i, 0] * Fi[0, j] + F_new[p, i, 1] * Fi[1, j] + F_new[p, i, 2] * Fi[2, j]
-        c3 = 1.0 / np.cbrt(det3(f))
-        for i in range(3):                       # fbar bbar_old
-            for j in range(3):
-                fb[i, j] = c3 * (f[i, 0] * be_old[p, 0, j] + f[i, 1] * be_old[p, 1, j] + f[i, 2] * be_old[p, 2, j])
-        for i in range(3):                       # bbar_trial = fbar bbar_old fbar^T
-            for j in range(3):
-                bt[i, j] = c3 * (fb[i, 0] * f[j, 0] + fb[i, 1] * f[j, 1] + fb[i, 2] * f[j, 2])
-        Ie = (bt[0, 0] + bt[1, 1] + bt[2, 2]) / 3.0
-        ss = 0.0                                 # |s_trial|^2, s_trial = mu dev(bbar_trial)
-        for i in range(3):
-            for j in range(3):
-                s = mu * (bt[i, j] - (Ie if i == j else 0.0))
-                ss += s * s
-        snorm = np.sqrt(ss)
+        Fn = _load(F_new, p)
+        f = _mul(Fn, _inv(_load(F_old, p)))      # f = F_new F_old^-1
+        c3 = 1.0 / np.cbrt(_det(f))
+        fb = (c3 * f[0], c3 * f[1], c3 * f[2], c3 * f[3], c3 * f[4], c3 * f[5], c3 * f[6], c3 * f[7], c3 * f[8])
+        bt = _abt(_mul(fb, _load(be_old, p)), fb)   # bbar_trial = fbar bbar_old fbar^T
+        Ie = (bt[0] + bt[4] + bt[8]) / 3.0
+        d0, d4, d8 = bt[0] - Ie, bt[4] - Ie, bt[8] - Ie     # s_trial = mu dev(bbar_trial)
+        snorm = mu * np.sqrt(d0 * d0 + d4 * d4 + d8 * d8 + bt[1] * bt[1] + bt[2] * bt[2] + bt[3] * bt[3]
+                             + bt[5] * bt[5] + bt[6] * bt[6] + bt[7] * bt[7])
         a = alpha_old[p]
         ftrial = snorm - SQ23 * (H * a + sy)
-        plastic = ftrial > 0.0
         scale = 1.0                               # s = scale * s_trial
-        if plastic:                               # radial return
+        if ftrial > 0.0:                          # radial return
             mubar = Ie * mu
             dgamma = (ftrial / (2.0 * mubar)) / (1.0 + H / (3.0 * mubar))
             scale = 1.0 - 2.0 * mubar * dgamma / snorm
             a += SQ23 * dgamma
         alpha_new[p] = a
-        J = det3(F_new[p])
+        J = _det(Fn)
         iJ = 1.0 / J
         pr = 0.5 * K * (J - iJ)
-        tr = 0.0
+        c = mu * iJ * scale
+        stress_new[p, 0, 0] = c * d0 + pr
+        stress_new[p, 1, 1] = c * d4 + pr
+        stress_new[p, 2, 2] = c * d8 + pr
+        stress_new[p, 0, 1] = c * bt[1]
+        stress_new[p, 1, 0] = c * bt[3]
+        stress_new[p, 0, 2] = c * bt[2]
+        stress_new[p, 2, 0] = c * bt[6]
+        stress_new[p, 1, 2] = c * bt[5]
+        stress_new[p, 2, 1] = c * bt[7]
+        if ftrial > 0.0:                          # bbar = s/mu + I_e I
+            bt = (scale * d0 + Ie, scale * bt[1], scale * bt[2], scale * bt[3], scale * d4 + Ie, scale * bt[5],
+                  scale * bt[6], scale * bt[7], scale * d8 + Ie)
         for i in range(3):
             for j in range(3):
-                s = scale * mu * (bt[i, j] - (Ie if i == j else 0.0))
-                be_new[p, i, j] = (s / mu + (Ie if i == j else 0.0)) if plastic else bt[i, j]
-                stress_new[p, i, j] = s * iJ + (pr if i == j else 0.0)
-            tr += be_new[p, i, i]
+                be_new[p, i, j] = bt[3 * i + j]
         U = 0.5 * K * (0.5 * (J * J - 1.0) - np.log(J))
-        W = 0.5 * mu * (tr - 3.0)
+        W = 0.5 * mu * (bt[0] + bt[4] + bt[8] - 3.0)
         energy[p] = (U + W) * vol[p] * iJ
         max_wavespeed(ws, np.sqrt(cK * vol[p] / mass[p]), vel, p)
     return ws
