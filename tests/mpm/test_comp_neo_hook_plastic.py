@@ -199,9 +199,9 @@ def _deck(**edits):
 
 
 def test_const_test_nhp_deck(tmp_path):
-    """The deck, unchanged but for saving F: sigma_zz on the expected curve (the free
-    sides oscillate a little: sigma_xx is not exactly 0) and the strain energy as sus's at
-    the same time."""
+    """The deck, unchanged but for saving F (pysus's default MUSL stress update): sigma_zz
+    on the expected curve (the free sides oscillate a little: sigma_xx is not exactly 0)
+    and the strain energy as sus's at the same time."""
     _, da = run(_deck(), tmp_path)
     assert da.times[-1] >= 0.5 and len(da.times) == 6
     sus = np.load(SUS)
@@ -210,10 +210,10 @@ def test_const_test_nhp_deck(tmp_path):
         p = da.particles(1, k)
         s, F = p["p.stress"][0], p["p.deformationMeasure"][0]
         szz, _ = uniaxial_stress_curve(F[2, 2])
-        assert s[2, 2] == pytest.approx(szz, rel=0.01)
+        assert s[2, 2] == pytest.approx(szz, rel=0.006)        # measured: 0.4 % at most
         assert abs(s[0, 0]) < 0.01 * abs(s[2, 2])
     se_sus = np.interp(t[1:], sus["time"], sus["StrainEnergy"])
-    assert np.allclose(se[1:], se_sus, rtol=0.01)
+    assert np.allclose(se[1:], se_sus, rtol=5e-4)           # measured: 5e-5 at most
 
 
 def test_const_test_nhp_steps_as_sus(tmp_path):
