@@ -11,7 +11,10 @@ Accepted per `<Face side="x-|x+|y-|y+|z-|z+">`:
       temperature)/dt, as Uintah's integrateTemperatureRate)
 They are applied to g.velocity_star on the face's nodes and on the extra-cell nodes
 beyond it, after the acceleration is integrated, and the acceleration there is
-recomputed as (v* - v)/dt, as Uintah's setGridBoundaryConditions. Faces of collapsed
+recomputed as (v* - v)/dt, as Uintah's setGridBoundaryConditions. The symmetry
+conditions also act on g.velocity as soon as the particles have been interpolated to
+the grid (apply_symmetric, as Uintah's interpolateParticlesToGrid), so a symmetry
+plane's nodes get no normal acceleration to hand back to the particles. Faces of collapsed
 directions (2D, 1D) hold no nodes of their own and need nothing. A face without a
 condition is left free (traction-free).
 """
@@ -85,7 +88,11 @@ class GridBCs:
                 if not level.collapsed[d]:
                     self.items.append((d, s, comps, value, mats))
 
-    def apply(self, patch, matl, gvs, gacc, gvel, dt):
+    def apply_symmetric(self, patch, matl, gvel):
+        """The symmetry conditions of this material on g.velocity (normal component 0)."""
+        self.apply(patch, matl, gvel, np.empty_like(gvel), gvel, 1.0, symmetric_only=True)
+
+    def apply(self, patch, matl, gvs, gacc, gvel, dt, symmetric_only=False):
         """Apply every condition of this material on the faces `patch` touches."""
         if not self.items:
             return
@@ -95,6 +102,8 @@ class GridBCs:
         base = patch.low_index(VarType.NC)
         for d, s, comps, value, mats in self.items:
             if matl not in mats or not (patch.at_high if s else patch.at_low)[d]:
+                continue
+            if symmetric_only and comps.all():          # a Dirichlet velocity (all components)
                 continue
             lo = list(own_lo)
             hi = list(own_hi)

@@ -286,7 +286,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             sched.add_task(t)
             self._av_level_wide = True
         t = (Task("MPM::computeStressTensor", self.compute_stress_tensor, ms)
-             .requires(OLD, FL.delT).requires(NEW, L.pVelocityPre))
+             .requires(OLD, FL.delT).requires(OLD, L.pVelocity))
         if self.av_matls:
             t.requires(NEW, L.AVScale)
         if self.has_membrane:

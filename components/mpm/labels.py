@@ -3,7 +3,7 @@
 Particle state carried between steps: p.x, p.velocity, p.mass, p.volume, p.stress,
 p.deformationMeasure (F), p.particleID, p.externalforce (pressure BCs only), p.size
 (uGIMP half-widths, GIMP only), p.color (withColor only) and per-model state
-(plastic strain, internal energy, membrane tangent/thickness, accumulated strain
+(plastic strain, elastic left Cauchy-Green tensor, internal energy, membrane tangent/thickness, accumulated strain
 energy of rate models), p.temperature (with heat conduction or MPMICE heat
 exchange, thermal.py), p.loadCurveID (load curves, 3 ids), p.surface (friction_LR).
 Each has a "+" twin written by the update before relocation.
@@ -34,6 +34,7 @@ pExtForce, pExtForcePre = _pair("p.externalforce", (3,))
 pSize, pSizePre = _pair("p.size", (3,))
 pColor, pColorPre = _pair("p.color")
 pPlasticStrain, pPlasticStrainPre = _pair("p.plasticStrain")
+pBElBar, pBElBarPre = _pair("p.bElBar", (3, 3))       # elastic volume-preserving b (UCNH plasticity)
 pIntEnergy, pIntEnergyPre = _pair("p.internalEnergy")
 pTangent, pTangentPre = _pair("p.tangent", (3,))
 pThickness, pThicknessPre = _pair("p.thickness")
@@ -52,7 +53,8 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.tempPrevious": _pair("p.tempPrevious"),                      # visco_scram: T one step back
          "p.plasticStrainRate": (pPlasticStrainRate, pPlasticStrainRatePre),
          "p.energy": (pEnergy, pEnergyPre),
-         "p.strainRate": (pStrainRate, pStrainRatePre)}
+         "p.strainRate": (pStrainRate, pStrainRatePre),
+         "p.bElBar": (pBElBar, pBElBarPre)}                              # comp_neo_hook_plastic, UCNH
 pdTdt = L.create("p.dTdt", P)                      # elastic_plastic_hp: the model's temperature rate (not carried)
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)

