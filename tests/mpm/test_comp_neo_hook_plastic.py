@@ -41,7 +41,7 @@ def step(params, F_old, F_new, alpha, be):
     s, e, a2, b2 = np.zeros((n, 3, 3)), np.zeros(n), np.zeros(n), np.zeros((n, 3, 3))
     vol = np.linalg.det(F_new)
     cnhp.update(params, None, np.ascontiguousarray(F_old), np.ascontiguousarray(F_new), vol, np.ones(n),
-                np.zeros((n, 3)), 0.0, None, s, e, alpha, be, a2, b2)
+                np.zeros((n, 3)), 0.0, None, s, e, (alpha, be), (a2, b2))
     return s, a2, b2, e
 
 
