@@ -15,6 +15,7 @@ import functools
 import numpy as np
 from numba import njit
 
+from components.ice.equilibration import _rho_micro
 from components.mpm.shape import _counts as _sizes
 from components.mpm.shape import _sel as _pick
 from components.mpm.shape import _stencil
@@ -388,3 +389,34 @@ def lagrangian_solid(cmass, vstar, temp, vf, px, py, pz, shx, shy, shz, dims, ma
                 if dims[2]:
                     mom_L[i, j, k, 2] += f * (pz[i - shz[0], j - shz[1], k - shz[2] + 1]
                                               - pz[i - shz[0], j - shz[1], k - shz[2]]) / dx[2]
+
+
+@njit(cache=True)
+def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params, cvs, gammas, out, lo, hi):
+    """The solids' densities the equilibration starts from (Uintah's computeEquilibrationPressure,
+    its Docs/MPMICE.txt): a solid's volume in a cell is its EOS volume at the old pressure,
+    rho_m / rho_micro_m(p_old), not the particles' mass mapped to the cell over their mapped
+    volume, and Uintah divides every material's volume by the cell's total material volume
+    TMV so that they fill the cell. pysus divides the solids' only (the fluids keep their
+    mass): in a cell a stiff solid fills, mapping noise of its cell mass then no longer resets
+    the pressure every step (which pumped p dV work into the trace gas: a compression by
+    delP_Dilatate, then an isothermal re-expansion in the next equilibration, 1e5 K after
+    0.4 ms in symAnnulus.ups); a solid's sliver in a gas cell stays a sliver. out[m] is
+    written for solids only."""
+    n = len(rhos)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                fluid = 0.0
+                solid_vol = 0.0
+                for m in range(n):
+                    r = rhos[m][i, j, k]
+                    if solid[m]:
+                        solid_vol += r / _rho_micro(codes[m], params, m, press_old[i, j, k], temps[m][i, j, k],
+                                                    cvs[m], gammas[m], 1.0 / sp_vols[m][i, j, k])
+                    else:
+                        fluid += r * sp_vols[m][i, j, k]
+                scale = 1.0 / (fluid + solid_vol) if solid_vol > 0.0 else 1.0
+                for m in range(n):
+                    if solid[m]:
+                        out[m][i, j, k] = rhos[m][i, j, k] * scale

@@ -222,7 +222,13 @@ class MPMICETasks:
         get = lambda lab: tuple(b.view(start.get(lab, m, patch)) for m in matls)
         new = lambda lab: tuple(b.view(new_dw.allocate(lab, m, patch)) for m in matls)
         spv, vfs, css = new(I.sp_vol_CC), new(I.vol_frac_CC), new(I.speedSound_CC)
-        E.equilibrate(get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC), b.view(old_dw.get(I.press_CC, 0, patch)),
+        rhos, temps, sp_old = get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC)
+        p_old = b.view(old_dw.get(I.press_CC, 0, patch))
+        solid = np.array([m in self.mpm_matls for m in matls])
+        scaled = tuple(r.copy() if s else r for r, s in zip(rhos, solid))
+        K.solids_at_old_pressure(rhos, temps, sp_old, p_old, solid, ice.codes, ice.params, ice.cvs, ice.gammas,
+                                 scaled, b.v_olo, b.v_ohi)
+        E.equilibrate(scaled, temps, sp_old, p_old,
                       spv, vfs, css, b.view(peq), ice.codes, ice.params, ice.cvs, ice.gammas, b.v_olo, b.v_ohi,
                       1e-11, ice.max_iter)
         ice.bcs.scalar(patch, peq, "Pressure", 0, b)
