@@ -48,16 +48,16 @@ def _inv(dx, act):
 
 
 @njit(cache=True, fastmath=FM)
-def p2g_heat(kind, act, px, pm, pT, lp, anchor, dx, node_low, gmT):
+def p2g_heat(kind, act, px, particle_mass, particle_temperature, lp, anchor, dx, node_low, grid_mass_temperature):
     """gmT_i += sum_p S_ip m_p T_p (shares beyond the node array dropped)."""
-    sh0, sh1, sh2 = gmT.shape
+    sh0, sh1, sh2 = grid_mass_temperature.shape
     na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
-    f = gmT.reshape(-1)
+    f = grid_mass_temperature.reshape(-1)
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
          wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-        mT = pm[p] * pT[p]
+        mT = particle_mass[p] * particle_temperature[p]
         for a in range(na):
             wa = _pick(a, wx0, wx1, wx2)
             for b in range(nb):
@@ -69,14 +69,15 @@ def p2g_heat(kind, act, px, pm, pT, lp, anchor, dx, node_low, gmT):
 
 
 @njit(cache=True, fastmath=FM)
-def heat_rate(kind, act, px, pvol, lp, anchor, dx, node_low, gT, kcv, acc):
-    """acc_i -= (k/cv) V_p grad S_ip . grad T_p with grad T_p = sum_j T_j grad S_jp
+def heat_rate(kind, act, px, particle_volume, lp, anchor, dx, node_low, grid_temperature, conductivity_over_cv,
+              grid_heat_rate):
+    """heat_rate_i -= (k/cv) V_p grad S_ip . grad T_p with grad T_p = sum_j T_j grad S_jp
     (Uintah's computeInternalHeatRate, the gradient taken from this step's g.temperature)."""
-    sh0, sh1, sh2 = gT.shape
+    sh0, sh1, sh2 = grid_temperature.shape
     na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
-    ft = gT.reshape(-1)
-    fa = acc.reshape(-1)
+    ft = grid_temperature.reshape(-1)
+    fa = grid_heat_rate.reshape(-1)
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
          wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
@@ -96,7 +97,7 @@ def heat_rate(kind, act, px, pvol, lp, anchor, dx, node_low, gT, kcv, acc):
                     t0 += T * ga * wb * wc
                     t1 += T * wa * gb * wc
                     t2 += T * wa * wb * gc
-        s = kcv * pvol[p]
+        s = conductivity_over_cv * particle_volume[p]
         for a in range(na):
             wa = _pick(a, wx0, wx1, wx2)
             ga = _pick(a, gx0, gx1, gx2)
@@ -111,12 +112,13 @@ def heat_rate(kind, act, px, pvol, lp, anchor, dx, node_low, gT, kcv, acc):
 
 
 @njit(cache=True, fastmath=FM)
-def g2p_heat(kind, act, px, pT, pm, lp, anchor, dx, node_low, rate, dt, T_out, cv):
+def g2p_heat(kind, act, px, particle_temperature, particle_mass, lp, anchor, dx, node_low, grid_temperature_rate, dt,
+             T_out, specific_heat):
     """T_p += dt sum S_ip rate_i; returns sum m_p cv T_p of the updated particles."""
-    sh0, sh1, sh2 = rate.shape
+    sh0, sh1, sh2 = grid_temperature_rate.shape
     na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
-    fr = rate.reshape(-1)
+    fr = grid_temperature_rate.reshape(-1)
     e = 0.0
     for p in range(px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
@@ -130,9 +132,9 @@ def g2p_heat(kind, act, px, pT, pm, lp, anchor, dx, node_low, rate, dt, T_out, c
                 wb = _pick(b, wy0, wy1, wy2)
                 for c in range(nc):
                     r += wa * wb * _pick(c, wz0, wz1, wz2) * fr[((i + a) * sh1 + j + b) * sh2 + k + c]
-        T = pT[p] + dt * r
+        T = particle_temperature[p] + dt * r
         T_out[p] = T
-        e += pm[p] * cv * T
+        e += particle_mass[p] * specific_heat * T
     return e
 
 

@@ -26,9 +26,8 @@ arrays (TaskView.get_split), run by run in the merged ID order (particle_kernels
 nobody forms a merged copy of every ghosted variable. Node arrays are C-ordered with
 local index = global - node_low. `act` is the mask of the level's active axes (bit d:
 axis d has more than one cell; the weights: shape._stencil); an inactive axis has one
-node layer, weight 1 and gradient 0. The leading layouts x, xy, xyz (act 1, 3, 7) have
-entry points with act a compile-time constant; any other (a column along y, a yz plane)
-a run-time one.
+node layer, weight 1 and gradient 0. Every entry point has the interpolator and act as
+compile-time constants (made on first use by the factories below, one per layout a run has).
 """
 import functools
 
@@ -413,251 +412,80 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
     return w0, w1, w2
 
 
-# ---- specialised entry points: (kind, act) compile-time constants for act = 1, 3, 7 (has_f,
-# has_v branched once per call, so each variant is compiled with them constant; has_f implies
-# has_v); the *_la / *_ga variants take the active-axis mask first, at run time --------------
-# p2g(own, ghost, runs, has_f, has_v, anchor, dx, node_low, gm, gmom, gvol, gfe, gfi)
-#     own/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles; has_v: V_i
-# g2p(musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out,
-#     gmom, tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0) -> number deleted
-#     own/ghost: (px, pv, pm, lp); kernels() gives it; the entry points g2p_* (USL) and g2pm_* (MUSL)
-#     take the arguments after musl
-# grad(px, lp, anchor, dx, node_low, gvel, L_out, write_L, dt, pmass, rho0, F_old, F_out, vol_out,
-#      model, K, mu, vel, s_out, e_out) -> wave speed (3 floats; zeros unless model)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_l1(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(LINEAR, 1, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(LINEAR, 1, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(LINEAR, 1, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_l2(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(LINEAR, 3, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(LINEAR, 3, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(LINEAR, 3, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_l3(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(LINEAR, 7, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(LINEAR, 7, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(LINEAR, 7, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_g1(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(GIMP, 1, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(GIMP, 1, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(GIMP, 1, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_g2(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(GIMP, 3, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(GIMP, 3, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(GIMP, 3, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_g3(o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(GIMP, 7, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(GIMP, 7, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(GIMP, 7, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_la(act, o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(LINEAR, act, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(LINEAR, act, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(LINEAR, act, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def p2g_ga(act, o, g, r, hf, hv, an, dx, lo, gm, gp, gV, ge, gi):
-    if hf:
-        _p2g(GIMP, act, o, g, r, True, True, an, dx, lo, gm, gp, gV, ge, gi)
-    elif hv:
-        _p2g(GIMP, act, o, g, r, False, True, an, dx, lo, gm, gp, gV, ge, gi)
-    else:
-        _p2g(GIMP, act, o, g, r, False, False, an, dx, lo, gm, gp, gV, ge, gi)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_l1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 1, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_l1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 1, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_l2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 3, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_l2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 3, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_l3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 7, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_l3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, 7, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_g1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 1, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_g1(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 1, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_g2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 3, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_g2(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 3, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_g3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 7, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_g3(o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, 7, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_la(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, act, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_la(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(LINEAR, act, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2p_ga(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, act, False, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def g2pm_ga(act, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0):
-    return _g2p(GIMP, act, True, o, g, r, an, dx, lo, gvs, ga, dt, xo, vo, Lo, gp, tot, mm, mv, wL, Fo, Fn, Vn, rho0)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_l1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(LINEAR, 1, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(LINEAR, 1, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_l2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(LINEAR, 3, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(LINEAR, 3, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_l3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(LINEAR, 7, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(LINEAR, 7, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_g1(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(GIMP, 1, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(GIMP, 1, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_g2(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(GIMP, 3, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(GIMP, 3, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_g3(px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(GIMP, 7, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(GIMP, 7, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_la(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(LINEAR, act, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(LINEAR, act, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-@njit(cache=True, fastmath=FM)
-def grad_ga(act, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, md, K, mu, v, So, Eo):
-    if md == NEO_HOOKE:
-        return _grad(GIMP, act, NEO_HOOKE, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-    return _grad(GIMP, act, 0, px, lp, an, dx, lo, gv, Lo, wL, dt, pm, rho0, Fo, Fn, Vn, K, mu, v, So, Eo)
-
-
-KERNELS = {
-    ("linear", 1): (p2g_l1, (g2p_l1, g2pm_l1), grad_l1), ("linear", 3): (p2g_l2, (g2p_l2, g2pm_l2), grad_l2),
-    ("linear", 7): (p2g_l3, (g2p_l3, g2pm_l3), grad_l3), ("gimp", 1): (p2g_g1, (g2p_g1, g2pm_g1), grad_g1),
-    ("gimp", 3): (p2g_g2, (g2p_g2, g2pm_g2), grad_g2), ("gimp", 7): (p2g_g3, (g2p_g3, g2pm_g3), grad_g3),
-}
-ANY_AXES = {"linear": (p2g_la, (g2p_la, g2pm_la), grad_la), "gimp": (p2g_ga, (g2p_ga, g2pm_ga), grad_ga)}
-
-
-def _g2p_by_update(usl, musl):
-    """g2p(musl, ...) (signature above) from its USL and MUSL entry points: each is compiled only
-    where a run uses it, with musl a compile-time constant (USL's has no remap and no code for
-    ghost particles, MUSL's no L or F; with musl a run-time flag one entry held both: 40 CPU s of
-    disks_50x50's cold compile)."""
-    def g2p(musl_flag, *args):
-        return (musl if musl_flag else usl)(*args)
+# ---- entry points, made by one factory per pass, keyed by (interpolator, active axes, update):
+# the interpolator and the axis mask (and g2p's USL/MUSL) are closure constants, which numba
+# compiles as literals, the same machine code as one hand-written function per combination; a
+# new interpolator is a weight function in shape.py plus one line in INTERPOLATORS.
+# p2g(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum,
+#     grid_volume, grid_fext, grid_fint)
+#     owned/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles; has_fext
+#     implies has_volume (V_i); both branched once per call, so each is compiled constant
+# g2p(musl, owned, ghost, runs, anchor, dx, node_low, grid_velocity_star, grid_acceleration, dt,
+#     x_out, v_out, L_out, grid_momentum, totals, min_mass, max_vel, write_L, F_old, F_out,
+#     vol_out, rho0) -> number deleted
+#     owned/ghost: (px, pv, pm, lp); kernels() gives it; the USL and MUSL entry points take the
+#     arguments after musl
+# grad(px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt, particle_mass, rho0, F_old,
+#      F_out, vol_out, model, bulk_modulus, shear_modulus, particle_velocity, stress_out,
+#      energy_out) -> wave speed (3 floats; zeros unless model)
+
+INTERPOLATORS = {"linear": LINEAR, "gimp": GIMP}
+
+
+@functools.lru_cache(maxsize=None)
+def _p2g_entry(interpolator, axes):
+    """p2g (signature above) for one interpolator and active-axis mask."""
+    kind = INTERPOLATORS[interpolator]
+
+    @njit(cache=True, fastmath=FM)
+    def p2g(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum, grid_volume,
+            grid_fext, grid_fint):
+        if has_fext:
+            _p2g(kind, axes, owned, ghost, runs, True, True, anchor, dx, node_low, grid_mass, grid_momentum,
+                 grid_volume, grid_fext, grid_fint)
+        elif has_volume:
+            _p2g(kind, axes, owned, ghost, runs, False, True, anchor, dx, node_low, grid_mass, grid_momentum,
+                 grid_volume, grid_fext, grid_fint)
+        else:
+            _p2g(kind, axes, owned, ghost, runs, False, False, anchor, dx, node_low, grid_mass, grid_momentum,
+                 grid_volume, grid_fext, grid_fint)
+    return p2g
+
+
+@functools.lru_cache(maxsize=None)
+def _g2p_entry(interpolator, axes, musl):
+    """g2p after its musl flag (signature above) for one interpolator, mask and update (USL or MUSL):
+    each is compiled only where a run uses it (USL's has no remap and no code for ghost particles,
+    MUSL's no L or F; with musl a run-time flag one entry held both: 40 CPU s of disks_50x50's
+    cold compile)."""
+    kind = INTERPOLATORS[interpolator]
+
+    @njit(cache=True, fastmath=FM)
+    def g2p(owned, ghost, runs, anchor, dx, node_low, grid_velocity_star, grid_acceleration, dt, x_out, v_out,
+            L_out, grid_momentum, totals, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
+        return _g2p(kind, axes, musl, owned, ghost, runs, anchor, dx, node_low, grid_velocity_star,
+                    grid_acceleration, dt, x_out, v_out, L_out, grid_momentum, totals, min_mass, max_vel, write_L,
+                    F_old, F_out, vol_out, rho0)
     return g2p
+
+
+@functools.lru_cache(maxsize=None)
+def _grad_entry(interpolator, axes):
+    """grad (signature above) for one interpolator and active-axis mask; the fused model is
+    branched once per call, so each is compiled constant."""
+    kind = INTERPOLATORS[interpolator]
+
+    @njit(cache=True, fastmath=FM)
+    def grad(px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt, particle_mass, rho0, F_old, F_out,
+             vol_out, model, bulk_modulus, shear_modulus, particle_velocity, stress_out, energy_out):
+        if model == NEO_HOOKE:
+            return _grad(kind, axes, NEO_HOOKE, px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt,
+                         particle_mass, rho0, F_old, F_out, vol_out, bulk_modulus, shear_modulus, particle_velocity,
+                         stress_out, energy_out)
+        return _grad(kind, axes, 0, px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt, particle_mass,
+                     rho0, F_old, F_out, vol_out, bulk_modulus, shear_modulus, particle_velocity, stress_out,
+                     energy_out)
+    return grad
 
 
 def one_run(n):
@@ -665,14 +493,13 @@ def one_run(n):
     return np.array([[0, 0, n]], np.int64)
 
 
-def kernels(kind, act):
-    """(p2g, g2p, grad) for interpolator `kind` on the active-axis mask `act` (signatures above)."""
-    if (kind, act) in KERNELS:
-        p2g, (usl, musl), grad = KERNELS[(kind, act)]
-        return p2g, _g2p_by_update(usl, musl), grad
-    p2g, (usl, musl), grad = ANY_AXES[kind]
-    return (functools.partial(p2g, act), _g2p_by_update(functools.partial(usl, act), functools.partial(musl, act)),
-            functools.partial(grad, act))
+def kernels(interpolator, axes):
+    """(p2g, g2p, grad) for `interpolator` on the active-axis mask `axes` (signatures above)."""
+    usl, musl = _g2p_entry(interpolator, axes, False), _g2p_entry(interpolator, axes, True)
+
+    def g2p(musl_flag, *args):
+        return (musl if musl_flag else usl)(*args)
+    return _p2g_entry(interpolator, axes), g2p, _grad_entry(interpolator, axes)
 
 
 def merged_p2g(p2g):

@@ -10,6 +10,8 @@ collapsed direction has one node layer (index 0) and one cell layer.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from numba import njit
 
@@ -161,24 +163,30 @@ def _pressure_force(kind, dim, px, pvol, lp, anchor, dx, node_low, press, cc_low
                         fi[f3 + 2] -= s * wa * wb * gc
 
 
-@njit(cache=True)
-def pressure_force_linear(dim, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress):
-    if dim == 1:
-        _pressure_force(0, 1, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
-    elif dim == 2:
-        _pressure_force(0, 2, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
-    else:
-        _pressure_force(0, 3, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+INTERPOLATORS = {"linear": 0, "gimp": 1}     # _pressure_force's kind
 
 
-@njit(cache=True)
-def pressure_force_gimp(dim, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress):
-    if dim == 1:
-        _pressure_force(1, 1, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
-    elif dim == 2:
-        _pressure_force(1, 2, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
-    else:
-        _pressure_force(1, 3, px, pvol, lp, anchor, dx, node_low, press, cc_low, dims, p_ref, gfint, own, ppress)
+@functools.lru_cache(maxsize=None)
+def pressure_force(interpolator):
+    """The pressure-force entry point for one interpolator (a compile-time constant), with the
+    dimension branched once per call so that each is compiled constant:
+    f(dim, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+      grid_internal_force, owned, particle_pressure)."""
+    kind = INTERPOLATORS[interpolator]
+
+    @njit(cache=True)
+    def pressure_force_entry(dim, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+                             grid_internal_force, owned, particle_pressure):
+        if dim == 1:
+            _pressure_force(kind, 1, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+                            grid_internal_force, owned, particle_pressure)
+        elif dim == 2:
+            _pressure_force(kind, 2, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+                            grid_internal_force, owned, particle_pressure)
+        else:
+            _pressure_force(kind, 3, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+                            grid_internal_force, owned, particle_pressure)
+    return pressure_force_entry
 
 
 @njit(cache=True)

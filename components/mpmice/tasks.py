@@ -247,7 +247,7 @@ class MPMICETasks:
         press = new_dw.get(I.press_CC, 0, patch)
         cc_low = np.array(patch.low_index(CC), np.int64)
         node_low = np.array(patch.low_index(NC), np.int64)
-        fn = K.pressure_force_gimp if mpm.kind == "gimp" else K.pressure_force_linear
+        fn = K.pressure_force(mpm.kind)
         for m in matls:
             px = old_dw.get(M.pX, m, patch)
             n = len(px)
