@@ -34,7 +34,7 @@ def test_unknown_mpm_tag(tmp_path):
 
 
 def test_bad_interpolator(tmp_path):
-    _fails(tmp_path, deck_text(SULSKY, interpolator="cpdi"), "cpdi", "gimp")
+    _fails(tmp_path, deck_text(SULSKY, interpolator="cpti"), "cpti", "cpdi", "preprocessing")
 
 
 def test_gimp_needs_extra_cells(tmp_path):
