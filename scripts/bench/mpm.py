@@ -2,8 +2,9 @@
 
     .venv/bin/python scripts/bench/mpm.py [--steps 10] [--repeat 1] [--json out.json] [--quick]
                                           [--cases "2D linear"] [--cpu] [--no-reference]
+                                          [--interpolators linear,gimp,cpdi]
 
-Cases: 2D/3D x linear/GIMP x MUSL/USL, a block of comp_neo_hook material moving and
+Cases: 2D/3D x linear/GIMP (--interpolators: also cpdi, fast_cpdi) x MUSL/USL, a block of comp_neo_hook material moving and
 deforming (>= 1 M particles; --quick: ~65 k), one rank, one thread. The first step
 (JIT, warm-up) is not timed; with --repeat R each case is run R times and the median
 rate is reported (the machine may be shared). Beside them, `reference_2d_linear` is ONE numba function
@@ -208,6 +209,7 @@ def main():
     ap.add_argument("--cases", default="", help="only cases whose name contains this, e.g. '2D linear'")
     ap.add_argument("--no-reference", action="store_true", help="skip the single-function reference")
     ap.add_argument("--cpu", action="store_true", help="CPU time of this process instead of wall time")
+    ap.add_argument("--interpolators", default="linear,gimp", help="comma-separated <interpolator> values")
     a = ap.parse_args()
     global CLOCK
     if a.cpu:
@@ -216,7 +218,7 @@ def main():
     n2, n3, p2, p3 = (160, 32, 2, 1) if a.quick else (640, 80, 4, 2)
     rows = []
     for dim, n, pt in ((2, n2, p2), (3, n3, p3)):
-        for interp in ("linear", "gimp"):
+        for interp in a.interpolators.split(","):
             for su in ("musl", "usl"):
                 if a.cases not in f"{dim}D {interp} {su}":
                     continue

@@ -48,9 +48,9 @@ def test_partition_of_unity_and_linear_fields(act, F):
     px, S, dS, X = _weights(act, F)
     d = 2 if act == 3 else 3
     assert abs(S.sum() - 1.0) < 1e-13
-    assert np.abs(np.einsum("...,...k->k", S, X)[:d] - px[0, :d]).max() < 1e-13     # sum S_i x_i = x_p
+    assert np.abs(np.einsum("ijk,ijkl->l", S, X)[:d] - px[0, :d]).max() < 1e-13     # sum S_i x_i = x_p
     assert np.abs(dS.sum(axis=(0, 1, 2))).max() < 1e-11                            # sum grad S_i = 0
-    G = np.einsum("...k,...l->kl", X, dS)[:d, :d]                                  # sum x_i (x) grad S_i = I
+    G = np.einsum("ijka,ijkb->ab", X, dS)[:d, :d]                                  # sum x_i (x) grad S_i = I
     assert np.abs(G - np.eye(d)).max() < 1e-12
     assert (S > 0).sum() > (9 if act == 3 else 27)      # the domain spans more nodes than a linear stencil
 
