@@ -49,9 +49,8 @@ from .thermal import ThermalTasks
 
 FLAGS = {
     "time_integrator": Param("str", "explicit", ("explicit",), "only explicit MPM is implemented"),
-    "interpolator": Param("str", "linear", ("linear", "gimp", "cpdi", "fast_cpdi"),
-                          "cpti needs Uintah's tetrahedral preprocessing of the particle domains and "
-                          "3rdorderBS is not implemented"),
+    "interpolator": Param("str", "linear", ("linear", "gimp", "cpdi", "fast_cpdi", "cpti"),
+                          "cpti is read to be refused with its reason (its domains come from a preprocessing step)"),
     "cpdi_lcrit": Param("float", 1.0e10, doc="CPDI: corners farther than this (cells) are pulled back"),
     "withColor": Param("bool", False, doc="carry p.color from <geom_object><color>"),
     "artificial_damping_coeff": Param("float", 0.0, doc="a_i -= coeff * v_i (1/s)"),
@@ -95,6 +94,10 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if pc is not None:
             pc.get("reference_pressure", "float", 101325.0)
         self.kind = self.flags["interpolator"]
+        if self.kind == "cpti":
+            raise mpm.child("interpolator").error(
+                "cpti needs the particles' tetrahedral domains from Uintah's preprocessing step (.pts files "
+                "with the r vectors), which pysus does not read; accepted: linear, gimp, cpdi, fast_cpdi")
         self.musl = self.flags["stress_update"] == "musl"
         if self.dim == 0:
             raise root.child("Grid").error("MPM needs at least one direction with more than one cell")
