@@ -15,6 +15,10 @@ could alias the node arrays), and does all the work that particle needs at its n
   grad       L_p = sum v_i (x) grad S_i(x_p) (004 eq. 14), MUSL's stress-update gradient, F, V
              and, for the models in FUSED (comp_neo_hook), the stress in the same loop.
 
+CPDI particles visit the linear stencils of their domain's corners in turn (shape._corners; one
+stencil for linear and GIMP, the loop folded away), each corner's weights and gradients
+carried in the same per-axis values, so every kernel below serves all interpolators.
+
 p2g and g2p run the particles in chunks of shape.CHUNK: a first loop stores every particle's
 base node and weights (shape._stencil_put; g2p also prefetches the node rows it will read), a
 second does the work at the nodes (shape._stencil_get); the numbers are those of one loop,
@@ -35,8 +39,8 @@ import numpy as np
 from numba import njit
 
 from .constitutive import comp_neo_hook
-from .shape import (CHUNK, CPDI, GIMP, LINEAR, _corners, _counts, _visits, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil, _stencil_get,
-                    _stencil_put)
+from .shape import (CHUNK, CPDI, GIMP, LINEAR, _corners, _counts, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil,
+                    _stencil_get, _stencil_put, _visits)
 
 FM = {'contract'}
 
