@@ -1,7 +1,7 @@
 """Explicit MPM (Uintah's SerialMPM, paper 000 sec. 3.2, paper 004 eqs. 5-17).
 
 `<SimulationComponent type="mpm">`. The deck blocks read here:
-  <MPM>                 FLAGS below (interpolator linear|gimp, explicit only,
+  <MPM>                 FLAGS below (interpolator linear|gimp|cpdi|fast_cpdi, explicit only,
                         DoExplicitHeatConduction: p.temperature and conduction, thermal.py)
   <PhysicalConstants>   <gravity>
   <MaterialProperties><MPM>  <material> (materials.py; models incl. ideal_gas_fluid, the
@@ -53,7 +53,9 @@ from .thermal import ThermalTasks
 
 FLAGS = {
     "time_integrator": Param("str", "explicit", ("explicit",), "only explicit MPM is implemented"),
-    "interpolator": Param("str", "linear", ("linear", "gimp")),
+    "interpolator": Param("str", "linear", ("linear", "gimp", "cpdi", "fast_cpdi", "cpti"),
+                          "cpti is read to be refused with its reason (its domains come from a preprocessing step)"),
+    "cpdi_lcrit": Param("float", 1.0e10, doc="CPDI: corners farther than this (cells) are pulled back"),
     "withColor": Param("bool", False, doc="carry p.color from <geom_object><color>"),
     "artificial_damping_coeff": Param("float", 0.0, doc="a_i -= coeff * v_i (1/s)"),
     "minimum_particle_mass": Param("float", 0.0, doc="lighter particles are deleted"),
@@ -98,14 +100,18 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if pc is not None:
             pc.get("reference_pressure", "float", 101325.0)
         self.kind = self.flags["interpolator"]
+        if self.kind == "cpti":
+            raise mpm.child("interpolator").error(
+                "cpti needs the particles' tetrahedral domains from Uintah's preprocessing step (.pts files "
+                "with the r vectors), which pysus does not read; accepted: linear, gimp, cpdi, fast_cpdi")
         self.musl = self.flags["stress_update"] == "musl"
         if self.dim == 0:
             raise root.child("Grid").error("MPM needs at least one direction with more than one cell")
-        if self.kind == "gimp":
+        if self.kind != "linear":
             bad = [d for d in range(3) if self.dims[d] and not level.periodic[d] and level.extra[d] < 1]
             if bad:
                 raise root.child("Grid").error(
-                    f"GIMP particles reach one node beyond the domain: <extraCells> must be at least 1 in "
+                    f"{self.kind.upper()} particles reach one node beyond the domain: <extraCells> must be at least 1 in "
                     f"{'xyz'[bad[0]]} (Uintah needs the same)")
         self.axes = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask (transfer.py)
         self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.axes)
@@ -138,13 +144,16 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.thermal_contact_node = mp.child("thermal_contact")
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
+        if self.thermal and self.kind not in ("linear", "gimp"):
+            raise mpm.child("interpolator").error(
+                f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp")
         self._carried()
 
     def _carried(self):
         """(final, pre-relocation) particle labels this deck carries, besides p.x."""
         c = [(L.pVelocity, L.pVelocityPre), (L.pMass, L.pMassPre), (L.pVolume, L.pVolumePre),
              (L.pStress, L.pStressPre), (L.pF, L.pFPre), (L.pID, L.pIDPre)]
-        if self.kind == "gimp" or self.contact.needs_lr:     # friction_LR: the particle faces
+        if self.kind != "linear" or self.contact.needs_lr:     # GIMP, CPDI; friction_LR: the particle faces
             c.append((L.pSize, L.pSizePre))
         if self.contact.needs_lr:
             c.append((L.pSurface, L.pSurfacePre))
@@ -214,7 +223,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
         sched.add_task(t)
         t = Task("MPM::interpolateStressToGrid", self.interpolate_stress_to_grid, ms)
-        for lab in [L.pX, L.pMass, L.pStress] + ([L.pSize] if self.kind == "gimp" else []):
+        for lab in [L.pX, L.pMass, L.pStress] + self.size_labels():
             t.requires(OLD, lab, g, ng)
         sched.add_task(t.computes(L.gStressFS))       # pruned unless g.stressFS is saved
         self.schedule_heat_conduction(sched)
@@ -224,7 +233,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t = Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms) \
                 .requires(NEW, L.gMass).modifies(L.gVelocity).requires(OLD, FL.delT)
             if self.contact.needs_normals:
-                for lab in [L.pX, L.pMass] + ([L.pSize] if self.kind == "gimp" else []):
+                for lab in [L.pX, L.pMass] + self.size_labels():
                     t.requires(OLD, lab, g, ng)
                 t.computes(L.gSurfNorm)
             self._requires_lr(t)
@@ -251,7 +260,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
                            .modifies(L.gVelocityStar).modifies(L.gAcceleration))
         t = Task("MPM::interpolateToParticlesAndUpdate", self.interpolate_to_particles, ms).requires(OLD, FL.delT)
         pg = (g, ng) if self.musl else (Ghost.NONE, 0)
-        for lab in [L.pX, L.pVelocity, L.pMass] + ([L.pSize] if self.kind == "gimp" else []):
+        for lab in [L.pX, L.pVelocity, L.pMass] + self.size_labels():
             t.requires(OLD, lab, *pg)
         gg = 2 * ng if self.musl else ng
         t.requires(NEW, L.gVelocityStar, Ghost.AROUND_CELLS, gg).requires(NEW, L.gAcceleration, Ghost.AROUND_CELLS, gg)
@@ -278,7 +287,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t = (Task("MPM::artificialViscosityScale", self.artificial_viscosity_scale, ms)
                  .requires(OLD, FL.delT).requires(OLD, L.pIntEnergy).computes(L.AVScale))
             if self.musl:
-                for lab in [L.pX, L.pMass, L.pF] + ([L.pSize] if self.kind == "gimp" else []):
+                for lab in [L.pX, L.pMass, L.pF] + self.size_labels():
                     t.requires(OLD, lab)
                 t.requires(NEW, L.gVelocityL, Ghost.AROUND_CELLS, ng)
             else:
@@ -332,8 +341,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
 
     def _p2g_labels(self):
         labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]
-        if self.kind == "gimp":
-            labs.append(L.pSize)
+        labs += self.size_labels()
         if self.pressure_bcs:
             labs.append(L.pLoadCurveID)
         return labs

@@ -7,7 +7,7 @@ totals and the output-only nodal stress.
 import numpy as np
 from numba import njit
 
-from .shape import _counts, _inv_dx, _sel, _stencil
+from .shape import _counts, _inv_dx, _sel, _stencil, _visits
 
 FM = {'contract'}
 
@@ -115,9 +115,9 @@ def p2g_stress(kind, act, px, pmass, pstress, lp, anchor, dx, node_low, gmass, g
     ih = _inv_dx(dx)
     fm = gmass.reshape(-1)
     fs = gsm.reshape(-1)
-    for p in range(px.shape[0]):
+    for p, q in _visits(kind, act, px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
         if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
             raise IndexError("particle's nodes lie outside the patch node arrays")
         for a in range(na):
@@ -127,8 +127,8 @@ def p2g_stress(kind, act, px, pmass, pstress, lp, anchor, dx, node_low, gmass, g
                     f = ((i + a) * sh1 + j + b) * sh2 + k + c
                     fm[f] += S
                     for r in range(3):
-                        for q in range(3):
-                            fs[9 * f + 3 * r + q] += S * pstress[p, r, q]
+                        for t in range(3):
+                            fs[9 * f + 3 * r + t] += S * pstress[p, r, t]
 
 
 @njit(cache=True)

@@ -1,4 +1,4 @@
-"""MPM shape functions: linear and uGIMP weights of a particle, as scalars per axis.
+"""MPM shape functions: linear, uGIMP and CPDI weights of a particle, as scalars per axis.
 
 Conventions
 -----------
@@ -9,6 +9,16 @@ Conventions
 * Active axes ``act``: bit d set when axis d has more than one cell. An inactive axis has
   ONE node layer (local index 0, weight 1, gradient 0), so a 2D particle touches 4
   (linear) / 9 (GIMP) nodes and a 1D one 2 / 3.
+
+CPDI (Sadeghirad, Brannon & Burghardt 2011; Uintah's cpdi and fast_cpdi) averages the linear
+weights over the corners x_p + sum_k s_k r_k (s_k = +-1) of the particle's deformed domain,
+r_k = F e_k l_k (column k of F times the half-width: Uintah's 0.5 F p.size), and takes the
+gradient of that average over the parallelogram (parallelepiped): grad S_i = sum_c N_i(x_c)
+J^-T s_c / n_c with J = [r_1 r_2 r_3] (the paper's alpha vectors). Each corner is a linear stencil
+whose per-axis values carry it: weights w (times 1/n_c on the first active axis) and "derivatives"
+g = w A_d, A = J^-T s_c, so the products w w w and g w w of the kernels give S and grad S.
+``lp`` is then the (n, 18) domain array of ``cpdi_domains``: r_1, r_2, r_3, then the rows of J^-1.
+A kernel visits ``_corners(kind, act)`` stencils per particle (1 for linear and GIMP).
 
 ``_stencil`` gives a particle's base node and, per axis, its weights and their
 derivatives (three each; the third is 0 for linear): LLVM keeps them in registers and,
@@ -31,6 +41,7 @@ from numba.extending import intrinsic
 
 LINEAR = 0
 GIMP = 1
+CPDI = 2
 FM = {'contract'}
 
 
@@ -70,12 +81,64 @@ def _sel(a, x0, x1, x2):
     return x0 if a == 0 else (x1 if a == 1 else x2)
 
 
+@njit(cache=True, inline="always")
+def _corners(kind, act):
+    """Linear stencils a particle visits: 1, or CPDI's 2^(active axes) domain corners."""
+    if kind != CPDI:
+        return 1
+    return (2 if act & 1 else 1) * (2 if act & 2 else 1) * (2 if act & 4 else 1)
+
+
+@njit(cache=True)
+def _visits(kind, act, n):
+    """(particle, corner) of every stencil of n particles, for the output-only kernels whose kind
+    is a run-time value."""
+    nq = _corners(kind, act)
+    out = np.empty((n * nq, 2), np.int64)
+    for p in range(n):
+        for q in range(nq):
+            out[p * nq + q, 0] = p
+            out[p * nq + q, 1] = q
+    return out
+
+
 @njit(cache=True, fastmath=FM, inline="always")
-def _stencil(kind, act, px, lp, p, anchor, ih, node_low):
-    """The weights of particle p on its three axes, base indices made local."""
-    i, wx0, wx1, wx2, gx0, gx1, gx2 = _ax(kind, act & 1 != 0, px[p, 0], anchor[0], ih[0], lp[p, 0])
-    j, wy0, wy1, wy2, gy0, gy1, gy2 = _ax(kind, act & 2 != 0, px[p, 1], anchor[1], ih[1], lp[p, 1])
-    k, wz0, wz1, wz2, gz0, gz1, gz2 = _ax(kind, act & 4 != 0, px[p, 2], anchor[2], ih[2], lp[p, 2])
+def _cpdi_ax(act, d, x, lp, p, q, a0, ih):
+    """CPDI: base node and per-axis values of axis d for corner q (bit b of q: the sign of the
+    b-th active domain vector), weights scaled by 1/n_corners on the first active axis."""
+    if not act & (1 << d):
+        return 0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    off = 0.0
+    A = 0.0
+    b = 0
+    for k in range(3):
+        if act & (1 << k):
+            s = 1.0 if (q >> b) & 1 else -1.0
+            off += s * lp[p, 3 * k + d]
+            A += s * lp[p, 9 + 3 * k + d]
+            b += 1
+    xi = (x + off - a0) * ih
+    i = int(np.floor(xi))
+    f = xi - i
+    scale = 1.0 / _corners(CPDI, act) if d == (0 if act & 1 else (1 if act & 2 else 2)) else 1.0
+    w0 = (1.0 - f) * scale
+    w1 = f * scale
+    return i, w0, w1, 0.0, w0 * A, w1 * A, 0.0
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _axis(kind, act, d, px, lp, p, q, anchor, ih):
+    if kind == CPDI:
+        return _cpdi_ax(act, d, px[p, d], lp, p, q, anchor[d], ih[d])
+    return _ax(kind, act & (1 << d) != 0, px[p, d], anchor[d], ih[d], lp[p, d])
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _stencil(kind, act, px, lp, p, anchor, ih, node_low, q=0):
+    """The weights of particle p (CPDI: of its corner q) on its three axes, base indices made local."""
+    i, wx0, wx1, wx2, gx0, gx1, gx2 = _axis(kind, act, 0, px, lp, p, q, anchor, ih)
+    j, wy0, wy1, wy2, gy0, gy1, gy2 = _axis(kind, act, 1, px, lp, p, q, anchor, ih)
+    k, wz0, wz1, wz2, gz0, gz1, gz2 = _axis(kind, act, 2, px, lp, p, q, anchor, ih)
     if act & 1:
         i -= node_low[0]
     if act & 2:
@@ -125,16 +188,21 @@ def _prefetch_nodes(kind, act, i, j, k, sh1, sh2, flat):
 
 
 @njit(cache=True, inline="always")
-def _scratch():
-    """Stencil scratch of one chunk: the base nodes (i, j, k), (3, CHUNK), and per axis
-    (w1, w0, w2, g0, g1, g2), (3, 6, CHUNK); linear stores only the fraction f = w1. The
-    particle index runs last, so a chunk's values of one kind are contiguous."""
-    return np.empty((3, CHUNK), np.int64), np.empty((3, 6, CHUNK))
+def _scratch(kind, act):
+    """Stencil scratch of one chunk: the base nodes (i, j, k), (3, CHUNK n_corners), and per axis
+    (w1, w0, w2, g0, g1, g2), (3, 6, CHUNK n_corners); linear stores only the fraction f = w1.
+    The stencil index (particle, then corner) runs last, so a chunk's values of one kind are
+    contiguous."""
+    n = CHUNK * _corners(kind, act)
+    return np.empty((3, n), np.int64), np.empty((3, 6, n))
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _ax_put(kind, d, x, a0, ih, l, q, sw):
-    i, w0, w1, w2, g0, g1, g2 = _ax(kind, True, x, a0, ih, l)
+def _ax_put(kind, act, d, px, lp, p, c, anchor, ih, q, sw):
+    if kind == CPDI:
+        i, w0, w1, w2, g0, g1, g2 = _cpdi_ax(act, d, px[p, d], lp, p, c, anchor[d], ih[d])
+    else:
+        i, w0, w1, w2, g0, g1, g2 = _ax(kind, True, px[p, d], anchor[d], ih[d], lp[p, d])
     sw[d, 0, q] = w1
     if kind != LINEAR:
         sw[d, 1, q] = w0
@@ -146,16 +214,16 @@ def _ax_put(kind, d, x, a0, ih, l, q, sw):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw):
-    """Store the weights of _stencil of particle p as row q of sw; returns its local base node
-    (i, j, k) (0 on an inactive axis)."""
+def _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw, c=0):
+    """Store the weights of _stencil of particle p (CPDI: corner c) as row q of sw; returns its
+    local base node (i, j, k) (0 on an inactive axis)."""
     i = j = k = 0
     if act & 1:
-        i = _ax_put(kind, 0, px[p, 0], anchor[0], ih[0], lp[p, 0], q, sw) - node_low[0]
+        i = _ax_put(kind, act, 0, px, lp, p, c, anchor, ih, q, sw) - node_low[0]
     if act & 2:
-        j = _ax_put(kind, 1, px[p, 1], anchor[1], ih[1], lp[p, 1], q, sw) - node_low[1]
+        j = _ax_put(kind, act, 1, px, lp, p, c, anchor, ih, q, sw) - node_low[1]
     if act & 4:
-        k = _ax_put(kind, 2, px[p, 2], anchor[2], ih[2], lp[p, 2], q, sw) - node_low[2]
+        k = _ax_put(kind, act, 2, px, lp, p, c, anchor, ih, q, sw) - node_low[2]
     return i, j, k
 
 
@@ -180,7 +248,7 @@ def _stencil_get(kind, act, q, ih, sw):
 
 @njit(cache=True, inline="always")
 def _counts(kind, act):
-    n = 2 if kind == LINEAR else 3
+    n = 3 if kind == GIMP else 2
     return (n if act & 1 else 1), (n if act & 2 else 1), (n if act & 4 else 1)
 
 
@@ -190,3 +258,53 @@ def _inv_dx(dx):
     for d in range(3):
         ih[d] = 1.0 / dx[d] if dx[d] != 0.0 else 0.0
     return ih[0], ih[1], ih[2]
+
+
+@njit(cache=True, fastmath=FM)
+def cpdi_domains(act, F, lp, dx, lcrit, out):
+    """CPDI's domain array of each particle, out (n, 18): r_1, r_2, r_3 (physical units), then the
+    rows of J^-1, J = [r_k] on the active axes (identity on the others). r_k = F e_k l_k is half
+    of Uintah's (F p.size)(:, k); where a corner r_3 +- r_1 +- r_2 reaches beyond lcrit cells it
+    is scaled back to lcrit and the r_k are rebuilt from those corners (Uintah's cpdi_lcrit)."""
+    ih0, ih1, ih2 = _inv_dx(dx)
+    ih = (ih0, ih1, ih2)
+    for p in range(F.shape[0]):
+        r = np.empty((3, 3))        # r[k, d]: component d of r_k, in cells
+        for k in range(3):
+            for d in range(3):
+                r[k, d] = F[p, d, k] * lp[p, k] * ih[d] if dx[d] != 0.0 else 0.0
+        # the corners r_3 + a r_1 + b r_2 (Uintah's la, lb, lc, ld: a, b = ++, +-, -+, --)
+        c = np.empty((4, 3))
+        scaled = False
+        for n in range(4):
+            a = 1.0 if n < 2 else -1.0
+            b = 1.0 if n % 2 == 0 else -1.0
+            l2 = 0.0
+            for d in range(3):
+                c[n, d] = a * r[0, d] + b * r[1, d] + r[2, d]
+                l2 += c[n, d] * c[n, d]
+            if l2 > lcrit * lcrit:
+                s = lcrit / np.sqrt(l2)
+                for d in range(3):
+                    c[n, d] *= s
+                scaled = True
+        if scaled:
+            for d in range(3):
+                r[0, d] = 0.25 * (c[0, d] + c[1, d] - c[2, d] - c[3, d])
+                r[1, d] = 0.25 * (c[0, d] - c[1, d] + c[2, d] - c[3, d])
+                r[2, d] = 0.25 * (c[0, d] + c[1, d] + c[2, d] + c[3, d])
+        J = np.zeros((3, 3))        # J[d, k] = r_k[d] (physical) on the active block
+        for k in range(3):
+            for d in range(3):
+                on = act & (1 << k) != 0 and act & (1 << d) != 0
+                v = r[k, d] * dx[d] if on else 0.0
+                out[p, 3 * k + d] = v
+                J[d, k] = v if on else (1.0 if d == k else 0.0)
+        det = (J[0, 0] * (J[1, 1] * J[2, 2] - J[1, 2] * J[2, 1]) - J[0, 1] * (J[1, 0] * J[2, 2] - J[1, 2] * J[2, 0])
+               + J[0, 2] * (J[1, 0] * J[2, 1] - J[1, 1] * J[2, 0]))
+        inv = 1.0 / det
+        for k in range(3):
+            for d in range(3):
+                k1, k2, d1, d2 = (d + 1) % 3, (d + 2) % 3, (k + 1) % 3, (k + 2) % 3
+                cof = J[k1, d1] * J[k2, d2] - J[k1, d2] * J[k2, d1]      # (J^-1)[k, d] = cof(J)[d, k] / det
+                out[p, 9 + 3 * k + d] = cof * inv if act & (1 << k) and act & (1 << d) else 0.0

@@ -12,7 +12,7 @@ from framework import labels as FL
 from framework.scheduler.particle_kernels import runs as particle_runs
 from framework.variables import VarType
 
-from . import kernels, transfer
+from . import kernels, shape, transfer
 from . import labels as L
 from .thermal import divide_by_mass, p2g_heat
 
@@ -71,7 +71,22 @@ class MPMTasks:
 
     # -- helpers ----------------------------------------------------------------------------
     def _lp(self, dw, m, patch, n):
-        return dw.get(L.pSize, m, patch) if self.kind == "gimp" else _zeros3(n)
+        """What the weights read of each particle besides x: p.size (GIMP), the CPDI domain
+        (shape.cpdi_domains of p.size and F at the step's start) or zeros (linear)."""
+        if self.kind == "linear":
+            return _zeros3(n)
+        if self.kind == "gimp":
+            return dw.get(L.pSize, m, patch)
+        return self._domains(dw.get(L.pF, m, patch), dw.get(L.pSize, m, patch))
+
+    def _domains(self, F, size):
+        out = np.empty((len(F), 18))
+        shape.cpdi_domains(self.axes, F, size, self.level.dx, self.flags["cpdi_lcrit"], out)
+        return out
+
+    def size_labels(self):
+        """The particle labels the weights read besides p.x (ghosted where p.x is)."""
+        return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [L.pSize, L.pF])
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
                       old=None, new=None, scale=None, temperature=None):
@@ -183,13 +198,16 @@ class MPMTasks:
 
     def _parts(self, old_dw, m, patch, labels):
         """[owned arrays], [ghost arrays] of the (ghosted) particle labels, each list ending
-        with p.size (GIMP) or zeros (linear), and the runs of their merged ID order."""
-        split = [_split(old_dw, lab, m, patch) for lab in labels + ([L.pSize] if self.kind == "gimp" else [])]
+        with _lp's array (p.size, the CPDI domain or zeros), and the runs of their merged ID order."""
+        extra = self.size_labels()
+        split = [_split(old_dw, lab, m, patch) for lab in labels + extra]
         own, ghost = [s[0] for s in split], [s[1] for s in split]
         n_own, n_gh, order = len(own[0]), len(ghost[0]), split[0][2]
-        if self.kind != "gimp":
+        if self.kind == "linear":
             own.append(_zeros3(n_own))
             ghost.append(_zeros3(n_gh))
+        elif len(extra) == 2:
+            own, ghost = [a[:-2] + [self._domains(a[-1], a[-2])] for a in (own, ghost)]
         if order is not None:
             runs = particle_runs(order, n_own)
         else:
@@ -211,7 +229,7 @@ class MPMTasks:
         pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
         shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
         inner = tuple(slice(pad[d], pad[d] + ahi[d] - alo[d]) for d in range(3))
-        kind = 0 if self.kind == "linear" else 1
+        kind = transfer.INTERPOLATORS[self.kind]
         for m in matls:
             px = old_dw.get(L.pX, m, patch)
             gm = np.zeros(shape)
@@ -303,7 +321,7 @@ class MPMTasks:
         (0.5 (g_m - mass-weighted mean of the others' g)), then unit length."""
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
-        kind = 0 if self.kind == "linear" else 1
+        kind = transfer.INTERPOLATORS[self.kind]
         g, gm = {}, {}
         for m in self.contact.materials:
             px = old_dw.get(L.pX, m, patch)

@@ -15,6 +15,10 @@ could alias the node arrays), and does all the work that particle needs at its n
   grad       L_p = sum v_i (x) grad S_i(x_p) (004 eq. 14), MUSL's stress-update gradient, F, V
              and, for the models in FUSED (comp_neo_hook), the stress in the same loop.
 
+CPDI particles visit the linear stencils of their domain's corners in turn (shape._corners; one
+stencil for linear and GIMP, the loop folded away), each corner's weights and gradients
+carried in the same per-axis values, so every kernel below serves all interpolators.
+
 p2g and g2p run the particles in chunks of shape.CHUNK: a first loop stores every particle's
 base node and weights (shape._stencil_put; g2p also prefetches the node rows it will read), a
 second does the work at the nodes (shape._stencil_get); the numbers are those of one loop,
@@ -35,8 +39,8 @@ import numpy as np
 from numba import njit
 
 from .constitutive import comp_neo_hook
-from .shape import (CHUNK, GIMP, LINEAR, _counts, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil, _stencil_get,
-                    _stencil_put)
+from .shape import (CHUNK, CPDI, GIMP, LINEAR, _corners, _counts, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil,
+                    _stencil_get, _stencil_put, _visits)
 
 FM = {'contract'}
 
@@ -150,20 +154,24 @@ def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass,
     fp = gmom.reshape(-1)
     fe = gfext.reshape(-1)
     fi = gfint.reshape(-1)
-    sb, sw = _scratch()
+    sb, sw = _scratch(kind, act)
+    nq = _corners(kind, act)
     for r in range(runs.shape[0]):
         px, pmass, pvel, pvol, pstress, pfext, lp = own if runs[r, 0] == 0 else ghost
         for c0 in range(runs[r, 1], runs[r, 2], CHUNK):
             c1 = min(c0 + CHUNK, runs[r, 2])
             for p in range(c0, c1):
-                q = p - c0
-                i, j, k = _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw)
-                sb[0, q] = i
-                sb[1, q] = j
-                sb[2, q] = k
+                for cq in range(nq):
+                    q = (p - c0) * nq + cq
+                    i, j, k = _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw, cq)
+                    sb[0, q] = i
+                    sb[1, q] = j
+                    sb[2, q] = k
             for p in range(c0, c1):
-                _p2g_one(kind, act, has_f, has_v, p, p - c0, sb, _stencil_get(kind, act, p - c0, ih, sw), sh0, sh1,
-                         sh2, pmass, pvel, pvol, pstress, pfext, fm, fv, fp, fe, fi)
+                for cq in range(nq):
+                    q = (p - c0) * nq + cq
+                    _p2g_one(kind, act, has_f, has_v, p, q, sb, _stencil_get(kind, act, q, ih, sw), sh0, sh1,
+                             sh2, pmass, pvel, pvol, pstress, pfext, fm, fv, fp, fe, fi)
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -232,6 +240,41 @@ def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, 
 
 
 @njit(cache=True, fastmath=FM, inline="always")
+def _g2p_gather(kind, act, musl, ijk, sh, fv, fa, st, sums):
+    """g2p's sums over the nodes of one stencil with weights st (_stencil_get) and local base
+    node ijk: += S a_i, S v*_i and (USL) v*_i (x) grad S_i; returns the 15 running sums."""
+    na, nb, nc = _counts(kind, act)
+    i, j, k = ijk
+    sh1, sh2 = sh
+    wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2 = st
+    a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = sums
+    for a in range(na):
+        wa = _sel(a, wx0, wx1, wx2)
+        ga = _sel(a, gx0, gx1, gx2)
+        for b in range(nb):
+            wb = _sel(b, wy0, wy1, wy2)
+            gb = _sel(b, gy0, gy1, gy2)
+            for c in range(nc):
+                wc = _sel(c, wz0, wz1, wz2)
+                gc = _sel(c, gz0, gz1, gz2)
+                S = wa * wb * wc
+                f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                gv0 = fv[f3]
+                gv1 = fv[f3 + np.uint64(1)]
+                gv2 = fv[f3 + np.uint64(2)]
+                a0 += S * fa[f3]
+                a1 += S * fa[f3 + np.uint64(1)]
+                a2 += S * fa[f3 + np.uint64(2)]
+                v0 += S * gv0
+                v1 += S * gv1
+                v2 += S * gv2
+                if not musl:
+                    L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
+                        act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+    return a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22
+
+
+@njit(cache=True, fastmath=FM, inline="always")
 def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
     """Rows [first, end) of one source part = (x, v, m, lp): 000 eqs. 26-27 (see _g2p);
     grid = (anchor, ih, node_low, shape, fv, fa, fp, dt, scratch), outs = (x_out, v_out, L_out,
@@ -244,48 +287,31 @@ def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
     check, min_mass, max_vel = lim
     o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     na, nb, nc = _counts(kind, act)
+    nq = _corners(kind, act)
     for c0 in range(first, end, CHUNK):
         c1 = min(c0 + CHUNK, end)
         for p in range(c0, c1):
-            i, j, k = _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, p - c0, sw)
-            if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
-                raise IndexError("particle's nodes lie outside the patch node arrays")
-            sb[0, p - c0] = i
-            sb[1, p - c0] = j
-            sb[2, p - c0] = k
-            _prefetch_nodes(kind, act, i, j, k, sh1, sh2, fv)
-            _prefetch_nodes(kind, act, i, j, k, sh1, sh2, fa)
+            for cq in range(nq):
+                q = (p - c0) * nq + cq
+                i, j, k = _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw, cq)
+                if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+                    raise IndexError("particle's nodes lie outside the patch node arrays")
+                sb[0, q] = i
+                sb[1, q] = j
+                sb[2, q] = k
+                _prefetch_nodes(kind, act, i, j, k, sh1, sh2, fv)
+                _prefetch_nodes(kind, act, i, j, k, sh1, sh2, fa)
         for p in range(c0, c1):
-            (wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil_get(kind, act, p - c0, ih, sw)
-            i, j, k = sb[0, p - c0], sb[1, p - c0], sb[2, p - c0]
             u = np.uint64(p)          # unsigned particle indices: no negative-index wraparound
             a0 = a1 = a2 = 0.0
             v0 = v1 = v2 = 0.0
             L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
-            for a in range(na):
-                wa = _sel(a, wx0, wx1, wx2)
-                ga = _sel(a, gx0, gx1, gx2)
-                for b in range(nb):
-                    wb = _sel(b, wy0, wy1, wy2)
-                    gb = _sel(b, gy0, gy1, gy2)
-                    for c in range(nc):
-                        wc = _sel(c, wz0, wz1, wz2)
-                        gc = _sel(c, gz0, gz1, gz2)
-                        S = wa * wb * wc
-                        f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                        gv0 = fv[f3]
-                        gv1 = fv[f3 + np.uint64(1)]
-                        gv2 = fv[f3 + np.uint64(2)]
-                        a0 += S * fa[f3]
-                        a1 += S * fa[f3 + np.uint64(1)]
-                        a2 += S * fa[f3 + np.uint64(2)]
-                        v0 += S * gv0
-                        v1 += S * gv1
-                        v2 += S * gv2
-                        if not musl:
-                            L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
-                                act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+            for cq in range(nq):
+                q = (p - c0) * nq + cq
+                a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = _g2p_gather(
+                    kind, act, musl, (sb[0, q], sb[1, q], sb[2, q]), (sh1, sh2), fv, fa,
+                    _stencil_get(kind, act, q, ih, sw),
+                    (a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22))
             nv0 = pvel[u, 0] + dt * a0
             nv1 = pvel[u, 1] + dt * a1
             nv2 = pvel[u, 2] + dt * a2
@@ -294,16 +320,21 @@ def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
                 mv0 = m * nv0
                 mv1 = m * nv1
                 mv2 = m * nv2
-                for a in range(na):
-                    wa = _sel(a, wx0, wx1, wx2)
-                    for b in range(nb):
-                        wb = _sel(b, wy0, wy1, wy2)
-                        for c in range(nc):
-                            S = wa * wb * _sel(c, wz0, wz1, wz2)
-                            f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                            fp[f3] += mv0 * S
-                            fp[f3 + np.uint64(1)] += mv1 * S
-                            fp[f3 + np.uint64(2)] += mv2 * S
+                for cq in range(nq):
+                    q = (p - c0) * nq + cq
+                    (wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+                     wz0, wz1, wz2, gz0, gz1, gz2) = _stencil_get(kind, act, q, ih, sw)
+                    i, j, k = sb[0, q], sb[1, q], sb[2, q]
+                    for a in range(na):
+                        wa = _sel(a, wx0, wx1, wx2)
+                        for b in range(nb):
+                            wb = _sel(b, wy0, wy1, wy2)
+                            for c in range(nc):
+                                S = wa * wb * _sel(c, wz0, wz1, wz2)
+                                f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                                fp[f3] += mv0 * S
+                                fp[f3 + np.uint64(1)] += mv1 * S
+                                fp[f3 + np.uint64(2)] += mv2 * S
             if not owned:
                 continue
             x0 = px[u, 0] + dt * v0
@@ -343,7 +374,7 @@ def _g2p(kind, act, musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt,
     in their merged ID order (as p2g); write the owned ones compacted to x_out / v_out; USL:
     F_out, vol_out (and L_out if write_L); MUSL: += m v_new S on gmom. Returns the number
     of particles deleted (x = NaN)."""
-    sb, sw = _scratch()
+    sb, sw = _scratch(kind, act)
     grid = (anchor, _inv_dx(dx), node_low, gvs.shape[:3], gvs.reshape(-1), gacc.reshape(-1), gmom.reshape(-1), dt,
             sb, sw)
     outs = (x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L)
@@ -379,26 +410,27 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
     cK = K + 4.0 * mu / 3.0
     w0 = w1 = w2 = 0.0
     for p in range(px.shape[0]):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
-            raise IndexError("particle's nodes lie outside the patch node arrays")
         L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
-        for a in range(na):
-            wa = _sel(a, wx0, wx1, wx2)
-            ga = _sel(a, gx0, gx1, gx2)
-            for b in range(nb):
-                wb = _sel(b, wy0, wy1, wy2)
-                gb = _sel(b, gy0, gy1, gy2)
-                for c in range(nc):
-                    wc = _sel(c, wz0, wz1, wz2)
-                    gc = _sel(c, gz0, gz1, gz2)
-                    f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                    gv0 = fv[f3]
-                    gv1 = fv[f3 + np.uint64(1)]
-                    gv2 = fv[f3 + np.uint64(2)]
-                    L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
-                        act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+        for q in range(_corners(kind, act)):
+            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+                raise IndexError("particle's nodes lie outside the patch node arrays")
+            for a in range(na):
+                wa = _sel(a, wx0, wx1, wx2)
+                ga = _sel(a, gx0, gx1, gx2)
+                for b in range(nb):
+                    wb = _sel(b, wy0, wy1, wy2)
+                    gb = _sel(b, gy0, gy1, gy2)
+                    for c in range(nc):
+                        wc = _sel(c, wz0, wz1, wz2)
+                        gc = _sel(c, gz0, gz1, gz2)
+                        f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                        gv0 = fv[f3]
+                        gv1 = fv[f3 + np.uint64(1)]
+                        gv2 = fv[f3 + np.uint64(2)]
+                        L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
+                            act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         if write_L:
             _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         m = pmass[p]
@@ -429,7 +461,9 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
 #      F_out, vol_out, model, bulk_modulus, shear_modulus, particle_velocity, stress_out,
 #      energy_out) -> wave speed (3 floats; zeros unless model)
 
-INTERPOLATORS = {"linear": LINEAR, "gimp": GIMP}
+# fast_cpdi (Uintah's fastCpdiInterpolator) merges the nodes the corners share before the transfer:
+# the same weights, one node list; here both visit the corners' linear stencils in turn
+INTERPOLATORS = {"linear": LINEAR, "gimp": GIMP, "cpdi": CPDI, "fast_cpdi": CPDI}
 
 
 @functools.lru_cache(maxsize=None)
@@ -519,9 +553,9 @@ def mass_gradient(kind, act, px, pm, lp, anchor, dx, node_low, out):
     na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fo = out.reshape(-1)
-    for p in range(px.shape[0]):
+    for p, q in _visits(kind, act, px.shape[0]):
         (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
         m = pm[p]
         for a in range(na):
             wa = _sel(a, wx0, wx1, wx2)

@@ -105,6 +105,9 @@ class MPMICE(MPMICETasks, Component):
         if self.rigid:
             self.mpm.material_class = RigidSolid
         self.mpm.problem_setup(root, level)
+        if self.mpm.kind not in ("linear", "gimp"):
+            raise root.child("MPM").child("interpolator").error(
+                f"{self.mpm.kind} is not implemented with MPMICE; accepted there: linear, gimp")
         activate_master_contact(self.mpm.contact)
         if not self.rigid and self.mpm.axes not in (1, 3, 7):
             raise root.child("Grid").error(

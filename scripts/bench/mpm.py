@@ -3,8 +3,9 @@
     .venv/bin/python scripts/bench/mpm.py [--steps 10] [--repeat 1] [--json out.json] [--quick]
                                           [--cases "2D linear"] [--cpu] [--no-reference]
                                           [--models comp_neo_hook,comp_neo_hook_plastic]
+                                          [--interpolators linear,gimp,cpdi]
 
-Cases: 2D/3D x linear/GIMP x MUSL/USL, a block of comp_neo_hook material moving and
+Cases: 2D/3D x linear/GIMP (--interpolators: also cpdi, fast_cpdi) x MUSL/USL, a block of comp_neo_hook material moving and
 deforming (>= 1 M particles; --quick: ~65 k), one rank, one thread. The first step
 (JIT, warm-up) is not timed; with --repeat R each case is run R times and the median
 rate is reported (the machine may be shared). Beside them, `reference_2d_linear` is ONE numba function
@@ -219,6 +220,7 @@ def main():
     ap.add_argument("--cpu", action="store_true", help="CPU time of this process instead of wall time")
     ap.add_argument("--models", default="comp_neo_hook",
                     help="comma-separated constitutive models: " + ", ".join(PLASTIC))
+    ap.add_argument("--interpolators", default="linear,gimp", help="comma-separated <interpolator> values")
     a = ap.parse_args()
     models = a.models.split(",")
     for mdl in models:
@@ -231,7 +233,7 @@ def main():
     n2, n3, p2, p3 = (160, 32, 2, 1) if a.quick else (640, 80, 4, 2)
     rows = []
     for dim, n, pt in ((2, n2, p2), (3, n3, p3)):
-        for interp in ("linear", "gimp"):
+        for interp in a.interpolators.split(","):
             for su in ("musl", "usl"):
                 if a.cases not in f"{dim}D {interp} {su}":
                     continue

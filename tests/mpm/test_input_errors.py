@@ -34,7 +34,7 @@ def test_unknown_mpm_tag(tmp_path):
 
 
 def test_bad_interpolator(tmp_path):
-    _fails(tmp_path, deck_text(SULSKY, interpolator="cpdi"), "cpdi", "gimp")
+    _fails(tmp_path, deck_text(SULSKY, interpolator="cpti"), "cpti", "cpdi", "preprocessing")
 
 
 def test_gimp_needs_extra_cells(tmp_path):
@@ -70,3 +70,10 @@ def test_rigid_master_material_exists(tmp_path):
     text = open(MPM_INPUTS / "rigid_piston.ups").read().replace(
         "<type>rigid</type>", "<type>rigid</type><master_material>5</master_material>")
     _fails(tmp_path, text, "material 5")
+
+
+def test_cpdi_with_heat_conduction(tmp_path):
+    text = deck_text(SULSKY, interpolator="cpdi", extraCells="[1,1,1]").replace(
+        "<interpolator>cpdi</interpolator>", "<interpolator>cpdi</interpolator>"
+        "<DoExplicitHeatConduction>true</DoExplicitHeatConduction>")
+    _fails(tmp_path, text, "cpdi", "heat conduction", "linear, gimp")

@@ -46,7 +46,7 @@ def weights(kind, act, px, lp, anchor, dx, node_low):
 def _chunked(kind, act, px, lp, anchor, dx, node_low, out_i, out_w):
     """_stencil_put then _stencil_get chunk by chunk, as the transfer kernels run them."""
     ih = _inv_dx(dx)
-    sb, sw = _scratch()
+    sb, sw = _scratch(kind, act)
     n = px.shape[0]
     for c0 in range(0, n, CHUNK):
         c1 = min(c0 + CHUNK, n)
