@@ -149,6 +149,7 @@ class Material:
             if not with_color and g.has("color"):
                 raise g.child("color").error("<color> needs <MPM><withColor>true</withColor>")
             spec["piece"] = piece
+            spec["node"] = g
             self.objects.append(spec)
         if not self.objects:
             raise node.error("a material needs at least one <geom_object>")

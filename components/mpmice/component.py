@@ -114,6 +114,12 @@ class MPMICE(MPMICETasks, Component):
                 "MPMICE with deformable solids needs the active directions first (x, xy or xyz; the "
                 "pressure force on the particles assumes it); rmpmice (prescribed solids) accepts any")
         nm = len(self.mpm.materials)
+        for mat in self.mpm.materials:          # the solid's temperature enters the exchange and the gas's EOS
+            for obj in mat.objects:
+                if "node" in obj and obj["temperature"] <= 0.0:
+                    raise obj["node"].child("temperature").error(
+                        "a solid at 0 K is accepted by MPM alone, not with MPMICE (its temperature enters "
+                        "the heat exchange and the gas's EOS in mixed cells); accepted: a number > 0")
         for mat in self.mpm.materials:          # visco_scram's own solid EOS options
             flag = mat.params.eos_flag() if hasattr(mat.params, "eos_flag") else None
             if flag:

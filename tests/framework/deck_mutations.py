@@ -119,6 +119,8 @@ def numeric_mutations(name, tree, rng, per_deck=6):
         for label, v in (("0", "0"), ("-1", "-1"), ("NaN", "nan"), ("inf", "inf"), ("huge", "1e300")):
             if label in ("NaN", "inf"):
                 expect = REFUSE
+            elif label == "0" and _solid_at_zero_kelvin(name, xp):
+                expect = RUN
             elif label in ("0", "-1") and tag in POSITIVE:
                 expect = REFUSE
             elif label == "-1" and tag in NON_NEGATIVE:
@@ -197,7 +199,15 @@ TARGETED = (
     ("MaterialProperties/MPM/material/constitutive_model/bulk_modulus", "nan", REFUSE),
     ("MaterialProperties/MPM/material/geom_object/velocity", "[nan,0,0]", REFUSE),
     ("MaterialProperties/MPM/material/geom_object/temperature", "0", REFUSE),
+    ("MaterialProperties/MPM/material/geom_object/temperature", "-1", REFUSE),
 )
+
+
+def _solid_at_zero_kelvin(name, xpath):
+    """An MPM solid's geom_object at 0 K: MPM alone accepts it (as Uintah's MPM decks use it),
+    MPMICE refuses it (the solid's temperature enters the exchange)."""
+    return (not name.startswith("MPMICE/") and "/MPM/material" in xpath
+            and xpath.split("/")[-1].startswith("temperature"))
 
 
 def targeted_mutations(name, tree):
@@ -205,6 +215,8 @@ def targeted_mutations(name, tree):
     for rel, value, expect in TARGETED:
         xp = f"/{root}/{rel}"
         if tree.xpath(xp):
+            if value == "0" and _solid_at_zero_kelvin(name, xp):
+                expect = RUN
             yield Mutation(name, "named bad value", f"{rel} = {value}",
                            _bytes(_mutate(tree, xp, _set_text(value))), expect)
     xp = f"/{root}/Time/delt_max"

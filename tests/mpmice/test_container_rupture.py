@@ -62,7 +62,7 @@ def test_container_ruptures_at_the_notch_and_vents(tmp_path):
 
 def test_failure_same_on_one_two_three_ranks(tmp_path):
     """The deck with a weaker steel (yield 50 MPa, failure at 0.2 % plastic strain) so that steel
-    particles fail at the notch within 330 steps: 1, 2 and 3 ranks (4 patches) give bitwise the
+    particles fail at the notch within 400 steps (the first at step ~360): 1, 2 and 3 ranks (4 patches) give bitwise the
     same state (the full deck: checked by hand to step 700)."""
     from framework.archiver import DataArchive
     from tests.conftest import pysus
@@ -70,7 +70,7 @@ def test_failure_same_on_one_two_three_ranks(tmp_path):
     for old, new in (("<D1> 0.05 </D1>", "<D1> 0.002 </D1>"),
                      ("<yield_stress> 2.0e8 </yield_stress>", "<yield_stress> 5.0e7 </yield_stress>"),
                      ("<outputTimestepInterval> 100 </outputTimestepInterval>",
-                      "<outputTimestepInterval> 330 </outputTimestepInterval>"),
+                      "<outputTimestepInterval> 400 </outputTimestepInterval>"),
                      ('<save label="p.x"/>', '<save label="p.x"/><save label="p.particleID"/>')):
         assert old in text
         text = text.replace(old, new)
@@ -79,7 +79,7 @@ def test_failure_same_on_one_two_three_ranks(tmp_path):
     runs = []
     for n in (1, 2, 3):
         uda = tmp_path / f"r{n}.uda"
-        r = pysus(deck, "--filebase", uda, "--max-timesteps", 330, np_=n, timeout=600)
+        r = pysus(deck, "--filebase", uda, "--max-timesteps", 400, np_=n, timeout=600)
         assert r.returncode == 0, r.stderr[-2000:]
         runs.append(DataArchive(uda))
     base = runs[0]
