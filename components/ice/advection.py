@@ -220,11 +220,14 @@ def _row_values_gradient_md(q, grad, rc, d, u, l0, l1, lb, r0, r1, rb, dt, dx, c
 
 
 @njit(cache=True, error_model="numpy")
-def _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi):
-    """q = (m, (mu)/m, (me)/m, (mv)/m, E/m) in every stored cell (halo corners outside the
-    domain may hold garbage: never read); acc = the Lagrangian totals in the cells [lo, hi).
-    heating: E = m e + |m u|^2 / (2 m) from the others (tot unused)."""
+def _start(mass, mom, eng, volm, tot, scal, with_e, heating, q, acc, lo, hi):
+    """q = (m, (mu)/m, (me)/m, (mv)/m, E/m, then the transported scalars' (m f)/m) in every stored
+    cell (halo corners outside the domain may hold garbage: never read); acc = the Lagrangian
+    totals in the cells [lo, hi). heating: E = m e + |m u|^2 / (2 m) from the others (tot
+    unused). scal: (ns, *mass.shape) Lagrangian totals m f of passive scalars (ns may be 0),
+    stored after the others in q (from index nq - ns)."""
     nq = q.shape[0]
+    base = nq - scal.shape[0]
     n0, n1, n2 = mass.shape
     for i in range(n0):
         for j in range(n1):
@@ -241,14 +244,19 @@ def _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi):
                                                            q[3, i, j, k] ** 2)
                 elif with_e:
                     q[6, i, j, k] = tot[i, j, k] / m
+                for s in range(base, nq):
+                    q[s, i, j, k] = scal[s - base, i, j, k] / m
     n = hi[2] - lo[2]
     k0 = lo[2]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for c in range(nq):
                 a = acc[c, i, j, k0:k0 + n]
-                src = q[c, i, j, k0:k0 + n] if c == 0 else (
-                    eng[i, j, k0:k0 + n] if c == 4 else (volm[i, j, k0:k0 + n] if c == 5 else tot[i, j, k0:k0 + n]))
+                if c >= base:
+                    src = scal[c - base, i, j, k0:k0 + n]
+                else:
+                    src = q[c, i, j, k0:k0 + n] if c == 0 else (
+                        eng[i, j, k0:k0 + n] if c == 4 else (volm[i, j, k0:k0 + n] if c == 5 else tot[i, j, k0:k0 + n]))
                 if 1 <= c <= 3:
                     mc = mom[i, j, k0:k0 + n, c - 1]
                     for k in range(n):
@@ -436,32 +444,34 @@ def _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf):
 
 
 @njit(cache=True, error_model="numpy")
-def advect(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
-           second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+def advect(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, comp,
+           second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
     """Advect one material's Lagrangian totals (m, m u, m e, m v, E) over one step into the
     cells [lo, hi) and return the new primitives rho = m/V, u = (mu)/m, T = (me)/(m cv),
     v = (mv)/m (and the advected E in tot_o). heating (dissipationHeating, with with_e):
     E = m e + |m u|^2/(2 m) is made here and T = (E/m - |u|^2/2)/cv where that is positive.
+    scal: (ns, ...) Lagrangian totals m f of transported scalars (Uintah's models' q_L_CC),
+    fluxed as the specific values above; scal_o gets f = (m f)_adv / m_adv.
 
     All arrays are views with the collapsed axes first (a 2D run has a unit first axis),
     `comp` maps view axes to velocity components; shs, flo, fhi: (3, 3) per view axis.
-    q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6; buf: (nq, row length).
+    q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6, plus ns; buf: (nq, row length).
     """
-    _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
+    _start(mass, mom, eng, volm, tot, scal, with_e, heating, q, acc, lo, hi)
     for d in range(3):                  # d a run-time value: one compiled _sweep, not one per axis
         if dims[d]:
             uf = ux if d == 0 else (uy if d == 1 else uz)
             _sweep(q, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
-    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
+    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o)
 
 
 @njit(cache=True, error_model="numpy")
-def advect_extrema(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims,
-                   compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims,
+                   compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
     """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
     grad, rc: scratch (3, nq, *mass.shape), (3, *mass.shape); compatible: Uintah's
     useCompatibleFluxes."""
-    _start(mass, mom, eng, volm, tot, with_e, heating, q, acc, lo, hi)
+    _start(mass, mom, eng, volm, tot, scal, with_e, heating, q, acc, lo, hi)
     limited_gradients(q, dims, dxs, compatible, grad)
     if int(dims[0]) + int(dims[1]) + int(dims[2]) > 1:
         _slab_offsets(ux, uy, uz, shs, dims, dt, rc)
@@ -469,14 +479,16 @@ def advect_extrema(mass, mom, eng, volm, tot, with_e, heating, ux, uy, uz, shs, 
         if dims[d]:
             uf = ux if d == 0 else (uy if d == 1 else uz)
             _sweep_extrema(q, grad, rc, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, compatible, acc, buf)
-    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o)
+    _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o)
 
 
 @njit(cache=True, error_model="numpy")
-def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o):
+def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
     """The new primitives of the cells [lo, hi) from the advected totals (see advect)."""
     n = hi[2] - lo[2]
     k0 = lo[2]
+    ns = scal_o.shape[0]
+    base = acc.shape[0] - ns
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             am, ae, av = acc[0, i, j, k0:k0 + n], acc[4, i, j, k0:k0 + n], acc[5, i, j, k0:k0 + n]
@@ -502,6 +514,10 @@ def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, 
                 ae, eo = acc[6, i, j, k0:k0 + n], tot_o[i, j, k0:k0 + n]
                 for k in range(n):
                     eo[k] = ae[k]
+            for s in range(ns):
+                af, fo = acc[base + s, i, j, k0:k0 + n], scal_o[s, i, j, k0:k0 + n]
+                for k in range(n):
+                    fo[k] = af[k] / max(am[k], 1e-300)
 
 
 @njit(cache=True)

@@ -2,8 +2,9 @@
 
 Extra cells hold the boundary values of CC variables, as in Uintah:
   Dirichlet            extra cell = value
-  Neumann              extra cell = first interior cell + value * dx (value: the
-                       gradient along the outward normal; 0 = zero gradient)
+  Neumann              extra cell = first interior cell - value * dx on every face, as
+                       Uintah's setNeumannBC_CC (value: the gradient along the inward
+                       normal; 0 = zero gradient)
   symmetry             scalars copied; the normal velocity component reflected; the
                        normal face velocity is zero
   computeFromDensity   (SpecificVol only) v = theta / rho in the extra cell
@@ -15,7 +16,9 @@ Extra cells hold the boundary values of CC variables, as in Uintah:
                        parameters in <BoundaryConditions><inletVelocity> (InletProfile)
 Face velocities on a boundary face: Dirichlet sets the normal component, symmetry and
 FreeSlipWall zero, Neumann keeps the value computed from the extra cells.
-A `<BCType id="all">` applies to every material; Pressure is one field (material 0).
+A `<BCType id="all">` applies to every material; Pressure is one field (material 0). A model's
+transported scalar (label scalar-f, components/models/passive_scalar.py) takes Dirichlet or
+Neumann on every face (a symmetry face: zero gradient).
 """
 from __future__ import annotations
 
@@ -141,9 +144,12 @@ def bc_hydrostatic(press, sp_vol, d, side, dirichlet, g, origin, anchor, dx, lo,
                 press[ie] += g[d] * sign * dx[d] * rho
 
 
-def read_bcs(root, level, nmat, material_names=(), n_before=0):
+def read_bcs(root, level, nmat, material_names=(), n_before=0, scalars=None):
     """{face: {var: [(kind, value) per material]}} for every physical face of the level, and the
-    inlet profiles' parameters (an InletProfile, or None) under the key "inletVelocity"."""
+    inlet profiles' parameters (an InletProfile, or None) under the key "inletVelocity".
+    scalars: {label: material} of the models' transported scalars (scalar-f ...): Dirichlet or
+    Neumann on every face for that material (or a symmetry face), as Uintah's is_BC_specified."""
+    scalars = scalars or {}
     grid = root.child("Grid", required=True)
     bcn = grid.child("BoundaryConditions")
     found = {}
@@ -153,7 +159,7 @@ def read_bcs(root, level, nmat, material_names=(), n_before=0):
             table = found.setdefault(side, {})
             nodes[side] = face
             for bt in face.children("BCType"):
-                _read_bctype(bt, table, nmat)
+                _read_bctype(bt, table, nmat, scalars)
     out = {}
     for d in range(3):
         if level.collapsed[d] or level.periodic[d]:
@@ -178,6 +184,15 @@ def read_bcs(root, level, nmat, material_names=(), n_before=0):
                                               'give <BCType id="..." label="' + var +
                                               '" var="Dirichlet|Neumann"> or a symmetry BCType')
                 face[var] = per
+            for var, sm in scalars.items():
+                per = table.get(var, [None] * nmat)
+                if per[sm] is None:
+                    if "symmetry" not in table:
+                        raise where.error(f"face {name}: no boundary condition for {var} of material {sm}; give "
+                                          f'<BCType id="{sm}" label="{var}" var="Dirichlet|Neumann"> or a '
+                                          "symmetry BCType")
+                    per[sm] = (SYMMETRY, None)
+                face[var] = per
             out[name] = face
     used = any(e is not None and e[0] in INLET for t in found.values() for per in t.values()
                if isinstance(per, list) for e in per)
@@ -193,7 +208,7 @@ def read_bcs(root, level, nmat, material_names=(), n_before=0):
     return out
 
 
-def _read_bctype(bt, table, nmat):
+def _read_bctype(bt, table, nmat, scalars):
     ident = bt.attr("id")
     label = bt.attr("label")
     kind = bt.attr("var", choices=tuple(KINDS))
@@ -210,13 +225,18 @@ def _read_bctype(bt, table, nmat):
         if bt.has("value"):
             bt.child("value").mark_used()
         table["symmetry"] = True
-        for var in VARS:
+        for var in VARS + tuple(scalars):
             per = table.setdefault(var, [None] * nmat)
             for m in mats:
                 per[m] = (SYMMETRY, None)
         return
-    if label not in VARS:
-        raise bt.error(f'label="{label}" is not supported; accepted: {", ".join(VARS)} (or var="symmetry")')
+    if label not in VARS and label not in scalars:
+        more = "".join(f", {s}" for s in scalars)
+        raise bt.error(f'label="{label}" is not supported; accepted: {", ".join(VARS)}{more} (or var="symmetry")'
+                       + ("" if scalars or not label.startswith("scalar-") else
+                          '; a scalar-<name> label needs a <Models><Model type="PassiveScalar"> with that scalar'))
+    if label in scalars and kind not in ("Dirichlet", "Neumann"):
+        raise bt.error(f'{label} accepts var="Dirichlet" or "Neumann" (or a symmetry BCType)')
     if kind == "computeFromDensity" and label != "SpecificVol":
         raise bt.error('var="computeFromDensity" applies only to label="SpecificVol"')
     if label == "SpecificVol" and kind not in ("computeFromDensity",):
@@ -256,7 +276,7 @@ def bc_scalar(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of face (d, side) of a scalar CC array."""
     e = lo[d] - 1 if side == 0 else hi[d]
     n = lo[d] if side == 0 else hi[d] - 1
-    add = value * dx if kind == 0 else 0.0
+    add = -value * dx if kind == 0 else 0.0
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
@@ -286,7 +306,7 @@ def bc_vector(q, d, side, kind, value, dx, lo, hi, olo, ohi):
                 elif kind == 4:
                     q[ie[0], ie[1], ie[2], c] = 0.0 if c == d else q[i_n[0], i_n[1], i_n[2], c]
                 else:
-                    q[ie[0], ie[1], ie[2], c] = q[i_n[0], i_n[1], i_n[2], c] + value[c] * dx
+                    q[ie[0], ie[1], ie[2], c] = q[i_n[0], i_n[1], i_n[2], c] - value[c] * dx
 
 
 @njit(cache=True)
@@ -324,7 +344,8 @@ class BoundaryConditions:
             yield name, i // 2, i % 2
 
     def scalar(self, patch, q, var, m, b, copy=False):
-        """Temperature, Density or Pressure (m = 0) in the extra cells of one CC array.
+        """Temperature, Density, Pressure (m = 0) or a model's scalar (scalar-f) in the extra cells
+        of one CC array.
 
         copy=True: zero-gradient copy whatever the condition (specific volume at t = 0).
         """

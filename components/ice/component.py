@@ -22,6 +22,7 @@ import sys
 
 import numpy as np
 
+from components.models.passive_scalar import read_ice_models
 from framework import labels as L
 from framework.component import Component, register
 from framework.geometry import GeometryReader
@@ -152,8 +153,10 @@ class ICE(ImplicitICE, IceTasks, Component):
             raise icen.error("with gravity, one ICE material needs <isSurroundingMatl> true </isSurroundingMatl> "
                              "(the background material of the hydrostatic pressure, as Uintah); or give "
                              "<CFD><ICE><applyHydrostaticPressure> false")
-        self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before),
-                                      level)
+        # <Models>: Uintah's PassiveScalar (ICE alone; MPMICE reads its reaction models itself)
+        self.scalars = read_ice_models(root, self, geo) if self.n_before == 0 else []
+        self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before,
+                                               {s.name: s.matl for s in self.scalars}), level)
         self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)
         if self.conserve_energy and n > 1 and np.any(self.codes != IDEAL_GAS):
             # the equilibration (eq. 13) changes each material's rho_micro at fixed T; with
@@ -312,6 +315,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         sched.add_task(Task("ICE::actuallyInitialize", self.initialize, self.matls)
                        .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC)
                        .computes(I.speedSound_CC).computes(I.press_CC, matls=[0]))
+        for model in self.scalars:
+            model.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_implicit if self.implicit else self.stable_timestep
@@ -333,6 +338,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         if many:
             t.requires(OLD, I.press_CC, matls=m0)
         sched.add_task(t)
+        for model in self.scalars:          # Uintah's computeModelSources: scalar-f_src
+            model.schedule_sources(sched)
 
         t = Task("ICE::computeVel_FC", self.vel_fc, self.matls) \
             .requires(OLD, L.delT).requires(OLD, I.rho_CC, G, 1).requires(OLD, I.vel_CC, G, 1) \
@@ -436,6 +443,14 @@ class ICE(ImplicitICE, IceTasks, Component):
             t.requires(NEW, I.int_eng_L_ME_CC).requires(OLD, I.temp_CC)
         sched.add_task(t)
 
+        if self.scalars:
+            t = Task("ICE::computeLagrangian_Transported_Vars", self.lagrangian_transported, self.matls) \
+                .requires(NEW, I.mass_L_CC)
+            for model in self.scalars:
+                t.requires(OLD, model.f, matls=[model.matl]).requires(NEW, model.src, matls=[model.matl]) \
+                    .computes(model.f_L, matls=[model.matl])
+            sched.add_task(t)
+
         t = Task("ICE::advectAndAdvanceInTime", self.advect_and_advance, self.matls) \
             .requires(OLD, L.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
             .requires(NEW, I.int_eng_L_ME_CC, G, gadv).requires(NEW, I.sp_vol_L_CC, G, gadv) \
@@ -445,7 +460,11 @@ class ICE(ImplicitICE, IceTasks, Component):
             t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         if self.conserve_energy:
             t.requires(NEW, I.tot_eng_L_ME_CC, G, gadv)
+        for model in self.scalars:
+            t.requires(NEW, model.f_L, G, gadv, matls=[model.matl]).computes(model.f, matls=[model.matl])
         sched.add_task(t)
+        for model in self.scalars:
+            model.schedule_conservation(sched, dirs)
 
         t = Task("ICE::sumConservedQuantities", self.conserved_sums, self.matls) \
             .requires(OLD, L.delT).requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.temp_CC) \

@@ -524,6 +524,21 @@ class IceTasks:
                 tiny_rho = getattr(self.materials[m], "tiny_rho", 1e-12)    # MPMICE's solids: Uintah's 1e-12
                 K.clamp_sp_vol_lagrangian(out, new_dw.get(I.sp_vol_CC, m, patch), tiny_rho, b.vol, b.lo, b.hi)
 
+    # -- models' transported scalars ---------------------------------------------------------------
+    def lagrangian_transported(self, patch, matls, old_dw, new_dw):
+        """Uintah's computeLagrangian_Transported_Vars: f_L = f_old plus the model's source in the
+        interior, the scalar's boundary conditions, then times mass_L_CC (what advection moves)."""
+        b = self.boxes(patch)
+        own = tuple(slice(l, h) for l, h in zip(b.olo, b.ohi))
+        inner = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+        for model in self.scalars:
+            m = model.matl
+            f_L = new_dw.allocate(model.f_L, m, patch)
+            f_L[own] = old_dw.get(model.f, m, patch)[own]
+            f_L[inner] += new_dw.get(model.src, m, patch)[inner]
+            self.bcs.scalar(patch, f_L, model.name, m, b)
+            f_L[own] *= new_dw.get(I.mass_L_CC, m, patch)[own]
+
     # -- step 12: advection and the new state ----------------------------------------------------
     def advect_and_advance(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
@@ -543,13 +558,18 @@ class IceTasks:
                 tot = tot_o = mass                              # unused
             uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
             v = b.view
-            nq = A.NQ if with_e else A.NQ - 1
             shape = v(mass).shape
-            common = (v(mass), v(mom), v(eng), v(volm), v(tot), with_e, heating, *(v(uf[p]) for p in b.perm),
+            # the models' scalars of this material (m f), advected with the others
+            mine = [model for model in self.scalars if model.matl == m]
+            scal, scal_o = self._scratch("scal", (len(mine),) + shape), self._scratch("scal_o", (len(mine),) + shape)
+            for s, model in enumerate(mine):
+                scal[s] = v(new_dw.get(model.f_L, m, patch))
+            nq = (A.NQ if with_e else A.NQ - 1) + len(mine)
+            common = (v(mass), v(mom), v(eng), v(volm), v(tot), scal, with_e, heating, *(v(uf[p]) for p in b.perm),
                       b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm])
             scratch = (self._scratch("q", (nq,) + shape), self._scratch("acc", (nq,) + shape),
                        self._scratch("buf", (nq, shape[2] + 1)))
-            out = (b.vol, self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o))
+            out = (b.vol, self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o), scal_o)
             if self.second_order and self.limiter == A.EXTREMA:
                 A.advect_extrema(*common, self.compatible_fluxes, *scratch,
                                  self._scratch("grad", (3, nq) + shape), self._scratch("rc", (3,) + shape), *out)
@@ -562,6 +582,11 @@ class IceTasks:
             self.bcs.scalar(patch, temp, "Temperature", m, b)
             self.bcs.velocity(patch, vel, m, b)
             self.bcs.sp_vol(patch, spv, new_dw.get(I.vol_frac_CC, m, patch), rho, m, b)
+            inner = tuple(slice(l, h) for l, h in zip(b.v_lo, b.v_hi))
+            for s, model in enumerate(mine):     # Uintah's conservedtoPrimitive_Vars: f = (m f)_adv / m_adv
+                f = new_dw.allocate(model.f, m, patch)
+                v(f)[inner] = scal_o[s][inner]
+                self.bcs.scalar(patch, f, model.name, m, b)
 
     # -- diagnostics ----------------------------------------------------------------------------
     def conserved_sums(self, patch, matls, old_dw, new_dw):

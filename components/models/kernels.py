@@ -1,4 +1,4 @@
-"""Numba kernels of the reaction models (paper 001 sec. 3, eqs. 5-9).
+"""Numba kernels of the models: reactions (paper 001 sec. 3, eqs. 5-9) and the passive scalar.
 
 Index conventions as in components/mpmice/kernels.py: `cc_low` / `node_low` are the
 global indices of entry [0, 0, 0] of a patch's CC / NC arrays; a collapsed direction
@@ -308,3 +308,50 @@ def steady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, num
                 if mb + min_mass > have:
                     mb = max(have - min_mass, 0.0)
                 burned[i, j, k] = mb
+
+
+@njit(cache=True)
+def scalar_diffusion_source(f, diffusivity, src, dims, lo, hi, dx, dt):
+    """Uintah's scalarDiffusionOperator for a constant D (PassiveScalar): src = -dt sum over the
+    cell's faces of flux * area, flux = -D_face (f_R - f_L) / dx, D_face = 2 D D / (2 D + 1e-100),
+    over the cells [lo, hi) (not divided by the cell volume, as Uintah)."""
+    d_face = 2.0 * diffusivity * diffusivity / (diffusivity + diffusivity + 1e-100)
+    area = np.array([dx[1] * dx[2], dx[0] * dx[2], dx[0] * dx[1]])
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                s = 0.0
+                for d in range(3):
+                    if not dims[d]:
+                        continue
+                    di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+                    flux_hi = -d_face * (f[i + di, j + dj, k + dk] - f[i, j, k]) / dx[d]
+                    flux_lo = -d_face * (f[i, j, k] - f[i - di, j - dj, k - dk]) / dx[d]
+                    s += (flux_hi - flux_lo) * area[d]
+                src[i, j, k] = -s * dt
+
+
+@njit(cache=True)
+def scalar_mass_sum(rho, f, vol, lo, hi):
+    """sum of (rho V) f over the cells [lo, hi)."""
+    total = 0.0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                total += rho[i, j, k] * vol * f[i, j, k]
+    return total
+
+
+@njit(cache=True)
+def scalar_upper_face_flux(rho, f, vol, face_vel, d, lo, hi, shift):
+    """sum of u_face (rho V) f over the extra cells of the domain's upper face in direction d
+    (edges excluded), u_face the boundary face's velocity (Uintah's conservationTest)."""
+    a, b = (d + 1) % 3, (d + 2) % 3
+    total = 0.0
+    c = np.zeros(3, dtype=np.int64)
+    for p in range(lo[a], hi[a]):
+        for q in range(lo[b], hi[b]):
+            c[d], c[a], c[b] = hi[d], p, q
+            i, j, k = c[0], c[1], c[2]
+            total += face_vel[i - shift[0], j - shift[1], k - shift[2]] * (rho[i, j, k] * vol * f[i, j, k])
+    return total
