@@ -20,6 +20,8 @@ error vs cells and vs wall time when matplotlib is importable).
     .venv/bin/python scripts/accuracy_cost.py bar --res 25 50 100 200 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py lame --res 11 22 44 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py disks --res 20 50 --opt interpolator=linear,gimp --opt update=musl,usl
+    .venv/bin/python scripts/accuracy_cost.py stretch --res 25 50 100 200 --interpolators linear,gimp,cpdi,fast_cpdi
+    .venv/bin/python scripts/accuracy_cost.py twist --res 8 16 32 --interpolators linear,gimp,cpdi,fast_cpdi
 
 A scene is a name -> (deck template taking the resolution and options, error function
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
@@ -138,7 +140,7 @@ def _mpm_scene(name):
     return {"deck": deck, "error": error, "key": key, "what": what}
 
 
-for _name in ("bar", "lame", "disks"):
+for _name in ("bar", "lame", "disks", "stretch", "twist"):
     SCENES[_name] = (lambda n=_name: _mpm_scene(n))
 
 
@@ -230,12 +232,16 @@ def main(argv=None):
     ap.add_argument("scene", choices=sorted(SCENES))
     ap.add_argument("--res", type=int, nargs="+", default=[50, 100, 200, 400])
     ap.add_argument("--opt", action="append", default=[], help="name=v1,v2 (an option of the deck template)")
+    ap.add_argument("--interpolators", metavar="LIST", default=None,
+                    help="the same as --opt interpolator=LIST (MPM scenes: linear,gimp,cpdi,fast_cpdi)")
     ap.add_argument("--json", default=None)
     ap.add_argument("--png", default=None)
     ap.add_argument("--uintah", metavar="SUS", default=None,
                     help="also run each resolution's deck on Uintah's sus (path to the executable)")
     args = ap.parse_args(argv)
     scene = SCENES[args.scene]()
+    if args.interpolators:
+        args.opt.append(f"interpolator={args.interpolators}")
     names = [o.split("=")[0] for o in args.opt]
     values = [o.split("=")[1].split(",") for o in args.opt]
     rows = []
