@@ -52,6 +52,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 from framework.archiver import DataArchive  # noqa: E402
 from framework.controller import Controller  # noqa: E402
+from framework.errors import RunStopped  # noqa: E402
 
 
 def _ice_scene(name):
@@ -227,6 +228,16 @@ def _report_row(row, prev, n, key, label, step_column):
     return n, e
 
 
+def _run_or_fail(scene, n, opts, workdir, label):
+    """run_case, or a row saying why the run stopped (a scheme that breaks down under large
+    deformation may send its particles beyond the patch's nodes): the table goes on."""
+    try:
+        return run_case(scene, n, opts, workdir)
+    except (ArithmeticError, IndexError, RuntimeError, ValueError, RunStopped) as e:
+        print(f"{label:24s} n={n:<5d} FAILED ({type(e).__name__}: {str(e)[:110]})", flush=True)
+        return {"n": n, "failed": f"{type(e).__name__}: {e}", **{f"opt_{k}": v for k, v in opts.items()}}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene", choices=sorted(SCENES))
@@ -249,14 +260,17 @@ def main(argv=None):
     print(scene["what"])
     for combo in itertools.product(*values) if values else [()]:
         opts = dict(zip(names, combo))
+        label = " ".join(f"{k}={v}" for k, v in opts.items())
         with tempfile.TemporaryDirectory() as d:      # warm-up: numba compiles outside the timings
-            run_case(scene, args.res[0], opts, d)
+            _run_or_fail(scene, args.res[0], opts, d, label)
         prev = None
         for n in args.res:
             with tempfile.TemporaryDirectory() as d:
-                row = run_case(scene, n, opts, d)
-            prev = _report_row(row, prev, n, key, " ".join(f"{k}={v}" for k, v in opts.items()),
-                               f"step={row['step_s']:8.3f}s")
+                row = _run_or_fail(scene, n, opts, d, label)
+            if "failed" in row:
+                prev = None
+            else:
+                prev = _report_row(row, prev, n, key, label, f"step={row['step_s']:8.3f}s")
             rows.append(row)
     if args.uintah:
         prev = None
@@ -278,7 +292,7 @@ def main(argv=None):
             print("matplotlib not importable: no PNG", file=sys.stderr)
         else:
             fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-            pysus_rows = [r for r in rows if r.get("opt_code") != "uintah"]
+            pysus_rows = [r for r in rows if r.get("opt_code") != "uintah" and "failed" not in r]
             groups = [(" ".join(combo) or args.scene,
                        [r for r in pysus_rows if all(r.get(f"opt_{k}") == v for k, v in zip(names, combo))])
                       for combo in (itertools.product(*values) if values else [()])]

@@ -152,7 +152,7 @@ def stretch_errors(da):
             "gap": float(np.diff(np.sort(x[:, 0])).max() * cells_per_m)}
 
 
-def twist_deck(n, interpolator="linear", update="musl", amplitude="1.0", ramp="1.0"):
+def twist_deck(n, interpolator="linear", update="musl", amplitude="0.5", ramp="1.0"):
     """The ring in -1.5 < x, y < 1.5 (n cells per metre)."""
     n = int(n)
     dz = 1.0 / n
