@@ -27,10 +27,12 @@ A scene is a name -> (deck template taking the resolution and options, error fun
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
 Toro's tests 1-5, and the smooth periodic entropy wave in 1D and along the diagonal in
 2D, from components/ice/scenes.py; the low-Mach Taylor-Green vortex, explicit against
-semi-implicit ICE, from components/ice/scene_lowmach.py; MPM's bar, Lame cylinder and
-colliding disks with either interpolator and stress update, from
-components/mpm/scene_accuracy.py); nothing else here is
-component-specific.
+semi-implicit ICE, from components/ice/scene_lowmach.py; MPM's bar, Lame cylinder,
+colliding disks and the manufactured large deformations (a bar stretched to twice its
+length, a twisted ring) with each interpolator and stress update, from
+components/mpm/scene_accuracy.py); nothing else here is component-specific.
+--interpolators LIST is --opt interpolator=LIST. A run that breaks down (a blown-up
+particle, particles beyond the patch's nodes) prints a FAILED row and the table goes on.
 --uintah SUS runs each resolution's deck (the template's defaults, pysus-only options
 dropped, see uintah_deck) on Uintah's sus too and reads its .uda (framework/uintah_uda.py):
 its error and wall time (sus's start-up included) join the table, the JSON and the PNG.

@@ -14,7 +14,7 @@ is needed; the body force comes from the deck's own density, bulk and shear modu
   TwistedAnnulus  plane strain twist of the ring 0.75 <= R <= 1.25 about the z axis:
                   the angle alpha = s(t) h(R), h = (1 - 16 (R - 1)^2)^2 (Uintah's
                   GeneralizedVortex motion, isochoric; its shear R dalpha/dR reaches
-                  6.2 A). Uintah's own MMS types are hard-coded for its cnh_mms model.
+                  7.1 A). Uintah's own MMS types are hard-coded for its cnh_mms model.
 
 exact(kind, X, t, ...) gives the positions and Cauchy stresses the particles should have.
 """

@@ -109,7 +109,7 @@ def test_stretch_linear_breaks_cpdi_follows(tmp_path, update):
 
 
 def test_twist_cpdi_converges_gimp_does_not(tmp_path):
-    """The ring twisted by 0.5 rad (shear up to 3.1), 8 and 16 cells per metre (MUSL).
+    """The ring twisted by 0.5 rad (shear up to 3.5), 8 and 16 cells per metre (MUSL).
     Measured: CPDI stress error 0.20 -> 0.12, GIMP 0.31 -> 0.39."""
     err = {}
     for interp in ("cpdi", "gimp"):
