@@ -50,7 +50,8 @@ def bar_force(X, mass, t, A, T, K, mu, rho, out):
         g = x0 - math.sin(tp * x0) / tp
         lam = 1.0 + s * (1.0 - math.cos(tp * x0))
         dlam = s * tp * math.sin(tp * x0)
-        dP = 0.5 * K * (1.0 + lam ** -2.0) + 2.0 * mu / 3.0 * (lam ** (-2.0 / 3.0) / 3.0 + 5.0 / 3.0 * lam ** (-8.0 / 3.0))
+        dP = (0.5 * K * (1.0 + lam ** -2.0)                                  # d sigma_xx / d lambda
+              + 2.0 * mu / 3.0 * (lam ** (-2.0 / 3.0) / 3.0 + 5.0 / 3.0 * lam ** (-8.0 / 3.0)))
         out[p, 0] = mass[p] * (sdd * g - dP * dlam / rho)
         out[p, 1] = 0.0
         out[p, 2] = 0.0
