@@ -20,15 +20,19 @@ error vs cells and vs wall time when matplotlib is importable).
     .venv/bin/python scripts/accuracy_cost.py bar --res 25 50 100 200 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py lame --res 11 22 44 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py disks --res 20 50 --opt interpolator=linear,gimp --opt update=musl,usl
+    .venv/bin/python scripts/accuracy_cost.py stretch --res 25 50 100 200 --interpolators linear,gimp,cpdi,fast_cpdi
+    .venv/bin/python scripts/accuracy_cost.py twist --res 8 16 32 --interpolators linear,gimp,cpdi,fast_cpdi
 
 A scene is a name -> (deck template taking the resolution and options, error function
 of the finished run's DataArchive). Components add theirs to SCENES below (ICE: Sod and
 Toro's tests 1-5, and the smooth periodic entropy wave in 1D and along the diagonal in
 2D, from components/ice/scenes.py; the low-Mach Taylor-Green vortex, explicit against
-semi-implicit ICE, from components/ice/scene_lowmach.py; MPM's bar, Lame cylinder and
-colliding disks with either interpolator and stress update, from
-components/mpm/scene_accuracy.py); nothing else here is
-component-specific.
+semi-implicit ICE, from components/ice/scene_lowmach.py; MPM's bar, Lame cylinder,
+colliding disks and the manufactured large deformations (a bar stretched to twice its
+length, a twisted ring) with each interpolator and stress update, from
+components/mpm/scene_accuracy.py); nothing else here is component-specific.
+--interpolators LIST is --opt interpolator=LIST. A run that breaks down (a blown-up
+particle, particles beyond the patch's nodes) prints a FAILED row and the table goes on.
 --uintah SUS runs each resolution's deck (the template's defaults, pysus-only options
 dropped, see uintah_deck) on Uintah's sus too and reads its .uda (framework/uintah_uda.py):
 its error and wall time (sus's start-up included) join the table, the JSON and the PNG.
@@ -50,6 +54,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 from framework.archiver import DataArchive  # noqa: E402
 from framework.controller import Controller  # noqa: E402
+from framework.errors import RunStopped  # noqa: E402
 
 
 def _ice_scene(name):
@@ -138,7 +143,7 @@ def _mpm_scene(name):
     return {"deck": deck, "error": error, "key": key, "what": what}
 
 
-for _name in ("bar", "lame", "disks"):
+for _name in ("bar", "lame", "disks", "stretch", "twist"):
     SCENES[_name] = (lambda n=_name: _mpm_scene(n))
 
 
@@ -225,17 +230,31 @@ def _report_row(row, prev, n, key, label, step_column):
     return n, e
 
 
+def _run_or_fail(scene, n, opts, workdir, label):
+    """run_case, or a row saying why the run stopped (a scheme that breaks down under large
+    deformation may send its particles beyond the patch's nodes): the table goes on."""
+    try:
+        return run_case(scene, n, opts, workdir)
+    except (ArithmeticError, IndexError, RuntimeError, ValueError, RunStopped) as e:
+        print(f"{label:24s} n={n:<5d} FAILED ({type(e).__name__}: {str(e)[:110]})", flush=True)
+        return {"n": n, "failed": f"{type(e).__name__}: {e}", **{f"opt_{k}": v for k, v in opts.items()}}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene", choices=sorted(SCENES))
     ap.add_argument("--res", type=int, nargs="+", default=[50, 100, 200, 400])
     ap.add_argument("--opt", action="append", default=[], help="name=v1,v2 (an option of the deck template)")
+    ap.add_argument("--interpolators", metavar="LIST", default=None,
+                    help="the same as --opt interpolator=LIST (MPM scenes: linear,gimp,cpdi,fast_cpdi)")
     ap.add_argument("--json", default=None)
     ap.add_argument("--png", default=None)
     ap.add_argument("--uintah", metavar="SUS", default=None,
                     help="also run each resolution's deck on Uintah's sus (path to the executable)")
     args = ap.parse_args(argv)
     scene = SCENES[args.scene]()
+    if args.interpolators:
+        args.opt.append(f"interpolator={args.interpolators}")
     names = [o.split("=")[0] for o in args.opt]
     values = [o.split("=")[1].split(",") for o in args.opt]
     rows = []
@@ -243,14 +262,17 @@ def main(argv=None):
     print(scene["what"])
     for combo in itertools.product(*values) if values else [()]:
         opts = dict(zip(names, combo))
+        label = " ".join(f"{k}={v}" for k, v in opts.items())
         with tempfile.TemporaryDirectory() as d:      # warm-up: numba compiles outside the timings
-            run_case(scene, args.res[0], opts, d)
+            _run_or_fail(scene, args.res[0], opts, d, label)
         prev = None
         for n in args.res:
             with tempfile.TemporaryDirectory() as d:
-                row = run_case(scene, n, opts, d)
-            prev = _report_row(row, prev, n, key, " ".join(f"{k}={v}" for k, v in opts.items()),
-                               f"step={row['step_s']:8.3f}s")
+                row = _run_or_fail(scene, n, opts, d, label)
+            if "failed" in row:
+                prev = None
+            else:
+                prev = _report_row(row, prev, n, key, label, f"step={row['step_s']:8.3f}s")
             rows.append(row)
     if args.uintah:
         prev = None
@@ -272,7 +294,7 @@ def main(argv=None):
             print("matplotlib not importable: no PNG", file=sys.stderr)
         else:
             fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-            pysus_rows = [r for r in rows if r.get("opt_code") != "uintah"]
+            pysus_rows = [r for r in rows if r.get("opt_code") != "uintah" and "failed" not in r]
             groups = [(" ".join(combo) or args.scene,
                        [r for r in pysus_rows if all(r.get(f"opt_{k}") == v for k, v in zip(names, combo))])
                       for combo in (itertools.product(*values) if values else [()])]

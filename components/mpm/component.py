@@ -73,6 +73,10 @@ FLAGS = {
     "particles_leaving_domain": Param("str", "warn", ("warn", "error"),
                                       "pysus: particles leaving through a face without a wall are deleted "
                                       "(as in Uintah) with a warning line, or stop the run"),
+    "RunMMSProblem": Param("str", "", doc="a manufactured solution's body force (mms.py): StretchedBar, "
+                           "TwistedAnnulus"),
+    "mms_amplitude": Param("float", 1.0, doc="pysus, mms.py: the stretch (bar) or twist (annulus) at the end"),
+    "mms_ramp_time": Param("float", 1.0, above=0.0, doc="pysus, mms.py: the time the motion takes"),
 }
 
 
@@ -144,6 +148,13 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.thermal_contact_node = mp.child("thermal_contact")
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
+        self.mms = None
+        if self.flags["RunMMSProblem"]:
+            from .mms import ManufacturedSolution
+            if self.pressure_bcs:
+                raise mpm.child("RunMMSProblem").error("a manufactured solution's body force and <PhysicalBC> "
+                                                       "loads cannot be combined")
+            self.mms = ManufacturedSolution(mpm, self.flags, self.materials, level)
         if self.thermal and self.kind not in ("linear", "gimp"):
             raise mpm.child("interpolator").error(
                 f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp")
@@ -169,6 +180,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
             if self.pressure_bcs.heat_flux:
                 c.append((L.pExternalHeatRate, L.pExternalHeatRatePre))
+        if self.mms:                          # X = p.x - p.displacement for the body force
+            c.append((L.pDisp, L.pDispPre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
 
@@ -221,6 +234,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.computes(lab)
         if self.pressure_bcs:
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
+        if self.mms:
+            t.requires(OLD, FL.simTime)
         sched.add_task(t)
         t = Task("MPM::interpolateStressToGrid", self.interpolate_stress_to_grid, ms)
         for lab in [L.pX, L.pMass, L.pStress] + self.size_labels():
@@ -323,6 +338,10 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
             if not self.musl:
                 t.requires(OLD, L.pX)
+        if self.mms:                    # p.displacement+ = p.displacement + p.x+ - p.x
+            t.requires(NEW, L.pXpre)
+            if not self.musl and not self.pressure_bcs:
+                t.requires(OLD, L.pX)
         sched.add_task(t)
         if self.analysis.active:
             self.analysis.schedule(sched)
@@ -337,13 +356,15 @@ class MPM(ThermalTasks, MPMTasks, Component):
         the deck saves it."""
         return (self.coupled_reads_grid_volume or "g.volume" in getattr(sched, "output_labels", ())
                 or any(getattr(m.params, "density_from_grid", False) for m in self.materials)
-                or bool(self.pressure_bcs))        # the scatter variant with fext adds V_i too
+                or bool(self.pressure_bcs) or bool(self.mms))    # the scatter variant with fext adds V_i too
 
     def _p2g_labels(self):
         labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]
         labs += self.size_labels()
         if self.pressure_bcs:
             labs.append(L.pLoadCurveID)
+        if self.mms:
+            labs.append(L.pDisp)
         return labs
 
     def _read_physical_bc(self, root):

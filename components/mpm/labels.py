@@ -46,6 +46,7 @@ pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / 
 pPlasticStrainRate, pPlasticStrainRatePre = _pair("p.plasticStrainRate")   # elastic_plastic_hp
 pEnergy, pEnergyPre = _pair("p.energy")                  # elastic_plastic_hp: specific internal energy
 pStrainRate, pStrainRatePre = _pair("p.strainRate")      # elastic_plastic_hp: sqrt(2/3) |D|
+pDisp, pDispPre = _pair("p.displacement", (3,))          # <RunMMSProblem>: x - X (mms.py)
 STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model state
          "p.internalEnergy": (pIntEnergy, pIntEnergyPre),
          "p.pStatedata_vs": _pair("p.pStatedata_vs", (5, 3, 3)),        # visco_scram: Maxwell stresses

@@ -10,6 +10,16 @@ Every scene takes `interpolator` (linear, gimp) and `update` (musl, usl: Uintah'
           L1 errors of radial and hoop stress relative to the pressure.
   disks   Sulsky's colliding disks (inputs/MPM/disks_50x50.ups with n x n cells, to t = 1.6):
           the largest relative change of KineticEnergy + StrainEnergy (exact: none).
+  stretch comp_neo_hook bar stretched to twice its length by the StretchedBar manufactured
+          solution (mms.py; 1D, n cells per metre, 2 particles per cell): at the end
+          (t = T) the L1 error of sigma_xx relative to the largest exact one, of the positions
+          relative to the bar's length, and the largest gap between neighbouring particles
+          in cells (exact: 1.5, the 3x stretch at the middle).
+  twist   the TwistedAnnulus manufactured solution (mms.py; the ring 0.75 < R < 1.25 twisted
+          by A rad, shear up to 7.1 A; n cells per metre, 2 x 2 particles per cell): at the end
+          the L1 error of the in-plane stress (Frobenius norm) relative to the largest exact
+          one, and of the positions relative to the ring's width 0.5.
+Every scene also takes `interpolator` cpdi and fast_cpdi.
 """
 from __future__ import annotations
 
@@ -79,6 +89,86 @@ def disks_errors(da):
     return {"energy": float(np.max(np.abs(E / E[0] - 1.0)))}
 
 
+STRETCH = dict(rho=1.0, K=0.6, mu=0.3)        # c = sqrt((K + 4 mu/3) / rho) = 1 m/s
+TWIST = dict(rho=1000.0, K=833.33, mu=384.62)   # Uintah's GeneralizedVortex: E = 1000 Pa, nu = 0.3
+
+
+def _mms_deck(kind, lower, upper, cells, extra, res, geom, mat, interpolator, update, amplitude, ramp):
+    """A one-material comp_neo_hook deck driven by <RunMMSProblem> (mms.py) to t = ramp."""
+    return f"""<?xml version="1.0" encoding="ISO-8859-1"?>
+<Uintah_specification>
+  <Meta><title>MMS {kind}</title></Meta>
+  <SimulationComponent type="mpm"/>
+  <Time><maxTime>{ramp}</maxTime><initTime>0.0</initTime><delt_min>0.0</delt_min><delt_max>1.0</delt_max>
+    <timestep_multiplier>0.4</timestep_multiplier></Time>
+  <Grid><Level><Box label="1"><lower>{lower}</lower><upper>{upper}</upper><resolution>{cells}</resolution>
+    <extraCells>{extra}</extraCells><patches>[1,1,1]</patches></Box></Level></Grid>
+  <DataArchiver><filebase>mms.uda</filebase><outputInterval>{ramp}</outputInterval>
+    <save label="p.x"/><save label="p.stress"/><save label="p.displacement"/><save label="KineticEnergy"/>
+  </DataArchiver>
+  <MPM><interpolator>{interpolator}</interpolator><stress_update>{update}</stress_update>
+    <RunMMSProblem>{kind}</RunMMSProblem><mms_amplitude>{amplitude}</mms_amplitude>
+    <mms_ramp_time>{ramp}</mms_ramp_time></MPM>
+  <PhysicalConstants><gravity>[0,0,0]</gravity></PhysicalConstants>
+  <MaterialProperties><MPM><material><density>{mat["rho"]}</density>
+    <constitutive_model type="comp_neo_hook"><bulk_modulus>{mat["K"]}</bulk_modulus>
+      <shear_modulus>{mat["mu"]}</shear_modulus></constitutive_model>
+    <geom_object>{geom}<res>{res}</res><velocity>[0,0,0]</velocity></geom_object></material>
+    <contact><type>null</type></contact></MPM></MaterialProperties>
+</Uintah_specification>
+"""
+
+
+def stretch_deck(n, interpolator="linear", update="musl", amplitude="1.0", ramp="1.0"):
+    """The bar 0 < X < 1 in the 1D domain -0.25 < x < 2.25 (n cells per metre)."""
+    n = int(n)
+    box = f'<box label="bar"><min>[0,0,0]</min><max>[1,{1.0 / n},{1.0 / n}]</max></box>'
+    return _mms_deck("StretchedBar", "[-0.25,0,0]", f"[2.25,{1.0 / n},{1.0 / n}]", f"[{int(2.5 * n)},1,1]",
+                     "[1,0,0]", "[2,1,1]", box, STRETCH, interpolator, update, float(amplitude), float(ramp))
+
+
+def _mms_final(da, kind, mat):
+    from .mms import exact
+    parts = da.particles(0, -1)
+    x, s, disp = parts["p.x"], parts["p.stress"], parts["p.displacement"]
+    meta = _mms_meta(da)
+    xe, se = exact(kind, x - disp, da.times[-1], meta["A"], meta["T"], mat["K"], mat["mu"])
+    return x, s, xe, se
+
+
+def _mms_meta(da):
+    """mms_amplitude, mms_ramp_time and the cells along x as the run's deck held them."""
+    text = open(os.path.join(da.path, "input.ups"), encoding="iso-8859-1").read()
+    get = lambda tag: re.search(rf"<{tag}>\[?([^<,\]]*)", text).group(1)   # noqa: E731
+    return {"A": float(get("mms_amplitude")), "T": float(get("mms_ramp_time")), "nx": int(get("resolution"))}
+
+
+def stretch_errors(da):
+    x, s, xe, se = _mms_final(da, "StretchedBar", STRETCH)
+    scale = np.abs(se[:, 0, 0]).max()
+    cells_per_m = _mms_meta(da)["nx"] / 2.5
+    return {"stress": float(np.mean(np.abs(s[:, 0, 0] - se[:, 0, 0])) / scale),
+            "x": float(np.mean(np.abs(x[:, 0] - xe[:, 0]))),
+            "gap": float(np.diff(np.sort(x[:, 0])).max() * cells_per_m)}
+
+
+def twist_deck(n, interpolator="linear", update="musl", amplitude="0.5", ramp="1.0"):
+    """The ring in -1.5 < x, y < 1.5 (n cells per metre)."""
+    n = int(n)
+    dz = 1.0 / n
+    cyl = '<cylinder label="{0}"><bottom>[0,0,0]</bottom><top>[0,0,{1}]</top><radius>{2}</radius></cylinder>'
+    geom = f'<difference>{cyl.format("outer", dz, 1.25)}{cyl.format("inner", dz, 0.75)}</difference>'
+    return _mms_deck("TwistedAnnulus", "[-1.5,-1.5,0]", f"[1.5,1.5,{dz}]", f"[{3 * n},{3 * n},1]", "[1,1,0]",
+                     "[2,2,1]", geom, TWIST, interpolator, update, float(amplitude), float(ramp))
+
+
+def twist_errors(da):
+    x, s, xe, se = _mms_final(da, "TwistedAnnulus", TWIST)
+    norm = lambda a: np.sqrt(np.einsum("pij,pij->p", a[:, :2, :2], a[:, :2, :2]))    # noqa: E731
+    return {"stress": float(np.mean(norm(s - se)) / norm(se).max()),
+            "x": float(np.mean(np.hypot(*(x - xe)[:, :2].T))) / 0.5}
+
+
 SCENES = {
     "bar": (bar_deck, bar_errors, "period",
             "MPM fixed-free elastic bar: relative period error against 4 L / c (interpolator, update)"),
@@ -86,4 +176,11 @@ SCENES = {
              "MPM thick cylinder under internal pressure: paper 000 eq. 43 against Lame (interpolator, update)"),
     "disks": (disks_deck, disks_errors, "energy",
               "MPM colliding disks to t = 1.6: largest relative change of total energy (interpolator, update)"),
+    "stretch": (stretch_deck, stretch_errors, "stress",
+                "MPM comp_neo_hook bar stretched to twice its length (StretchedBar MMS, 3x at the middle): L1 "
+                "error of sigma_xx / max, of x / L, largest particle gap in cells (exact 1.5) (interpolator, "
+                "update, amplitude, ramp)"),
+    "twist": (twist_deck, twist_errors, "stress",
+              "MPM comp_neo_hook ring twisted by `amplitude` rad (TwistedAnnulus MMS, shear up to 7.1 A): L1 "
+              "error of the in-plane stress / max, of x / ring width (interpolator, update, amplitude, ramp)"),
 }

@@ -137,7 +137,7 @@ class MPMTasks:
                                                    temperature=d["temp"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
-                   L.pStrainEnergy: energy, L.pSurface: d.get("surf")}
+                   L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3))}
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for name, (lab, _) in L.STATE.items():
                 put[lab] = own[name] if name in own else np.zeros((n,) + lab.shape)
@@ -182,11 +182,12 @@ class MPMTasks:
         and ghost particles' own arrays (no merged copy)."""
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
-        has_f = bool(self.pressure_bcs)
-        labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress] + ([L.pLoadCurveID] if has_f else [])
+        has_f = bool(self.pressure_bcs) or bool(self.mms)
+        labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]
+        labs += [L.pLoadCurveID] if self.pressure_bcs else [L.pDisp] if self.mms else []
         for m in matls:
             own, ghost, runs = self._parts(old_dw, m, patch, labs)
-            own, ghost = [tuple(a[:5] + [self._forces(old_dw, a[0], a[5]) if has_f else _NOF, a[-1]])
+            own, ghost = [tuple(a[:5] + [self._body_forces(old_dw, a) if has_f else _NOF, a[-1]])
                           for a in (own, ghost)]
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
             gv = new_dw.allocate(L.gVelocity, m, patch, 0.0)     # momentum, then velocity
@@ -213,6 +214,13 @@ class MPMTasks:
         else:
             runs = np.array([[0, 0, n_own], [1, 0, n_gh]], np.int64)[:1 + (n_gh > 0)]
         return own, ghost, runs
+
+    def _body_forces(self, old_dw, a):
+        """p.externalforce of the particle arrays a (p.x, p.mass, ..., then p.loadCurveID or
+        p.displacement): the pressure BCs' or the manufactured solution's (mms.py)."""
+        if self.mms:
+            return self.mms.forces(a[0], a[5], a[1], old_dw.get_reduction(FL.simTime))
+        return self._forces(old_dw, a[0], a[5])
 
     def _ext_force(self, old_dw, m, patch, px):
         """p.externalforce of the pressure BCs at the time this step starts (pressure.py)."""
@@ -613,6 +621,9 @@ class MPMTasks:
             for final, pre in self.carry:
                 if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID, L.pSurface):
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
+            if self.mms:
+                new_dw.put(L.pDispPre, m, patch, old_dw.get(L.pDisp, m, patch) + new_dw.get(L.pXpre, m, patch)
+                           - old_dw.get(L.pX, m, patch))
             if self.pressure_bcs:
                 lcid = old_dw.get(L.pLoadCurveID, m, patch)
                 px_old = old_dw.get(L.pX, m, patch)
