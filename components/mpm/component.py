@@ -47,6 +47,7 @@ from .analysis import ParticleExtract
 from .bc import GridBCs
 from .contact import Contact
 from .materials import Material
+from .shape import AXI
 from .transfer import kernels, merged_p2g
 from .tasks import MPMTasks
 from .thermal import ThermalTasks
@@ -63,7 +64,8 @@ FLAGS = {
     "minimum_mass_for_acc": Param("float", 0.0, doc="nodes this light get no force acceleration"),
     "do_grid_reset": Param("bool", True, (True,), doc="the grid is always reset"),
     "DoExplicitHeatConduction": Param("bool", False, doc="particle temperature and explicit heat conduction (thermal.py)"),
-    "axisymmetric": Param("bool", False, (False,), doc="axisymmetry is not implemented"),
+    "axisymmetric": Param("bool", False, doc="Uintah's axisymmetric MPM: x is r, y the axial z, one cell in z; "
+                          "particle volumes and masses per radian"),
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
@@ -92,6 +94,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
     material_class = Material
     # another component reads g.volume (MPMICE: the cell volume fractions)
     coupled_reads_grid_volume = False
+    # why <axisymmetric>true is refused in this component (None: it is supported)
+    axisymmetric_refused = None
 
     def problem_setup(self, root, level):
         self.level = level
@@ -118,7 +122,11 @@ class MPM(ThermalTasks, MPMTasks, Component):
                     f"{self.kind.upper()} particles reach one node beyond the domain: <extraCells> must be at least 1 in "
                     f"{'xyz'[bad[0]]} (Uintah needs the same)")
         self.axes = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask (transfer.py)
-        self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.axes)
+        self.axisymmetric = self.flags["axisymmetric"]
+        if self.axisymmetric:
+            self._check_axisymmetric_grid(root, mpm, level)
+        self.act = self.axes | (AXI if self.axisymmetric else 0)      # the kernels' mask (shape.AXI)
+        self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.act)
         self.p2g = merged_p2g(self.p2g_runs)      # one array per variable (MPMICE)
         self.ng = 1 if self.kind == "linear" else 2
         self.grid_volume = True           # until schedule_time_advance knows who reads g.volume
@@ -158,7 +166,45 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if self.thermal and self.kind not in ("linear", "gimp"):
             raise mpm.child("interpolator").error(
                 f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp")
+        if self.axisymmetric:
+            self._check_axisymmetric_physics(mpm, mp)
         self._carried()
+
+    def _check_axisymmetric_grid(self, root, mpm, level):
+        """Axisymmetric MPM (Uintah's): x is r >= 0, y the axial direction, z (one cell) the angle."""
+        tag = mpm.child("axisymmetric")
+        if self.axisymmetric_refused:
+            raise tag.error(f"axisymmetric MPM is not implemented {self.axisymmetric_refused}; accepted: false")
+        if self.dims[2]:
+            raise tag.error("axisymmetric MPM needs one cell in z (the angle; x is r, y the axis), "
+                            f"the grid has {level.ncells[2]}; accepted: false, or a grid one cell thick in z")
+        if not self.dims[0]:
+            raise tag.error("axisymmetric MPM needs more than one cell in x (the radius)")
+        if self.kind not in ("linear", "gimp"):
+            raise mpm.child("interpolator").error(
+                f"{self.kind} is not implemented with <axisymmetric>true; accepted there: linear, gimp")
+        if level.anchor[0] < 0.0:
+            raise root.child("Grid").error(f"with <axisymmetric>true x is the radius: the domain's lower x "
+                                           f"({level.anchor[0]:g}) must be >= 0 (the axis is x = 0)")
+        if self.gravity[2] != 0.0:
+            raise root.child("PhysicalConstants").child("gravity").error(
+                "with <axisymmetric>true z is the angle: gravity has no z component; accepted: [gx, gy, 0]")
+
+    def _check_axisymmetric_physics(self, mpm, mp):
+        """The parts of MPM whose axisymmetric form is not implemented are refused."""
+        tag = mpm.child("axisymmetric")
+        if self.thermal:
+            raise tag.error("heat conduction is not implemented with <axisymmetric>true (Uintah has no "
+                            "axisymmetric temperature gradient either); accepted: false")
+        if self.contact.needs_normals or self.contact.needs_lr:
+            raise mp.child("contact").child("type").error(
+                f"contact type {self.contact.type} is not implemented with <axisymmetric>true (its normals are "
+                "planar); accepted there: null, single_velocity, rigid")
+        for m in self.materials:
+            if m.is_membrane or getattr(m.params, "density_from_grid", False):
+                raise m.node.child("constitutive_model").error(
+                    f"{m.model_name}{' with <density_from_grid>' if not m.is_membrane else ''} is not "
+                    "implemented with <axisymmetric>true")
 
     def _carried(self):
         """(final, pre-relocation) particle labels this deck carries, besides p.x."""

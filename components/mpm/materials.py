@@ -168,7 +168,7 @@ class Material:
         return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------
-    def create(self, patch, obj_base, pressure=None, surface=False):
+    def create(self, patch, obj_base, pressure=None, surface=False, axisymmetric=False):
         """Particles of this material in one patch: dict of arrays sorted by ID.
 
         IDs: object number (global over all materials, `obj_base` + k) times 2^40 plus
@@ -176,7 +176,9 @@ class Material:
         so they do not depend on the patch layout. With pressure BCs (pressure.py), "lcid"
         is p.loadCurveID of the particles on a loaded surface; with surface, "surf" is
         p.surface (1: a neighbour one particle spacing away along an active direction is
-        outside the object, Uintah's checkForSurface)."""
+        outside the object, Uintah's checkForSurface). Axisymmetric: x is r and a particle's
+        volume (and mass) is that of its ring per radian, r dx dy / (res_x res_y), as Uintah's
+        ParticleCreator."""
         lv = patch.level
         taken = None
         out = []
@@ -200,10 +202,11 @@ class Material:
             x, sub = x[inside], sub[inside]
             nsub = np.array(lv.ncells) * res
             ids = (obj_base + k) * (1 << 40) + sub[:, 0] + nsub[0] * (sub[:, 1] + nsub[1] * sub[:, 2])
-            vol = float(np.prod(lv.dx / res))
             n = len(x)
+            vol = (x[:, 0] * (lv.dx[0] / res[0]) * (lv.dx[1] / res[1]) if axisymmetric
+                   else np.full(n, float(np.prod(lv.dx / res))))
             dxpp = lv.dx / res
-            out.append(dict(x=x, id=ids.astype(np.int64), vol=np.full(n, vol), temp=np.full(n, obj["temperature"]),
+            out.append(dict(x=x, id=ids.astype(np.int64), vol=vol, temp=np.full(n, obj["temperature"]),
                             lcid=pressure.flag(x, obj["piece"], dxpp, self.index) if pressure
                                  else np.zeros((n, 3)),
                             vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),

@@ -45,6 +45,12 @@ As Uintah does it:
 pysus difference: A is the part of the surface that lies inside the computational
 domain (Uintah takes the whole surface and warns that this is wrong when the piece
 leaves the domain), so quarter- and half-symmetry models get the right load.
+
+Axisymmetric MPM (<MPM><axisymmetric>true; x is r, y the axis, volumes per radian): A is
+Uintah's, the whole surface (its decks rely on it), and a cylinder about the y axis may carry
+<axisymmetric_side>true (A = the side's area per radian, r L) or <axisymmetric_end>true with
+<res> in the <pressure> block: the end's particles each get p(t) r dx/res_x along the axis
+(the area of their ring per radian), whatever their number.
 """
 from __future__ import annotations
 
@@ -59,22 +65,29 @@ IDS_PER_PARTICLE = 3      # Uintah's p.loadCurveID is an IntVector
 class PressureBC:
     kind = "pressure"
 
-    def __init__(self, node, geom, level, nmat):
+    def __init__(self, node, geom, level, nmat, axisymmetric=False):
         g = node.child("geom_object", required=True)
         piece = geom.read_object(g)
         if not isinstance(piece, self.pieces):
             raise g.error(f"the {self.kind} surface must be " + " or ".join(f"one <{t.__name__.lower()}>"
                                                                           for t in self.pieces))
         self.piece = piece
-        self.cylinder_end = False
+        self.cylinder_end = self.axisymmetric_end = self.axisymmetric_side = False
         cyl = g.child("cylinder")
         if cyl is not None:
             for tag in ("axisymmetric_end", "axisymmetric_side"):
                 if cyl.get(tag, "bool", False):
-                    raise cyl.child(tag).error(f"<{tag}> needs axisymmetric MPM; accepted: false")
+                    if not axisymmetric:
+                        raise cyl.child(tag).error(f"<{tag}> needs <MPM><axisymmetric>true; accepted: false")
+                    if self.kind != "pressure":
+                        raise cyl.child(tag).error(f"<{tag}> is read for a pressure only; accepted: false")
+                    setattr(self, tag, True)
             self.cylinder_end = cyl.get("cylinder_end", "bool", False)
             if self.cylinder_end and self.kind != "pressure":
                 raise cyl.child("cylinder_end").error(f"a {self.kind} acts on the side of a cylinder; accepted: false")
+        self.end = self.cylinder_end or self.axisymmetric_end         # a cylinder's end is loaded
+        if self.axisymmetric_end:
+            self.dr = level.dx[0] / node.get("res", "ivector", at_least=1)[0]     # the particles' r spacing
         lc = node.child("load_curve", required=True)
         self.id = lc.get("id", "int")
         if self.id < 1:
@@ -92,7 +105,7 @@ class PressureBC:
         if isinstance(piece, Box):
             ext = piece.hi - piece.lo
             self.thin = int(np.argmin(ext))
-        self.area = self._area_in_domain(level)
+        self.area = self._whole_area() if axisymmetric else self._area_in_domain(level)
         if self.area <= 0:
             raise g.error(f"the {self.kind} surface lies outside the computational domain")
 
@@ -101,6 +114,19 @@ class PressureBC:
     # -- Uintah's PressureBC pieces --------------------------------------------------------
     def pressure(self, t):
         return float(np.interp(t, self.times, self.loads))
+
+    def _whole_area(self):
+        """Uintah's A: the whole loaded surface (per radian for <axisymmetric_side>)."""
+        if isinstance(self.piece, Box):
+            ext = np.sort(self.piece.hi - self.piece.lo)
+            return float(ext[1] * ext[2])
+        c = self.piece
+        if self.axisymmetric_end:
+            return 0.5 * c.radius ** 2
+        if self.cylinder_end:
+            return np.pi * c.radius ** 2
+        side = 2 * np.pi * c.radius * np.sqrt(c.length2)
+        return side / (2 * np.pi) if self.axisymmetric_side else side
 
     def _surface_samples(self, n=400):
         """Points spread evenly over the loaded surface (for the area inside the domain)."""
@@ -149,7 +175,7 @@ class PressureBC:
             extra[self.thin] = dxpp[self.thin]
             return Box(self.piece.lo - extra, self.piece.hi + extra).inside(x)
         c = self.piece
-        if self.cylinder_end:
+        if self.end:
             tol = 1.2 * dxpp[dims].min()
             e = c.axis / np.sqrt(c.length2)
             return Cylinder(c.bottom - tol * e, c.top + tol * e, c.radius).inside(x)
@@ -165,7 +191,7 @@ class PressureBC:
             n[:, self.thin] = 1.0
             return n
         c = self.piece
-        if self.cylinder_end:
+        if self.end:
             return np.broadcast_to(c.axis / np.sqrt(c.length2), x.shape)
         rel = x - c.bottom
         s = rel @ c.axis / c.length2
@@ -175,6 +201,8 @@ class PressureBC:
 
     def load(self, x, t, count):
         """The external force on each of `count` flagged particles at x, time t."""
+        if self.axisymmetric_end:         # p times the particle's ring area per radian, r dr
+            return self.normals(x) * (self.pressure(t) * self.dr * x[:, 0])[:, None]
         return self.normals(x) * (self.pressure(t) * self.area / count)
 
 
@@ -246,7 +274,8 @@ class PressureBCs:
         if geom is None:
             from framework.geometry import GeometryReader
             geom = GeometryReader()
-        bcs = [cls_(it, geom, mpm.level, len(mpm.materials)) for cls_, it in items]
+        axi = getattr(mpm, "axisymmetric", False)
+        bcs = [cls_(it, geom, mpm.level, len(mpm.materials), axi) for cls_, it in items]
         ids = [b.id for b in bcs]
         for k, i in enumerate(ids):
             if i in ids[:k]:

@@ -44,6 +44,11 @@ GIMP = 1
 CPDI = 2
 FM = {'contract'}
 
+# bit of the axis mask `act`: axisymmetric (Uintah's <axisymmetric>): x is r, y is the axial z,
+# the collapsed z is the angle theta; the stencil's z slots (gz0, gz1, gz2) then carry the
+# hoop values t_a of the r nodes (the node's <S/r> is t_a w_b, Uintah's d_S.z)
+AXI = 8
+
 
 @njit(cache=True, fastmath=FM, inline="always")
 def _gimp1(r, l, inv):
@@ -74,6 +79,48 @@ def _ax(kind, active, x, a0, ih, l):
     s1, d1 = _gimp1(xi - (i + 1), lc, inv)
     s2, d2 = _gimp1(xi - (i + 2), lc, inv)
     return i, s0, s1, s2, d0 * ih, d1 * ih, d2 * ih
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _hat_moments(u):
+    """Integrals from 0 to u (clamped to [-1, 1]) of the hat N(v) = 1 - |v|: of N, v N, sign(v)
+    (= -N') and v sign(v)."""
+    u = min(max(u, -1.0), 1.0)
+    au = abs(u)
+    return u - 0.5 * u * au, u * u * (0.5 - au / 3.0), au, 0.5 * u * au
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _axi_node(xn, h, c0, c1, inv_D):
+    """Axisymmetric GIMP values of the r node at xn (spacing h) for a particle spanning [c0, c1]
+    in r, inv_D = 1 / int r dr: the r-weighted averages S = <N>, G = <dN/dr> and the hoop
+    value t = <N/r> (all with the weight r dr: the particle's volume per radian)."""
+    a0, a1, b0, b1 = _hat_moments((c0 - xn) / h)
+    A0, A1, B0, B1 = _hat_moments((c1 - xn) / h)
+    t = h * (A0 - a0) * inv_D
+    return xn * t + h * h * (A1 - a1) * inv_D, -(xn * (B0 - b0) + h * (B1 - b1)) * inv_D, t
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _ax_axi(kind, x, a0, ih, l):
+    """The r axis of an axisymmetric run: (i, w0, w1, w2, g0, g1, g2, t0, t1, t2), t the hoop
+    values. Linear: the usual weights and t = S/r at the particle (Uintah's AxiLinear).
+    GIMP: the averages of the hat over the particle's r extent [r - l, r + l] (cut at the
+    axis) weighted by r (Uintah's AxiGIMP, Nairn's axisymmetric GIMP), base node as GIMP."""
+    if kind == LINEAR:
+        i, w0, w1, w2, g0, g1, g2 = _ax(kind, True, x, a0, ih, l)
+        rinv = 1.0 / x
+        return i, w0, w1, w2, g0, g1, g2, w0 * rinv, w1 * rinv, 0.0
+    h = 1.0 / ih
+    i = int(np.floor((x - a0) * ih + 0.5)) - 1
+    c0 = max(x - l, 0.0)
+    c1 = x + l
+    inv_D = 2.0 / (c1 * c1 - c0 * c0)
+    xn = a0 + i * h
+    w0, g0, t0 = _axi_node(xn, h, c0, c1, inv_D)
+    w1, g1, t1 = _axi_node(xn + h, h, c0, c1, inv_D)
+    w2, g2, t2 = _axi_node(xn + 2.0 * h, h, c0, c1, inv_D)
+    return i, w0, w1, w2, g0, g1, g2, t0, t1, t2
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -136,9 +183,13 @@ def _axis(kind, act, d, px, lp, p, q, anchor, ih):
 @njit(cache=True, fastmath=FM, inline="always")
 def _stencil(kind, act, px, lp, p, anchor, ih, node_low, q=0):
     """The weights of particle p (CPDI: of its corner q) on its three axes, base indices made local."""
-    i, wx0, wx1, wx2, gx0, gx1, gx2 = _axis(kind, act, 0, px, lp, p, q, anchor, ih)
+    if act & AXI:
+        i, wx0, wx1, wx2, gx0, gx1, gx2, gz0, gz1, gz2 = _ax_axi(kind, px[p, 0], anchor[0], ih[0], lp[p, 0])
+        k, wz0, wz1, wz2 = 0, 1.0, 0.0, 0.0
+    else:
+        i, wx0, wx1, wx2, gx0, gx1, gx2 = _axis(kind, act, 0, px, lp, p, q, anchor, ih)
+        k, wz0, wz1, wz2, gz0, gz1, gz2 = _axis(kind, act, 2, px, lp, p, q, anchor, ih)
     j, wy0, wy1, wy2, gy0, gy1, gy2 = _axis(kind, act, 1, px, lp, p, q, anchor, ih)
-    k, wz0, wz1, wz2, gz0, gz1, gz2 = _axis(kind, act, 2, px, lp, p, q, anchor, ih)
     if act & 1:
         i -= node_low[0]
     if act & 2:
@@ -218,7 +269,20 @@ def _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw, c=0):
     """Store the weights of _stencil of particle p (CPDI: corner c) as row q of sw; returns its
     local base node (i, j, k) (0 on an inactive axis)."""
     i = j = k = 0
-    if act & 1:
+    if act & AXI:
+        i, w0, w1, w2, g0, g1, g2, t0, t1, t2 = _ax_axi(kind, px[p, 0], anchor[0], ih[0], lp[p, 0])
+        i -= node_low[0]
+        sw[0, 0, q] = w1
+        if kind != LINEAR:
+            sw[0, 1, q] = w0
+            sw[0, 2, q] = w2
+            sw[0, 3, q] = g0
+            sw[0, 4, q] = g1
+            sw[0, 5, q] = g2
+        sw[2, 3, q] = t0
+        sw[2, 4, q] = t1
+        sw[2, 5, q] = t2
+    elif act & 1:
         i = _ax_put(kind, act, 0, px, lp, p, c, anchor, ih, q, sw) - node_low[0]
     if act & 2:
         j = _ax_put(kind, act, 1, px, lp, p, c, anchor, ih, q, sw) - node_low[1]
@@ -242,7 +306,10 @@ def _stencil_get(kind, act, q, ih, sw):
     """The weights and gradients of _stencil stored in row q of sw."""
     wx0, wx1, wx2, gx0, gx1, gx2 = _ax_get(kind, act & 1 != 0, q, 0, ih[0], sw)
     wy0, wy1, wy2, gy0, gy1, gy2 = _ax_get(kind, act & 2 != 0, q, 1, ih[1], sw)
-    wz0, wz1, wz2, gz0, gz1, gz2 = _ax_get(kind, act & 4 != 0, q, 2, ih[2], sw)
+    if act & AXI:               # the hoop values in the z slots (see AXI)
+        wz0, wz1, wz2, gz0, gz1, gz2 = 1.0, 0.0, 0.0, sw[2, 3, q], sw[2, 4, q], sw[2, 5, q]
+    else:
+        wz0, wz1, wz2, gz0, gz1, gz2 = _ax_get(kind, act & 4 != 0, q, 2, ih[2], sw)
     return wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2
 
 

@@ -119,7 +119,8 @@ class MPMTasks:
         se = 0.0
         for m in matls:
             mat = self.materials[m]
-            d = mat.create(patch, self._obj_base(m), self.pressure_bcs, surface=self.contact.needs_lr)
+            d = mat.create(patch, self._obj_base(m), self.pressure_bcs, surface=self.contact.needs_lr,
+                           axisymmetric=self.axisymmetric)
             n = len(d["id"])
             new_dw.create_particles(m, patch, n)
             F = np.zeros((n, 3, 3))
@@ -242,7 +243,7 @@ class MPMTasks:
             px = old_dw.get(L.pX, m, patch)
             gm = np.zeros(shape)
             gs = np.zeros(shape + (3, 3))
-            kernels.p2g_stress(kind, self.axes, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pStress, m, patch),
+            kernels.p2g_stress(kind, self.act, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pStress, m, patch),
                                self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, np.array(alo) - pad, gm, gs)
             out = new_dw.allocate(L.gStressFS, m, patch, None)
             kernels.divide_by_mass(np.ascontiguousarray(gm[inner]), np.ascontiguousarray(gs[inner]), out)

@@ -39,7 +39,7 @@ import numpy as np
 from numba import njit
 
 from .constitutive import comp_neo_hook
-from .shape import (CHUNK, CPDI, GIMP, LINEAR, _corners, _counts, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil,
+from .shape import (AXI, CHUNK, CPDI, GIMP, LINEAR, _corners, _counts, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil,
                     _stencil_get, _stencil_put, _visits)
 
 FM = {'contract'}
@@ -67,7 +67,18 @@ def _deform(act, p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F
     A01 = dt * L01
     A11 = 1.0 + dt * L11
     A21 = dt * L21
-    if not act & 4:
+    if act & AXI:           # L has the 2x2 (r, z) block and L22 = u_r / r: (I + L dt) is block-diagonal
+        A22 = 1.0 + dt * L22
+        F00 = A00 * G00 + A01 * G10
+        F01 = A00 * G01 + A01 * G11
+        F02 = A00 * G02 + A01 * G12
+        F10 = A10 * G00 + A11 * G10
+        F11 = A10 * G01 + A11 * G11
+        F12 = A10 * G02 + A11 * G12
+        F20 = A22 * G20
+        F21 = A22 * G21
+        F22 = A22 * G22
+    elif not act & 4:
         F00 = A00 * G00 + A01 * G10
         F01 = A00 * G01 + A01 * G11
         F02 = A00 * G02 + A01 * G12
@@ -120,10 +131,21 @@ def _store_L(L_out, o, L00, L01, L02, L10, L11, L12, L20, L21, L22):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _add_L(act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22):
+def _add_L(act, wa, wb, wc, ga, gb, gc, ta, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22):
     """L += v_i (x) grad S_i (004 eq. 14) of one node with velocity (gv0, gv1, gv2) and per-axis weights
     wa, wb, wc / derivatives ga, gb, gc; the terms of inactive axes are left out (their gradient is 0).
+    Axisymmetric (act & AXI): the (r, z) block and the hoop rate L22 += u_r <S/r> (ta: the node's r
+    hoop value, shape.AXI), as Uintah's computeAxiSymVelocityGradient; no theta row.
     Returns the nine updated L terms (g2p's USL L and the grad pass share it)."""
+    if act & AXI:
+        G0 = ga * wb * wc
+        G1 = wa * gb * wc
+        L00 += gv0 * G0
+        L10 += gv1 * G0
+        L01 += gv0 * G1
+        L11 += gv1 * G1
+        L22 += gv0 * ta * wb
+        return L00, L01, L02, L10, L11, L12, L20, L21, L22
     if act & 1:
         G0 = ga * wb * wc
         L00 += gv0 * G0
@@ -188,6 +210,10 @@ def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, 
     mv0 = m * pvel[p, 0]
     mv1 = m * pvel[p, 1]
     mv2 = m * pvel[p, 2]
+    if act & AXI:           # no theta momentum, none along a collapsed axial direction either
+        mv2 = 0.0
+        if not act & 2:
+            mv1 = 0.0
     s00 = V * pstress[p, 0, 0]
     s10 = V * pstress[p, 1, 0]
     s20 = V * pstress[p, 2, 0]
@@ -223,9 +249,17 @@ def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, 
                 fp[f3 + np.uint64(2)] += mv2 * S
                 if has_f:
                     fe[f3] += pfext[p, 0] * S
-                    fe[f3 + np.uint64(1)] += pfext[p, 1] * S
-                    fe[f3 + np.uint64(2)] += pfext[p, 2] * S
-                if act == 1:
+                    if act & AXI:
+                        if act & 2:
+                            fe[f3 + np.uint64(1)] += pfext[p, 1] * S
+                    else:
+                        fe[f3 + np.uint64(1)] += pfext[p, 1] * S
+                        fe[f3 + np.uint64(2)] += pfext[p, 2] * S
+                if act & AXI:       # Uintah's axisymmetric internal force: hoop stress times <S/r>
+                    H = _sel(a, gz0, gz1, gz2) * wb
+                    fi[f3] -= s00 * G0 + s01 * G1 + s22 * H
+                    fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1
+                elif act == 1:
                     fi[f3] -= s00 * G0
                     fi[f3 + np.uint64(1)] -= s10 * G0
                     fi[f3 + np.uint64(2)] -= s20 * G0
@@ -270,7 +304,8 @@ def _g2p_gather(kind, act, musl, ijk, sh, fv, fa, st, sums):
                 v2 += S * gv2
                 if not musl:
                     L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
-                        act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+                        act, wa, wb, wc, ga, gb, gc, _sel(a, gz0, gz1, gz2), gv0, gv1, gv2, L00, L01, L02, L10,
+                        L11, L12, L20, L21, L22)
     return a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22
 
 
@@ -430,7 +465,8 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
                         gv1 = fv[f3 + np.uint64(1)]
                         gv2 = fv[f3 + np.uint64(2)]
                         L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
-                            act, wa, wb, wc, ga, gb, gc, gv0, gv1, gv2, L00, L01, L02, L10, L11, L12, L20, L21, L22)
+                            act, wa, wb, wc, ga, gb, gc, _sel(a, gz0, gz1, gz2), gv0, gv1, gv2, L00, L01, L02,
+                            L10, L11, L12, L20, L21, L22)
         if write_L:
             _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         m = pmass[p]
@@ -447,7 +483,10 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
 # ---- entry points, made by one factory per pass, keyed by (interpolator, active axes, update):
 # the interpolator and the axis mask (and g2p's USL/MUSL) are closure constants, which numba
 # compiles as literals, the same machine code as one hand-written function per combination; a
-# new interpolator is a weight function in shape.py plus one line in INTERPOLATORS.
+# new interpolator is a weight function in shape.py plus one line in INTERPOLATORS. Axisymmetry
+# is the bit shape.AXI of the axis mask (x = r, y = z, z = theta): the same kernels, with the hoop
+# terms of Uintah's axisymmetric MPM compiled in (the r-weighted GIMP weights, <S/r> in fint's r
+# row and in L22, no theta momentum); without the bit not one instruction of them is compiled.
 # p2g(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum,
 #     grid_volume, grid_fext, grid_fint)
 #     owned/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles; has_fext
@@ -528,7 +567,8 @@ def one_run(n):
 
 
 def kernels(interpolator, axes):
-    """(p2g, g2p, grad) for `interpolator` on the active-axis mask `axes` (signatures above)."""
+    """(p2g, g2p, grad) for `interpolator` on the active-axis mask `axes`, with shape.AXI for an
+    axisymmetric run (signatures above)."""
     usl, musl = _g2p_entry(interpolator, axes, False), _g2p_entry(interpolator, axes, True)
 
     def g2p(musl_flag, *args):
