@@ -167,10 +167,15 @@ def test_sigkill_while_checkpointing_leaves_a_restartable_checkpoint(tmp_path):
     whole = run_deck(text, tmp_path, name="whole")
     ref = DataArchive(whole.archiver.dir).read("temp_CC", 0, -1)[0]
     restarted = 0
-    for k, delay in enumerate((1.5, 2.5, 3.5)):
+    for k, delay in enumerate((0.0, 0.1, 0.3)):
         uda = tmp_path / f"killed{k}.uda"
         p = subprocess.Popen([str(BIN / "pysus"), "-q", str(tmp_path / "d.ups"), "--filebase", str(uda)],
                              cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        start = time.monotonic()        # killed `delay` s after its first checkpoint, however long the start-up
+        while p.poll() is None and time.monotonic() - start < 120:
+            if (uda / "checkpoints").is_dir() and any(c.startswith("t") for c in os.listdir(uda / "checkpoints")):
+                break
+            time.sleep(0.01)
         time.sleep(delay)
         if p.poll() is not None:
             continue                        # it finished first: nothing was killed
