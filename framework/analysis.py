@@ -5,7 +5,8 @@ the CC field vorticity = curl(vel_CC) (second-order central differences over the
 0 in the extra cells), a task the graph keeps only when a deck saves "vorticity". `minMax` writes,
 at its sampling times within [timeStart, timeStop], one line per analysed variable to
 <uda>/MinMax/L-0/<label>_<matl>: "time min max" (Vectors componentwise, in brackets), over the
-interior cells (CC) or the faces of interior cells (FC), in Uintah's format. `lineExtract` writes
+interior cells (CC), the patch's own nodes of the domain (NC) or the faces of interior cells (FC), in
+Uintah's format. `lineExtract` writes
 the values along axis-parallel lines, one file per cell (LineExtract); `controlVolFluxes` the mass
 in boxes and the mass fluxes through their faces (ControlVolFluxes).
 """
@@ -96,9 +97,10 @@ class MinMax:
         for a in node.child("Variables", required=True).children("analyze"):
             name = a.attr("label")
             label = L.find(name)
-            if label is None or label.vartype not in (VarType.CC,) + FACE_TYPES or label.shape not in ((), (3,)):
-                raise a.error(f'label="{name}" is not a cell- or face-centred double or Vector of this deck; '
-                              "accepted: a CC or FC variable the component computes")
+            if label is None or label.vartype not in (VarType.CC, VarType.NC) + FACE_TYPES or \
+                    label.shape not in ((), (3,)):
+                raise a.error(f'label="{name}" is not a cell-, node- or face-centred double or Vector of this '
+                              "deck; accepted: a CC, NC or FC variable the component computes")
             m = a.attr("matl", "int", matl, at_least=0)
             red = tuple(L.create(f"{name}_{m}_{op}", VarType.REDUCTION, label.shape, reduction=op)
                         for op in ("min", "max"))
@@ -115,7 +117,7 @@ class MinMax:
         def task(patch, matls, old_dw, new_dw):
             for m in matls:
                 q = new_dw.get(label, m, patch)
-                lo, hi = patch.interior(VarType.CC)
+                lo, hi = patch.interior(label.vartype if label.vartype == VarType.NC else VarType.CC)
                 if label.vartype in FACE_TYPES:
                     d = FACE_TYPES.index(label.vartype)
                     f0 = np.array(patch.low_index(label.vartype))

@@ -8,7 +8,7 @@ Layout of `<filebase>`:
   t00012/rank0000.h5       one HDF5 file per rank per output timestep, group per patch
   t00012/t00012.xdmf       XDMF of that timestep; `output.xdmf` holds all of them
   checkpoints/t00012/      same per-rank files holding everything needed to continue
-  KineticEnergy.dat ...    saved reductions, "time value" per line (as Uintah)
+  KineticEnergy.dat ...    saved reductions, a "time value" line every timestep (as Uintah)
 
 Grid arrays are stored in (z, y, x) order so that XDMF readers (ParaView, VisIt) see
 x as the fastest index; the reader transposes back to [i, j, k]. Checkpoints are
@@ -232,16 +232,25 @@ class Archiver:
                     self.index["labels"][n] = {"type": lab.vartype.value, "shape": list(lab.shape)}
             entry = {"timestep": timestep, "time": t, "delT": delt, "dir": f"t{timestep:05d}", "patches": patches}
             self.index["timesteps"].append(entry)
-            for n, v in reductions.items():
-                with open(os.path.join(self.dir, f"{n}.dat"), "a") as f:
-                    vals = " ".join(repr(float(x)) for x in np.atleast_1d(v))
-                    f.write(f"{t!r} {vals}\n")
+            self._append_reductions(reductions, t)
             # one appended line per output: the cost of an output does not grow with the run
             with open(os.path.join(self.dir, TIMESTEPS_FILE), "a") as f:
                 f.write(json.dumps(entry, separators=(",", ":")) + "\n")
             self.xdmf.add(self.index)
             if len(self.index["labels"]) != self._labels_written:
                 self._write_index()
+
+    def write_reductions(self, dw, t, names):
+        """A line "time value" in each saved reduction's .dat file, on a step that writes no
+        output timestep (Uintah writes reductions every timestep)."""
+        if self.comm.rank == 0:
+            self._append_reductions({n: dw.reductions[(n, m)] for (n, m) in dw.reductions if n in names}, t)
+
+    def _append_reductions(self, reductions, t):
+        for n, v in reductions.items():
+            with open(os.path.join(self.dir, f"{n}.dat"), "a") as f:
+                vals = " ".join(repr(float(x)) for x in np.atleast_1d(v))
+                f.write(f"{t!r} {vals}\n")
 
     def _write_index(self):
         """index.json: everything but the timesteps, which are in timesteps.jsonl."""

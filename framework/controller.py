@@ -28,6 +28,7 @@ from .problemspec import InputError, Param, ProblemSpec, deck_bytes
 from .progress import Progress
 from .scheduler.comm import Comm
 from .scheduler.compile import GraphError
+from .variables import VarType
 from .scheduler.relocate import relocation_task
 from .scheduler.scheduler import Scheduler
 
@@ -275,6 +276,10 @@ class Controller:
         self.carried = carried
         available = self.init_graph.computed | carried | provided
         analysed = set().union(*(m.needed for m in self.analysis))   # every step, as Uintah's modules
+        # saved reductions (TotalMass.dat ...) get a line every timestep, as in Uintah
+        self.saved_reductions = {n for n in self.outputs
+                                 if (lab := L.find(n)) is not None and lab.vartype == VarType.REDUCTION}
+        analysed |= self.saved_reductions
         self.step_graph = sched.compile({L.delT.name} | carried | self.outputs | analysed, old_available=available,
                                         protect={L.delT.name} | carried | analysed)
         # steps that write no output skip the tasks that only feed output
@@ -433,6 +438,8 @@ class Controller:
                 o0 = time.perf_counter()
                 if writes:
                     self.archiver.output(dw, self.timestep, self.t, delt, self.sched.local_patches)
+                elif self.saved_reductions:
+                    self.archiver.write_reductions(dw, self.t, self.saved_reductions)
                 if self.archiver.checkpoint_due(self.timestep, self.t):
                     self.archiver.checkpoint(dw, self.carried | {L.delT.name}, self.timestep, self.t,
                                              self._state(), self.sched.local_patches)

@@ -590,11 +590,23 @@ class IceTasks:
 
     # -- diagnostics ----------------------------------------------------------------------------
     def conserved_sums(self, patch, matls, old_dw, new_dw):
-        """TotalMass, KineticEnergy, TotalIntEng, TotalMomentum as Uintah's conservationTest:
-        the sums over interior cells plus delT times the fluxes through the domain's faces.
-        Uintah reads each face's velocity at the extra cell's own (lower) face: the boundary
-        face on upper faces; on lower faces a face outside the domain that ICE never sets, so
-        only the upper faces contribute (zero on closed domains)."""
+        """TotalMass, KineticEnergy, TotalIntEng, TotalMomentum as Uintah's conservationTest."""
+        acc = self._conserved_sums(patch, matls, old_dw, new_dw)
+        new_dw.put_reduction(I.TotalMass, acc[0])
+        new_dw.put_reduction(I.KineticEnergy, acc[1])
+        new_dw.put_reduction(I.TotalIntEng, acc[2])
+        new_dw.put_reduction(I.TotalMomentum, acc[3:6])
+
+    def internal_energy_sum(self, patch, matls, old_dw, new_dw):
+        """TotalIntEng alone: under MPMICE the other sums are MPM's (the solids' particles)."""
+        new_dw.put_reduction(I.TotalIntEng, self._conserved_sums(patch, matls, old_dw, new_dw)[2])
+
+    def _conserved_sums(self, patch, matls, old_dw, new_dw):
+        """[mass, kinetic energy, internal energy, momentum x, y, z]: the sums over interior
+        cells plus delT times the fluxes through the domain's faces. Uintah reads each face's
+        velocity at the extra cell's own (lower) face: the boundary face on upper faces; on
+        lower faces a face outside the domain that ICE never sets, so only the upper faces
+        contribute (zero on closed domains)."""
         b = self.boxes(patch)
         acc = np.zeros(6)
         delt = float(old_dw.get_reduction(L.delT))
@@ -605,10 +617,7 @@ class IceTasks:
                 if self.dims[d] and "xyz"[d] + "+" in patch.boundary_faces:
                     K.upper_face_fluxes(rho, vel, temp, self.cvs[m], b.vol, new_dw.get(I.FC_VEL_ME[d], m, patch), d,
                                         b.lo, b.hi, b.sh[d], delt, acc)
-        new_dw.put_reduction(I.TotalMass, acc[0])
-        new_dw.put_reduction(I.KineticEnergy, acc[1])
-        new_dw.put_reduction(I.TotalIntEng, acc[2])
-        new_dw.put_reduction(I.TotalMomentum, acc[3:6])
+        return acc
 
     def compute_mach(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)

@@ -342,6 +342,12 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         sched.add_task(t)
+        t = Task("ICE::TestConservation", ice.internal_energy_sum, fl) \
+            .requires(OLD, FL.delT).requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.temp_CC) \
+            .computes(I.TotalIntEng)
+        for d in dirs:
+            t.requires(NEW, I.FC_VEL_ME[d])
+        sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", ice.compute_mach, fl)
                        .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))
 
