@@ -129,3 +129,26 @@ def test_gas_conduction_is_scheduled_and_conserves(tmp_path):
     _, es = da.reduction("ThermalEnergy")
     e0, e1 = _gas(da, 0)[1] + es[0], _gas(da, -1)[1] + es[-1]
     assert abs(e1 / e0 - 1) < 1e-4
+
+
+MIN_MAX_NODES = """<DataAnalysis><Module name="minMax"><material>plates</material>
+  <samplingFrequency>1e10</samplingFrequency><timeStart>0</timeStart><timeStop>100</timeStop>
+  <Variables><analyze label="g.mass" matl="0"/><analyze label="press_CC" matl="0"/></Variables>
+</Module></DataAnalysis></Uintah_specification>"""
+
+
+def test_fluid_internal_energy_every_step_and_min_max_of_nodes(tmp_path):
+    """A saved TotalIntEng under MPMICE is the fluids' sum m cv T (Uintah's ICE TestConservation
+    over the ICE materials; the closed box has no boundary flux), with a .dat line every
+    timestep as in Uintah; minMax reads a node-centred variable (g.mass) over the domain's nodes."""
+    steps = 6
+    text = deck(steps=steps).replace('<save label="ThermalEnergy"/>', '<save label="TotalIntEng"/><save label="g.mass"/>')
+    da = DataArchive(run_deck(text.replace("</Uintah_specification>", MIN_MAX_NODES), tmp_path).archiver.dir)
+    t, ie = da.reduction("TotalIntEng")
+    assert len(t) == steps and len(da.times) == 2 and t[-1] == da.times[-1]      # two outputs, a line per step
+    assert float(ie[-1]) == pytest.approx(_gas(da, -1)[1], rel=1e-12)
+    rows = [line.split() for line in open(f"{da.path}/MinMax/L-0/g.mass_0") if not line.startswith("#")]
+    assert len(rows) == steps
+    gmass, _ = da.read("g.mass", 0, -1)
+    assert float(rows[-1][1]) == pytest.approx(gmass.min(), rel=1e-15)      # 16 digits as Uintah writes
+    assert float(rows[-1][2]) == pytest.approx(gmass.max(), rel=1e-15) and gmass.max() > 1.5 * gmass.min() > 0.0
