@@ -253,7 +253,7 @@ def _read_bctype(bt, table, nmat, scalars):
             raise bt.error(f"id={ident}: there are {nmat} ICE materials (0..{nmat - 1})")
     if kind == "LODI":
         if label not in LODI_VARS:
-            raise bt.error(f'var="LODI" applies to label="{label}" only as {", ".join(LODI_VARS)}')
+            raise bt.error(f'var="LODI" is not accepted for label="{label}"; accepted: label={", ".join(LODI_VARS)}')
         if ident == "all":
             raise bt.error('var="LODI" needs the id of the <LODI> block\'s ICE material, not id="all" (as Uintah)')
         table.setdefault("lodi_nodes", []).append(bt)
