@@ -106,9 +106,10 @@ def wave_amplitudes(L, rho, press, vel, cs, d, side, dx, max_mach, p, length, g_
             u = vel[c[0], c[1], c[2]]
             un = u[d]
             mach = abs(np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / C)
-            # the characteristic sources: gravity normal to the face only (table 4)
+            # the characteristic sources (table 4): gravity normal to the face only, no pressure
+            # source (s2 = -s_p / c^2 = -0), no transverse ones (s3 = s4 = 0)
             s1 = 0.5 * (0.0 - rc * C * g_n)
-            s2 = -0.0 / (C * C)
+            s2 = -0.0
             s5 = 0.5 * (0.0 + rc * C * g_n)
             c2 = C * C
             A = rc * C * dv[d]

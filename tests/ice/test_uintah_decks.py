@@ -427,7 +427,7 @@ SUS_LODI_LI5_XMINUS = [1499486.1808229855, 992080.034262096, 176149.72819619888,
 def test_lodi_pulse_as_uintah(run_deck):
     """LODI faces (lodi.py): the pulse's wave leaves through the x- and y- faces (up to 50 kPa
     over ambient and 40 m/s outflow at the faces) as in sus. Same algorithm, so round-off
-    agreement over 240 steps: delT bitwise so far, fields to 1e-13 of their range (measured
+    agreement over 240 steps: the times to 2e-16, fields to 1e-13 of their range (measured
     <= 3e-14); the wave amplitudes Li1, Li5 to 1e-11 (one-sided differences of nearly equal
     pressures lose digits: measured 3e-12)."""
     da = run_deck(str(REF / "Lodi_pulse_coarse.ups"))
