@@ -14,6 +14,9 @@ Extra cells hold the boundary values of CC variables, as in Uintah:
   logLawProfile        u_n = U (h/H)^n or u_* / kappa ln(h / z0) at the cell's height h
                        above the domain floor, in the extra cells and on the face; their
                        parameters in <BoundaryConditions><inletVelocity> (InletProfile)
+  LODI                 (Pressure, Velocity, Temperature, Density) Uintah's characteristic
+                       non-reflecting face, its parameters in <BoundaryConditions><LODI>
+                       (lodi.py); these kernels leave its extra cells alone
 Face velocities on a boundary face: Dirichlet sets the normal component, symmetry and
 FreeSlipWall zero, Neumann keeps the value computed from the extra cells.
 A `<BCType id="all">` applies to every material; Pressure is one field (material 0). A model's
@@ -28,9 +31,13 @@ from numba import njit
 from framework.gridspec import boundary_faces
 from framework.variables import VarType
 
+from .lodi import LODI_KIND, LodiInputs
+
 NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY, FREE_SLIP, POWER_LAW, LOG_LAW = 0, 1, 2, 3, 4, 5, 6
+LODI = LODI_KIND
 KINDS = {"Neumann": NEUMANN, "Dirichlet": DIRICHLET, "symmetry": SYMMETRY, "computeFromDensity": FROM_DENSITY,
-         "FreeSlipWall": FREE_SLIP, "powerLawProfile": POWER_LAW, "logLawProfile": LOG_LAW}
+         "FreeSlipWall": FREE_SLIP, "powerLawProfile": POWER_LAW, "logLawProfile": LOG_LAW, "LODI": LODI}
+LODI_VARS = ("Pressure", "Velocity", "Temperature", "Density")
 INLET = (POWER_LAW, LOG_LAW)
 VARS = ("Pressure", "Velocity", "Temperature", "Density", "SpecificVol")
 FACE_NAMES = ("x-", "x+", "y-", "y+", "z-", "z+")
@@ -144,9 +151,10 @@ def bc_hydrostatic(press, sp_vol, d, side, dirichlet, g, origin, anchor, dx, lo,
                 press[ie] += g[d] * sign * dx[d] * rho
 
 
-def read_bcs(root, level, nmat, material_names=(), n_before=0, scalars=None):
-    """{face: {var: [(kind, value) per material]}} for every physical face of the level, and the
-    inlet profiles' parameters (an InletProfile, or None) under the key "inletVelocity".
+def read_bcs(root, level, nmat, material_names=(), n_before=0, scalars=None, gravity=(0.0, 0.0, 0.0)):
+    """{face: {var: [(kind, value) per material]}} for every physical face of the level, the
+    inlet profiles' parameters (an InletProfile, or None) under the key "inletVelocity" and the
+    LODI parameters (a LodiInputs, or None) under "LODI".
     scalars: {label: material} of the models' transported scalars (scalar-f ...): Dirichlet or
     Neumann on every face for that material (or a symmetry face), as Uintah's is_BC_specified."""
     scalars = scalars or {}
@@ -194,8 +202,8 @@ def read_bcs(root, level, nmat, material_names=(), n_before=0, scalars=None):
                     per[sm] = (SYMMETRY, None)
                 face[var] = per
             out[name] = face
-    used = any(e is not None and e[0] in INLET for t in found.values() for per in t.values()
-               if isinstance(per, list) for e in per)
+    used = any(e is not None and e[0] in INLET for t in found.values() for k, per in t.items()
+               if k != "lodi_nodes" and isinstance(per, list) for e in per)
     out["inletVelocity"] = None
     if used:
         node = bcn.child("inletVelocity")
@@ -205,7 +213,29 @@ def read_bcs(root, level, nmat, material_names=(), n_before=0, scalars=None):
         out["inletVelocity"] = InletProfile(node, level, list(material_names), n_before)
     elif bcn is not None and bcn.has("inletVelocity"):
         bcn.child("inletVelocity").mark_used()
+    out["LODI"] = _read_lodi(bcn, found, out, level, material_names, n_before, gravity)
     return out
+
+
+def _read_lodi(bcn, found, out, level, material_names, n_before, gravity):
+    """The <LODI> block when a face of the level uses var="LODI" (Uintah's read_LODI_BC_inputs:
+    every LODI BCType names the block's material); without LODI faces the block is ignored."""
+    nodes = [bt for t in found.values() for bt in t.get("lodi_nodes", ())]
+    if not nodes:
+        if bcn is not None and bcn.has("LODI"):
+            bcn.child("LODI").mark_used()
+        return None
+    node = bcn.child("LODI")
+    if node is None:
+        raise nodes[0].error('var="LODI" needs a <LODI> block in <BoundaryConditions> (press_infinity, sigma, '
+                             "Li_scale, material)")
+    lodi = LodiInputs(node, level, list(material_names), n_before, gravity)
+    for bt in nodes:
+        if bt.attr("label") != "Pressure" and int(bt.attr("id")) != lodi.matl:
+            raise bt.error(f'a LODI condition is for the <LODI> block\'s material: give id="{lodi.matl}"')
+    lodi.faces = [name for name in FACE_NAMES if name in out
+                  and any(e is not None and e[0] == LODI for var in LODI_VARS for e in out[name][var])]
+    return lodi
 
 
 def _read_bctype(bt, table, nmat, scalars):
@@ -221,6 +251,12 @@ def _read_bctype(bt, table, nmat, scalars):
             raise bt.error(f'id="{ident}" is not a material index or "all"') from None
         if not 0 <= mats[0] < nmat:
             raise bt.error(f"id={ident}: there are {nmat} ICE materials (0..{nmat - 1})")
+    if kind == "LODI":
+        if label not in LODI_VARS:
+            raise bt.error(f'var="LODI" is not accepted for label="{label}"; accepted: label={", ".join(LODI_VARS)}')
+        if ident == "all":
+            raise bt.error('var="LODI" needs the id of the <LODI> block\'s ICE material, not id="all" (as Uintah)')
+        table.setdefault("lodi_nodes", []).append(bt)
     if kind == "symmetry":
         if bt.has("value"):
             bt.child("value").mark_used()
@@ -334,6 +370,7 @@ class BoundaryConditions:
 
     def __init__(self, table, level):
         self.inlet = table.pop("inletVelocity", None)
+        self.lodi = table.pop("LODI", None)
         self.table = table
         self.level = level
 
@@ -353,6 +390,8 @@ class BoundaryConditions:
             kind, value = self.table[name][var][m]
             if copy:
                 kind, value = NEUMANN, 0.0
+            if kind == LODI:        # lodi.py sets these extra cells (none at t = 0)
+                continue
             v = 0.0 if value is None else value
             if kind == DIRICHLET:
                 bc_scalar(q, d, s, 1, v, 0.0, b.lo, b.hi, b.olo, b.ohi)
@@ -366,6 +405,8 @@ class BoundaryConditions:
         for name, d, s in self._faces(patch):
             kind, value = self.table[name]["Velocity"][m]
             v = np.zeros(3) if value is None else value
+            if kind == LODI:
+                continue
             if kind in INLET:
                 if not initial:
                     ip = self.inlet

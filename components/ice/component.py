@@ -36,6 +36,7 @@ from .bc import BoundaryConditions, read_bcs
 from .custom_init import CustomInitialization
 from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
+from .lodi import LodiTasks
 from .tasks import IceTasks
 
 G = Ghost.AROUND_CELLS
@@ -89,7 +90,7 @@ def _rank():
 
 
 @register("ice")
-class ICE(ImplicitICE, IceTasks, Component):
+class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     """Uintah's ICE: equilibration pressure, face velocities, Lagrangian step, exchange, advection."""
 
     # MPMICE hook: number of (MPM) materials before ICE's in the global material index
@@ -156,7 +157,8 @@ class ICE(ImplicitICE, IceTasks, Component):
         # <Models>: Uintah's PassiveScalar (ICE alone; MPMICE reads its reaction models itself)
         self.scalars = read_ice_models(root, self, geo) if self.n_before == 0 else []
         self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before,
-                                               {s.name: s.matl for s in self.scalars}), level)
+                                               {s.name: s.matl for s in self.scalars}, self.gravity), level)
+        self.lodi = self.bcs.lodi
         self.codes = np.array([m.eos.code for m in self.materials], dtype=np.int64)
         if self.conserve_energy and n > 1 and np.any(self.codes != IDEAL_GAS):
             # the equilibration (eq. 13) changes each material's rho_micro at fixed T; with
@@ -183,6 +185,21 @@ class ICE(ImplicitICE, IceTasks, Component):
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
+        if self.lodi is not None:
+            self._check_lodi(n)
+
+    def _check_lodi(self, n):
+        """LODI faces are available for explicit ICE alone with one material (Uintah's also with
+        several, and in implicit ICE and MPMICE)."""
+        where = self.lodi.node
+        if self.n_before:
+            raise where.error("LODI boundaries are available for ICE alone, not in MPMICE")
+        if n > 1:
+            raise where.error(f"LODI boundaries are available with one ICE material; this deck has {n}")
+        if self.implicit:
+            raise where.error("LODI boundaries are available with explicit ICE only (no <ImplicitSolver>)")
+        if self.conserve_energy:
+            raise self._conserve_node.error("<conserveTotalEnergy> is not available with LODI boundaries")
 
     def material_names(self):
         return [m.name for m in self.materials]
@@ -331,12 +348,18 @@ class ICE(ImplicitICE, IceTasks, Component):
         many = len(self.matls) > 1
         gadv = 2 if self.second_order else 1
         dirs = [d for d in range(3) if self.dims[d]]
+        lodi = self.lodi is not None
+        if lodi:
+            sched.add_task(Task("ICE::maxMach_on_Lodi_BC_Faces", self.max_mach_faces, self.matls)
+                           .requires(OLD, I.vel_CC).requires(OLD, I.speedSound_CC).computes(I.maxMach_faces))
         t = Task("ICE::computeEquilibrationPressure", self.equilibration_pressure, self.matls) \
             .requires(OLD, I.rho_CC).requires(OLD, I.temp_CC).requires(OLD, I.sp_vol_CC) \
             .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \
             .computes(I.speedSound_CC)
         if many:
             t.requires(OLD, I.press_CC, matls=m0)
+        if lodi:
+            t.requires(OLD, I.vel_CC).requires(NEW, I.maxMach_faces)
         sched.add_task(t)
         for model in self.scalars:          # Uintah's computeModelSources: scalar-f_src
             model.schedule_sources(sched)
@@ -371,6 +394,8 @@ class ICE(ImplicitICE, IceTasks, Component):
                 t.requires(NEW, I.vol_frac_CC)
             for d in dirs:
                 t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+            if lodi:
+                t.requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(NEW, I.maxMach_faces)
             sched.add_task(t)
 
         t = Task("ICE::computePressFC", self.press_fc, self.matls) \
@@ -411,6 +436,8 @@ class ICE(ImplicitICE, IceTasks, Component):
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
         if not self.exchange:
             t.computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+        if lodi:
+            t.requires(NEW, I.maxMach_faces)
         if self.conserve_energy:
             t.computes(I.tot_eng_L_CC)
             if not self.exchange:
@@ -462,7 +489,16 @@ class ICE(ImplicitICE, IceTasks, Component):
             t.requires(NEW, I.tot_eng_L_ME_CC, G, gadv)
         for model in self.scalars:
             t.requires(NEW, model.f_L, G, gadv, matls=[model.matl]).computes(model.f, matls=[model.matl])
+        if lodi:
+            t.requires(NEW, I.press_CC, matls=m0).requires(NEW, I.speedSound_CC).requires(NEW, I.maxMach_faces)
         sched.add_task(t)
+        if lodi:
+            t = Task("ICE::LODI_Li", self.lodi_li, self.matls) \
+                .requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.press_CC, matls=m0) \
+                .requires(NEW, I.speedSound_CC).requires(NEW, I.maxMach_faces)    # only when saved
+            for lab in I.LODI_Li:
+                t.computes(lab)
+            sched.add_task(t)
         for model in self.scalars:
             model.schedule_conservation(sched, dirs)
 

@@ -715,7 +715,7 @@ def diffusion_source(q, vf, coef, out, dims, lo, hi, dx, dt, vol):
 @njit(cache=True)
 def sutherland_viscosity(mu, temp, a, b, lo, hi):
     """Uintah's Sutherland model: mu = a sqrt(T) / (1 + b / T), T clamped to [300, 5000] K,
-    interior cells."""
+    in the cells lo..hi."""
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):

@@ -55,3 +55,9 @@ TotalMass = L.create("TotalMass", R, reduction="sum")
 KineticEnergy = L.create("KineticEnergy", R, reduction="sum")
 TotalIntEng = L.create("TotalIntEng", R, reduction="sum")
 TotalMomentum = L.create("TotalMomentum", R, (3,), reduction="sum")
+
+# LODI faces (lodi.py): the largest Mach number on each face's extra cells at the start of a
+# step (Uintah's maxMach_xminus ... maxMach_zplus, faces in the order x-, x+, y-, y+, z-, z+), and
+# the wave amplitudes L1..L5 after advection (Uintah's Li1..Li5, computed only when saved)
+maxMach_faces = L.create("maxMach_faces", R, (6,), reduction="max")
+LODI_Li = tuple(L.create(f"Li{k}", CC, (3,)) for k in range(1, 6))

@@ -229,6 +229,8 @@ class IceTasks:
                               self.codes, self.params, self.cvs, self.gammas, b.v_olo, b.v_ohi, 1e-11, self.max_iter)
         if self.hydrostatic:
             sp_vol_surr = out[0] if len(matls) == 1 else spv[self.surrounding]
+        if self.lodi is not None:       # one material (component._check_lodi)
+            self.lodi_press(patch, peq, out[2], old_dw, new_dw)
         self.press_bc(patch, peq, sp_vol_surr if self.hydrostatic else None)
 
     def press_bc(self, patch, press, sp_vol_surr=None):
@@ -293,6 +295,8 @@ class IceTasks:
         press = new_dw.allocate(I.press_CC, 0, patch)
         K.update_pressure(v(new_dw.get(I.press_equil_CC, 0, patch)), v(div), v(ksum), v(delP), v(press),
                           b.v_lo, b.v_hi, self.press_floor)
+        if self.lodi is not None:
+            self.lodi_press(patch, press, new_dw.get(I.speedSound_CC, self.lodi.matl, patch), old_dw, new_dw)
         self.press_bc(patch, press, new_dw.get(I.sp_vol_CC, self.surrounding, patch) if self.hydrostatic else None)
 
     def delp_mass_exchange(self, patch, matls, old_dw, new_dw):
@@ -356,18 +360,23 @@ class IceTasks:
 
     def viscosity_array(self, patch, m, old_dw):
         """Uintah's computeThermoTransportProperties (viscosity): <dynamic_viscosity> in every cell
-        (ghost and extra cells too), then the material's models on the interior cells from the
-        old temperature (Sutherland), or in a box (SpongeLayer)."""
+        (extra cells too), then the material's models on the interior cells from the old
+        temperature (Sutherland), or in a box (SpongeLayer). The models also fill the first
+        ghost layer, the neighbours' interior cells that Uintah's viscous stress reads
+        (the viscosity with ghosts): the face between two patches sees both cells' model values."""
         b = self.boxes(patch)
         mat = self.materials[m]
         mu = np.full(patch.alloc_shape(VarType.CC), float(mat.viscosity))
         c0 = np.array(patch.low_index(VarType.CC))
+        grow = np.asarray(self.dims, dtype=np.int64)
+        glo = np.maximum(b.lo - grow * (1 - np.array(patch.at_low, dtype=np.int64)), 0)
+        ghi = np.minimum(b.hi + grow * (1 - np.array(patch.at_high, dtype=np.int64)), np.array(mu.shape))
         for model in getattr(mat, "viscosity_models", ()):      # MPMICE's solids have none
             if model[0] == "Sutherland":
-                K.sutherland_viscosity(mu, old_dw.get(I.temp_CC, m, patch), model[1], model[2], b.lo, b.hi)
+                K.sutherland_viscosity(mu, old_dw.get(I.temp_CC, m, patch), model[1], model[2], glo, ghi)
             else:
-                a = np.maximum(model[2] - c0, b.lo)
-                z = np.minimum(model[3] - c0, b.hi)
+                a = np.maximum(model[2] - c0, glo)
+                z = np.minimum(model[3] - c0, ghi)
                 if np.all(z > a):
                     mu[a[0]:z[0], a[1]:z[1], a[2]:z[2]] = model[1]
         return mu
@@ -456,7 +465,9 @@ class IceTasks:
                 mom[sl] += dt * new_dw.get(I.viscous_src_CC, m, patch)[sl]
             if self.conduction:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
-            if not self.exchange:
+            if self.lodi is not None:
+                self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
+            elif not self.exchange:
                 self.bcs.inlet_momentum(patch, mom, mass, m, b)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
@@ -578,6 +589,8 @@ class IceTasks:
                          self._scratch("sl", (shape[2],)), *out)
             if self.conserve_energy:
                 A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m], self.codes[m], self.params[m])
+            if self.lodi is not None:
+                self.lodi_advected(patch, m, rho, vel, temp, new_dw)
             self.bcs.scalar(patch, rho, "Density", m, b)
             self.bcs.scalar(patch, temp, "Temperature", m, b)
             self.bcs.velocity(patch, vel, m, b)

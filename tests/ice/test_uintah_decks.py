@@ -389,3 +389,108 @@ def test_viscous_sponge_layers_as_uintah(run_deck):
         a = a[..., 0] if a.ndim == 4 else a
         tol = 1e-9 if label in ("vel_CC", "viscous_src_CC") else 1e-12
         assert np.allclose((a.min(), a.max()), (lo, hi), rtol=tol, atol=0), (label, a.min(), a.max())
+
+
+# Uintah's sus on uintah_reference/Lodi_pulse_coarse.ups (its two advection attributes removed),
+# 240 steps: the times of the outputs after steps 80, 160, 240 (timestep.xml); min and max of
+# press_CC, rho_CC, temp_CC and of vel_CC's x and y components at those outputs; after step 240,
+# press_CC along the first interior column (x-) and row (y-), vel_CC.x and Li1.x, Li5.x along the
+# x- column, every fourth cell from the corner (the uda, framework/uintah_uda.py)
+SUS_LODI_TIMES = [0.0003333183483963888, 0.0007039057898411967, 0.0010828677757200001]
+SUS_LODI_MINMAX = [
+    {"press_CC": (101325.00000010812, 165172.0539892754), "rho_CC": (0.9361493302711189, 2.1037668124760414),
+     "temp_CC": (300.0000000000045, 822.4860633151229),
+     "vel_CC": (-127.04755555729069, 127.14109587681537, -127.14110509279286, 127.14109622751731)},
+    {"press_CC": (86269.20894731647, 155519.80307040762), "rho_CC": (0.6242300850084638, 2.455894062840619),
+     "temp_CC": (300.000000018494, 732.4368732041903),
+     "vel_CC": (-95.65784927929005, 97.1265943223212, -97.07679922803109, 97.12677539652356)},
+    {"press_CC": (86736.97978676007, 151947.85725354945), "rho_CC": (0.6470038400658559, 2.450296520943253),
+     "temp_CC": (300.00000979519496, 739.9735649681201),
+     "vel_CC": (-46.13603187572765, 80.25155583682584, -71.07547875475073, 80.27196483499537)}]
+SUS_LODI_PRESS_XMINUS = [144797.55324947694, 130378.74702668212, 106525.99773918414, 94237.81235026487,
+                         91165.21812173199, 96340.03836566444, 111237.38423009394, 139391.8270372609,
+                         130539.73195227636, 103703.28085839543]
+SUS_LODI_PRESS_YMINUS = [144797.55324947694, 138260.8431748597, 124296.89480747747, 120309.95445484691,
+                         126806.21266490206, 141349.99191564, 132168.10848010602, 105278.57997044567,
+                         101711.44490305598, 101351.94195662257]
+SUS_LODI_VELX_XMINUS = [-35.91454115130381, -40.69909608298777, -36.92269401388183, -38.676834768551984,
+                        -41.287709368484705, -37.89750224745901, -36.83662127925769, -43.65194356439688,
+                        -25.169964973292966, -1.5847423911859442]
+SUS_LODI_LI1_XMINUS = [-47161621.791762024, 72117913.5048511, 48997959.81779029, 43495049.56707079,
+                       41739722.32598937, 44588250.552014865, 50180991.12531931, 73634044.26016465,
+                       -83079805.65839499, -6012396.314174057]
+SUS_LODI_LI5_XMINUS = [1499486.1808229855, 992080.034262096, 176149.72819619888, -247460.17966882937,
+                       -360975.268168972, -172330.53575573434, 335410.33363611455, 1308953.2225467307,
+                       995711.6022948541, 79031.47845579559]
+
+
+def test_lodi_pulse_as_uintah(run_deck):
+    """LODI faces (lodi.py): the pulse's wave leaves through the x- and y- faces (up to 50 kPa
+    over ambient and 40 m/s outflow at the faces) as in sus. Same algorithm, so round-off
+    agreement over 240 steps: the times to 2e-16, fields to 1e-13 of their range (measured
+    <= 3e-14); the wave amplitudes Li1, Li5 to 1e-11 (one-sided differences of nearly equal
+    pressures lose digits: measured 3e-12)."""
+    da = run_deck(str(REF / "Lodi_pulse_coarse.ups"))
+    assert np.allclose(da.times[1:], SUS_LODI_TIMES, rtol=1e-14, atol=0)
+    for step, expected in enumerate(SUS_LODI_MINMAX, start=1):
+        for label, want in expected.items():
+            a = da.read(label, 0, step)[0]
+            got = (a.min(), a.max()) if a.ndim == 3 else (a[..., 0].min(), a[..., 0].max(),
+                                                         a[..., 1].min(), a[..., 1].max())
+            scale = np.abs(want).max()
+            assert np.allclose(got, want, rtol=0, atol=1e-13 * scale), (step, label, got)
+    p, v = da.read("press_CC", 0, -1)[0], da.read("vel_CC", 0, -1)[0]
+    assert np.allclose(p[0, ::4, 0], SUS_LODI_PRESS_XMINUS, rtol=1e-13, atol=0)
+    assert np.allclose(p[::4, 0, 0], SUS_LODI_PRESS_YMINUS, rtol=1e-13, atol=0)
+    assert np.allclose(v[0, ::4, 0, 0], SUS_LODI_VELX_XMINUS, rtol=0, atol=1e-13 * 80.3)
+    for label, want in (("Li1", SUS_LODI_LI1_XMINUS), ("Li5", SUS_LODI_LI5_XMINUS)):
+        li = da.read(label, 0, -1)[0][0, ::4, 0, 0]
+        assert np.allclose(li, want, rtol=0, atol=1e-11 * np.abs(want).max()), (label, li - want)
+    # sus's TotalMass.dat after step 240: the mass the open faces let out
+    assert da.reduction("TotalMass")[1][-1] == pytest.approx(0.017005788822042938, rel=1e-13)
+
+
+def test_lodi_pulse_two_ranks_as_one(tmp_path):
+    """The LODI faces use only the patch's own cells and one reduction (the faces' Mach
+    numbers): 2 ranks give bitwise the one-rank answer (40 steps, 4 patches)."""
+    from framework.archiver import DataArchive
+    from tests.conftest import pysus
+    deck = (REF / "Lodi_pulse_coarse.ups").read_text()
+    deck = deck.replace("<max_Timesteps>        240   </max_Timesteps>", "<max_Timesteps>        40   </max_Timesteps>")
+    deck = deck.replace("<outputTimestepInterval> 80 </outputTimestepInterval>",
+                        "<outputTimestepInterval> 40 </outputTimestepInterval>")
+    (tmp_path / "d.ups").write_text(deck)
+    runs = []
+    for n in (1, 2):
+        r = pysus(tmp_path / "d.ups", "--filebase", tmp_path / f"r{n}.uda", np_=n)
+        assert r.returncode == 0, r.stderr[-2000:]
+        runs.append(DataArchive(tmp_path / f"r{n}.uda"))
+    assert list(runs[0].times) == list(runs[1].times) and len(runs[0].times) == 2
+    for label in ("press_CC", "rho_CC", "temp_CC", "vel_CC", "Li1", "Li5"):
+        assert np.array_equal(runs[0].read(label, 0, -1)[0], runs[1].read(label, 0, -1)[0]), label
+
+
+@pytest.mark.parametrize("edit, message", [
+    (("<LODI>", "<LODI_off>", "</LODI>", "</LODI_off>"), "needs a <LODI> block"),
+    (('<BCType id = "0"   label = "Velocity"     var = "LODI">', '<BCType id = "all"   label = "Velocity"     var = "LODI">'),
+     'not id="all"'),
+    (("<material>       atmosphere </material>", "<material>       air </material>"), "no ICE material named 'air'"),
+    (("<sigma>           0.27      </sigma>", "<sigma>           0.27      </sigma><beta>1</beta>"), "beta"),
+    (('label = "SpecificVol"  var = "computeFromDensity"', 'label = "SpecificVol"  var = "LODI"'), "SpecificVol"),
+    (("</ICE>\n    </CFD>", "</ICE>\n    </CFD>\n    <Models><Model type=\"gasCombustion\"></Model></Models>"),
+     "gasCombustion"),
+])
+def test_lodi_bad_input(tmp_path, edit, message):
+    """LODI input Uintah would refuse, options pysus lacks, and hydrogenFlame1/2's Cantera model:
+    one line naming the file and what is accepted."""
+    from framework.controller import Controller
+    from framework.problemspec import InputError
+    deck = (REF / "Lodi_pulse_coarse.ups").read_text()
+    for old, new in zip(edit[::2], edit[1::2]):
+        assert old in deck, old
+        deck = deck.replace(old, new)
+    (tmp_path / "d.ups").write_text(deck)
+    with pytest.raises(InputError) as e:
+        Controller(str(tmp_path / "d.ups"), quiet=True, filebase=str(tmp_path / "run.uda"))
+    text = str(e.value)
+    assert "\n" not in text.strip() and "d.ups" in text and message in text, text
