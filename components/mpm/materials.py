@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
+import sys
 
 import numpy as np
+from mpi4py import MPI
 
 from framework.geometry import GeometryReader
 from framework.problemspec import Param
@@ -107,6 +109,10 @@ class Material:
                 above, at_least = MODEL_RANGES.get(f.name, (None, None)) if kind != "rigid" else (None, None)
                 values[f.name] = (c.text() if f.name == "formulation"
                                   else str(c.value(kind_of, above=above, at_least=at_least)))
+        unread = [cm.child(t) for t in getattr(self.model, "UINTAH_UNREAD", ()) if cm.has(t)]
+        if unread and MPI.COMM_WORLD.Get_rank() == 0:
+            print(f"pysus: note: {cm.filename}:{unread[0].line}: {', '.join('<%s>' % c.tag for c in unread)} "
+                  f"of {kind} have no effect (Uintah's model does not read them either)", file=sys.stderr)
         try:
             self.params = self.model.Params.from_ups(values)
         except KeyError as e:

@@ -32,6 +32,7 @@ from . import comp_neo_hook
 from ._common import _get, max_wavespeed
 
 ENERGY_IS_INCREMENT = False
+UINTAH_UNREAD = ("strain_limit", "reduction_factor")     # in Uintah's decks, read by no Uintah model
 SQ23 = np.sqrt(2.0 / 3.0)
 
 
