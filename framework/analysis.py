@@ -7,7 +7,8 @@ at its sampling times within [timeStart, timeStop], one line per analysed variab
 <uda>/MinMax/L-0/<label>_<matl>: "time min max" (Vectors componentwise, in brackets), over the
 interior cells (CC) or the faces of interior cells (FC), in Uintah's format. `lineExtract` writes
 the values along axis-parallel lines, one file per cell (LineExtract); `controlVolFluxes` the mass
-in boxes and the mass fluxes through their faces (ControlVolFluxes).
+in boxes and the mass fluxes through their faces (ControlVolFluxes); `SGS_ReynoldsStress` the
+CC tensor of ICE's face stresses tau_X_FC, ... (each row the mean of its two faces).
 """
 from __future__ import annotations
 
@@ -78,6 +79,57 @@ class Vorticity:
             lo, hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
             curl_central(vel, out, lo, hi, np.asarray(self.level.dx, dtype=np.float64),
                          np.array([not c for c in self.level.collapsed], dtype=np.bool_))
+
+    def after_step(self, dw, timestep, t, uda):
+        pass
+
+
+@njit(cache=True)
+def face_mean_row(t, out, a, lo, hi, sh):
+    """out[c, a, :] = the mean of the face stresses t on cell c's two a-faces (Uintah's
+    SGS_ReynoldsStress: tau_L + (tau_R - tau_L) / 2); sh: cell c's lower face is c - sh."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                f0, f1, f2 = i - sh[0], j - sh[1], k - sh[2]
+                g0, g1, g2 = f0 + (a == 0), f1 + (a == 1), f2 + (a == 2)
+                for b in range(3):
+                    left = t[f0, f1, f2, b]
+                    out[i, j, k, a, b] = left + (t[g0, g1, g2, b] - left) / 2.0
+
+
+class SGS_ReynoldsStress:
+    """Uintah's SGS_ReynoldsStress module: the viscous (with <turbulence>, molecular plus
+    subgrid-scale) stress at the cell centres, row a the mean of tau_a_FC on the cell's a-faces."""
+
+    def __init__(self, node, component, level):
+        self.matl = _material(node, component)
+        self.taus = [L.find(f"tau_{a}_FC") for a in "XYZ"]
+        if self.taus[0] is None:
+            raise node.error('<Module name="SGS_ReynoldsStress"> needs the face stresses tau_X_FC, ... of ICE '
+                             "with a <dynamic_viscosity>")
+        self.label = L.create("SGS_ReynoldsStress", VarType.CC, (3, 3))
+        self.level = level
+        self.dims = np.array([not c for c in level.collapsed], dtype=np.bool_)
+        self.needed = set()
+
+    def schedule(self, sched):
+        t = Task("SGS_ReynoldsStress::doAnalysis", self.compute, [self.matl]).computes(self.label)
+        for d in range(3):
+            if self.dims[d]:
+                t.requires(NEW, self.taus[d], Ghost.AROUND_CELLS, 1)
+        sched.add_task(t)
+
+    def compute(self, patch, matls, old_dw, new_dw):
+        cc0 = np.array(patch.low_index(VarType.CC))
+        lo, hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
+        for m in matls:
+            out = new_dw.allocate(self.label, m, patch)
+            out[...] = 0.0                      # rows of one-cell directions: no face stress
+            for d in range(3):
+                if self.dims[d]:
+                    sh = (np.array(patch.low_index(FACE_TYPES[d])) - cc0).astype(np.int64)
+                    face_mean_row(new_dw.get(self.taus[d], m, patch), out, d, lo, hi, sh)
 
     def after_step(self, dw, timestep, t, uda):
         pass
@@ -451,7 +503,7 @@ class ControlVolFluxes:
 
 
 MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract,
-           "controlVolFluxes": ControlVolFluxes}
+           "controlVolFluxes": ControlVolFluxes, "SGS_ReynoldsStress": SGS_ReynoldsStress}
 
 
 def read_analysis(root, component, level) -> list:

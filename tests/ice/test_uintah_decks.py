@@ -389,3 +389,104 @@ def test_viscous_sponge_layers_as_uintah(run_deck):
         a = a[..., 0] if a.ndim == 4 else a
         tol = 1e-9 if label in ("vel_CC", "viscous_src_CC") else 1e-12
         assert np.allclose((a.min(), a.max()), (lo, hi), rtol=tol, atol=0), (label, a.min(), a.max())
+
+
+# Uintah's sus on uintah_reference/impVortices_{smag,dyn}_explicit.ups (10 steps, one rank, read
+# with framework.uintah_uda): the time after each step (timestep.xml), turb_viscosity_CC along
+# the row j = 5, k = 0 after step 1, SGS_ReynoldsStress in cell (3, 5, 0) after step 1, and the
+# min and max of vel_CC.x, press_CC and temp_CC after step 10
+SUS_VORTICES = {
+    "smag": {
+        "times": [1e-05, 4e-05, 8.439642380922714e-05, 0.0001287773717972557, 0.00017313766252056943,
+                  0.00021748603890006787, 0.00026183283936814675, 0.00030618478638615745, 0.0003505441225324549,
+                  0.00039490962985388913],
+        "turb_row": [0.0, 0.0027810346825541256, 0.004446067754600588, 0.0004158268951446615, 0.0003902657795228521,
+                     0.00035825513664114174, 0.0003201054137016761, 0.0002763011144371376, 0.00022749243923937072,
+                     0.0001744801613592296, 0.00011819418161243031, 0.0015584218308302505, 6.79106120186695e-19,
+                     0.0015584218308302513, 0.00011819418161243031, 0.0001744801613592296, 0.00022749243923937072,
+                     0.0002763011144371381, 0.000320105413701675, 0.0003582551366411433, 0.00039026577952285105,
+                     0.0004158268951446615, 0.004446067754600588, 0.002781034682554125, 0.0],
+        "sgs": [[0.024106497820094698, 0.012854837544890597, 0.0], [-0.02227633873203005, -0.02144708149095314, 0.0],
+                [0.0, 0.0, -2.933964859075593e-07]],
+        "vel_CC": (-13.665109496737111, 13.66510949673706),
+        "press_CC": (101058.41587759832, 101602.81471964237),
+        "temp_CC": (299.77625994164663, 300.2361461102163)},
+    "dyn": {
+        "times": [1e-05, 4e-05, 8.439642456534768e-05, 0.00012877741941314894, 0.0001731376833747861,
+                  0.00021748586445889169, 0.0002618322306740427, 0.0003061835305297787, 0.0003505418379589469,
+                  0.0003949059210205603],
+        "turb_row": [0.0, 0.0019479295806475478, 0.0017685731296721281, 9.575913504414593e-05, 0.0, 0.0,
+                     6.193472015459693e-05, 0.0001492718465975609, 0.00012763153583205596, 2.332935522145367e-06,
+                     0.0, 0.0, 0.0, 0.027356066612146183, 0.0008949646359341672, 0.0, 0.0, 0.0, 0.0, 0.0,
+                     8.594970236735694e-05, 0.0, 0.0, 0.00042025243585640704, 0.0],
+        "sgs": [[0.0057007235952876425, 0.003573759161044318, 0.0], [-0.005028484347418148, -0.004446401862796383, 0.0],
+                [0.0, 0.0, -8.359910100479684e-08]],
+        "vel_CC": (-13.665635367509116, 13.665635367509072),
+        "press_CC": (101056.750240613, 101601.33504203755),
+        "temp_CC": (299.774903848602, 300.2348818006298)}}
+
+
+@pytest.mark.parametrize("deck", sorted(SUS_VORTICES))
+def test_imp_vortices_turbulence_as_uintah(run_deck, deck):
+    """impVortices_smag / _dyn (made explicit): two Gaussian vortices (customInitialization
+    vortices) in a closed box with the Smagorinsky or Germano (dynamic) subgrid viscosity. After
+    step 1 the turbulent viscosity is sus's to round-off (1e-12 of its maximum; the dynamic
+    model's clipped cells included). Later steps drift from sus by what the cells next to the
+    walls carry: Uintah's one-material exchange task re-applies the velocity and temperature
+    boundary conditions to the Lagrangian values in the extra cells, pysus keeps the old ones,
+    and the advection's limiter reads them (without turbulence the same drift: 8e-8 in T after
+    step 1). SGS_ReynoldsStress (the cell-centred face stresses) is sus's to round-off after
+    step 1 as well. So delT to 2e-6, and after step 10 the velocity to 1e-4, T to 3e-5, p to 1e-5."""
+    ref = SUS_VORTICES[deck]
+    da = run_deck(str(REF / f"impVortices_{deck}_explicit.ups"))
+    assert np.allclose(da.times[1:], ref["times"], rtol=2e-6, atol=0)
+    turb = da.read("turb_viscosity_CC", 0, 1)[0]
+    assert np.allclose(turb[:, 5, 0], ref["turb_row"], rtol=0, atol=1e-12 * max(ref["turb_row"]))
+    sgs = da.read("SGS_ReynoldsStress", 0, 1)[0]
+    assert np.allclose(sgs[3, 5, 0], ref["sgs"], rtol=1e-12, atol=1e-14)     # its largest entries: 3.6, 11.6
+    for label, tol in (("vel_CC", 1e-4), ("press_CC", 1e-5), ("temp_CC", 3e-5)):
+        a = da.read(label, 0, -1)[0]
+        a = a[..., 0] if label == "vel_CC" else a
+        assert np.allclose((a.min(), a.max()), ref[label], rtol=tol, atol=0), (label, a.min(), a.max())
+    # the saved stress diagnostics: total = molecular + turbulent in the interior; the
+    # SGS_ReynoldsStress rows are the means of the face stresses
+    tot = da.read("total_viscosity_CC", 0, -1)[0]
+    assert np.allclose(tot, 15.89e-6 + da.read("turb_viscosity_CC", 0, -1)[0], rtol=1e-14, atol=0)
+    sgs = da.read("SGS_ReynoldsStress", 0, -1)[0]
+    tx = da.read("tau_X_FC", 0, -1)[0]
+    assert np.allclose(sgs[3, 4, 1, 0], 0.5 * (tx[3, 4, 1] + tx[4, 4, 1]), rtol=1e-14, atol=1e-300)
+
+
+def test_vortices_initial_state():
+    """customInitialization vortices as Uintah's: velocities of the two vortices add up, the
+    pressure is the last vortex's 101325 + rho C^2 A / R^2 where it reaches (not the EOS
+    pressure), and the sound speed takes that pressure (c^2 = (g-1) cv T + (g-1) p / rho)."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    import tempfile
+    deck = (REF / "impVortices_smag_explicit.ups").read_text().replace("<max_Timesteps>  10 <", "<max_Timesteps>  0 <")
+    deck = deck.replace('<save label="vel_CC"/>', '<save label="vel_CC"/>\n      <save label="speedSound_CC"/>')
+    with tempfile.TemporaryDirectory() as tmp:
+        path = pathlib.Path(tmp) / "d.ups"
+        path.write_text(deck)
+        c = Controller(str(path), quiet=True, filebase=str(pathlib.Path(tmp) / "run.uda"))
+        c.run()
+        da = DataArchive(c.archiver.dir)
+        vel, (x, y, z) = da.read("vel_CC", 0, 0)
+        press = da.read("press_CC", 0, 0)[0]
+        cs = da.read("speedSound_CC", 0, 0)[0]
+    rho = 1.178471737613 * (1.0 + 1e-12)          # rho_CC = rho_micro (theta + tiny_rho)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    u, v, p = np.zeros_like(X), np.zeros_like(X), np.full_like(X, 101325.0)
+    for c1, r in ((10.0, 0.5), (-10.0, 0.25)):
+        a = np.exp(-(X * X + Y * Y) / (2 * r * r))
+        inside = np.sqrt(X * X + Y * Y) <= r
+        u -= np.where(inside, c1 * Y / (rho * r * r) * a, 0.0)
+        v += np.where(inside, c1 * X / (rho * r * r) * a, 0.0)
+        p = np.where(inside, 101325.0 + rho * c1 * c1 / (r * r) * a, p)
+    assert np.allclose(vel[:, :, 0, 0], u, rtol=1e-12, atol=1e-12)
+    assert np.allclose(vel[:, :, 0, 1], v, rtol=1e-12, atol=1e-12)
+    assert np.allclose(press[:, :, 0], p, rtol=1e-13, atol=0)
+    cv, g = 716.5, 1.4
+    rho_micro = 1.178471737613
+    assert np.allclose(cs[:, :, 0], np.sqrt((g - 1) * cv * 300.0 + (g - 1) * p / rho_micro), rtol=1e-13, atol=0)
