@@ -494,6 +494,8 @@ class IceTasks:
                 mom[sl] += dt * new_dw.get(I.viscous_src_CC, m, patch)[sl]
             if self.conduction:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
+            if len(matls) == 1 and self.n_before == 0:
+                self._one_material_exchange(patch, b, m, mass, mom, eng)
             if not self.exchange:
                 self.bcs.inlet_momentum(patch, mom, mass, m, b)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
@@ -515,6 +517,20 @@ class IceTasks:
                     new_dw.put(I.tot_eng_L_ME_CC, m, patch, tot)       # one material: no exchange
         if self.conserve_energy and len(matls) > 1 and not self.exchange:
             self._share_total_energy(patch, matls, new_dw, tuple(masses), tuple(moms), tuple(engs), tuple(tots))
+
+    def _one_material_exchange(self, patch, b, m, mass, mom, eng):
+        """Uintah's one-material exchange task (ScalarExch::addExch_Vel_Temp_CC_1matl): the
+        Lagrangian velocity and temperature take their boundary conditions in the extra cells
+        (the new values' images: symmetry, zero gradient), then mom_L_ME = m u and
+        int_eng_L_ME = m cv T everywhere. The advection's limiter reads those extra cells; with
+        the old step's values there, cells next to walls drifted from sus (1e-7 in a step)."""
+        vel = self._scratch("vel_1matl", mom.shape)
+        temp = self._scratch("temp_1matl", eng.shape)
+        cv = self.cvs[m]
+        K.lagrangian_to_primitive(mass, mom, eng, cv, vel, temp, b.olo, b.ohi)
+        self.bcs.velocity(patch, vel, m, b)
+        self.bcs.scalar(patch, temp, "Temperature", m, b)
+        K.primitive_to_lagrangian(mass, vel, temp, cv, mom, eng, b.olo, b.ohi)
 
     def _share_total_energy(self, patch, matls, new_dw, masses, moms, engs, tots):
         """tot_eng_L_ME_CC of several materials: each one's m (e + |u|^2/2) after the exchange plus
