@@ -443,8 +443,9 @@ class IceTasks:
             out = new_dw.allocate(I.viscous_src_CC, m, patch)
             if not self._viscous_here(patch, m):
                 continue
+            mu = self._stress_viscosity(patch, m, old_dw, new_dw)
             K.viscous_stress_source(self.vel_tau(patch, old_dw.get(I.vel_CC, m, patch)),
-                                    new_dw.get(I.vol_frac_CC, m, patch), self._stress_viscosity(patch, m, old_dw, new_dw), out,
+                                    new_dw.get(I.vol_frac_CC, m, patch), mu, out,
                                     self.dims, b.lo, b.hi, patch.level.dx, b.vol)
 
     def tau_fc(self, patch, matls, old_dw, new_dw):

@@ -19,7 +19,6 @@ turb_viscosity_CC is mu_t in the interior cells, 0 in the extra cells.
 """
 from __future__ import annotations
 
-import functools
 import math
 
 import numpy as np
