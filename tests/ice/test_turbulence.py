@@ -129,3 +129,22 @@ def test_turbulence_bad_input(tmp_path, edit, message):
         Controller(str(tmp_path / "d.ups"), quiet=True, filebase=str(tmp_path / "run.uda"))
     text = str(e.value)
     assert "\n" not in text.strip() and "d.ups" in text, text
+
+
+def test_germano_two_ranks_equal_one_rank(tmp_path):
+    """The dynamic model's 27-cell filter reaches two ghost layers (face velocities three):
+    the explicit impVortices_dyn copy on 2 ranks is bitwise the one-rank answer."""
+    import pathlib
+    from framework.archiver import DataArchive
+    from tests.conftest import pysus
+    deck = pathlib.Path(__file__).parent / "uintah_reference" / "impVortices_dyn_explicit.ups"
+    text = deck.read_text().replace("<max_Timesteps>  10 <", "<max_Timesteps>  3 <")
+    path = tmp_path / "dyn.ups"
+    path.write_text(text)
+    runs = {}
+    for n in (1, 2):
+        r = pysus(path, "--filebase", tmp_path / f"r{n}.uda", np_=n)
+        assert r.returncode == 0, r.stderr[-2000:]
+        runs[n] = DataArchive(tmp_path / f"r{n}.uda")
+    for lab in ("vel_CC", "press_CC", "temp_CC", "turb_viscosity_CC", "total_viscosity_CC", "SGS_ReynoldsStress"):
+        assert np.array_equal(runs[1].read(lab, 0, -1)[0], runs[2].read(lab, 0, -1)[0]), lab
