@@ -8,7 +8,8 @@ at its sampling times within [timeStart, timeStop], one line per analysed variab
 interior cells (CC) or the faces of interior cells (FC), in Uintah's format. `lineExtract` writes
 the values along axis-parallel lines, one file per cell (LineExtract); `controlVolFluxes` the mass
 in boxes and the mass fluxes through their faces (ControlVolFluxes); `SGS_ReynoldsStress` the
-CC tensor of ICE's face stresses tau_X_FC, ... (each row the mean of its two faces).
+CC tensor of ICE's face stresses tau_X_FC, ... (each row the mean of its two faces);
+`turbulentFluxes` running means, variances and covariances with the velocity (TurbulentFluxes).
 """
 from __future__ import annotations
 
@@ -130,6 +131,169 @@ class SGS_ReynoldsStress:
                 if self.dims[d]:
                     sh = (np.array(patch.low_index(FACE_TYPES[d])) - cc0).astype(np.int64)
                     face_mean_row(new_dw.get(self.taus[d], m, patch), out, d, lo, hi, sh)
+
+    def after_step(self, dw, timestep, t, uda):
+        pass
+
+
+@njit(cache=True)
+def running_means(q, vel, s1, s2, sv, m1, m2, mv, s1_old, s2_old, sv_old, n, vector):
+    """Uintah's turbulentFluxes Q_mean over every cell of the arrays: the sums of Q, Q Q and
+    Q u_i gain this step's values, the means are the sums over n. Q Q is componentwise for a
+    Vector Q; Q u_i is (Q u, Q v, Q w) for a double and (Q.x v, Q.y w, Q.z u) for a Vector."""
+    nx, ny, nz = vel.shape[0], vel.shape[1], vel.shape[2]
+    for i in range(nx):
+        for j in range(ny):
+            for k in range(nz):
+                for c in range(q.shape[3]):
+                    var = q[i, j, k, c]
+                    s1[i, j, k, c] = var + s1_old[i, j, k, c]
+                    m1[i, j, k, c] = s1[i, j, k, c] / n
+                    s2[i, j, k, c] = var * var + s2_old[i, j, k, c]
+                    m2[i, j, k, c] = s2[i, j, k, c] / n
+                for c in range(3):
+                    if vector:
+                        qu = q[i, j, k, c] * vel[i, j, k, (c + 1) % 3]
+                    else:
+                        qu = q[i, j, k, 0] * vel[i, j, k, c]
+                    sv[i, j, k, c] = qu + sv_old[i, j, k, c]
+                    mv[i, j, k, c] = sv[i, j, k, c] / n
+
+
+@njit(cache=True)
+def turbulent_fluxes(m1, m2, mv, vel_mean, variance, covariance, vector):
+    """Uintah's turbFluxes: variance = mean(Q Q) - mean(Q) mean(Q), covariance = mean(Q u_i) -
+    mean(Q) mean(u_i) (with the pairing of running_means), every cell."""
+    nx, ny, nz = vel_mean.shape[0], vel_mean.shape[1], vel_mean.shape[2]
+    for i in range(nx):
+        for j in range(ny):
+            for k in range(nz):
+                for c in range(m1.shape[3]):
+                    variance[i, j, k, c] = m2[i, j, k, c] - m1[i, j, k, c] * m1[i, j, k, c]
+                for c in range(3):
+                    if vector:
+                        qu = m1[i, j, k, c] * vel_mean[i, j, k, (c + 1) % 3]
+                    else:
+                        qu = m1[i, j, k, 0] * vel_mean[i, j, k, c]
+                    covariance[i, j, k, c] = mv[i, j, k, c] - qu
+
+
+class TurbulentFluxes:
+    """Uintah's turbulentFluxes module: running sums and means over the steps that start within
+    [timeStart, timeStop] of each analysed CC variable Q (double or Vector), of Q Q and of Q
+    times the fluid velocity, and from them variance_Q and covariance_Q. The sums are carried
+    from step to step (in checkpoints too); outside the window every label keeps its value."""
+
+    def __init__(self, node, component, level):
+        matl = _material(node, component)
+        self.start = node.get("timeStart", "float")
+        self.stop = node.get("timeStop", "float")
+        if self.start > self.stop:
+            raise node.child("timeStop").error("timeStop is before timeStart; accepted: timeStart <= timeStop")
+        if node.child("monitorCell") is not None:         # Uintah's debugging output only
+            node.child("monitorCell").mark_used()
+        self.vars, self.vel = [], None
+        for a in node.child("Variables", required=True).children("analyze"):
+            name = a.attr("label")
+            label = L.find(name)
+            if label is None or label.vartype is not VarType.CC or label.shape not in ((), (3,)):
+                raise a.error(f'label="{name}" is not a cell-centred double or Vector of this deck; '
+                              "accepted: a CC variable the component computes")
+            m = a.attr("matl", "int", matl, at_least=0)
+            q = {"label": label, "matl": m, "vector": label.shape == (3,)}
+            for key, prefix, suffix, shape in (("s1", "sum_", "", label.shape), ("s2", "sum_", "2", label.shape),
+                                               ("m1", "mean_", "", label.shape), ("m2", "mean_", "2", label.shape),
+                                               ("sv", "sum_Qu_Qv_Qw_", "", (3,)), ("mv", "mean_Qu_Qv_Qw_", "", (3,)),
+                                               ("var", "variance_", "", label.shape),
+                                               ("cov", "covariance_", "", (3,))):
+                q[key] = L.find(prefix + name + suffix) or L.create(prefix + name + suffix, VarType.CC, shape)
+            if a.attr("fluidVelocityLabel", default=None) is not None:
+                self.vel = q
+            self.vars.append(q)
+        if self.vel is None:
+            raise node.child("Variables").error('no <analyze ... fluidVelocityLabel="true"/>: turbulentFluxes '
+                                                "needs the fluid velocity among its variables")
+        self.count = L.create("turbulentFluxes_nTimesteps", VarType.REDUCTION, reduction="max")
+        self.keys = ("s1", "s2", "m1", "m2", "sv", "mv", "var", "cov")
+        self.needed = {q[k].name for q in self.vars for k in self.keys} | {self.count.name}
+
+    def _matls(self):
+        return sorted({q["matl"] for q in self.vars})
+
+    def schedule_initialize(self, sched):
+        t = Task("turbulentFluxes::initialize", self.initialize, self._matls()).computes(self.count)
+        for q in self.vars:
+            for k in self.keys:
+                t.computes(q[k], matls=[q["matl"]])
+        sched.add_task(t)
+
+    def initialize(self, patch, matls, old_dw, new_dw):
+        for q in self.vars:
+            if q["matl"] in matls:
+                for k in self.keys:
+                    new_dw.allocate(q[k], q["matl"], patch)[...] = 0.0
+        new_dw.put_reduction(self.count, 0.0)
+
+    def schedule(self, sched):
+        t = Task("turbulentFluxes::task_Q_mean", self.q_mean, self._matls()) \
+            .requires(OLD, L.simTime).requires(OLD, self.count).computes(self.count)
+        t.requires(NEW, self.vel["label"], matls=[self.vel["matl"]])
+        for q in self.vars:
+            m = [q["matl"]]
+            t.requires(NEW, q["label"], matls=m)
+            for k in ("s1", "s2", "m1", "m2", "sv", "mv"):
+                t.requires(OLD, q[k], matls=m).computes(q[k], matls=m)
+        sched.add_task(t)
+        t = Task("turbulentFluxes::task_turbFluxes", self.fluxes, self._matls()).requires(OLD, L.simTime)
+        t.requires(NEW, self.vel["m1"], matls=[self.vel["matl"]])
+        for q in self.vars:
+            m = [q["matl"]]
+            for k in ("m1", "m2", "mv"):
+                t.requires(NEW, q[k], matls=m)
+            for k in ("var", "cov"):
+                t.requires(OLD, q[k], matls=m).computes(q[k], matls=m)
+        sched.add_task(t)
+
+    def _active(self, old_dw):
+        now = old_dw.get_reduction(L.simTime)
+        return self.start <= now <= self.stop
+
+    def q_mean(self, patch, matls, old_dw, new_dw):
+        n = old_dw.get_reduction(self.count)
+        active = self._active(old_dw)
+        if active:
+            n += 1.0
+        new_dw.put_reduction(self.count, n)
+        vel = new_dw.get(self.vel["label"], self.vel["matl"], patch)
+        for q in self.vars:
+            m = q["matl"]
+            if m not in matls:
+                continue
+            if not active:
+                for k in ("s1", "s2", "m1", "m2", "sv", "mv"):
+                    new_dw.put(q[k], m, patch, old_dw.get(q[k], m, patch).copy())
+                continue
+            v = lambda a: a.reshape(a.shape[:3] + (-1,))
+            new = {k: new_dw.allocate(q[k], m, patch) for k in ("s1", "s2", "m1", "m2", "sv", "mv")}
+            running_means(v(new_dw.get(q["label"], m, patch)), vel, v(new["s1"]), v(new["s2"]), new["sv"],
+                          v(new["m1"]), v(new["m2"]), new["mv"], v(old_dw.get(q["s1"], m, patch)),
+                          v(old_dw.get(q["s2"], m, patch)), old_dw.get(q["sv"], m, patch), n, q["vector"])
+
+    def fluxes(self, patch, matls, old_dw, new_dw):
+        active = self._active(old_dw)
+        for q in self.vars:
+            m = q["matl"]
+            if m not in matls:
+                continue
+            if not active:
+                for k in ("var", "cov"):
+                    new_dw.put(q[k], m, patch, old_dw.get(q[k], m, patch).copy())
+                continue
+            v = lambda a: a.reshape(a.shape[:3] + (-1,))
+            var, cov = new_dw.allocate(q["var"], m, patch), new_dw.allocate(q["cov"], m, patch)
+            turbulent_fluxes(v(new_dw.get(q["m1"], m, patch)), v(new_dw.get(q["m2"], m, patch)),
+                             new_dw.get(q["mv"], m, patch), new_dw.get(self.vel["m1"], self.vel["matl"], patch),
+                             v(var), cov, q["vector"])
 
     def after_step(self, dw, timestep, t, uda):
         pass
@@ -503,7 +667,8 @@ class ControlVolFluxes:
 
 
 MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract,
-           "controlVolFluxes": ControlVolFluxes, "SGS_ReynoldsStress": SGS_ReynoldsStress}
+           "controlVolFluxes": ControlVolFluxes, "SGS_ReynoldsStress": SGS_ReynoldsStress,
+           "turbulentFluxes": TurbulentFluxes}
 
 
 def read_analysis(root, component, level) -> list:
