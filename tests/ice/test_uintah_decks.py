@@ -395,8 +395,9 @@ def test_viscous_sponge_layers_as_uintah(run_deck):
 
 # Uintah's sus on uintah_reference/impVortices_{smag,dyn}_explicit.ups (10 steps, one rank, read
 # with framework.uintah_uda): the time after each step (timestep.xml), turb_viscosity_CC along
-# the row j = 5, k = 0 after step 1, SGS_ReynoldsStress in cell (3, 5, 0) after step 1, and the
-# min and max of vel_CC.x, press_CC and temp_CC after step 10
+# the row j = 5, k = 0 after step 1, SGS_ReynoldsStress in cell (3, 5, 0) after step 1, the
+# min and max of vel_CC.x, press_CC and temp_CC after step 10, and turbulentFluxes' labels in
+# cell (3, 5, 0) after step 10 (8 steps in its window)
 SUS_VORTICES = {
     "smag": {
         "times": [1e-05, 4e-05, 8.439642380922714e-05, 0.0001287773717972557, 0.00017313766252056943,
@@ -412,7 +413,12 @@ SUS_VORTICES = {
                 [0.0, 0.0, -2.933964859075593e-07]],
         "vel_CC": (-13.665109496737111, 13.66510949673706),
         "press_CC": (101058.41587759832, 101602.81471964237),
-        "temp_CC": (299.77625994164663, 300.2361461102163)},
+        "temp_CC": (299.77625994164663, 300.2361461102163),
+        "fluxes": {"mean_press_CC": [101283.33989158909], "variance_press_CC": [224.363374710083],
+                   "covariance_press_CC": [-0.04367220134008676, 0.0520475358935073, 2.296678299251731e-05],
+                   "mean_vel_CC": [6.421967903575749, -7.89670796335875, -3.289812884386959e-06],
+                   "variance_vel_CC": [1.4360824827974739e-05, 0.002560543826568562, 4.23790365715686e-12],
+                   "covariance_vel_CC": [-0.00011912150788617737, 7.461264603815843e-08, -7.371282748190063e-09]}},
     "dyn": {
         "times": [1e-05, 4e-05, 8.439642456534768e-05, 0.00012877741941314894, 0.0001731376833747861,
                   0.00021748586445889169, 0.0002618322306740427, 0.0003061835305297787, 0.0003505418379589469,
@@ -425,7 +431,12 @@ SUS_VORTICES = {
                 [0.0, 0.0, -8.359910100479684e-08]],
         "vel_CC": (-13.665635367509116, 13.665635367509072),
         "press_CC": (101056.750240613, 101601.33504203755),
-        "temp_CC": (299.774903848602, 300.2348818006298)}}
+        "temp_CC": (299.774903848602, 300.2348818006298),
+        "fluxes": {"mean_press_CC": [101282.92672925098], "variance_press_CC": [226.17374420166016],
+                   "covariance_press_CC": [-0.04637709748931229, 0.05462717020418495, -4.656068774838706e-06],
+                   "mean_vel_CC": [6.422629973944862, -7.896497694558687, 1.941558661923125e-06],
+                   "variance_vel_CC": [1.661080988668573e-05, 0.0025545521852450292, 4.399602409040233e-13],
+                   "covariance_vel_CC": [-0.00013321295111268228, -3.056079771886856e-08, 2.4305665651720314e-09]}}}
 
 
 @pytest.mark.parametrize("deck", sorted(SUS_VORTICES))
@@ -435,7 +446,8 @@ def test_imp_vortices_turbulence_as_uintah(run_deck, deck):
     step 1 the turbulent viscosity is sus's to round-off (1e-12 of its maximum; the dynamic
     model's clipped cells included), and so is SGS_ReynoldsStress (the cell-centred face
     stresses); delT, velocity, pressure and temperature stay sus's to round-off over the 10
-    steps (measured: 6e-16, 1.4e-14)."""
+    steps (measured: 6e-16, 1.4e-14), and so do turbulentFluxes' running means (its window
+    starts at step 3)."""
     ref = SUS_VORTICES[deck]
     da = run_deck(str(REF / f"impVortices_{deck}_explicit.ups"))
     assert np.allclose(da.times[1:], ref["times"], rtol=1e-13, atol=0)
@@ -447,6 +459,11 @@ def test_imp_vortices_turbulence_as_uintah(run_deck, deck):
         a = da.read(label, 0, -1)[0]
         a = a[..., 0] if label == "vel_CC" else a
         assert np.allclose((a.min(), a.max()), ref[label], rtol=1e-12, atol=0), (label, a.min(), a.max())
+    # turbulentFluxes: the variances are differences of nearly equal means of squares (p^2 ~ 1e10),
+    # so round-off grows to 1e-7 of the value there (5e-11 of the fields' maxima)
+    for label, ref_value in ref["fluxes"].items():
+        a = np.ravel(da.read(label, 0, -1)[0][3, 5, 0])
+        assert np.allclose(a, ref_value, rtol=1e-7, atol=1e-12 * np.abs(ref_value).max()), (label, a)
     # the saved stress diagnostics: total = molecular + turbulent in the interior; the
     # SGS_ReynoldsStress rows are the means of the face stresses
     tot = da.read("total_viscosity_CC", 0, -1)[0]
