@@ -397,7 +397,9 @@ def test_viscous_sponge_layers_as_uintah(run_deck):
 # with framework.uintah_uda): the time after each step (timestep.xml), turb_viscosity_CC along
 # the row j = 5, k = 0 after step 1, SGS_ReynoldsStress in cell (3, 5, 0) after step 1, the
 # min and max of vel_CC.x, press_CC and temp_CC after step 10, and turbulentFluxes' labels in
-# cell (3, 5, 0) after step 10 (8 steps in its window)
+# cell (3, 5, 0) after step 10 (8 steps in its window), planeAvgTurbFluxes' CC labels in that cell
+# after step 10 and, from its files (planarAveTurbFluxes/.../t00010/L-0), the plane averages of
+# vel_CC.x and of u'u' on every 4th plane
 SUS_VORTICES = {
     "smag": {
         "times": [1e-05, 4e-05, 8.439642380922714e-05, 0.0001287773717972557, 0.00017313766252056943,
@@ -418,7 +420,16 @@ SUS_VORTICES = {
                    "covariance_press_CC": [-0.04367220134008676, 0.0520475358935073, 2.296678299251731e-05],
                    "mean_vel_CC": [6.421967903575749, -7.89670796335875, -3.289812884386959e-06],
                    "variance_vel_CC": [1.4360824827974739e-05, 0.002560543826568562, 4.23790365715686e-12],
-                   "covariance_vel_CC": [-0.00011912150788617737, 7.461264603815843e-08, -7.371282748190063e-09]}},
+                   "covariance_vel_CC": [-0.00011912150788617737, 7.461264603815843e-08, -7.371282748190063e-09]},
+        "plane": {"vel_CC_prime": [0.4067196254305845, -7.913861062331591, -5.220211401421903e-06],
+                  "temp_CC_prime": [-0.032493061805212164],
+                  "normalTurbStrss": [0.16542085371039494, 62.6291969138881, 2.7250607075535223e-11],
+                  "shearTurbStrss": [-3.218722606981192, 4.131202774685222e-05, -2.1231624258547827e-06],
+                  "temp_CC_turbFlux": [-0.013215565926508722, 0.2571455766162024, 1.696206517026751e-07]},
+        "ubar": [2.8529845620727, 6.1323910022859, -1.41167239810647, -9.76996261670138e-16, 1.41167239810647,
+                 -6.1323910022859, -2.8529845620727],
+        "uu": [16.2167487302015, 12.7053887811665, 56.5485557277697, 0.0687434756556537, 56.5485557277696,
+               12.7053887811665, 16.2167487302015]},
     "dyn": {
         "times": [1e-05, 4e-05, 8.439642456534768e-05, 0.00012877741941314894, 0.0001731376833747861,
                   0.00021748586445889169, 0.0002618322306740427, 0.0003061835305297787, 0.0003505418379589469,
@@ -436,7 +447,22 @@ SUS_VORTICES = {
                    "covariance_press_CC": [-0.04637709748931229, 0.05462717020418495, -4.656068774838706e-06],
                    "mean_vel_CC": [6.422629973944862, -7.896497694558687, 1.941558661923125e-06],
                    "variance_vel_CC": [1.661080988668573e-05, 0.0025545521852450292, 4.399602409040233e-13],
-                   "covariance_vel_CC": [-0.00013321295111268228, -3.056079771886856e-08, 2.4305665651720314e-09]}}}
+                   "covariance_vel_CC": [-0.00013321295111268228, -3.056079771886856e-08, 2.4305665651720314e-09]},
+        "plane": {"vel_CC_prime": [0.4090199741453935, -7.9132388659164485, 2.869098626330331e-06],
+                  "temp_CC_prime": [-0.032882258646623086],
+                  "normalTurbStrss": [0.16729733924989834, 62.619349349050644, 8.231726927610593e-12],
+                  "shearTurbStrss": [-3.2366727563434687, -2.270386276002467e-05, 1.173518645962216e-06],
+                  "temp_CC_turbFlux": [-0.013449500581483916, 0.260205167121575, -9.434244311366494e-08]},
+        "ubar": [2.85278939027035, 6.13261317577391, -1.4124527784773, 1.77635683940025e-17, 1.41245277847729,
+                 -6.13261317577391, -2.85278939027035],
+        "uu": [16.2139132827069, 12.717351347364, 56.6731801827401, 0.0663473627143516, 56.6731801827402,
+               12.717351347364, 16.213913282707]}}
+SUS_PLANE_HEADER = """# Level: 0 nCells per plane: 50
+# Level spatial range:
+# -5.00000000000000E-01  -5.00000000000000E-01  -4.00000000000000E-02 
+# 5.00000000000000E-01  5.00000000000000E-01  4.00000000000000E-02 
+# Level interior CC index range:  # [0 0 0] [25 25 2] 
+"""
 
 
 @pytest.mark.parametrize("deck", sorted(SUS_VORTICES))
@@ -447,7 +473,7 @@ def test_imp_vortices_turbulence_as_uintah(run_deck, deck):
     model's clipped cells included), and so is SGS_ReynoldsStress (the cell-centred face
     stresses); delT, velocity, pressure and temperature stay sus's to round-off over the 10
     steps (measured: 6e-16, 1.4e-14), and so do turbulentFluxes' running means (its window
-    starts at step 3)."""
+    starts at step 3) and planeAvgTurbFluxes' fluctuations and plane averages (from step 4)."""
     ref = SUS_VORTICES[deck]
     da = run_deck(str(REF / f"impVortices_{deck}_explicit.ups"))
     assert np.allclose(da.times[1:], ref["times"], rtol=1e-13, atol=0)
@@ -464,6 +490,23 @@ def test_imp_vortices_turbulence_as_uintah(run_deck, deck):
     for label, ref_value in ref["fluxes"].items():
         a = np.ravel(da.read(label, 0, -1)[0][3, 5, 0])
         assert np.allclose(a, ref_value, rtol=1e-7, atol=1e-12 * np.abs(ref_value).max()), (label, a)
+    # planeAvgTurbFluxes: the fluctuations about the plane (XZ) averages and their products, to
+    # round-off of the velocity (1e-12 of each label's largest value); its files, one folder per
+    # sampled step (4-10), in sus's format, with sus's plane averages to 1e-12 of the column
+    for label, ref_value in ref["plane"].items():
+        a = np.ravel(da.read(label, 0, -1)[0][3, 5, 0])
+        assert np.allclose(a, ref_value, rtol=1e-9, atol=1e-12 * np.abs(ref_value).max()), (label, a)
+    files = pathlib.Path(da.path) / "planarAveTurbFluxes"
+    assert sorted(p.name for p in (files / "AvgQ").iterdir()) == [f"t{n:05d}" for n in range(4, 11)]
+    assert sorted(p.name for p in (files / "TurbFluxes/t00004/L-0").iterdir()) == \
+        ["normalTurbStrss_0", "shearTurbStrss_0", "temp_CC_turbFlux_0"]
+    for path, column, key in (("AvgQ/t00010/L-0/vel_CC_0", 3, "ubar"),
+                              ("TurbFluxes/t00010/L-0/normalTurbStrss_0", 3, "uu")):
+        text = (files / path).read_text()
+        assert text.startswith(SUS_PLANE_HEADER)
+        rows = np.array([[float(x) for x in line.split()] for line in text.splitlines() if not line.startswith("#")])
+        assert rows.shape == (25, 7) and np.all(rows[:, 6] == 50)
+        assert np.allclose(rows[::4, column], ref[key], rtol=0, atol=1e-12 * np.abs(ref[key]).max())
     # the saved stress diagnostics: total = molecular + turbulent in the interior; the
     # SGS_ReynoldsStress rows are the means of the face stresses
     tot = da.read("total_viscosity_CC", 0, -1)[0]
