@@ -132,13 +132,14 @@ def test_turbulence_bad_input(tmp_path, edit, message):
 
 
 def test_germano_two_ranks_equal_one_rank(tmp_path):
-    """The dynamic model's 27-cell filter reaches two ghost layers (face velocities three):
-    the explicit impVortices_dyn copy on 2 ranks is bitwise the one-rank answer."""
+    """The dynamic model's 27-cell filter reaches two ghost layers (face velocities three), the
+    plane averages sum over patches of both ranks: the explicit impVortices_dyn copy on 2 ranks
+    is bitwise the one-rank answer (5 steps, 2 of them sampled by planeAvgTurbFluxes)."""
     import pathlib
     from framework.archiver import DataArchive
     from tests.conftest import pysus
     deck = pathlib.Path(__file__).parent / "uintah_reference" / "impVortices_dyn_explicit.ups"
-    text = deck.read_text().replace("<max_Timesteps>  10 <", "<max_Timesteps>  3 <")
+    text = deck.read_text().replace("<max_Timesteps>  10 <", "<max_Timesteps>  5 <")
     path = tmp_path / "dyn.ups"
     path.write_text(text)
     runs = {}
@@ -146,5 +147,11 @@ def test_germano_two_ranks_equal_one_rank(tmp_path):
         r = pysus(path, "--filebase", tmp_path / f"r{n}.uda", np_=n)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(tmp_path / f"r{n}.uda")
-    for lab in ("vel_CC", "press_CC", "temp_CC", "turb_viscosity_CC", "total_viscosity_CC", "SGS_ReynoldsStress"):
+    for lab in ("vel_CC", "press_CC", "temp_CC", "turb_viscosity_CC", "total_viscosity_CC", "SGS_ReynoldsStress",
+                "variance_vel_CC", "vel_CC_prime", "temp_CC_turbFlux"):
         assert np.array_equal(runs[1].read(lab, 0, -1)[0], runs[2].read(lab, 0, -1)[0]), lab
+    # planeAvgTurbFluxes' files (plane sums over both ranks' patches, written by rank 0)
+    one = sorted((tmp_path / "r1.uda" / "planarAveTurbFluxes").rglob("*_0"))
+    assert len(one) == 10
+    for f in one:
+        assert f.read_text() == (tmp_path / "r2.uda" / f.relative_to(tmp_path / "r1.uda")).read_text()
