@@ -8,7 +8,9 @@ at its sampling times within [timeStart, timeStop], one line per analysed variab
 interior cells (CC), the patch's own nodes of the domain (NC) or the faces of interior cells (FC), in
 Uintah's format. `lineExtract` writes
 the values along axis-parallel lines, one file per cell (LineExtract); `controlVolFluxes` the mass
-in boxes and the mass fluxes through their faces (ControlVolFluxes).
+in boxes and the mass fluxes through their faces (ControlVolFluxes); `SGS_ReynoldsStress` the
+CC tensor of ICE's face stresses tau_X_FC, ... (each row the mean of its two faces);
+`turbulentFluxes` running means, variances and covariances with the velocity (TurbulentFluxes).
 """
 from __future__ import annotations
 
@@ -82,6 +84,451 @@ class Vorticity:
 
     def after_step(self, dw, timestep, t, uda):
         pass
+
+
+@njit(cache=True)
+def face_mean_row(t, out, a, lo, hi, sh):
+    """out[c, a, :] = the mean of the face stresses t on cell c's two a-faces (Uintah's
+    SGS_ReynoldsStress: tau_L + (tau_R - tau_L) / 2); sh: cell c's lower face is c - sh."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                f0, f1, f2 = i - sh[0], j - sh[1], k - sh[2]
+                g0, g1, g2 = f0 + (a == 0), f1 + (a == 1), f2 + (a == 2)
+                for b in range(3):
+                    left = t[f0, f1, f2, b]
+                    out[i, j, k, a, b] = left + (t[g0, g1, g2, b] - left) / 2.0
+
+
+class SGS_ReynoldsStress:
+    """Uintah's SGS_ReynoldsStress module: the viscous (with <turbulence>, molecular plus
+    subgrid-scale) stress at the cell centres, row a the mean of tau_a_FC on the cell's a-faces."""
+
+    def __init__(self, node, component, level):
+        self.matl = _material(node, component)
+        self.taus = [L.find(f"tau_{a}_FC") for a in "XYZ"]
+        if self.taus[0] is None:
+            raise node.error('<Module name="SGS_ReynoldsStress"> needs the face stresses tau_X_FC, ... of ICE '
+                             "with a <dynamic_viscosity>")
+        self.label = L.create("SGS_ReynoldsStress", VarType.CC, (3, 3))
+        self.level = level
+        self.dims = np.array([not c for c in level.collapsed], dtype=np.bool_)
+        self.needed = set()
+
+    def schedule(self, sched):
+        t = Task("SGS_ReynoldsStress::doAnalysis", self.compute, [self.matl]).computes(self.label)
+        for d in range(3):
+            if self.dims[d]:
+                t.requires(NEW, self.taus[d], Ghost.AROUND_CELLS, 1)
+        sched.add_task(t)
+
+    def compute(self, patch, matls, old_dw, new_dw):
+        cc0 = np.array(patch.low_index(VarType.CC))
+        lo, hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
+        for m in matls:
+            out = new_dw.allocate(self.label, m, patch)
+            out[...] = 0.0                      # rows of one-cell directions: no face stress
+            for d in range(3):
+                if self.dims[d]:
+                    sh = (np.array(patch.low_index(FACE_TYPES[d])) - cc0).astype(np.int64)
+                    face_mean_row(new_dw.get(self.taus[d], m, patch), out, d, lo, hi, sh)
+
+    def after_step(self, dw, timestep, t, uda):
+        pass
+
+
+@njit(cache=True)
+def running_means(q, vel, s1, s2, sv, m1, m2, mv, s1_old, s2_old, sv_old, n, vector):
+    """Uintah's turbulentFluxes Q_mean over every cell of the arrays: the sums of Q, Q Q and
+    Q u_i gain this step's values, the means are the sums over n. Q Q is componentwise for a
+    Vector Q; Q u_i is (Q u, Q v, Q w) for a double and (Q.x v, Q.y w, Q.z u) for a Vector."""
+    nx, ny, nz = vel.shape[0], vel.shape[1], vel.shape[2]
+    for i in range(nx):
+        for j in range(ny):
+            for k in range(nz):
+                for c in range(q.shape[3]):
+                    var = q[i, j, k, c]
+                    s1[i, j, k, c] = var + s1_old[i, j, k, c]
+                    m1[i, j, k, c] = s1[i, j, k, c] / n
+                    s2[i, j, k, c] = var * var + s2_old[i, j, k, c]
+                    m2[i, j, k, c] = s2[i, j, k, c] / n
+                for c in range(3):
+                    if vector:
+                        qu = q[i, j, k, c] * vel[i, j, k, (c + 1) % 3]
+                    else:
+                        qu = q[i, j, k, 0] * vel[i, j, k, c]
+                    sv[i, j, k, c] = qu + sv_old[i, j, k, c]
+                    mv[i, j, k, c] = sv[i, j, k, c] / n
+
+
+@njit(cache=True)
+def turbulent_fluxes(m1, m2, mv, vel_mean, variance, covariance, vector):
+    """Uintah's turbFluxes: variance = mean(Q Q) - mean(Q) mean(Q), covariance = mean(Q u_i) -
+    mean(Q) mean(u_i) (with the pairing of running_means), every cell."""
+    nx, ny, nz = vel_mean.shape[0], vel_mean.shape[1], vel_mean.shape[2]
+    for i in range(nx):
+        for j in range(ny):
+            for k in range(nz):
+                for c in range(m1.shape[3]):
+                    variance[i, j, k, c] = m2[i, j, k, c] - m1[i, j, k, c] * m1[i, j, k, c]
+                for c in range(3):
+                    if vector:
+                        qu = m1[i, j, k, c] * vel_mean[i, j, k, (c + 1) % 3]
+                    else:
+                        qu = m1[i, j, k, 0] * vel_mean[i, j, k, c]
+                    covariance[i, j, k, c] = mv[i, j, k, c] - qu
+
+
+class TurbulentFluxes:
+    """Uintah's turbulentFluxes module: running sums and means over the steps that start within
+    [timeStart, timeStop] of each analysed CC variable Q (double or Vector), of Q Q and of Q
+    times the fluid velocity, and from them variance_Q and covariance_Q. The sums are carried
+    from step to step (in checkpoints too); outside the window every label keeps its value."""
+
+    def __init__(self, node, component, level):
+        matl = _material(node, component)
+        self.start = node.get("timeStart", "float")
+        self.stop = node.get("timeStop", "float")
+        if self.start > self.stop:
+            raise node.child("timeStop").error("timeStop is before timeStart; accepted: timeStart <= timeStop")
+        if node.child("monitorCell") is not None:         # Uintah's debugging output only
+            node.child("monitorCell").mark_used()
+        self.vars, self.vel = [], None
+        for a in node.child("Variables", required=True).children("analyze"):
+            name = a.attr("label")
+            label = L.find(name)
+            if label is None or label.vartype is not VarType.CC or label.shape not in ((), (3,)):
+                raise a.error(f'label="{name}" is not a cell-centred double or Vector of this deck; '
+                              "accepted: a CC variable the component computes")
+            m = a.attr("matl", "int", matl, at_least=0)
+            q = {"label": label, "matl": m, "vector": label.shape == (3,)}
+            for key, prefix, suffix, shape in (("s1", "sum_", "", label.shape), ("s2", "sum_", "2", label.shape),
+                                               ("m1", "mean_", "", label.shape), ("m2", "mean_", "2", label.shape),
+                                               ("sv", "sum_Qu_Qv_Qw_", "", (3,)), ("mv", "mean_Qu_Qv_Qw_", "", (3,)),
+                                               ("var", "variance_", "", label.shape),
+                                               ("cov", "covariance_", "", (3,))):
+                q[key] = L.find(prefix + name + suffix) or L.create(prefix + name + suffix, VarType.CC, shape)
+            if a.attr("fluidVelocityLabel", default=None) is not None:
+                self.vel = q
+            self.vars.append(q)
+        if self.vel is None:
+            raise node.child("Variables").error('no <analyze ... fluidVelocityLabel="true"/>: turbulentFluxes '
+                                                "needs the fluid velocity among its variables")
+        self.count = L.create("turbulentFluxes_nTimesteps", VarType.REDUCTION, reduction="max")
+        self.keys = ("s1", "s2", "m1", "m2", "sv", "mv", "var", "cov")
+        self.needed = {q[k].name for q in self.vars for k in self.keys} | {self.count.name}
+
+    def _matls(self):
+        return sorted({q["matl"] for q in self.vars})
+
+    def schedule_initialize(self, sched):
+        t = Task("turbulentFluxes::initialize", self.initialize, self._matls()).computes(self.count)
+        for q in self.vars:
+            for k in self.keys:
+                t.computes(q[k], matls=[q["matl"]])
+        sched.add_task(t)
+
+    def initialize(self, patch, matls, old_dw, new_dw):
+        for q in self.vars:
+            if q["matl"] in matls:
+                for k in self.keys:
+                    new_dw.allocate(q[k], q["matl"], patch)[...] = 0.0
+        new_dw.put_reduction(self.count, 0.0)
+
+    def schedule(self, sched):
+        t = Task("turbulentFluxes::task_Q_mean", self.q_mean, self._matls()) \
+            .requires(OLD, L.simTime).requires(OLD, self.count).computes(self.count)
+        t.requires(NEW, self.vel["label"], matls=[self.vel["matl"]])
+        for q in self.vars:
+            m = [q["matl"]]
+            t.requires(NEW, q["label"], matls=m)
+            for k in ("s1", "s2", "m1", "m2", "sv", "mv"):
+                t.requires(OLD, q[k], matls=m).computes(q[k], matls=m)
+        sched.add_task(t)
+        t = Task("turbulentFluxes::task_turbFluxes", self.fluxes, self._matls()).requires(OLD, L.simTime)
+        t.requires(NEW, self.vel["m1"], matls=[self.vel["matl"]])
+        for q in self.vars:
+            m = [q["matl"]]
+            for k in ("m1", "m2", "mv"):
+                t.requires(NEW, q[k], matls=m)
+            for k in ("var", "cov"):
+                t.requires(OLD, q[k], matls=m).computes(q[k], matls=m)
+        sched.add_task(t)
+
+    def _active(self, old_dw):
+        now = old_dw.get_reduction(L.simTime)
+        return self.start <= now <= self.stop
+
+    def q_mean(self, patch, matls, old_dw, new_dw):
+        n = old_dw.get_reduction(self.count)
+        active = self._active(old_dw)
+        if active:
+            n += 1.0
+        new_dw.put_reduction(self.count, n)
+        vel = new_dw.get(self.vel["label"], self.vel["matl"], patch)
+        for q in self.vars:
+            m = q["matl"]
+            if m not in matls:
+                continue
+            if not active:
+                for k in ("s1", "s2", "m1", "m2", "sv", "mv"):
+                    new_dw.put(q[k], m, patch, old_dw.get(q[k], m, patch).copy())
+                continue
+            v = lambda a: a.reshape(a.shape[:3] + (-1,))
+            new = {k: new_dw.allocate(q[k], m, patch) for k in ("s1", "s2", "m1", "m2", "sv", "mv")}
+            running_means(v(new_dw.get(q["label"], m, patch)), vel, v(new["s1"]), v(new["s2"]), new["sv"],
+                          v(new["m1"]), v(new["m2"]), new["mv"], v(old_dw.get(q["s1"], m, patch)),
+                          v(old_dw.get(q["s2"], m, patch)), old_dw.get(q["sv"], m, patch), n, q["vector"])
+
+    def fluxes(self, patch, matls, old_dw, new_dw):
+        active = self._active(old_dw)
+        for q in self.vars:
+            m = q["matl"]
+            if m not in matls:
+                continue
+            if not active:
+                for k in ("var", "cov"):
+                    new_dw.put(q[k], m, patch, old_dw.get(q[k], m, patch).copy())
+                continue
+            v = lambda a: a.reshape(a.shape[:3] + (-1,))
+            var, cov = new_dw.allocate(q["var"], m, patch), new_dw.allocate(q["cov"], m, patch)
+            turbulent_fluxes(v(new_dw.get(q["m1"], m, patch)), v(new_dw.get(q["m2"], m, patch)),
+                             new_dw.get(q["mv"], m, patch), new_dw.get(self.vel["m1"], self.vel["matl"], patch),
+                             v(var), cov, q["vector"])
+
+    def after_step(self, dw, timestep, t, uda):
+        pass
+
+
+@njit(cache=True)
+def plane_sums(q, out, lo, hi, normal, inner, outer, g0):
+    """Uintah's planeAverage planarSum_Q on one patch: out[plane] = the sum of q over the
+    patch's interior cells of each plane normal to `normal` (global plane index = local + g0),
+    the `inner` axis fastest, as Uintah iterates."""
+    idx = np.zeros(3, dtype=np.int64)
+    for p in range(lo[normal], hi[normal]):
+        idx[normal] = p
+        for c in range(q.shape[3]):
+            total = 0.0
+            for b in range(lo[outer], hi[outer]):
+                idx[outer] = b
+                for a in range(lo[inner], hi[inner]):
+                    idx[inner] = a
+                    total = total + q[idx[0], idx[1], idx[2], c]
+            out[p + g0, c] = total
+
+
+@njit(cache=True)
+def plane_fluctuation(q, mean, out, lo, hi, normal, g0):
+    """Q' = Q - Q_bar(plane) in the interior cells lo..hi (Uintah's calc_Q_prime)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                p = (i, j, k)[normal] + g0
+                for c in range(q.shape[3]):
+                    out[i, j, k, c] = q[i, j, k, c] - mean[p, c]
+
+
+@njit(cache=True)
+def turbulent_stresses(vp, qps, normal_out, shear_out, flux_out, lo, hi):
+    """Uintah's calc_TurbFluxes in the interior cells: u'u', v'v', w'w' (normal), u'v', v'w', w'u'
+    (shear) and each scalar's u'Q', v'Q', w'Q' (qps[n] the n-th scalar's Q')."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for c in range(3):
+                    normal_out[i, j, k, c] = vp[i, j, k, c] * vp[i, j, k, c]
+                    shear_out[i, j, k, c] = vp[i, j, k, c] * vp[i, j, k, (c + 1) % 3]
+                for n in range(qps.shape[0]):
+                    for c in range(3):
+                        flux_out[n, i, j, k, c] = qps[n, i, j, k] * vp[i, j, k, c]
+
+
+class PlaneAvgTurbFluxes:
+    """Uintah's planeAvgTurbFluxes module: at its sampling times within [timeStart, timeStop]
+    (the time at the step's end), the plane averages (planes normal to y for XZ, ...; weighting
+    nCells) of the velocity and of each analysed CC double Q, the fluctuations vel_CC_prime and
+    Q_prime about them, the stresses normalTurbStrss (u'u', v'v', w'w'), shearTurbStrss (u'v',
+    v'w', w'u') and Q_turbFlux (u'Q', v'Q', w'Q'), and the plane averages of those; both sets of
+    averages go to files in the uda (planarAveTurbFluxes/AvgQ and /TurbFluxes, t<step>/L-0/
+    <label>_<matl>) in Uintah's format. Outside the sampling times the CC labels are 0."""
+
+    ORIENT = {"XY": (2, 0, 1), "XZ": (1, 0, 2), "YZ": (0, 1, 2)}       # normal, inner, outer axis
+    VEC_DESC = "ave.x__________________ave.y______________ave.z"
+
+    def __init__(self, node, component, level):
+        matl = _material(node, component)
+        self.level = level
+        self.freq = node.get("samplingFrequency", "float", above=0.0)
+        self.start = node.get("timeStart", "float")
+        self.stop = node.get("timeStop", "float")
+        orient = node.get("planeOrientation", "str", choices=tuple(self.ORIENT))
+        self.normal, self.inner, self.outer = self.ORIENT[orient]
+        for tag in ("monitorCell", "weight"):          # debugging print; the weight of weighting="mass"
+            if node.child(tag) is not None:
+                node.child(tag).mark_used()
+                node.child(tag).attr("label", default="")
+        if node.child("enableVerification") is not None:
+            raise node.child("enableVerification").error("<enableVerification> is not available; accepted: "
+                                                         "the module without it")
+        vn = node.child("velocity", required=True)
+        self.vel = L.find(vn.attr("label"))
+        if self.vel is None or self.vel.vartype is not VarType.CC or self.vel.shape != (3,):
+            raise vn.error(f'label="{vn.attr("label")}" is not a cell-centred Vector of this deck')
+        self.matl = matl
+        self.avg = []           # stage 1: (label, matl) averaged; the velocity among them
+        self.scalars = []       # (label, matl, prime, turbFlux)
+        for a in node.child("Variables", required=True).children("analyze"):
+            name = a.attr("label")
+            label = L.find(name)
+            w = a.attr("weighting", default="nCells", choices=("nCells",))
+            del w
+            m = a.attr("matl", "int", matl, at_least=0)
+            if label is None or label.vartype is not VarType.CC or label.shape not in ((), (3,)):
+                raise a.error(f'label="{name}" is not a cell-centred double or Vector of this deck')
+            self.avg.append((label, m))
+            if label is self.vel:
+                continue
+            if label.shape != ():
+                raise a.error(f'label="{name}": only CC doubles besides the velocity are available')
+            self.scalars.append((label, m, L.create(name + "_prime", VarType.CC),
+                                 L.create(name + "_turbFlux", VarType.CC, (3,))))
+        if not any(lab is self.vel for lab, _ in self.avg):
+            self.avg.append((self.vel, matl))
+        self.vel_prime = L.create(self.vel.name + "_prime", VarType.CC, (3,))
+        self.normal_strss = L.create("normalTurbStrss", VarType.CC, (3,))
+        self.shear_strss = L.create("shearTurbStrss", VarType.CC, (3,))
+        ncells = [n for d, n in enumerate(level.ncells) if d != self.normal]
+        self.n_planes = level.ncells[self.normal]
+        self.n_cells = int(ncells[0] * ncells[1])
+        mk = lambda lab, m, stage: L.create(f"planeAvgTurbFluxes_sum{stage}_{lab.name}_{m}", VarType.REDUCTION,
+                                            (self.n_planes, 3 if lab.shape == (3,) else 1), reduction="sum")
+        self.sums1 = [(lab, m, mk(lab, m, 1)) for lab, m in self.avg]
+        stage2 = [(self.normal_strss, matl), (self.shear_strss, matl)] + [(f, m) for _, m, _, f in self.scalars]
+        self.sums2 = [(lab, m, mk(lab, m, 2)) for lab, m in stage2]
+        self.last = L.create("planeAvgTurbFluxes_lastCompTime", VarType.REDUCTION, reduction="max")
+        self.needed = {self.last.name} | {r.name for _, _, r in self.sums1 + self.sums2}
+        self.uda = None
+
+    def _matls(self):
+        return sorted({m for _, m in self.avg} | {self.matl})
+
+    def schedule_initialize(self, sched):
+        sched.add_task(Task("planeAvgTurbFluxes::initialize", self.initialize, [self.matl]).computes(self.last))
+
+    def initialize(self, patch, matls, old_dw, new_dw):
+        new_dw.put_reduction(self.last, self.start - 1.0 / self.freq)
+
+    def _is_it_time(self, old_dw):
+        """Uintah's AnalysisModule::getTimeVars: (time at the step's end, whether to sample)."""
+        now = old_dw.get_reduction(L.simTime) + old_dw.get_reduction(L.delT)
+        prev = old_dw.get_reduction(self.last)
+        return now, not (now < self.start or now > self.stop or now < prev + 1.0 / self.freq)
+
+    def schedule(self, sched):
+        t = Task("planeAverage::computePlanarSums(1)", self._sums(self.sums1), self._matls()) \
+            .requires(OLD, L.simTime).requires(OLD, L.delT).requires(OLD, self.last).computes(self.last)
+        for lab, m, r in self.sums1:
+            t.requires(NEW, lab, matls=[m]).computes(r)
+        sched.add_task(t)
+        t = Task("planeAvgTurbFluxes::calc_TurbFluctuations", self.fluctuations, self._matls()) \
+            .requires(OLD, L.simTime).requires(OLD, L.delT).requires(OLD, self.last) \
+            .computes(self.vel_prime, matls=[self.matl]).computes(self.normal_strss, matls=[self.matl]) \
+            .computes(self.shear_strss, matls=[self.matl])
+        for lab, m, r in self.sums1:
+            t.requires(NEW, lab, matls=[m]).requires(NEW, r)
+        for _, m, prime, flux in self.scalars:
+            t.computes(prime, matls=[m]).computes(flux, matls=[m])
+        sched.add_task(t)
+        t = Task("planeAverage::computePlanarSums(2)", self._sums(self.sums2), self._matls()) \
+            .requires(OLD, L.simTime).requires(OLD, L.delT).requires(OLD, self.last)
+        for lab, m, r in self.sums2:
+            t.requires(NEW, lab, matls=[m]).computes(r)
+        sched.add_task(t)
+
+    def _bounds(self, patch):
+        lo, hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
+        g0 = int(patch.low_index(VarType.CC)[self.normal])
+        return lo, hi, g0
+
+    def _sums(self, sums):
+        first = sums is self.sums1
+
+        def task(patch, matls, old_dw, new_dw):
+            now, active = self._is_it_time(old_dw)
+            if first:
+                new_dw.put_reduction(self.last, now if active else old_dw.get_reduction(self.last))
+            lo, hi, g0 = self._bounds(patch)
+            for lab, m, r in sums:
+                out = np.zeros(r.shape)
+                if active and m in matls:
+                    q = new_dw.get(lab, m, patch)
+                    plane_sums(q.reshape(q.shape[:3] + (-1,)), out, lo, hi, self.normal, self.inner, self.outer, g0)
+                new_dw.put_reduction(r, out)
+        return task
+
+    def fluctuations(self, patch, matls, old_dw, new_dw):
+        _, active = self._is_it_time(old_dw)
+        lo, hi, g0 = self._bounds(patch)
+        outs = {lab: new_dw.allocate(lab, self.matl, patch)
+                for lab in (self.vel_prime, self.normal_strss, self.shear_strss)}
+        primes = [new_dw.allocate(prime, m, patch) for _, m, prime, _ in self.scalars]
+        fluxes = [new_dw.allocate(flux, m, patch) for _, m, _, flux in self.scalars]
+        if not active:
+            return
+        for lab, m, r in self.sums1:
+            if lab is self.vel:
+                mean = new_dw.get_reduction(r) / float(self.n_cells)
+                plane_fluctuation(new_dw.get(lab, m, patch), mean, outs[self.vel_prime], lo, hi, self.normal, g0)
+        for (lab, m, prime, _), out in zip(self.scalars, primes):
+            r = next(r for l2, m2, r in self.sums1 if l2 is lab and m2 == m)
+            mean = new_dw.get_reduction(r) / float(self.n_cells)
+            plane_fluctuation(new_dw.get(lab, m, patch)[..., None], mean, out[..., None], lo, hi, self.normal, g0)
+        qps = np.stack(primes) if primes else np.zeros((0,) + outs[self.vel_prime].shape[:3])
+        fl = np.zeros((len(fluxes),) + outs[self.vel_prime].shape)
+        turbulent_stresses(outs[self.vel_prime], qps, outs[self.normal_strss], outs[self.shear_strss], fl, lo, hi)
+        for n, f in enumerate(fluxes):
+            f[...] = fl[n]
+
+    def after_step(self, dw, timestep, t, uda):
+        if uda is None or dw.get_reduction(self.last) != t:
+            return
+        lv = self.level
+        mid = [int(np.floor(n / 2.0 + 0.5)) for n in lv.ncells]        # Uintah's roundNearest(n / 2)
+        desc2 = {self.normal_strss.name: "u'u'__________________v'v'______________w'w'",
+                 self.shear_strss.name: "u'v'__________________v'w'______________w'u'"}
+        for folder, sums in (("AvgQ", self.sums1), ("TurbFluxes", self.sums2)):
+            path = os.path.join(uda, "planarAveTurbFluxes", folder, f"t{timestep:05d}", "L-0")
+            os.makedirs(path, exist_ok=True)
+            for lab, m, r in sums:
+                avg = dw.get_reduction(r) / float(self.n_cells)
+                vector = lab.shape == (3,)
+                if folder == "TurbFluxes":
+                    desc = desc2.get(lab.name, "u'Q'_________________v'Q'__________________w'Q'")
+                else:
+                    desc = self.VEC_DESC if vector else "ave"
+                with open(os.path.join(path, f"{lab.name}_{m}"), "a") as f:
+                    f.write(self._header(t, desc))
+                    for p in range(self.n_planes):
+                        c = list(mid)
+                        c[self.normal] = p
+                        pos = lv.anchor + lv.dx * np.array(c) + lv.dx * 0.5     # Uintah's getCellPosition
+                        f.write("%15.14E  %15.14E  %15.14E " % tuple(pos))
+                        if vector:
+                            f.write("%15.14E %15.14E %15.14E %i\n" % (avg[p, 0], avg[p, 1], avg[p, 2], self.n_cells))
+                        else:
+                            f.write("%15.14E  %i\n" % (avg[p, 0], self.n_cells))
+
+    def _header(self, t, desc):
+        lv = self.level
+        lo, hi = lv.anchor, lv.upper
+        n = lv.ncells
+        return ("# Level: 0 nCells per plane: %i\n" % self.n_cells + "# Level spatial range:\n"
+                + "# %15.14E  %15.14E  %15.14E \n" % tuple(lo) + "# %15.14E  %15.14E  %15.14E \n" % tuple(hi)
+                + "# Level interior CC index range:  " + "# [0 0 0] [%i %i %i] \n" % tuple(n)
+                + "# Simulation time: %16.15E \n" % t + "# Plane location (x,y,z)           Average\n"
+                + "# ________CC_loc.x__________CC_loc.y______________CC_loc.z______________%s" % desc
+                + "______________nCells\n")
 
 
 class MinMax:
@@ -453,7 +900,8 @@ class ControlVolFluxes:
 
 
 MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract,
-           "controlVolFluxes": ControlVolFluxes}
+           "controlVolFluxes": ControlVolFluxes, "SGS_ReynoldsStress": SGS_ReynoldsStress,
+           "turbulentFluxes": TurbulentFluxes, "planeAvgTurbFluxes": PlaneAvgTurbFluxes}
 
 
 def read_analysis(root, component, level) -> list:

@@ -250,6 +250,9 @@ class Controller:
 
         sched.begin_graph("initialize")
         comp.schedule_initialize(level, sched)
+        for module in self.analysis:          # modules whose values are carried from step to step
+            if hasattr(module, "schedule_initialize"):
+                module.schedule_initialize(sched)
         comp.schedule_compute_stable_timestep(level, sched)
         init_tasks = list(sched.tasks)
         all_computed = set()

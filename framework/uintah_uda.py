@@ -43,7 +43,8 @@ class UintahArchive:
                       for s in self.steps]
 
     def read(self, label, matl=0, timestep=-1):
-        """(values over the interior cells, (x, y, z) cell centres) of one CC variable."""
+        """(values over the interior cells, (x, y, z) cell centres) of one CC variable (double,
+        Vector or Matrix3)."""
         step = self.steps[timestep]
         ts = etree.parse(os.path.join(step, "timestep.xml"))
         meta = ts.find("Meta")
@@ -64,7 +65,7 @@ class UintahArchive:
                 p = patches[int(var.findtext("patch"))]
                 elo, ehi, ilo, ihi = (np.array(_index(p, tag)) for tag in
                                       ("lowIndex", "highIndex", "interiorLowIndex", "interiorHighIndex"))
-                ncomp = 3 if "Vector" in var.get("type") else 1
+                ncomp = 9 if "Matrix3" in var.get("type") else (3 if "Vector" in var.get("type") else 1)
                 start, end = int(var.findtext("start")), int(var.findtext("end"))
                 with open(os.path.join(step, os.path.dirname(href), var.findtext("filename").strip()), "rb") as f:
                     f.seek(start)
@@ -78,4 +79,6 @@ class UintahArchive:
         if out is None:
             raise KeyError(f"{step}: no {label} for material {matl}")
         xyz = tuple(anchor[d] + (np.arange(lo[d], hi[d]) + 0.5) * dx[d] for d in range(3))
+        if out.shape[3] == 9:                               # Matrix3, row-major on disk
+            return out.reshape(out.shape[:3] + (3, 3)), xyz
         return (out if out.shape[3] == 3 else out[..., 0]), xyz

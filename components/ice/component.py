@@ -34,6 +34,7 @@ from . import labels as I
 from .advection import EXTREMA, VAN_LEER
 from .bc import BoundaryConditions, read_bcs
 from .custom_init import CustomInitialization
+from .turbulence import read_turbulence
 from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .lodi import LodiTasks
@@ -182,6 +183,13 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         ci = ice.child("customInitialization")
         self.custom_init = CustomInitialization(ci, level) if ci is not None else None
         self.custom_profiles = [self.custom_init.resolve(m) for m in self.materials] if ci is not None else None
+        if self.custom_init is not None and self.custom_init.vortices is not None and n > 1:
+            raise ci.child("vortices").error("<vortices> is available with one ICE material only "
+                                             f"(this deck has {n})")
+        # <turbulence>: Uintah's Smagorinsky or Germano subgrid-scale viscosity (turbulence.py)
+        self.turbulence = read_turbulence(ice, self)
+        if self.turbulence is not None and self.n_before:
+            raise ice.child("turbulence").error("<turbulence> is available for ICE alone, not in MPMICE")
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
@@ -413,12 +421,27 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         if self.viscous:
             sched.add_task(Task("ICE::computeThermoTransportProperties", self.viscosity_field, self.matls)
                            .requires(OLD, I.temp_CC).computes(I.viscosity))                 # only when saved
-            sched.add_task(Task("ICE::viscousShearStress", self.viscous_source, self.matls)
-                           .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
-                           .requires(OLD, I.temp_CC, G, 1).computes(I.viscous_src_CC))
+            turb = self.turbulence
+            if turb is not None:
+                # Uintah's Turbulence::callTurb: the subgrid-scale viscosity from the face velocities
+                t = Task("ICE::computeTurbViscosity", self.turbulent_viscosity, self.matls) \
+                    .requires(OLD, I.rho_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1) \
+                    .requires(OLD, I.vel_CC, G, 2 if turb.dynamic else 1) \
+                    .computes(I.turb_viscosity_CC).computes(I.total_viscosity_CC)
+                for d in dirs:
+                    t.requires(NEW, I.FC_VEL_ME[d], G, turb.ghost)
+                sched.add_task(t)
+            t = Task("ICE::viscousShearStress", self.viscous_source, self.matls) \
+                .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1) \
+                .requires(OLD, I.temp_CC, G, 1).computes(I.viscous_src_CC)
+            if turb is not None:
+                t.requires(NEW, I.total_viscosity_CC, G, 1)
+            sched.add_task(t)
             t = Task("ICE::computeTauFC", self.tau_fc, self.matls) \
                 .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1) \
                 .requires(OLD, I.temp_CC, G, 1)    # only when saved
+            if turb is not None:
+                t.requires(NEW, I.total_viscosity_CC, G, 1)
             for d in dirs:
                 t.computes(I.TAU_FC[d])
             sched.add_task(t)

@@ -8,6 +8,12 @@ objects' initial velocity (ICE's customInitialize.cc), in every cell, extra cell
   gaussianTemperature  T = 300 K + A exp(-(x-x0)^2 / 2 sx^2 - (y-y0)^2 / 2 sy^2) in the
                      interior cells, before the EOS sets pressure and sound speed (at the
                      geometry's density: the pulse starts as a pressure peak)
+  vortices           Gaussian vortices about an axis (Poinsot & Lele's, Uintah's m_vortices), in
+                     the interior cells within a radius R of the axis:
+                     u_j -= C z A / (rho R^2), u_k += C y A / (rho R^2), A = exp(-(y^2 + z^2) / 2 R^2),
+                     press_CC = 101325 + rho C^2 A / R^2 (each vortex overwrites it); the
+                     pressure is then not the EOS pressure of rho and T (Uintah's
+                     doesComputePressure), and the sound speed takes it
 h is the cell centre's height along <verticalDir> above the domain floor; outside the
 domain's height the velocity is 0 (power laws). Uintah applies them in reverse reading order.
 """
@@ -16,10 +22,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .eos import eos_press_eos
+
 POWER_LAW, POWER_LAW2, LOG_LAW = 0, 1, 2
 ORDER = ("logLawProfile", "powerLawProfile", "powerLawProfile2")     # Uintah's reading order
-ACCEPTED = ORDER + ("gaussianTemperature",)
-KNOWN = ("vortices", "vortexPairs", "manufacturedSolution", "counterflow", "DNS_Moser") + ACCEPTED
+ACCEPTED = ORDER + ("gaussianTemperature", "vortices")
+KNOWN = ("vortexPairs", "manufacturedSolution", "counterflow", "DNS_Moser") + ACCEPTED
 
 
 @njit(cache=True)
@@ -65,6 +73,40 @@ def gaussian_temperature(temp, amp, origin, sx, sy, anchor, dx, lo, hi, c0):
                 temp[i, j, k] = 300.0 + amp * np.exp(-(a + b))
 
 
+@njit(cache=True)
+def add_vortices(vel, press, rho, axes, origins, strengths, radii, anchor, dx, lo, hi, c0):
+    """Uintah's vortices, in order, on the interior cells lo..hi (c0: the global index of local 0);
+    axes[v] = (j, k), the two directions across vortex v's axis."""
+    p_ref = 101325.0                    # Uintah's assumed reference pressure
+    for v in range(axes.shape[0]):
+        a, b = axes[v, 0], axes[v, 1]
+        r_sqr = radii[v] * radii[v]
+        c1 = strengths[v]
+        for i in range(lo[0], hi[0]):
+            for j in range(lo[1], hi[1]):
+                for k in range(lo[2], hi[2]):
+                    g = (i + c0[0], j + c0[1], k + c0[2])
+                    y = anchor[a] + (g[a] + 0.5) * dx[a] - origins[v, a]
+                    z = anchor[b] + (g[b] + 0.5) * dx[b] - origins[v, b]
+                    if np.sqrt(y * y + z * z) <= radii[v]:
+                        amp = np.exp(-(y * y + z * z) / (2.0 * r_sqr))
+                        press[i, j, k] = p_ref + rho[i, j, k] * (c1 * c1 / r_sqr) * amp
+                        vel[i, j, k, a] = vel[i, j, k, a] - (c1 * z / (rho[i, j, k] * r_sqr)) * amp
+                        vel[i, j, k, b] = vel[i, j, k, b] + (c1 * y / (rho[i, j, k] * r_sqr)) * amp
+
+
+@njit(cache=True)
+def speed_sound_at_pressure(sp_vol, temp, press, out, lo, hi, code, params, cv, gamma):
+    """Uintah's initial c^2 = dp/drho + dp/de p / rho^2 with the cells' press_CC (the vortices'),
+    not the EOS pressure, over the cells lo..hi."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                rho = 1.0 / sp_vol[i, j, k]
+                _, dp_drho, dp_de = eos_press_eos(code, params, rho, temp[i, j, k], cv, gamma)
+                out[i, j, k] = np.sqrt(dp_drho + dp_de * press[i, j, k] / (rho * rho))
+
+
 class CustomInitialization:
     """The profiles of one <customInitialization> block, applied to one material's vel_CC."""
 
@@ -80,6 +122,21 @@ class CustomInitialization:
             c = node.child(tag)
             if c is not None:
                 self.methods.append((tag, c))
+        self.vortices = None
+        vn = node.child("vortices")
+        if vn is not None:
+            axes, origins, strengths, radii = [], [], [], []
+            for vx in vn.children("vortex"):
+                axis = vx.get("axis", "str").strip().upper()
+                if axis not in ("X", "Y", "Z"):
+                    raise vx.child("axis").error(f"axis '{axis}' is not available; accepted: X, Y, Z")
+                axes.append({"X": (1, 2), "Y": (0, 2), "Z": (0, 1)}[axis])
+                origins.append(vx.get("origin", "vector"))
+                strengths.append(vx.get("strength", "float"))
+                radii.append(vx.get("radius", "float", above=0.0))
+            self.vortices = (np.array(axes, dtype=np.int64).reshape(-1, 2),
+                             np.array(origins, dtype=np.float64).reshape(-1, 3),
+                             np.array(strengths, dtype=np.float64), np.array(radii, dtype=np.float64))
         self.gauss = None
         g = node.child("gaussianTemperature")
         if g is not None:
@@ -129,6 +186,11 @@ class CustomInitialization:
         if self.gauss is not None:
             amp, origin, sx, sy = self.gauss
             gaussian_temperature(temp, amp, origin, sx, sy, self.level.anchor, self.level.dx, lo, hi, c0)
+
+    def add_vortices(self, vel, press, rho, lo, hi, c0):
+        """vortices on the interior cells lo..hi, after the profiles (Uintah's reverse order)."""
+        if self.vortices is not None:
+            add_vortices(vel, press, rho, *self.vortices, self.level.anchor, self.level.dx, lo, hi, c0)
 
     def apply(self, vel, profiles, olo, ohi, c0):
         lv = self.level

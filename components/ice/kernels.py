@@ -896,3 +896,25 @@ def share_total_energy(masses, moms, engs, cvs, tots_in, tots_out, olo, ohi, lo,
                     dT = (target - have) / heat
                     for m in range(n):
                         tots_out[m][i, j, k] += dT * masses[m][i, j, k] * cvs[m]
+
+
+@njit(cache=True, error_model="numpy")
+def lagrangian_to_primitive(mass, mom, eng, cv, vel, temp, lo, hi):
+    """vel = mom_L / mass_L, T = int_eng_L / (mass_L cv) in the cells lo..hi (extra cells too)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for c in range(3):
+                    vel[i, j, k, c] = mom[i, j, k, c] / mass[i, j, k]
+                temp[i, j, k] = eng[i, j, k] / (mass[i, j, k] * cv)
+
+
+@njit(cache=True, error_model="numpy")
+def primitive_to_lagrangian(mass, vel, temp, cv, mom, eng, lo, hi):
+    """mom_L_ME = vel mass_L, int_eng_L_ME = T cv mass_L in the cells lo..hi (Uintah's order)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for c in range(3):
+                    mom[i, j, k, c] = vel[i, j, k, c] * mass[i, j, k]
+                eng[i, j, k] = temp[i, j, k] * cv * mass[i, j, k]

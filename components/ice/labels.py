@@ -35,6 +35,8 @@ PRESS_FC = (L.create("pressX_FC", X), L.create("pressY_FC", Y), L.create("pressZ
 viscous_src_CC = L.create("viscous_src_CC", CC, (3,))
 viscosity = L.create("viscosity", CC)            # dynamic viscosity (<dynamic_viscosity> and its models)
 heatCond_src_CC = L.create("heatCond_src_CC", CC)
+turb_viscosity_CC = L.create("turb_viscosity_CC", CC)      # <turbulence>: the subgrid-scale viscosity
+total_viscosity_CC = L.create("total_viscosity_CC", CC)    # and molecular + subgrid-scale (turbulence.py)
 TAU_FC = tuple(L.create(f"tau_{a}_FC", t, (3,)) for a, t in (("X", X), ("Y", Y), ("Z", Z)))   # diagnostic
 
 # steps 8-11: Lagrangian values (eq. 35-37), exchange (38-39), specific volume (40)

@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from . import kernels as K
 from . import labels as I
 
 PRESS, DENSITY, TEMP = 0, 1, 2
@@ -227,30 +228,6 @@ def fill_edges(q, d, side, corner, at_lo, at_hi, dims, lo, hi):
                         q[idx[0], idx[1], idx[2], c] = corner[c]
 
 
-@njit(cache=True, error_model="numpy")
-def lagrangian_primitives(mass, mom, eng, cv, vel, temp, olo, ohi):
-    """Uintah's exchange with one material: u = m u / m and T = m e / (m cv) in every cell."""
-    for i in range(olo[0], ohi[0]):
-        for j in range(olo[1], ohi[1]):
-            for k in range(olo[2], ohi[2]):
-                m = mass[i, j, k]
-                temp[i, j, k] = eng[i, j, k] / (m * cv)
-                for c in range(3):
-                    vel[i, j, k, c] = mom[i, j, k, c] / m
-
-
-@njit(cache=True)
-def lagrangian_conserved(mass, vel, temp, cv, mom, eng, olo, ohi):
-    """...and back: m u and m cv T in every cell (what advection moves)."""
-    for i in range(olo[0], ohi[0]):
-        for j in range(olo[1], ohi[1]):
-            for k in range(olo[2], ohi[2]):
-                m = mass[i, j, k]
-                eng[i, j, k] = temp[i, j, k] * cv * m
-                for c in range(3):
-                    mom[i, j, k, c] = vel[i, j, k, c] * m
-
-
 @njit(cache=True)
 def li_field(out, L, d, side, lo, hi):
     """Uintah's saved Li<k>: L_k in the first interior cells of a face, component d."""
@@ -331,14 +308,14 @@ class LodiTasks:
         b = self.boxes(patch)
         cv = self.cvs[m]
         vel, temp = np.empty(mom.shape), np.empty(eng.shape)
-        lagrangian_primitives(mass, mom, eng, cv, vel, temp, b.olo, b.ohi)
+        K.lagrangian_to_primitive(mass, mom, eng, cv, vel, temp, b.olo, b.ohi)
         self.lodi_set(patch, new_dw, old_dw.get(I.rho_CC, m, patch), new_dw.get(I.press_CC, 0, patch), vel,
                       new_dw.get(I.speedSound_CC, m, patch), [(VEL, vel), (TEMP, temp)])
         self.bcs.velocity(patch, vel, m, b)
         self.bcs.scalar(patch, temp, "Temperature", m, b)
         mom_me = new_dw.allocate(I.mom_L_ME_CC, m, patch, fill=None)
         eng_me = new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None)
-        lagrangian_conserved(mass, vel, temp, cv, mom_me, eng_me, b.olo, b.ohi)
+        K.primitive_to_lagrangian(mass, vel, temp, cv, mom_me, eng_me, b.olo, b.ohi)
 
     def lodi_advected(self, patch, m, rho, vel, temp, new_dw):
         """rho_CC, vel_CC and temp_CC after advection (Uintah's Advection stage: the L's of the

@@ -14,6 +14,7 @@ from framework.geometry import cell_fractions
 from framework.variables import VarType
 
 from . import advection as A
+from . import custom_init as CI
 from . import equilibration as E
 from . import kernels as K
 from . import labels as I
@@ -74,6 +75,7 @@ class IceTasks:
     """Task callbacks of the ICE component (mixed into the component class)."""
 
     press_floor = -np.inf       # lowest press_CC (eq. 30); MPMICE clamps at 1e-12 as Uintah does
+    turbulence = None           # <turbulence> (turbulence.py), set by ICE.problem_setup
 
     def boxes(self, patch) -> Boxes:
         key = (patch.id, tuple(sorted((k.value, v) for k, v in patch.level.halo.items())))
@@ -149,6 +151,7 @@ class IceTasks:
                                                         *self._eos(m))
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
         arrs_by_m = {}
+        vortices = self.custom_init is not None and self.custom_init.vortices is not None
         for m, (mat, (theta, rho_micro, temp, vel)) in enumerate(zip(self.materials, state)):
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
                                                                 I.speedSound_CC)]
@@ -164,6 +167,11 @@ class IceTasks:
                 temp = arrs[2][sl]
             arrs[3][sl] = 1.0 / rho_micro
             p_arr[sl] = _press_array(rho_micro, temp, *self._eos(m))
+            if vortices:
+                # Uintah's doesComputePressure: the objects' <pressure>, then the vortices' own
+                p_arr[sl] = self._deck_pressure(mat, patch, own, shape)
+                self.custom_init.add_vortices(arrs[1], p_arr, arrs[0], b.lo, b.hi,
+                                              np.array(patch.low_index(VarType.CC), dtype=np.int64))
             # extra cells outside every geometry object get their boundary values
             self.bcs.scalar(patch, arrs[0], "Density", m, b)
             self.bcs.scalar(patch, arrs[2], "Temperature", m, b)
@@ -172,10 +180,21 @@ class IceTasks:
             arrs_by_m[m] = arrs[3]
             _speed_sound(arrs[3], arrs[2], arrs[4], *self._eos(m))
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
+        if vortices:                # the sound speed at the vortices' pressure, extra cells included
+            CI.speed_sound_at_pressure(arrs[3], arrs[2], p_arr, arrs[4], b.olo, b.ohi, *self._eos(0))
         if self.hydrostatic:        # Uintah's initializeSubTask_hydrostaticAdj, extra cells included
             K.hydrostatic_adjust(p_arr, 1.0 / arrs_by_m[self.surrounding], self.gravity,
                                  patch.level.anchor + np.array(patch.low_index(VarType.CC)) * patch.level.dx,
                                  patch.level.anchor, patch.level.dx, b.olo, b.ohi)
+
+    @staticmethod
+    def _deck_pressure(mat, patch, own, shape):
+        """The <pressure> of the material's last geometry object covering each cell (its first
+        object's where none does): Uintah's initializeCells."""
+        press = np.full(shape, mat.objects[0][1]["pressure"])
+        for piece, g in mat.objects:
+            press[cell_fractions(piece, patch.level, own, g["res"]) > 0.0] = g["pressure"]
+        return press
 
     def stable_timestep(self, patch, matls, old_dw, new_dw):
         """Uintah's delT (ICE::actuallyComputeStableTimestep): 'aggressive' (the default) is
@@ -407,6 +426,25 @@ class IceTasks:
             self._geom_cache[key] = np.full(patch.alloc_shape(VarType.CC), float(self.materials[m].viscosity))
         return self._geom_cache[key]
 
+    def turbulent_viscosity(self, patch, matls, old_dw, new_dw):
+        """Uintah's callTurb: turb_viscosity_CC (the model's) and total_viscosity_CC (molecular
+        plus turbulent, the viscosity of the stress), from the face velocities uvel_FCME, ..."""
+        b = self.boxes(patch)
+        for m in matls:
+            vel = old_dw.get(I.vel_CC, m, patch)
+            turb, tot = self.turbulence.viscosities(
+                patch, b, self.dims, self._faces(new_dw, I.FC_VEL_ME, m, patch),
+                self.vel_tau(patch, vel) if self.turbulence.dynamic else vel,
+                old_dw.get(I.rho_CC, m, patch), self._mu(patch, m, old_dw), new_dw.get(I.vol_frac_CC, m, patch))
+            new_dw.put(I.turb_viscosity_CC, m, patch, turb)
+            new_dw.put(I.total_viscosity_CC, m, patch, tot)
+
+    def _stress_viscosity(self, patch, m, old_dw, new_dw):
+        """The viscosity of the stress: total_viscosity_CC with a turbulence model, else mu."""
+        if self.turbulence is not None:
+            return new_dw.get(I.total_viscosity_CC, m, patch)
+        return self._mu(patch, m, old_dw)
+
     def viscous_source(self, patch, matls, old_dw, new_dw):
         """Uintah's viscous_src_CC = V div(tau) (a force: the Lagrangian momentum adds dt times it)."""
         b = self.boxes(patch)
@@ -414,8 +452,9 @@ class IceTasks:
             out = new_dw.allocate(I.viscous_src_CC, m, patch)
             if not self._viscous_here(patch, m):
                 continue
+            mu = self._stress_viscosity(patch, m, old_dw, new_dw)
             K.viscous_stress_source(self.vel_tau(patch, old_dw.get(I.vel_CC, m, patch)),
-                                    new_dw.get(I.vol_frac_CC, m, patch), self._mu(patch, m, old_dw), out,
+                                    new_dw.get(I.vol_frac_CC, m, patch), mu, out,
                                     self.dims, b.lo, b.hi, patch.level.dx, b.vol)
 
     def tau_fc(self, patch, matls, old_dw, new_dw):
@@ -429,7 +468,7 @@ class IceTasks:
                 if self.dims[d]:
                     tau = new_dw.allocate(I.TAU_FC[d], m, patch)
                     if self._viscous_here(patch, m):
-                        K.tau_face(vt, vf, self._mu(patch, m, old_dw), tau, d, b.sh[d], b.flo[d],
+                        K.tau_face(vt, vf, self._stress_viscosity(patch, m, old_dw, new_dw), tau, d, b.sh[d], b.flo[d],
                                    b.fhi[d], self.dims, patch.level.dx)
 
     def conduction_source(self, patch, matls, old_dw, new_dw):
@@ -467,7 +506,10 @@ class IceTasks:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
             if self.lodi is not None:
                 self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
-            elif not self.exchange:
+                continue
+            if len(matls) == 1 and self.n_before == 0:
+                self._one_material_exchange(patch, b, m, mass, mom, eng)
+            if not self.exchange:
                 self.bcs.inlet_momentum(patch, mom, mass, m, b)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
@@ -488,6 +530,20 @@ class IceTasks:
                     new_dw.put(I.tot_eng_L_ME_CC, m, patch, tot)       # one material: no exchange
         if self.conserve_energy and len(matls) > 1 and not self.exchange:
             self._share_total_energy(patch, matls, new_dw, tuple(masses), tuple(moms), tuple(engs), tuple(tots))
+
+    def _one_material_exchange(self, patch, b, m, mass, mom, eng):
+        """Uintah's one-material exchange task (ScalarExch::addExch_Vel_Temp_CC_1matl): the
+        Lagrangian velocity and temperature take their boundary conditions in the extra cells
+        (the new values' images: symmetry, zero gradient), then mom_L_ME = m u and
+        int_eng_L_ME = m cv T everywhere. The advection's limiter reads those extra cells; with
+        the old step's values there, cells next to walls drifted from sus (1e-7 in a step)."""
+        vel = self._scratch("vel_1matl", mom.shape)
+        temp = self._scratch("temp_1matl", eng.shape)
+        cv = self.cvs[m]
+        K.lagrangian_to_primitive(mass, mom, eng, cv, vel, temp, b.olo, b.ohi)
+        self.bcs.velocity(patch, vel, m, b)
+        self.bcs.scalar(patch, temp, "Temperature", m, b)
+        K.primitive_to_lagrangian(mass, vel, temp, cv, mom, eng, b.olo, b.ohi)
 
     def _share_total_energy(self, patch, matls, new_dw, masses, moms, engs, tots):
         """tot_eng_L_ME_CC of several materials: each one's m (e + |u|^2/2) after the exchange plus

@@ -189,9 +189,11 @@ SUS_XY_TAU_X = [4.9967078246888341e-03, 8.4755972086059150e-01, 5.42714304425135
 
 
 def test_couette_wall_stress_as_uintah(run_deck):
-    """The moving wall's stress and the saved tau_X_FC / tau_Y_FC as sus, 6 explicit steps.
-    Round-off agreement away from the two cells where the moving wall meets the open x faces
-    (there sus and pysus differ by 1.5e-8 relative after step 2: not explained yet)."""
+    """The moving wall's stress and the saved tau_X_FC / tau_Y_FC as sus, 6 explicit steps,
+    to round-off (the whole field: 1.6e-13 of vel_CC's maximum after step 6; before the
+    Lagrangian values took their boundary conditions in the extra cells, as Uintah's
+    one-material exchange task does, the cells where the moving wall meets the open x faces
+    differed by 1.5e-8 after step 2)."""
     da = run_deck(str(REF / "XY_explicit.ups"))
     assert np.allclose(da.times[1:], SUS_XY_TIMES, rtol=1e-12)
     u = da.read("vel_CC", 0, -1)[0][25, 14:, 0, 0]
@@ -494,3 +496,161 @@ def test_lodi_bad_input(tmp_path, edit, message):
         Controller(str(tmp_path / "d.ups"), quiet=True, filebase=str(tmp_path / "run.uda"))
     text = str(e.value)
     assert "\n" not in text.strip() and "d.ups" in text and message in text, text
+
+
+# Uintah's sus on uintah_reference/impVortices_{smag,dyn}_explicit.ups (10 steps, one rank, read
+# with framework.uintah_uda): the time after each step (timestep.xml), turb_viscosity_CC along
+# the row j = 5, k = 0 after step 1, SGS_ReynoldsStress in cell (3, 5, 0) after step 1, the
+# min and max of vel_CC.x, press_CC and temp_CC after step 10, and turbulentFluxes' labels in
+# cell (3, 5, 0) after step 10 (8 steps in its window), planeAvgTurbFluxes' CC labels in that cell
+# after step 10 and, from its files (planarAveTurbFluxes/.../t00010/L-0), the plane averages of
+# vel_CC.x and of u'u' on every 4th plane
+SUS_VORTICES = {
+    "smag": {
+        "times": [1e-05, 4e-05, 8.439642380922714e-05, 0.0001287773717972557, 0.00017313766252056943,
+                  0.00021748603890006787, 0.00026183283936814675, 0.00030618478638615745, 0.0003505441225324549,
+                  0.00039490962985388913],
+        "turb_row": [0.0, 0.0027810346825541256, 0.004446067754600588, 0.0004158268951446615, 0.0003902657795228521,
+                     0.00035825513664114174, 0.0003201054137016761, 0.0002763011144371376, 0.00022749243923937072,
+                     0.0001744801613592296, 0.00011819418161243031, 0.0015584218308302505, 6.79106120186695e-19,
+                     0.0015584218308302513, 0.00011819418161243031, 0.0001744801613592296, 0.00022749243923937072,
+                     0.0002763011144371381, 0.000320105413701675, 0.0003582551366411433, 0.00039026577952285105,
+                     0.0004158268951446615, 0.004446067754600588, 0.002781034682554125, 0.0],
+        "sgs": [[0.024106497820094698, 0.012854837544890597, 0.0], [-0.02227633873203005, -0.02144708149095314, 0.0],
+                [0.0, 0.0, -2.933964859075593e-07]],
+        "vel_CC": (-13.665109496737111, 13.66510949673706),
+        "press_CC": (101058.41587759832, 101602.81471964237),
+        "temp_CC": (299.77625994164663, 300.2361461102163),
+        "fluxes": {"mean_press_CC": [101283.33989158909], "variance_press_CC": [224.363374710083],
+                   "covariance_press_CC": [-0.04367220134008676, 0.0520475358935073, 2.296678299251731e-05],
+                   "mean_vel_CC": [6.421967903575749, -7.89670796335875, -3.289812884386959e-06],
+                   "variance_vel_CC": [1.4360824827974739e-05, 0.002560543826568562, 4.23790365715686e-12],
+                   "covariance_vel_CC": [-0.00011912150788617737, 7.461264603815843e-08, -7.371282748190063e-09]},
+        "plane": {"vel_CC_prime": [0.4067196254305845, -7.913861062331591, -5.220211401421903e-06],
+                  "temp_CC_prime": [-0.032493061805212164],
+                  "normalTurbStrss": [0.16542085371039494, 62.6291969138881, 2.7250607075535223e-11],
+                  "shearTurbStrss": [-3.218722606981192, 4.131202774685222e-05, -2.1231624258547827e-06],
+                  "temp_CC_turbFlux": [-0.013215565926508722, 0.2571455766162024, 1.696206517026751e-07]},
+        "ubar": [2.8529845620727, 6.1323910022859, -1.41167239810647, -9.76996261670138e-16, 1.41167239810647,
+                 -6.1323910022859, -2.8529845620727],
+        "uu": [16.2167487302015, 12.7053887811665, 56.5485557277697, 0.0687434756556537, 56.5485557277696,
+               12.7053887811665, 16.2167487302015]},
+    "dyn": {
+        "times": [1e-05, 4e-05, 8.439642456534768e-05, 0.00012877741941314894, 0.0001731376833747861,
+                  0.00021748586445889169, 0.0002618322306740427, 0.0003061835305297787, 0.0003505418379589469,
+                  0.0003949059210205603],
+        "turb_row": [0.0, 0.0019479295806475478, 0.0017685731296721281, 9.575913504414593e-05, 0.0, 0.0,
+                     6.193472015459693e-05, 0.0001492718465975609, 0.00012763153583205596, 2.332935522145367e-06,
+                     0.0, 0.0, 0.0, 0.027356066612146183, 0.0008949646359341672, 0.0, 0.0, 0.0, 0.0, 0.0,
+                     8.594970236735694e-05, 0.0, 0.0, 0.00042025243585640704, 0.0],
+        "sgs": [[0.0057007235952876425, 0.003573759161044318, 0.0], [-0.005028484347418148, -0.004446401862796383, 0.0],
+                [0.0, 0.0, -8.359910100479684e-08]],
+        "vel_CC": (-13.665635367509116, 13.665635367509072),
+        "press_CC": (101056.750240613, 101601.33504203755),
+        "temp_CC": (299.774903848602, 300.2348818006298),
+        "fluxes": {"mean_press_CC": [101282.92672925098], "variance_press_CC": [226.17374420166016],
+                   "covariance_press_CC": [-0.04637709748931229, 0.05462717020418495, -4.656068774838706e-06],
+                   "mean_vel_CC": [6.422629973944862, -7.896497694558687, 1.941558661923125e-06],
+                   "variance_vel_CC": [1.661080988668573e-05, 0.0025545521852450292, 4.399602409040233e-13],
+                   "covariance_vel_CC": [-0.00013321295111268228, -3.056079771886856e-08, 2.4305665651720314e-09]},
+        "plane": {"vel_CC_prime": [0.4090199741453935, -7.9132388659164485, 2.869098626330331e-06],
+                  "temp_CC_prime": [-0.032882258646623086],
+                  "normalTurbStrss": [0.16729733924989834, 62.619349349050644, 8.231726927610593e-12],
+                  "shearTurbStrss": [-3.2366727563434687, -2.270386276002467e-05, 1.173518645962216e-06],
+                  "temp_CC_turbFlux": [-0.013449500581483916, 0.260205167121575, -9.434244311366494e-08]},
+        "ubar": [2.85278939027035, 6.13261317577391, -1.4124527784773, 1.77635683940025e-17, 1.41245277847729,
+                 -6.13261317577391, -2.85278939027035],
+        "uu": [16.2139132827069, 12.717351347364, 56.6731801827401, 0.0663473627143516, 56.6731801827402,
+               12.717351347364, 16.213913282707]}}
+SUS_PLANE_HEADER = """# Level: 0 nCells per plane: 50
+# Level spatial range:
+# -5.00000000000000E-01  -5.00000000000000E-01  -4.00000000000000E-02 
+# 5.00000000000000E-01  5.00000000000000E-01  4.00000000000000E-02 
+# Level interior CC index range:  # [0 0 0] [25 25 2] 
+"""
+
+
+@pytest.mark.parametrize("deck", sorted(SUS_VORTICES))
+def test_imp_vortices_turbulence_as_uintah(run_deck, deck):
+    """impVortices_smag / _dyn (made explicit): two Gaussian vortices (customInitialization
+    vortices) in a closed box with the Smagorinsky or Germano (dynamic) subgrid viscosity. After
+    step 1 the turbulent viscosity is sus's to round-off (1e-12 of its maximum; the dynamic
+    model's clipped cells included), and so is SGS_ReynoldsStress (the cell-centred face
+    stresses); delT, velocity, pressure and temperature stay sus's to round-off over the 10
+    steps (measured: 6e-16, 1.4e-14), and so do turbulentFluxes' running means (its window
+    starts at step 3) and planeAvgTurbFluxes' fluctuations and plane averages (from step 4)."""
+    ref = SUS_VORTICES[deck]
+    da = run_deck(str(REF / f"impVortices_{deck}_explicit.ups"))
+    assert np.allclose(da.times[1:], ref["times"], rtol=1e-13, atol=0)
+    turb = da.read("turb_viscosity_CC", 0, 1)[0]
+    assert np.allclose(turb[:, 5, 0], ref["turb_row"], rtol=0, atol=1e-12 * max(ref["turb_row"]))
+    sgs = da.read("SGS_ReynoldsStress", 0, 1)[0]
+    assert np.allclose(sgs[3, 5, 0], ref["sgs"], rtol=1e-12, atol=1e-14)     # its largest entries: 3.6, 11.6
+    for label in ("vel_CC", "press_CC", "temp_CC"):
+        a = da.read(label, 0, -1)[0]
+        a = a[..., 0] if label == "vel_CC" else a
+        assert np.allclose((a.min(), a.max()), ref[label], rtol=1e-12, atol=0), (label, a.min(), a.max())
+    # turbulentFluxes: the variances are differences of nearly equal means of squares (p^2 ~ 1e10),
+    # so round-off grows to 1e-7 of the value there (5e-11 of the fields' maxima)
+    for label, ref_value in ref["fluxes"].items():
+        a = np.ravel(da.read(label, 0, -1)[0][3, 5, 0])
+        assert np.allclose(a, ref_value, rtol=1e-7, atol=1e-12 * np.abs(ref_value).max()), (label, a)
+    # planeAvgTurbFluxes: the fluctuations about the plane (XZ) averages and their products, to
+    # round-off of the velocity (1e-12 of each label's largest value); its files, one folder per
+    # sampled step (4-10), in sus's format, with sus's plane averages to 1e-12 of the column
+    for label, ref_value in ref["plane"].items():
+        a = np.ravel(da.read(label, 0, -1)[0][3, 5, 0])
+        assert np.allclose(a, ref_value, rtol=1e-9, atol=1e-12 * np.abs(ref_value).max()), (label, a)
+    files = pathlib.Path(da.path) / "planarAveTurbFluxes"
+    assert sorted(p.name for p in (files / "AvgQ").iterdir()) == [f"t{n:05d}" for n in range(4, 11)]
+    assert sorted(p.name for p in (files / "TurbFluxes/t00004/L-0").iterdir()) == \
+        ["normalTurbStrss_0", "shearTurbStrss_0", "temp_CC_turbFlux_0"]
+    for path, column, key in (("AvgQ/t00010/L-0/vel_CC_0", 3, "ubar"),
+                              ("TurbFluxes/t00010/L-0/normalTurbStrss_0", 3, "uu")):
+        text = (files / path).read_text()
+        assert text.startswith(SUS_PLANE_HEADER)
+        rows = np.array([[float(x) for x in line.split()] for line in text.splitlines() if not line.startswith("#")])
+        assert rows.shape == (25, 7) and np.all(rows[:, 6] == 50)
+        assert np.allclose(rows[::4, column], ref[key], rtol=0, atol=1e-12 * np.abs(ref[key]).max())
+    # the saved stress diagnostics: total = molecular + turbulent in the interior; the
+    # SGS_ReynoldsStress rows are the means of the face stresses
+    tot = da.read("total_viscosity_CC", 0, -1)[0]
+    assert np.allclose(tot, 15.89e-6 + da.read("turb_viscosity_CC", 0, -1)[0], rtol=1e-14, atol=0)
+    sgs = da.read("SGS_ReynoldsStress", 0, -1)[0]
+    tx = da.read("tau_X_FC", 0, -1)[0]
+    assert np.allclose(sgs[3, 4, 1, 0], 0.5 * (tx[3, 4, 1] + tx[4, 4, 1]), rtol=1e-14, atol=1e-300)
+
+
+def test_vortices_initial_state():
+    """customInitialization vortices as Uintah's: velocities of the two vortices add up, the
+    pressure is the last vortex's 101325 + rho C^2 A / R^2 where it reaches (not the EOS
+    pressure), and the sound speed takes that pressure (c^2 = (g-1) cv T + (g-1) p / rho)."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    import tempfile
+    deck = (REF / "impVortices_smag_explicit.ups").read_text().replace("<max_Timesteps>  10 <", "<max_Timesteps>  0 <")
+    deck = deck.replace('<save label="vel_CC"/>', '<save label="vel_CC"/>\n      <save label="speedSound_CC"/>')
+    with tempfile.TemporaryDirectory() as tmp:
+        path = pathlib.Path(tmp) / "d.ups"
+        path.write_text(deck)
+        c = Controller(str(path), quiet=True, filebase=str(pathlib.Path(tmp) / "run.uda"))
+        c.run()
+        da = DataArchive(c.archiver.dir)
+        vel, (x, y, z) = da.read("vel_CC", 0, 0)
+        press = da.read("press_CC", 0, 0)[0]
+        cs = da.read("speedSound_CC", 0, 0)[0]
+    rho = 1.178471737613 * (1.0 + 1e-12)          # rho_CC = rho_micro (theta + tiny_rho)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    u, v, p = np.zeros_like(X), np.zeros_like(X), np.full_like(X, 101325.0)
+    for c1, r in ((10.0, 0.5), (-10.0, 0.25)):
+        a = np.exp(-(X * X + Y * Y) / (2 * r * r))
+        inside = np.sqrt(X * X + Y * Y) <= r
+        u -= np.where(inside, c1 * Y / (rho * r * r) * a, 0.0)
+        v += np.where(inside, c1 * X / (rho * r * r) * a, 0.0)
+        p = np.where(inside, 101325.0 + rho * c1 * c1 / (r * r) * a, p)
+    assert np.allclose(vel[:, :, 0, 0], u, rtol=1e-12, atol=1e-12)
+    assert np.allclose(vel[:, :, 0, 1], v, rtol=1e-12, atol=1e-12)
+    assert np.allclose(press[:, :, 0], p, rtol=1e-13, atol=0)
+    cv, g = 716.5, 1.4
+    rho_micro = 1.178471737613
+    assert np.allclose(cs[:, :, 0], np.sqrt((g - 1) * cv * 300.0 + (g - 1) * p / rho_micro), rtol=1e-13, atol=0)
