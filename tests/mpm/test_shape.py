@@ -1,6 +1,8 @@
 """Shape functions (shape.py) and the fused transfer kernels (transfer.py): partition of
 unity, the uGIMP formula, conservation and exactness of p2g / g2p, and that reading the
 owned and ghost particles run by run gives bitwise the sums of one merged array."""
+import os
+
 import numpy as np
 import pytest
 from numba import njit
@@ -11,6 +13,14 @@ from components.mpm.transfer import kernels, one_run
 from framework.scheduler.particle_kernels import runs
 
 CASES = [(k, a) for k in ("linear", "gimp") for a in (1, 3, 7, 5)]     # 5: an xz plane
+# The fused transfer kernels are one numba compilation per (interpolator, axes, update) and
+# argument types (minutes each, cold): by default they are tested on the combinations the
+# shipped decks compile anyway (scripts/warm_kernels), with the tasks' argument types;
+# PYSUS_TEST_VARIANTS=all tests every combination above.
+ALL_VARIANTS = os.environ.get("PYSUS_TEST_VARIANTS") == "all"
+P2G_CASES = CASES if ALL_VARIANTS else [("linear", 1), ("linear", 3), ("linear", 7), ("gimp", 3)]
+USL_CASES = CASES if ALL_VARIANTS else [("linear", 3), ("linear", 7), ("gimp", 3)]
+MUSL_CASES = [("linear", 3), ("gimp", 7)] if ALL_VARIANTS else [("linear", 3), ("gimp", 3)]
 
 
 @njit(cache=True)
@@ -69,6 +79,17 @@ def _direct(kind, act, px, lp, anchor, dx, node_low, out_i, out_w):
             out_w[p, q] = w[q]
 
 
+def select(arrays, sel):
+    """The particles sel of each array, contiguous; read-only stays read-only (the kernels'
+    argument types, hence their compilations, are the tasks')."""
+    out = []
+    for a in arrays:
+        b = np.ascontiguousarray(a[sel])
+        b.flags.writeable = a.flags.writeable
+        out.append(b)
+    return tuple(out)
+
+
 def make_grid(act, ncell=6):
     """Patch with one ghost layer (two for GIMP's reach), node_low = -2 on active axes."""
     on = np.array([bool(act >> d & 1) for d in range(3)])
@@ -79,10 +100,12 @@ def make_grid(act, ncell=6):
     return on, anchor, dx, lo, shape
 
 
-def make_particles(on, anchor, dx, ncell, n=300, seed=0):
+def make_particles(on, anchor, dx, ncell, n=300, seed=0, kind="gimp"):
+    """Positions and half sizes; linear's sizes read-only, as the tasks pass them (tasks._zeros3)."""
     rng = np.random.default_rng(seed)
     px = np.tile(anchor, (n, 1)) + np.where(on, rng.random((n, 3)) * ncell * dx, 0.0)
     lp = np.tile(dx / 4, (n, 1))                                   # 2 particles per cell
+    lp.flags.writeable = kind != "linear"
     return np.ascontiguousarray(px), lp
 
 
@@ -147,10 +170,10 @@ def _p2g(kind, act, parts, order_runs, shape, anchor, dx, lo):
     return g
 
 
-@pytest.mark.parametrize("kind,act", CASES)
+@pytest.mark.parametrize("kind,act", P2G_CASES)
 def test_p2g_conserves_and_runs_equal_merged(kind, act):
     on, anchor, dx, lo, shape = make_grid(act)
-    px, lp = make_particles(on, anchor, dx, 6, seed=3)
+    px, lp = make_particles(on, anchor, dx, 6, seed=3, kind=kind)
     n = len(px)
     rng = np.random.default_rng(4)
     pm, pvol = rng.random(n) + 0.5, rng.random(n) + 0.1
@@ -173,18 +196,18 @@ def test_p2g_conserves_and_runs_equal_merged(kind, act):
     order = np.empty(n, np.int64)
     order[mine] = np.arange(mine.sum())
     order[~mine] = mine.sum() + np.arange((~mine).sum())
-    split = tuple(tuple(np.ascontiguousarray(a[sel]) for a in part) for sel in (mine, ~mine))
+    split = tuple(select(part, sel) for sel in (mine, ~mine))
     r = runs(order, int(mine.sum()))
     assert len(r) > 2
     for a, b in zip(_p2g(kind, act, split, r, shape, anchor, dx, lo), (gm, gp, gvol, ge, gi)):
         assert np.array_equal(a, b)
 
 
-@pytest.mark.parametrize("kind,act", CASES)
+@pytest.mark.parametrize("kind,act", USL_CASES)
 def test_g2p_linear_field_reproduced(kind, act):
     """USL: a linear nodal velocity field is interpolated exactly, with its gradient."""
     on, anchor, dx, lo, shape = make_grid(act)
-    px, lp = make_particles(on, anchor, dx, 6, seed=1)
+    px, lp = make_particles(on, anchor, dx, 6, seed=1, kind=kind)
     n = len(px)
     A = np.array([[0.3, -1.2, 0.7], [2.0, 0.5, -0.4], [-0.8, 1.1, 0.9]]) * on   # varies along active axes
     b = np.array([1.0, -2.0, 0.5])
@@ -203,12 +226,12 @@ def test_g2p_linear_field_reproduced(kind, act):
     assert np.allclose(F, np.eye(3) + dt * A, atol=1e-12) and np.allclose(V, np.linalg.det(np.eye(3) + dt * A))
 
 
-@pytest.mark.parametrize("kind,act", [("linear", 3), ("gimp", 7)])
+@pytest.mark.parametrize("kind,act", MUSL_CASES)
 def test_g2p_musl_owned_written_all_remapped(kind, act):
     """MUSL: every particle (owned or ghost) maps its new momentum back; only the owned
     ones are written, compacted, with the same values as when all are owned."""
     on, anchor, dx, lo, shape = make_grid(act)
-    px, lp = make_particles(on, anchor, dx, 6, seed=5)
+    px, lp = make_particles(on, anchor, dx, 6, seed=5, kind=kind)
     n = len(px)
     rng = np.random.default_rng(6)
     pv, pm = rng.random((n, 3)), rng.random(n) + 0.5
@@ -226,7 +249,7 @@ def test_g2p_musl_owned_written_all_remapped(kind, act):
     order = np.empty(n, np.int64)
     order[mine] = np.arange(mine.sum())
     order[~mine] = mine.sum() + np.arange((~mine).sum())
-    own, ghost = (tuple(np.ascontiguousarray(a[sel]) for a in allp) for sel in (mine, ~mine))
+    own, ghost = (select(allp, sel) for sel in (mine, ~mine))
     xs, vs, gs, ts = run(own, ghost, runs(order, int(mine.sum())), int(mine.sum()))
     assert np.array_equal(xs, x[mine]) and np.array_equal(vs, v[mine]) and np.array_equal(gs, gmom)
     assert np.isclose(ts[0], pm[mine].sum(), rtol=1e-14)
@@ -235,7 +258,8 @@ def test_g2p_musl_owned_written_all_remapped(kind, act):
 def test_out_of_patch_raises():
     on, anchor, dx, lo, shape = make_grid(3)
     px = np.array([[anchor[0] - 5 * dx[0], anchor[1], anchor[2]]])
-    own = (px, np.zeros((1, 3)), np.ones(1), np.zeros((1, 3)))
+    from components.mpm.tasks import _zeros3
+    own = (px, np.zeros((1, 3)), np.ones(1), _zeros3(1))
     g2p = kernels("linear", 3)[1]
     with pytest.raises(IndexError):
         g2p(False, own, own, one_run(1), anchor, dx, lo, np.zeros(shape + (3,)), np.zeros(shape + (3,)), 0.1,
