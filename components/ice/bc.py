@@ -118,15 +118,32 @@ def bc_inlet_face(uf, d, index, kind, value, vdir, p, anchor, dx, f0):
 
 
 @njit(cache=True)
-def bc_inlet_momentum(mom, mass, vel, d, side, lo, hi, olo, ohi):
-    """mom = mass vel in the extra-cell layer of face (d, side)."""
+def lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, d, side, lo, hi, olo, ohi):
+    """u = (m u)/m and T = (m e)/(m cv) in the extra-cell layer of face (d, side) and the first
+    interior layer next to it: what the face's conditions read and overwrite."""
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    for e in ((lo[d] - 1, lo[d]) if side == 0 else (hi[d], hi[d] - 1)):
+        for a in range(olo[d1], ohi[d1]):
+            for b in range(olo[d2], ohi[d2]):
+                i, j, k = _idx(d, e, a, b)
+                m = mass[i, j, k]
+                temp[i, j, k] = eng[i, j, k] / (m * cv)
+                for c in range(3):
+                    vel[i, j, k, c] = mom[i, j, k, c] / m
+
+
+@njit(cache=True)
+def lagrangian_face_conserved(mass, vel, temp, cv, mom, eng, d, side, lo, hi, olo, ohi):
+    """m u and m cv T in the extra-cell layer of face (d, side)."""
     e = lo[d] - 1 if side == 0 else hi[d]
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
-            ie = _idx(d, e, a, b)
+            i, j, k = _idx(d, e, a, b)
+            m = mass[i, j, k]
+            eng[i, j, k] = temp[i, j, k] * cv * m
             for c in range(3):
-                mom[ie[0], ie[1], ie[2], c] = mass[ie] * vel[ie[0], ie[1], ie[2], c]
+                mom[i, j, k, c] = vel[i, j, k, c] * m
 
 
 @njit(cache=True)
@@ -429,20 +446,19 @@ class BoundaryConditions:
             elif kind == DIRICHLET:
                 bc_hydrostatic(press, sp_vol, d, s, 1, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
 
-    def inlet_momentum(self, patch, mom, mass, m, b):
-        """Uintah sets vel_CC's conditions after the exchange and takes mom_L_ME = m u in the
-        extra cells; on inlet-profile faces that is m times the profile (elsewhere the extra
-        cells already hold their condition)."""
-        if self.inlet is None:
-            return
-        lv, ip = self.level, self.inlet
-        for name, d, s in self._faces(patch):
-            kind, value = self.table[name]["Velocity"][m]
-            if kind in INLET:
-                vel = np.zeros(mom.shape)
-                bc_inlet(vel, d, s, kind, value, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
-                         lv.dx, b.lo, b.hi, b.olo, b.ohi)
-                bc_inlet_momentum(mom, mass, vel, d, s, b.lo, b.hi, b.olo, b.ohi)
+    def lagrangian_extra_cells(self, patch, mass, mom, eng, cv, m, b, vel, temp):
+        """Uintah's addExchangeToMomentumAndEnergy at the boundary: u and T from the Lagrangian
+        (exchanged) m u and m e, every face's Velocity and Temperature conditions on them, then
+        m u and m cv T in the extra cells (mom, eng modified there only; the interior keeps its
+        values). An open face's extra cell thus holds this step's interior velocity, not the
+        old one. vel, temp: work arrays of mom's and eng's shapes."""
+        faces = [(d, s) for _, d, s in self._faces(patch)]
+        for d, s in faces:
+            lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, d, s, b.lo, b.hi, b.olo, b.ohi)
+        self.velocity(patch, vel, m, b)
+        self.scalar(patch, temp, "Temperature", m, b)
+        for d, s in faces:
+            lagrangian_face_conserved(mass, vel, temp, cv, mom, eng, d, s, b.lo, b.hi, b.olo, b.ohi)
 
     def sp_vol(self, patch, spv, vf, rho, m, b):
         for name, d, s in self._faces(patch):

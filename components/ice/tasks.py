@@ -468,7 +468,7 @@ class IceTasks:
             if self.lodi is not None:
                 self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
             elif not self.exchange:
-                self.bcs.inlet_momentum(patch, mom, mass, m, b)
+                self._lagrangian_bcs(patch, m, mass, mom, eng, b)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
             if self.conserve_energy:
@@ -507,10 +507,17 @@ class IceTasks:
         vs = lambda arrs: tuple(v(x) for x in arrs)
         K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
                          vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
-        for m, mom, mass in zip(matls, mom_out, get(I.mass_L_CC)):
-            self.bcs.inlet_momentum(patch, mom, mass, m, b)
+        for m, mass, mom, eng in zip(matls, get(I.mass_L_CC), mom_out, eng_out):
+            if m in self.matls:                # fluids (MPMICE: not the solids)
+                self._lagrangian_bcs(patch, m, mass, mom, eng, b)
         if self.conserve_energy:
             self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
+
+    def _lagrangian_bcs(self, patch, m, mass, mom, eng, b):
+        """mom_L_ME_CC and int_eng_L_ME_CC in the extra cells from u and T with every face's
+        conditions, as Uintah's exchange task ends (BoundaryConditions.lagrangian_extra_cells)."""
+        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, self.cvs[m], m, b,
+                                        self._scratch("bc_vel", mom.shape), self._scratch("bc_temp", eng.shape))
 
     # -- step 11: specific volume (eq. 40) --------------------------------------------------------
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
