@@ -516,8 +516,7 @@ class IceTasks:
     def _lagrangian_bcs(self, patch, m, mass, mom, eng, b):
         """mom_L_ME_CC and int_eng_L_ME_CC in the extra cells from u and T with every face's
         conditions, as Uintah's exchange task ends (BoundaryConditions.lagrangian_extra_cells)."""
-        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, self.cvs[m], m, b,
-                                        self._scratch("bc_vel", mom.shape), self._scratch("bc_temp", eng.shape))
+        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, self.cvs[m], m, b, self.dims)
 
     # -- step 11: specific volume (eq. 40) --------------------------------------------------------
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
