@@ -150,8 +150,9 @@ def lagrangian_face_conserved(mass, vel, temp, cv, mom, eng, d, side, lo, hi, ol
 @njit(cache=True)
 def lagrangian_extra_cells_faces(mass, mom, eng, cv, vel, temp, faces, vkind, vval, tkind, tval, dx, lo, hi, olo, ohi):
     """BoundaryConditions.lagrangian_extra_cells in one call for faces (rows d, side) whose
-    velocity kinds bc_vector applies (vkind) and temperatures Dirichlet (tkind 1) or a
-    gradient (tkind 0, tval its -dT/dn) or nothing (-1), in the order of the rows."""
+    velocity kinds bc_vector applies (vkind, values vval) and whose temperature is Dirichlet
+    (tkind 1, tval the value), a gradient (tkind 0, tval the Neumann value, 0 on a symmetry
+    face) or left alone (-1), in the order of the rows."""
     n = faces.shape[0]
     for f in range(n):
         lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, faces[f, 0], faces[f, 1], lo, hi, olo, ohi)
@@ -407,8 +408,8 @@ class BoundaryConditions:
 
     def __init__(self, table, level):
         self.inlet = table.pop("inletVelocity", None)
-        self._extra_cell_plans = {}             # (patch id, material) -> lagrangian_extra_cells_faces's
-        self._work = (np.empty(0), np.empty(0))  # arguments; u and T work buffers
+        self._extra_cell_plans = {}     # (patch id, material): lagrangian_extra_cells_faces's arguments
+        self._work = (np.empty(0), np.empty(0))         # u and T work buffers of lagrangian_extra_cells
         self.lodi = table.pop("LODI", None)
         self.table = table
         self.level = level
