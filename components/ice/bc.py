@@ -41,6 +41,7 @@ LODI_VARS = ("Pressure", "Velocity", "Temperature", "Density")
 INLET = (POWER_LAW, LOG_LAW)
 VARS = ("Pressure", "Velocity", "Temperature", "Density", "SpecificVol")
 FACE_NAMES = ("x-", "x+", "y-", "y+", "z-", "z+")
+_UNSET = object()
 
 
 class InletProfile:
@@ -118,15 +119,52 @@ def bc_inlet_face(uf, d, index, kind, value, vdir, p, anchor, dx, f0):
 
 
 @njit(cache=True)
-def bc_inlet_momentum(mom, mass, vel, d, side, lo, hi, olo, ohi):
-    """mom = mass vel in the extra-cell layer of face (d, side)."""
+def lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, d, side, lo, hi, olo, ohi):
+    """u = (m u)/m and T = (m e)/(m cv) in the extra-cell layer of face (d, side) and the first
+    interior layer next to it: what the face's conditions read and overwrite."""
+    d1, d2 = (d + 1) % 3, (d + 2) % 3
+    for e in ((lo[d] - 1, lo[d]) if side == 0 else (hi[d], hi[d] - 1)):
+        for a in range(olo[d1], ohi[d1]):
+            for b in range(olo[d2], ohi[d2]):
+                i, j, k = _idx(d, e, a, b)
+                m = mass[i, j, k]
+                temp[i, j, k] = eng[i, j, k] / (m * cv)
+                for c in range(3):
+                    vel[i, j, k, c] = mom[i, j, k, c] / m
+
+
+@njit(cache=True)
+def lagrangian_face_conserved(mass, vel, temp, cv, mom, eng, d, side, lo, hi, olo, ohi):
+    """m u and m cv T in the extra-cell layer of face (d, side)."""
     e = lo[d] - 1 if side == 0 else hi[d]
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
-            ie = _idx(d, e, a, b)
+            i, j, k = _idx(d, e, a, b)
+            m = mass[i, j, k]
+            eng[i, j, k] = temp[i, j, k] * cv * m
             for c in range(3):
-                mom[ie[0], ie[1], ie[2], c] = mass[ie] * vel[ie[0], ie[1], ie[2], c]
+                mom[i, j, k, c] = vel[i, j, k, c] * m
+
+
+@njit(cache=True)
+def lagrangian_extra_cells_faces(mass, mom, eng, cv, vel, temp, faces, vkind, vval, tkind, tval, dx, lo, hi, olo, ohi):
+    """BoundaryConditions.lagrangian_extra_cells in one call for faces (rows d, side) whose
+    velocity kinds bc_vector applies (vkind, values vval) and whose temperature is Dirichlet
+    (tkind 1, tval the value), a gradient (tkind 0, tval the Neumann value, 0 on a symmetry
+    face) or left alone (-1), in the order of the rows."""
+    n = faces.shape[0]
+    for f in range(n):
+        lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, faces[f, 0], faces[f, 1], lo, hi, olo, ohi)
+    for f in range(n):
+        d = faces[f, 0]
+        bc_vector(vel, d, faces[f, 1], vkind[f], vval[f], dx[d], lo, hi, olo, ohi)
+    for f in range(n):
+        if tkind[f] >= 0:
+            d = faces[f, 0]
+            bc_scalar(temp, d, faces[f, 1], tkind[f], tval[f], dx[d], lo, hi, olo, ohi)
+    for f in range(n):
+        lagrangian_face_conserved(mass, vel, temp, cv, mom, eng, faces[f, 0], faces[f, 1], lo, hi, olo, ohi)
 
 
 @njit(cache=True)
@@ -370,6 +408,8 @@ class BoundaryConditions:
 
     def __init__(self, table, level):
         self.inlet = table.pop("inletVelocity", None)
+        self._extra_cell_plans = {}     # (patch id, material): lagrangian_extra_cells_faces's arguments
+        self._work = (np.empty(0), np.empty(0))         # u and T work buffers of lagrangian_extra_cells
         self.lodi = table.pop("LODI", None)
         self.table = table
         self.level = level
@@ -380,13 +420,15 @@ class BoundaryConditions:
             i = FACE_NAMES.index(name)
             yield name, i // 2, i % 2
 
-    def scalar(self, patch, q, var, m, b, copy=False):
+    def scalar(self, patch, q, var, m, b, copy=False, dims=(True, True, True)):
         """Temperature, Density, Pressure (m = 0) or a model's scalar (scalar-f) in the extra cells
-        of one CC array.
+        of one CC array (of the faces of the directions where dims is true).
 
         copy=True: zero-gradient copy whatever the condition (specific volume at t = 0).
         """
         for name, d, s in self._faces(patch):
+            if not dims[d]:
+                continue
             kind, value = self.table[name][var][m]
             if copy:
                 kind, value = NEUMANN, 0.0
@@ -398,11 +440,14 @@ class BoundaryConditions:
             else:
                 bc_scalar(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], b.lo, b.hi, b.olo, b.ohi)
 
-    def velocity(self, patch, q, m, b, initial=False):
-        """vel_CC's extra cells. initial: at t = 0 the inlet profiles leave them as the
-        initialization made them (Uintah sets those only from the first step)."""
+    def velocity(self, patch, q, m, b, initial=False, dims=(True, True, True)):
+        """vel_CC's extra cells (of the faces of the directions where dims is true). initial: at
+        t = 0 the inlet profiles leave them as the initialization made them (Uintah sets those
+        only from the first step)."""
         lv = self.level
         for name, d, s in self._faces(patch):
+            if not dims[d]:
+                continue
             kind, value = self.table[name]["Velocity"][m]
             v = np.zeros(3) if value is None else value
             if kind == LODI:
@@ -429,20 +474,53 @@ class BoundaryConditions:
             elif kind == DIRICHLET:
                 bc_hydrostatic(press, sp_vol, d, s, 1, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
 
-    def inlet_momentum(self, patch, mom, mass, m, b):
-        """Uintah sets vel_CC's conditions after the exchange and takes mom_L_ME = m u in the
-        extra cells; on inlet-profile faces that is m times the profile (elsewhere the extra
-        cells already hold their condition)."""
-        if self.inlet is None:
+    def lagrangian_extra_cells(self, patch, mass, mom, eng, cv, m, b, dims):
+        """Uintah's addExchangeToMomentumAndEnergy at the boundary: u and T from the Lagrangian
+        (exchanged) m u and m e, every face's Velocity and Temperature conditions on them, then
+        m u and m cv T in the extra cells (mom, eng modified there only; the interior keeps its
+        values). An open face's extra cell thus holds this step's interior velocity, not the
+        old one. The faces of directions with one cell (dims[d] false) are left alone: nothing
+        is advected through them, and in a 2D run with extra cells in z they are whole planes."""
+        plan = self._extra_cell_plans.get((patch.id, m), _UNSET)
+        if plan is _UNSET:
+            plan = self._extra_cell_plans[(patch.id, m)] = self._extra_cell_plan(patch, m, dims)
+        if plan is None:                        # no such face
             return
-        lv, ip = self.level, self.inlet
+        if self._work[0].size < mom.size:      # one pair of buffers for all patches, grown as needed
+            self._work = (np.empty(mom.size), np.empty(eng.size))
+        vel, temp = self._work[0][:mom.size].reshape(mom.shape), self._work[1][:eng.size].reshape(eng.shape)
+        if plan is False:                       # an inlet profile: the general path
+            faces = [(d, s) for _, d, s in self._faces(patch) if dims[d]]
+            for d, s in faces:
+                lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, d, s, b.lo, b.hi, b.olo, b.ohi)
+            self.velocity(patch, vel, m, b, dims=dims)
+            self.scalar(patch, temp, "Temperature", m, b, dims=dims)
+            for d, s in faces:
+                lagrangian_face_conserved(mass, vel, temp, cv, mom, eng, d, s, b.lo, b.hi, b.olo, b.ohi)
+            return
+        lagrangian_extra_cells_faces(mass, mom, eng, cv, vel, temp, *plan, self.level.dx, b.lo, b.hi, b.olo, b.ohi)
+
+    def _extra_cell_plan(self, patch, m, dims):
+        """lagrangian_extra_cells_faces's face rows, kinds and values for one patch and material;
+        None without faces, False with an inlet-profile face."""
+        rows, vk, vv, tk, tv = [], [], [], [], []
         for name, d, s in self._faces(patch):
+            if not dims[d]:
+                continue
             kind, value = self.table[name]["Velocity"][m]
-            if kind in INLET:
-                vel = np.zeros(mom.shape)
-                bc_inlet(vel, d, s, kind, value, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
-                         lv.dx, b.lo, b.hi, b.olo, b.ohi)
-                bc_inlet_momentum(mom, mass, vel, d, s, b.lo, b.hi, b.olo, b.ohi)
+            if kind in INLET or kind == LODI:
+                return False
+            rows.append((d, s))
+            vk.append(kind)
+            vv.append(np.zeros(3) if value is None else np.asarray(value, dtype=np.float64))
+            kind, value = self.table[name]["Temperature"][m]
+            v = 0.0 if value is None else value
+            tk.append(-1 if kind == LODI else (1 if kind == DIRICHLET else 0))
+            tv.append(v if kind in (DIRICHLET, NEUMANN) else 0.0)
+        if not rows:
+            return None
+        return (np.array(rows, dtype=np.int64), np.array(vk, dtype=np.int64), np.array(vv),
+                np.array(tk, dtype=np.int64), np.array(tv))
 
     def sp_vol(self, patch, spv, vf, rho, m, b):
         for name, d, s in self._faces(patch):

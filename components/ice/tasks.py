@@ -506,11 +506,8 @@ class IceTasks:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
             if self.lodi is not None:
                 self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
-                continue
-            if len(matls) == 1 and self.n_before == 0:
-                self._one_material_exchange(patch, b, m, mass, mom, eng)
-            if not self.exchange:
-                self.bcs.inlet_momentum(patch, mom, mass, m, b)
+            elif not self.exchange:
+                self._lagrangian_bcs(patch, m, mass, mom, eng, b)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
             if self.conserve_energy:
@@ -531,20 +528,6 @@ class IceTasks:
         if self.conserve_energy and len(matls) > 1 and not self.exchange:
             self._share_total_energy(patch, matls, new_dw, tuple(masses), tuple(moms), tuple(engs), tuple(tots))
 
-    def _one_material_exchange(self, patch, b, m, mass, mom, eng):
-        """Uintah's one-material exchange task (ScalarExch::addExch_Vel_Temp_CC_1matl): the
-        Lagrangian velocity and temperature take their boundary conditions in the extra cells
-        (the new values' images: symmetry, zero gradient), then mom_L_ME = m u and
-        int_eng_L_ME = m cv T everywhere. The advection's limiter reads those extra cells; with
-        the old step's values there, cells next to walls drifted from sus (1e-7 in a step)."""
-        vel = self._scratch("vel_1matl", mom.shape)
-        temp = self._scratch("temp_1matl", eng.shape)
-        cv = self.cvs[m]
-        K.lagrangian_to_primitive(mass, mom, eng, cv, vel, temp, b.olo, b.ohi)
-        self.bcs.velocity(patch, vel, m, b)
-        self.bcs.scalar(patch, temp, "Temperature", m, b)
-        K.primitive_to_lagrangian(mass, vel, temp, cv, mom, eng, b.olo, b.ohi)
-
     def _share_total_energy(self, patch, matls, new_dw, masses, moms, engs, tots):
         """tot_eng_L_ME_CC of several materials: each one's m (e + |u|^2/2) after the exchange plus
         its m cv share of what the mixture's conserved total energy (tots) says is missing."""
@@ -563,10 +546,16 @@ class IceTasks:
         vs = lambda arrs: tuple(v(x) for x in arrs)
         K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
                          vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
-        for m, mom, mass in zip(matls, mom_out, get(I.mass_L_CC)):
-            self.bcs.inlet_momentum(patch, mom, mass, m, b)
+        for m, mass, mom, eng in zip(matls, get(I.mass_L_CC), mom_out, eng_out):
+            if m in self.matls:                # fluids (MPMICE: not the solids)
+                self._lagrangian_bcs(patch, m, mass, mom, eng, b)
         if self.conserve_energy:
             self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
+
+    def _lagrangian_bcs(self, patch, m, mass, mom, eng, b):
+        """mom_L_ME_CC and int_eng_L_ME_CC in the extra cells from u and T with every face's
+        conditions, as Uintah's exchange task ends (BoundaryConditions.lagrangian_extra_cells)."""
+        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, self.cvs[m], m, b, self.dims)
 
     # -- step 11: specific volume (eq. 40) --------------------------------------------------------
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
