@@ -171,4 +171,8 @@ def test_tiny_edge_masses_need_musl(tmp_path):
         "<interpolator>linear</interpolator>", "<interpolator>linear</interpolator><stress_update>usl</stress_update>")
     ctl, da = run(text, tmp_path)
     t, E = energy(da)
-    assert np.max(np.abs(E / E[0] - 1)) > 0.045
+    # the energy sums now have a line every step; with USL a few steps' sums are not finite
+    # (edge nodes' tiny masses), which the output steps never sampled: compared where finite
+    finite = np.isfinite(E)
+    assert finite.mean() > 0.9
+    assert np.max(np.abs(E[finite] / E[0] - 1)) > 0.045
