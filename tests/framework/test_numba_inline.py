@@ -1,0 +1,59 @@
+"""framework.numba_inline: numba's IR inlining with one deepcopy memo per callee copy gives the
+same kernels and copies far fewer IR variables."""
+import numpy as np
+from numba import njit
+from numba.core import ir
+
+import framework.numba_inline as numba_inline
+
+
+def _helpers():
+    @njit(inline="always")
+    def leaf(x, k):
+        if x > k:
+            return x - k
+        elif x < -k:
+            return x + k
+        return 0.0
+
+    @njit(inline="always")
+    def mid(x):
+        return leaf(x, 1.0) + leaf(x, 2.0) * leaf(x, 3.0) - leaf(2 * x, 0.5)
+
+    @njit
+    def kernel(a):
+        s = 0.0
+        for v in a:
+            s += mid(v) + mid(-v) * mid(0.5 * v)
+        return s
+    return kernel
+
+
+def _compile_counting_var_copies(enabled, monkeypatch):
+    count = [0]
+    original = ir.Var.__deepcopy__
+
+    def counting(self, memo):
+        count[0] += 1
+        return original(self, memo)
+
+    monkeypatch.setattr(ir.Var, "__deepcopy__", counting)
+    monkeypatch.setattr(numba_inline, "ENABLED", enabled)
+    kernel = _helpers()
+    a = np.linspace(-4.0, 4.0, 101)
+    value = kernel(a)
+    monkeypatch.undo()
+    return value, count[0], kernel.inspect_asm(kernel.signatures[0])
+
+
+def test_shared_memo_same_kernel_fewer_copies(monkeypatch):
+    import components  # noqa: F401  (installs the patch as every run does)
+    assert getattr(numba_inline._icc.InlineWorker.inline_ir, "_pysus_shared_memo", False)
+    plain, plain_copies, plain_asm = _compile_counting_var_copies(False, monkeypatch)
+    shared, shared_copies, shared_asm = _compile_counting_var_copies(True, monkeypatch)
+    assert shared == plain
+    # the same machine code but for the names numba numbers per compilation
+    strip = lambda s: [ln for ln in s.splitlines() if "kernel" not in ln and "leaf" not in ln
+                       and "mid" not in ln and ".file" not in ln and "_ZN" not in ln]
+    assert strip(shared_asm) == strip(plain_asm)
+    assert shared_copies * 3 < plain_copies, (shared_copies, plain_copies)
