@@ -38,6 +38,7 @@ from .turbulence import read_turbulence
 from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .lodi import LodiTasks
+from .specific_heat import read_specific_heat_model
 from .tasks import IceTasks
 
 G = Ghost.AROUND_CELLS
@@ -79,6 +80,7 @@ class Material:
         self.tiny_rho = props["tiny_rho"]
         self.is_surrounding = props["isSurroundingMatl"]
         self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
+        self.cv_model = None            # <SpecificHeatModel> (specific_heat.py)
 
 
 LIMITERS = {"vanLeer": VAN_LEER, "BarthJespersen": EXTREMA}    # <advection limiter="...">
@@ -195,6 +197,20 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.read_implicit(ice, root)
         if self.lodi is not None:
             self._check_lodi(n)
+        self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]
+        if self.cv_matls:
+            self._check_cv_models(n)
+
+    def _check_cv_models(self, n):
+        """<SpecificHeatModel> is available for explicit ICE alone with one material and no LODI
+        faces (Uintah's also with several, implicit and LODI)."""
+        where = self.materials[self.cv_matls[0]].cv_model.node
+        if n > 1:
+            raise where.error(f"<SpecificHeatModel> is available with one ICE material; this deck has {n}")
+        if self.implicit:
+            raise where.error("<SpecificHeatModel> is available with explicit ICE only (no <ImplicitSolver>)")
+        if self.lodi is not None:
+            raise where.error("<SpecificHeatModel> is not available with LODI boundaries")
 
     def _check_lodi(self, n):
         """LODI faces are available for explicit ICE alone with one material (Uintah's also with
@@ -245,14 +261,18 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
         models = self._read_viscosity_models(node, props)
+        cv_model = read_specific_heat_model(node)
+        if cv_model is not None and self.n_before:
+            raise cv_model.node.error("<SpecificHeatModel> is available for ICE alone, not in MPMICE")
         objects = []
         for go in node.children("geom_object"):
             objects.append((geo.read_object(go), go.read(GEOM)))
-            self._check_initial_state(go, objects[-1][1], eos, props)
+            self._check_initial_state(go, objects[-1][1], eos, props, cv_model)
         if not objects:
             raise node.error("material has no <geom_object> (initial condition)")
         mat = Material(name, eos, props, objects)
         mat.viscosity_models = models
+        mat.cv_model = cv_model
         return mat
 
     def _read_viscosity_models(self, node, props):
@@ -287,7 +307,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                            "(its per-cell diffusion step limit); accepted: the models with dynamic_viscosity 0")
         return [m for _, m in sorted(out, key=lambda e: e[0])]
 
-    def _check_initial_state(self, go, values, eos, props):
+    def _check_initial_state(self, go, values, eos, props, cv_model=None):
         """Say when <pressure> is not the EOS pressure at <density> and <temperature>: like
         Uintah, the run starts from those two."""
         if not (values["volumeFraction"] == -1.0 or 0.0 <= values["volumeFraction"] <= 1.0):
@@ -296,8 +316,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             return
         params = np.zeros(MAX_PARAMS)
         params[:len(eos.params())] = eos.params()
-        p_eos = float(eos_press_eos(eos.code, params, values["density"],
-                                    values["temperature"], props["specific_heat"], props["gamma"])[0])
+        cv = props["specific_heat"] if cv_model is None else cv_model.cv(values["temperature"])
+        p_eos = float(eos_press_eos(eos.code, params, values["density"], values["temperature"], cv, props["gamma"])[0])
         p_deck = values["pressure"]
         if abs(p_eos - p_deck) > 1e-6 * max(abs(p_deck), abs(p_eos)) and _rank() == 0:
             node = go.child("pressure")
@@ -337,19 +357,24 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
 
     # -- scheduling -----------------------------------------------------------------------
     def schedule_initialize(self, level, sched):
-        sched.add_task(Task("ICE::actuallyInitialize", self.initialize, self.matls)
-                       .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC)
-                       .computes(I.speedSound_CC).computes(I.press_CC, matls=[0]))
+        t = Task("ICE::actuallyInitialize", self.initialize, self.matls) \
+            .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC) \
+            .computes(I.speedSound_CC).computes(I.press_CC, matls=[0])
+        if self.cv_matls:
+            t.computes(I.specific_heat, matls=self.cv_matls)
+        sched.add_task(t)
         for model in self.scalars:
             model.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_implicit if self.implicit else self.stable_timestep
         g = (G, 1) if self.conservative_dt and not self.implicit else ()     # the swept volume reads neighbours
-        sched.add_task(Task("ICE::computeStableTimestep", fn, self.matls)
-                       .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g)
-                       .requires(NEW, I.speedSound_CC, *g)
-                       .computes(L.delT))
+        t = Task("ICE::computeStableTimestep", fn, self.matls) \
+            .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g) \
+            .requires(NEW, I.speedSound_CC, *g).computes(L.delT)
+        if self.cv_matls:
+            t.requires(NEW, I.specific_heat, matls=self.cv_matls)
+        sched.add_task(t)
 
     def schedule_time_advance(self, level, sched):
         m0 = [0]
@@ -360,10 +385,16 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         if lodi:
             sched.add_task(Task("ICE::maxMach_on_Lodi_BC_Faces", self.max_mach_faces, self.matls)
                            .requires(OLD, I.vel_CC).requires(OLD, I.speedSound_CC).computes(I.maxMach_faces))
+        cvm = self.cv_matls
+        if cvm:     # Uintah's computeThermoTransportProperties: cv(T) of the step's start
+            sched.add_task(Task("ICE::computeSpecificHeat", self.specific_heat_field, cvm)
+                           .requires(OLD, I.temp_CC).computes(I.specific_heat))
         t = Task("ICE::computeEquilibrationPressure", self.equilibration_pressure, self.matls) \
             .requires(OLD, I.rho_CC).requires(OLD, I.temp_CC).requires(OLD, I.sp_vol_CC) \
             .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \
             .computes(I.speedSound_CC)
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
         if many:
             t.requires(OLD, I.press_CC, matls=m0)
         if lodi:
@@ -471,6 +502,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.viscous_src_CC)
         if self.conduction:
             t.requires(NEW, I.heatCond_src_CC)
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMomentumSource", self.momentum_source, self.matls)   # only when saved
                        .requires(NEW, I.mom_L_CC).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC)
@@ -514,6 +547,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, model.f_L, G, gadv, matls=[model.matl]).computes(model.f, matls=[model.matl])
         if lodi:
             t.requires(NEW, I.press_CC, matls=m0).requires(NEW, I.speedSound_CC).requires(NEW, I.maxMach_faces)
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
         sched.add_task(t)
         if lodi:
             t = Task("ICE::LODI_Li", self.lodi_li, self.matls) \
@@ -530,6 +565,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             .computes(I.TotalMass).computes(I.KineticEnergy).computes(I.TotalIntEng).computes(I.TotalMomentum)
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d])
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", self.compute_mach, self.matls)
                        .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))

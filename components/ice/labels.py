@@ -16,6 +16,9 @@ temp_CC = L.create("temp_CC", CC)
 sp_vol_CC = L.create("sp_vol_CC", CC)           # specific volume 1/rho_micro
 press_CC = L.create("press_CC", CC)             # material 0
 
+# <SpecificHeatModel> (specific_heat.py): cv(temp_CC) of the step, per cell
+specific_heat = L.create("specific_heat", CC)
+
 # step 2: equilibration (eq. 13)
 press_equil_CC = L.create("press_equil_CC", CC)
 vol_frac_CC = L.create("vol_frac_CC", CC)
