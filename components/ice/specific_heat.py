@@ -173,11 +173,12 @@ def specific_heat_of(code, params, T):
 
 
 @njit(cache=True)
-def specific_heat_fill(temp, out, code, params):
-    """out = cv(temp) in every cell of the arrays (extra cells included)."""
-    t, o = temp.reshape(-1), out.reshape(-1)
-    for n in range(t.size):
-        o[n] = specific_heat_of(code, params, t[n])
+def specific_heat_fill(temp, out, code, params, lo, hi):
+    """out = cv(temp) in the cells lo..hi (a patch's own cells, extra cells included)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                out[i, j, k] = specific_heat_of(code, params, temp[i, j, k])
 
 
 class SpecificHeatModel:
@@ -193,8 +194,11 @@ class SpecificHeatModel:
         """cv at one temperature (the initial-state check)."""
         return float(specific_heat_of(self.code, self.params, float(temp)))
 
-    def fill(self, temp, out):
-        specific_heat_fill(np.ascontiguousarray(temp), out, self.code, self.params)
+    def fill(self, temp, out, lo=None, hi=None):
+        """out = cv(temp) in the cells lo..hi (every cell by default)."""
+        lo = np.zeros(3, np.int64) if lo is None else lo
+        hi = np.array(temp.shape[:3], np.int64) if hi is None else hi
+        specific_heat_fill(temp, out, self.code, self.params, lo, hi)
 
 
 def read_specific_heat_model(material):

@@ -205,7 +205,7 @@ class IceTasks:
             eos = self._eos(m)
             if model is not None:           # Uintah's specific_heat at t = 0: cv(T) after T's conditions
                 cv_field = new_dw.allocate(I.specific_heat, m, patch)
-                model.fill(arrs[2], cv_field)
+                model.fill(arrs[2], cv_field, b.olo, b.ohi)
                 eos = (eos[0], eos[1], cv_field, eos[3])
             _speed_sound(arrs[3], arrs[2], arrs[4], *eos)
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
@@ -258,8 +258,10 @@ class IceTasks:
     def specific_heat_field(self, patch, matls, old_dw, new_dw):
         """specific_heat = cv(temp_CC) of the step's start in every cell, extra cells included
         (Uintah's computeThermoTransportProperties with a <SpecificHeatModel>)."""
+        b = self.boxes(patch)
         for m in matls:
-            self._cv_model(m).fill(old_dw.get(I.temp_CC, m, patch), new_dw.allocate(I.specific_heat, m, patch))
+            self._cv_model(m).fill(old_dw.get(I.temp_CC, m, patch), new_dw.allocate(I.specific_heat, m, patch),
+                                   b.olo, b.ohi)
 
     # -- step 2: equilibration pressure (eq. 13) ------------------------------------------------
     def equilibration_pressure(self, patch, matls, old_dw, new_dw):
