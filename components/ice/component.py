@@ -360,8 +360,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         t = Task("ICE::actuallyInitialize", self.initialize, self.matls) \
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC) \
             .computes(I.speedSound_CC).computes(I.press_CC, matls=[0])
-        if self.cv_matls:
-            t.computes(I.specific_heat, matls=self.cv_matls)
+        t.computes(I.specific_heat).computes(I.gamma)
         sched.add_task(t)
         for model in self.scalars:
             model.schedule_initialize(sched)
@@ -386,9 +385,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             sched.add_task(Task("ICE::maxMach_on_Lodi_BC_Faces", self.max_mach_faces, self.matls)
                            .requires(OLD, I.vel_CC).requires(OLD, I.speedSound_CC).computes(I.maxMach_faces))
         cvm = self.cv_matls
-        if cvm:     # Uintah's computeThermoTransportProperties: cv(T) of the step's start
-            sched.add_task(Task("ICE::computeSpecificHeat", self.specific_heat_field, cvm)
-                           .requires(OLD, I.temp_CC).computes(I.specific_heat))
+        # Uintah's computeThermoTransportProperties: cv(T) of the step's start (runs only with a
+        # <SpecificHeatModel> or when specific_heat or gamma is saved)
+        sched.add_task(Task("ICE::computeSpecificHeat", self.specific_heat_field, self.matls)
+                       .requires(OLD, I.temp_CC).computes(I.specific_heat).computes(I.gamma))
         t = Task("ICE::computeEquilibrationPressure", self.equilibration_pressure, self.matls) \
             .requires(OLD, I.rho_CC).requires(OLD, I.temp_CC).requires(OLD, I.sp_vol_CC) \
             .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \

@@ -203,9 +203,8 @@ class IceTasks:
             self.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
             arrs_by_m[m] = arrs[3]
             eos = self._eos(m)
-            if model is not None:           # Uintah's specific_heat at t = 0: cv(T) after T's conditions
-                cv_field = new_dw.allocate(I.specific_heat, m, patch)
-                model.fill(arrs[2], cv_field, b.olo, b.ohi)
+            cv_field = self._thermo_fields(patch, m, arrs[2], new_dw)   # Uintah's: after T's conditions
+            if model is not None:
                 eos = (eos[0], eos[1], cv_field, eos[3])
             _speed_sound(arrs[3], arrs[2], arrs[4], *eos)
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
@@ -256,12 +255,24 @@ class IceTasks:
         new_dw.put_reduction(L.delT, self.cfl * dt)
 
     def specific_heat_field(self, patch, matls, old_dw, new_dw):
-        """specific_heat = cv(temp_CC) of the step's start in every cell, extra cells included
-        (Uintah's computeThermoTransportProperties with a <SpecificHeatModel>)."""
-        b = self.boxes(patch)
+        """specific_heat = cv(temp_CC) of the step's start in every cell, extra cells included, and
+        gamma (Uintah's computeThermoTransportProperties)."""
         for m in matls:
-            self._cv_model(m).fill(old_dw.get(I.temp_CC, m, patch), new_dw.allocate(I.specific_heat, m, patch),
-                                   b.olo, b.ohi)
+            self._thermo_fields(patch, m, old_dw.get(I.temp_CC, m, patch), new_dw)
+
+    def _thermo_fields(self, patch, m, temp, new_dw):
+        """Material m's specific_heat (its model's cv(temp), else <specific_heat>) and gamma
+        (<gamma>, as sus: see specific_heat.py) in a patch's own cells; returns specific_heat."""
+        b = self.boxes(patch)
+        own = tuple(slice(l, h) for l, h in zip(b.olo, b.ohi))
+        cv = new_dw.allocate(I.specific_heat, m, patch)
+        model = self._cv_model(m)
+        if model is None:
+            cv[own] = self.cvs[m]
+        else:
+            model.fill(temp, cv, b.olo, b.ohi)
+        new_dw.allocate(I.gamma, m, patch)[own] = self.gammas[m]
+        return cv
 
     # -- step 2: equilibration pressure (eq. 13) ------------------------------------------------
     def equilibration_pressure(self, patch, matls, old_dw, new_dw):
