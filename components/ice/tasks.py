@@ -101,19 +101,14 @@ class IceTasks:
         """Material m's <SpecificHeatModel> (specific_heat.py), None without one."""
         return getattr(self.materials[m], "cv_model", None)
 
-    def _cv(self, dw, m, patch):
+    def _cv(self, dw, m, patch, view=None):
         """Material m's cv in this step: its <specific_heat>, or with a <SpecificHeatModel> the
-        field specific_heat (one value per cell) that the step computed."""
+        field specific_heat (one value per cell) that the step computed, seen through view (a
+        Boxes.view) when given."""
         if self._cv_model(m) is None:
             return self.cvs[m]
-        return dw.get(I.specific_heat, m, patch)
-
-    def _eos_cells(self, dw, m, patch, view=None):
-        """_eos with the step's cv (_cv), seen through view (a Boxes.view) where it is a field."""
-        cv = self._cv(dw, m, patch)
-        if view is not None and self._cv_model(m) is not None:
-            cv = view(cv)
-        return self.codes[m], self.params[m], cv, self.gammas[m]
+        cv = dw.get(I.specific_heat, m, patch)
+        return cv if view is None else view(cv)
 
     def _faces(self, dw, labels, m, patch):
         """The three face arrays of a material (a 1-element dummy for absent directions)."""
@@ -282,7 +277,8 @@ class IceTasks:
             out = [new_dw.allocate(lab, 0, patch) for lab in (I.sp_vol_CC, I.vol_frac_CC, I.speedSound_CC)]
             v = b.view
             K.equilibrate_one(v(old_dw.get(I.rho_CC, 0, patch)), v(old_dw.get(I.temp_CC, 0, patch)), v(out[0]),
-                              v(peq), v(out[1]), v(out[2]), *self._eos_cells(new_dw, 0, patch, v), b.v_olo, b.v_ohi)
+                              v(peq), v(out[1]), v(out[2]), self.codes[0], self.params[0],
+                              self._cv(new_dw, 0, patch, v), self.gammas[0], b.v_olo, b.v_ohi)
         else:
             get = lambda lab: tuple(old_dw.get(lab, m, patch) for m in matls)
             new = lambda lab: tuple(new_dw.allocate(lab, m, patch) for m in matls)
@@ -550,7 +546,7 @@ class IceTasks:
                          v(new_dw.get(I.sp_vol_CC, m, patch)), v(new_dw.get(I.speedSound_CC, m, patch)), v(press),
                          v(delP), *(v(pf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
                          v(mass), v(mom), v(eng), b.v_olo, b.v_ohi, b.v_lo, b.v_hi, b.vol, b.v_dx, dt,
-                         self._eos_cells(new_dw, m, patch, v)[2], self.gravity, self.use_gravity, self.codes[m],
+                         self._cv(new_dw, m, patch, v), self.gravity, self.use_gravity, self.codes[m],
                          self.params[m], self.gammas[m], b.perm)
             sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
             if self.viscous:
@@ -572,8 +568,7 @@ class IceTasks:
                                           pf[0], pf[1], pf[2], uf[0], uf[1], uf[2],
                                           b.sh[0], b.sh[1], b.sh[2], self.dims, tot, b.olo, b.ohi, b.lo, b.hi,
                                           b.vol, patch.level.dx, dt, self._cv(new_dw, m, patch), self.gravity,
-                                          self.use_gravity,
-                                          self.codes[m], self.params[m])
+                                          self.use_gravity, self.codes[m], self.params[m])
                 if self.conduction:
                     tot[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
                 tots.append(tot)
@@ -679,7 +674,7 @@ class IceTasks:
                       b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm])
             scratch = (self._scratch("q", (nq,) + shape), self._scratch("acc", (nq,) + shape),
                        self._scratch("buf", (nq, shape[2] + 1)))
-            out = (b.vol, self._eos_cells(new_dw, m, patch, v)[2], v(rho), v(vel), v(temp), v(spv), v(tot_o), scal_o)
+            out = (b.vol, self._cv(new_dw, m, patch, v), v(rho), v(vel), v(temp), v(spv), v(tot_o), scal_o)
             if self.second_order and self.limiter == A.EXTREMA:
                 A.advect_extrema(*common, self.compatible_fluxes, *scratch,
                                  self._scratch("grad", (3, nq) + shape), self._scratch("rc", (3,) + shape), *out)
