@@ -141,6 +141,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         mp = root.child("MaterialProperties", required=True)
         icen = mp.child("ICE", required=True)
         geo = getattr(root, "_geometry_reader", None) or GeometryReader(level)   # MPMICE shares one
+        self.n_all = self.n_before + len(icen.children("material"))     # every material of the problem
         self.materials = [self._read_material(m, geo) for m in icen.children("material")]
         if not self.materials:
             raise icen.error("no <material>: ICE needs at least one")
@@ -265,15 +266,39 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         if cv_model is not None and self.n_before:
             raise cv_model.node.error("<SpecificHeatModel> is available for ICE alone, not in MPMICE")
         objects = []
-        for go in node.children("geom_object"):
-            objects.append((geo.read_object(go), go.read(GEOM)))
+        gos = node.children("geom_object")
+        for go in gos:
+            objects.append((geo.read_object(go, outside_ok=True), go.read(GEOM)))
             self._check_initial_state(go, objects[-1][1], eos, props, cv_model)
         if not objects:
             raise node.error("material has no <geom_object> (initial condition)")
+        self._check_absent(node, geo, objects, gos)
         mat = Material(name, eos, props, objects)
         mat.viscosity_models = models
         mat.cv_model = cv_model
         return mat
+
+    def _check_absent(self, node, geo, objects, gos):
+        """Uintah's idiom for a material that starts with no mass (a reaction's product): its
+        geometry objects all lie outside the domain. With other materials present it is
+        accepted, and the material starts as Uintah's initializeCells leaves it in cells no
+        object covers: volume fraction 0 plus the trace tiny_rho, temperature and velocity
+        from its first object. An object outside the domain is refused where it is likely a
+        mistake: the problem's only material, or a material with another object inside."""
+        if geo.level is None:
+            return
+        out = [geo.outside(piece) for piece, _ in objects]
+        if not any(out):
+            return
+        n_all = getattr(self, "n_all", 1)
+        k = out.index(True)
+        if all(out) and n_all > 1:
+            return
+        hint = (" (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
+                "product, only where other materials fill the domain)" if n_all == 1 else
+                " (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
+                "product; this one has another object inside the domain)")
+        geo.check_overlap(objects[k][0], gos[k], hint)
 
     def _read_viscosity_models(self, node, props):
         """<dynamicViscosityModels>: Uintah's Sutherland (a, b) and SpongeLayer (maxDynamicViscosity

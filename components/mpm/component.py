@@ -151,6 +151,12 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if not self.materials:
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
+        smooth = [o for m in self.materials for o in m.objects if o.get("smooth")]
+        if smooth and self.kind != "linear":
+            raise smooth[0]["node"].child("smoothcyl").error(
+                f"a <smoothcyl>'s particles with <interpolator>{self.kind} are not implemented: Uintah gives each a "
+                "size matrix turned with its ring sector, which pysus's p.size (three half-widths) cannot hold; "
+                "accepted: <interpolator>linear")
         self.has_membrane = any(m.is_membrane for m in self.materials)
         # fluid points with artificial viscosity: its scales are reduced over the level
         self.av_matls = [i for i, m in enumerate(self.materials)
