@@ -355,3 +355,24 @@ def scalar_upper_face_flux(rho, f, vol, face_vel, d, lo, hi, shift):
             i, j, k = c[0], c[1], c[2]
             total += face_vel[i - shift[0], j - shift[1], k - shift[2]] * (rho[i, j, k] * vol * f[i, j, k])
     return total
+
+
+@njit(cache=True)
+def move_tracers(x_old, disp_old, vel_cc, anchor, dx, cc_low, dom_lo, dom_hi, dt, x_new, disp_new, vel_new, cells):
+    """Tracer particles carried by the cell velocity at the start of the step (Uintah's
+    TracerParticles::moveParticles): x+ = x + u_cell dt, the displacement and velocity with it;
+    a particle that leaves the closed domain box gets x+ = NaN (relocation deletes it). cells:
+    the particles' local cell indices in the CC arrays (for the cloned cell values)."""
+    for p in range(x_old.shape[0]):
+        for d in range(3):
+            cells[p, d] = int(np.floor((x_old[p, d] - anchor[d]) / dx[d])) - cc_low[d]
+        u = vel_cc[cells[p, 0], cells[p, 1], cells[p, 2]]
+        out = False
+        for d in range(3):
+            x_new[p, d] = x_old[p, d] + u[d] * dt
+            disp_new[p, d] = disp_old[p, d] + (x_new[p, d] - x_old[p, d])
+            vel_new[p, d] = u[d]
+            out = out or x_new[p, d] < dom_lo[d] or x_new[p, d] > dom_hi[d]
+        if out:
+            for d in range(3):
+                x_new[p, d] = np.nan
