@@ -1,0 +1,95 @@
+"""Uintah's mass_momentum_energy_src and TracerParticles models (components/models) on ICE,
+against Uintah's sus.
+
+The deck is tests/ice/uintah_reference/stagnationPoint_explicit.ups (Uintah's stagnationPoint.ups
+made explicit, with a heater, a timeStop and particle injection; its comment says how). The sus
+values in data/sus_stagnationPoint.npz are small extracts of sus's output on the same deck
+without the pysus-only advection attributes (limiter="BarthJespersen" dissipationHeating="false",
+which select Uintah's scheme in pysus), one rank:
+    sus stagnationPoint_explicit.ups
+read with framework.uintah_uda.UintahArchive: the time after each step, press_CC min/max, the x
+and y ranges of vel_CC, temp_CC max, the .dat files of TotalMom_src and TotalEng_src, the
+particle count after each step, and every 20th tracer (by p.particleID) after step 6.
+"""
+import pathlib
+
+import numpy as np
+import pytest
+
+from framework.problemspec import InputError
+
+DECK = pathlib.Path(__file__).parents[1] / "ice" / "uintah_reference" / "stagnationPoint_explicit.ups"
+DATA = pathlib.Path(__file__).parent / "data"
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    tmp = tmp_path_factory.mktemp("stagnation")
+    c = Controller(str(DECK), quiet=True, filebase=str(tmp / "run.uda"))
+    c.run()
+    return DataArchive(c.archiver.dir), np.load(DATA / "sus_stagnationPoint.npz")
+
+
+def test_flow_as_uintah(runs):
+    """Four fans (velocity held at 2 m/s), one of them a 400 K heater, one stopping at t = 5e-6:
+    delT, pressure, velocity and temperature of 6 steps equal sus's to round-off (measured:
+    times 3e-16, press 5e-15, vel 5e-13 of the fan speed)."""
+    da, sus = runs
+    assert np.allclose(da.times[1:], sus["times"], rtol=1e-14, atol=0)
+    for k in range(len(sus["times"])):
+        p = da.read("press_CC", 0, k + 1)[0]
+        v = da.read("vel_CC", 0, k + 1)[0][..., :2].reshape(-1, 2)
+        assert np.allclose([p.min(), p.max()], sus["press_range"][k], rtol=1e-13, atol=0), k
+        assert np.allclose([v.min(0), v.max(0)], sus["vel_xy_range"][k], rtol=0, atol=1e-11), k
+        assert da.read("temp_CC", 0, k + 1)[0].max() == pytest.approx(sus["temp_max"][k], rel=1e-13)
+
+
+def test_source_totals_as_uintah(runs):
+    """TotalMom_src and TotalEng_src are sus's divided by 3: Uintah's sum also counts the two
+    extra-cell layers of the collapsed z direction of this 2D grid (the fans reach them), which
+    a pysus 2D grid does not have; the sources in the cells that exist are the same."""
+    da, sus = runs
+    mom = da.reduction("TotalMom_src")[1]
+    eng = da.reduction("TotalEng_src")[1]
+    assert np.allclose(3.0 * mom, sus["TotalMom_src"], rtol=1e-10, atol=1e-16)     # sums in another order
+    assert np.allclose(3.0 * eng, sus["TotalEng_src"], rtol=1e-12, atol=1e-13)
+    assert eng[0] > 1.0 and mom[1].tolist() == [0.0, 0.0, 0.0]     # heater on; fans at speed after step 1
+
+
+def test_tracers_as_uintah(runs):
+    """2560 tracers seeded at t = 0 (8 per cell of the four fans), 80 more per injecting fan
+    in steps 2 and 5: the count after every step, and the IDs, positions, displacements,
+    velocities and cloned press_CC / scalar-f of every 20th particle after step 6 equal sus's
+    (positions to 1e-16 m: the same random points, the same motion; velocities 5e-12 m/s)."""
+    da, sus = runs
+    counts = [len(da.particles(0, k + 1)["p.particleID"]) for k in range(len(sus["times"]))]
+    assert counts == sus["n_particles"].tolist() == [2560, 2720, 2720, 2720, 2880, 2880]
+    P = da.particles(0, -1)
+    order = np.argsort(P["p.particleID"])[::20]
+    assert np.array_equal(P["p.particleID"][order], sus["ids"])
+    assert np.any((sus["ids"] & 0xFFFF) >= 8)                    # some of them were injected
+    assert np.allclose(P["p.x"][order], sus["x"], rtol=0, atol=1e-15)
+    assert np.allclose(P["p.displacement"][order], sus["disp"], rtol=0, atol=1e-15)
+    assert np.allclose(P["p.velocity"][order], sus["pvel"], rtol=0, atol=1e-10)      # |u| up to 6 m/s
+    assert np.allclose(P["p.clone-press_CC"][order], sus["clone_press"], rtol=1e-13, atol=0)
+    assert np.allclose(P["p.clone-scalar-f"][order], sus["clone_f"], rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("old, new, words", [
+    ("<density_src>      0               </density_src>", "<density_src> 1.2 </density_src>",
+     "mass source"),
+    ('<CCVarLabel label="press_CC"/>', '<CCVarLabel label="vel_CC"/>', "cell-centred scalar"),
+    ("<cloneVariables>", '<scalar name="s"><initialValue>1</initialValue></scalar><cloneVariables>',
+     "<scalar> variables are not available"),
+])
+def test_bad_model_input(tmp_path, old, new, words):
+    """What the models do not accept is refused at start-up with the tag and what is accepted."""
+    from framework.controller import Controller
+    text = DECK.read_text()
+    assert old in text
+    deck = tmp_path / "bad.ups"
+    deck.write_text(text.replace(old, new, 1))
+    with pytest.raises(InputError, match=words):
+        Controller(str(deck), quiet=True, filebase=str(tmp_path / "bad.uda"))
