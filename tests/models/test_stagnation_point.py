@@ -93,3 +93,26 @@ def test_bad_model_input(tmp_path, old, new, words):
     deck.write_text(text.replace(old, new, 1))
     with pytest.raises(InputError, match=words):
         Controller(str(deck), quiet=True, filebase=str(tmp_path / "bad.uda"))
+
+
+def test_tracers_restart_equals_straight_run(tmp_path):
+    """A restart at step 3 (between the injections of steps 2 and 5) gives the run that never
+    stopped: the particles, their cell counts nPPC and the injection clock are in the checkpoint."""
+    from tests.conftest import pysus
+    from framework.archiver import DataArchive
+    deck = tmp_path / "stag.ups"
+    deck.write_text(DECK.read_text().replace('<save label="TotalEng_src"/>', '<save label="TotalEng_src"/>'
+                                             '<checkpoint timestepInterval="3" cycle="2"/>'))
+    straight = tmp_path / "straight.uda"
+    r = pysus(deck, "--filebase", straight)
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = pysus("-restart", straight, "-t", 0, "--filebase", tmp_path / "again.uda")
+    assert r.returncode == 0, r.stderr[-2000:]
+    a, b = DataArchive(straight), DataArchive(tmp_path / "again.uda")
+    assert a.times[-1] == b.times[-1]
+    assert np.array_equal(a.read("vel_CC", 0, -1)[0], b.read("vel_CC", 0, -1)[0])
+    pa, pb = a.particles(0, -1), b.particles(0, -1)
+    assert len(pa["p.particleID"]) == 2880
+    oa, ob = np.argsort(pa["p.particleID"]), np.argsort(pb["p.particleID"])
+    for lab in pa:
+        assert np.array_equal(pa[lab][oa], pb[lab][ob]), lab
