@@ -212,29 +212,19 @@ class TracerParticles:
         centre lies in region r, region by region, cells with i fastest (Uintah's
         distributeParticles and initializeCoreVariables); count (nPPC) is advanced."""
         lv = patch.level
-        dx = lv.dx
         cc_low = np.array(patch.low_index(CC), np.int64)
         own = patch.owned(CC)
-        ext_lo, ext_hi = lv.anchor + np.array(own[0]) * dx, lv.anchor + np.array(own[1]) * dx
+        ext_lo, ext_hi = lv.anchor + np.array(own[0]) * lv.dx, lv.anchor + np.array(own[1]) * lv.dx
         xs, ids = [], []
         for region, npc in zip(regions, per_cell):
-            if npc <= 0:
-                continue
             blo, bhi = np.maximum(region.box[0], ext_lo), np.minimum(region.box[1], ext_hi)
-            if np.any(blo >= bhi):
+            if npc <= 0 or np.any(blo >= bhi):
                 continue
             cells = _interior_cells(patch)
-            centre = lv.anchor + dx * cells + dx * 0.5           # Uintah's Level::getCellPosition
-            inside = region.piece.inside(centre)
-            for c, cc in zip(cells[inside], centre[inside]):
-                rng = np.random.RandomState(int(c.sum()) & 0xFFFFFFFF)
-                r = rng._bit_generator.random_raw(3 * npc).reshape(npc, 3) * (1.0 / 4294967295.0)
-                xs.append((cc - dx / 2.0) + r * dx)
-                local = tuple(c - cc_low)
-                first = int(count[local])
-                cell_id = (int(c[0]) << 16) | (int(c[1]) << 32) | (int(c[2]) << 48)
-                ids.append(cell_id | np.arange(first, first + npc, dtype=np.int64))
-                count[local] = first + npc
+            cells = cells[region.piece.inside(lv.anchor + lv.dx * cells + lv.dx * 0.5)]    # Uintah's cell centres
+            x, i = np.empty((len(cells) * npc, 3)), np.empty(len(cells) * npc, np.int64)
+            K.seed_tracers(cells, npc, lv.anchor, lv.dx, cc_low, count, x, i)
+            xs.append(x), ids.append(i)
         if not xs:
             return np.zeros((0, 3)), np.zeros(0, np.int64)
         return np.concatenate(xs), np.concatenate(ids)
