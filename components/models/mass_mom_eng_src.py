@@ -38,7 +38,6 @@ from framework.variables import VarType
 from . import labels as ML
 from .simple_burn import _material
 
-CC, R = VarType.CC, VarType.REDUCTION
 ALGORITHM = {
     "velocity_src": Param("vector"),
     "density_src": Param("float"),
@@ -46,9 +45,6 @@ ALGORITHM = {
     "timeStart": Param("float", 0.0),
     "timeStop": Param("float", 9e99),
 }
-totalMass_src = L.create("TotalMass_src", R, reduction="sum")
-totalMom_src = L.create("TotalMom_src", R, (3,), reduction="sum")
-totalEng_src = L.create("TotalEng_src", R, reduction="sum")
 # the smallest volume fraction of the material that a region acts on (Uintah's)
 MIN_VOL_FRAC = 0.001
 
@@ -88,7 +84,7 @@ class MassMomEngSrc:
                        .requires(OLD, L.simTime).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC)
                        .requires(OLD, I.temp_CC).requires(NEW, I.vol_frac_CC)
                        .computes(ML.modelMom_src).computes(ML.modelEng_src)
-                       .computes(totalMass_src).computes(totalMom_src).computes(totalEng_src))
+                       .computes(ML.totalMass_src).computes(ML.totalMom_src).computes(ML.totalEng_src))
 
     def lagrangian_requires(self, t):
         """What ICE::computeLagrangianValues reads to add the sources."""
@@ -123,9 +119,9 @@ class MassMomEngSrc:
                 eng_o[hit] += region.temperature * mh * cv * vf[hit] - cv * temp[hit] * mh
             totals += mom_o[hit].sum(axis=0)
             total_eng += float(eng_o[hit].sum())
-        new_dw.put_reduction(totalMass_src, 0.0)
-        new_dw.put_reduction(totalMom_src, totals)
-        new_dw.put_reduction(totalEng_src, total_eng)
+        new_dw.put_reduction(ML.totalMass_src, 0.0)
+        new_dw.put_reduction(ML.totalMom_src, totals)
+        new_dw.put_reduction(ML.totalEng_src, total_eng)
 
     def add_lagrangian(self, patch, m, mass_L, mom_L, eng_L, old_dw, new_dw):
         """ICE::computeLagrangianValues with model sources (interior cells): (m u)_L += modelMom_src,

@@ -37,7 +37,7 @@ import numpy as np
 
 from components.ice import labels as I
 from framework import labels as L
-from framework.task import NEW, OLD, Task
+from framework.task import OLD, Task
 from framework.variables import VarType
 
 from . import kernels as K
