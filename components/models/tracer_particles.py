@@ -4,6 +4,10 @@
       <material> name </material>
       <timeStart> s </timeStart> <timeStop> s </timeStop>          (default: always)
       <cloneVariables> <CCVarLabel label="press_CC"/> ... </cloneVariables>
+      <scalar name="p.age">                                      (optional, any number)
+        <initialValue> 1 </initialValue>
+        <exponentialDecay> <c1/> <c2 type="constant"><value/></c2> <c3/> </exponentialDecay>   (optional)
+      </scalar>
       <tracer name="f">
         <initialization>
           <geom_object> pieces <particlesPerCell> n </particlesPerCell> </geom_object> ...
@@ -29,7 +33,10 @@ domain is deleted. An interior source adds floor(particlesPerCellPerSecond * ela
 particles to each of its cells once that number is at least one, elapsed being the time since
 it last added some (a reduction carried in the warehouse, so a restart continues it); the new
 particles start with zero displacement and velocity and the cell values of the clones.
-Particle <scalar> variables (with exponential decay) are not available.
+A <scalar name="s"> is a particle variable s that starts at <initialValue> (on every new
+particle too) and, with <exponentialDecay>, decays each step as s *= exp(-(c1 c2 + c3) dt) while
+s_totalDecay accumulates c2 dt (Uintah's); c2 read from a table (type="variable") is not
+available.
 """
 from __future__ import annotations
 
@@ -69,6 +76,35 @@ class Region:
         self.box = (np.asarray(lo, float), np.asarray(hi, float))
 
 
+class Scalar:
+    """One <scalar name="s">: its particle labels (s, and s_totalDecay with a decay), initial value
+    and decay rate c1 c2 + c3."""
+
+    def __init__(self, node):
+        name = node.attr("name")
+        if not name:
+            raise node.error('the scalar needs a name: <scalar name="p.age">')
+        self.label, self.pre = _pair(name)
+        self.initial = node.get("initialValue", "float")
+        self.decay = None
+        ed = node.child("exponentialDecay")
+        if ed is not None:
+            c2 = ed.child("c2", required=True)
+            if c2.attr("type", default="constant", choices=("constant", "variable")) == "variable":
+                raise c2.error('a c2 read from a table (type="variable") is not available; accepted: '
+                               'type="constant" with <value>')
+            self.c1, self.c2 = ed.get("c1", "float"), c2.get("value", "float")
+            self.decay = self.c1 * self.c2 + ed.get("c3", "float", 0.0)
+            self.total, self.total_pre = _pair(name + "_totalDecay")
+
+    def pairs(self):
+        """(final, pre-relocation, value of a new particle) of each of its particle variables."""
+        out = [(self.label, self.pre, self.initial)]
+        if self.decay is not None:
+            out.append((self.total, self.total_pre, 0.0))
+        return out
+
+
 class TracerParticles:
     """One <Model type="TracerParticles">: its material, regions and cloned variables."""
 
@@ -82,10 +118,7 @@ class TracerParticles:
         if tp.get("reinitializeDomain", "bool", False):
             raise tp.child("reinitializeDomain").error("<reinitializeDomain> (restarts) is not available; "
                                                        "accepted: false")
-        if tp.has("scalar"):
-            raise tp.child("scalar").error("tracer particle <scalar> variables are not available; accepted: "
-                                           "<cloneVariables> and the particles' own p.x, p.displacement, "
-                                           "p.velocity, p.particleID")
+        self.scalars = [Scalar(sn) for sn in tp.children("scalar")]
         tracers = tp.children("tracer")
         if len(tracers) != 1:
             raise tp.error(f"{len(tracers)} <tracer> blocks; accepted: one per TracerParticles model (as Uintah)")
@@ -119,7 +152,8 @@ class TracerParticles:
 
     # -- scheduling (the ICE component calls these) ----------------------------------------------
     def _particle_labels(self):
-        return [pX, pDisp, pVelocity, pID] + [c[2] for c in self.clones]
+        return [pX, pDisp, pVelocity, pID] + [c[2] for c in self.clones] + [f for s in self.scalars
+                                                                            for f, _, _ in s.pairs()]
 
     def schedule_initialize(self, sched):
         t = Task(f"TracerParticles::initializeTask_({self.name})", self.initialize, [self.matl]) \
@@ -138,11 +172,15 @@ class TracerParticles:
             t.computes(lab)
         for cc, m, _, pre in self.clones:
             t.requires(OLD, cc, matls=[m]).computes(pre)
+        for sc in self.scalars:
+            for final, pre, _ in sc.pairs():
+                t.requires(OLD, final).computes(pre)
         sched.add_task(t)
 
     def schedule_relocation(self, sched):
-        pre = [pDispPre, pVelocityPre, pIDPre] + [c[3] for c in self.clones]
-        final = [pDisp, pVelocity, pID] + [c[2] for c in self.clones]
+        pairs = [(f, p) for sc in self.scalars for f, p, _ in sc.pairs()]
+        pre = [pDispPre, pVelocityPre, pIDPre] + [c[3] for c in self.clones] + [p for _, p in pairs]
+        final = [pDisp, pVelocity, pID] + [c[2] for c in self.clones] + [f for f, _ in pairs]
         sched.schedule_particle_relocation(pXpre, pre, pX, final, [self.matl], id_label=pID)
 
     # -- tasks -----------------------------------------------------------------------------------
@@ -160,6 +198,9 @@ class TracerParticles:
         new_dw.put(pID, m, patch, ids)
         for _, _, lab, _ in self.clones:
             new_dw.put(lab, m, patch, np.zeros(n))
+        for sc in self.scalars:
+            for final, _, value in sc.pairs():
+                new_dw.put(final, m, patch, np.full(n, value))
         new_dw.put_reduction(self.elapsed, np.zeros(self.elapsed.shape))
 
     def move_task(self, patch, matls, old_dw, new_dw):
@@ -180,6 +221,13 @@ class TracerParticles:
         ci = tuple(cells.T)
         clones = [old_dw.get(cc, mc, patch)[ci] for cc, mc, _, _ in self.clones]
         ids = old_dw.get(pID, m, patch)
+        scalar_values = []                    # the scalars: s, s_totalDecay carried, decayed
+        for sc in self.scalars:
+            s = old_dw.get(sc.label, m, patch).copy()
+            if sc.decay is None:
+                scalar_values.append(s)
+                continue
+            scalar_values += [s * np.exp(-sc.decay * dt), old_dw.get(sc.total, m, patch) + sc.c2 * dt]
         count = new_dw.allocate(nPPC, m, patch, fill=None)
         count[...] = old_dw.get(nPPC, m, patch)
         elapsed = np.array(old_dw.get_reduction(self.elapsed), dtype=np.float64).reshape(self.elapsed.shape)
@@ -198,12 +246,16 @@ class TracerParticles:
                 vel = np.concatenate([vel, np.zeros((len(x_add), 3))])
                 clones = [np.concatenate([c, old_dw.get(cc, mc, patch)[c_add]])
                           for c, (cc, mc, _, _) in zip(clones, self.clones)]
+                new = [v for sc in self.scalars for _, _, v in sc.pairs()]
+                scalar_values = [np.concatenate([a, np.full(len(x_add), v)]) for a, v in zip(scalar_values, new)]
         new_dw.put(pXpre, m, patch, x)
         new_dw.put(pDispPre, m, patch, disp)
         new_dw.put(pVelocityPre, m, patch, vel)
         new_dw.put(pIDPre, m, patch, ids.copy())
         for c, (_, _, _, pre) in zip(clones, self.clones):
             new_dw.put(pre, m, patch, c)
+        for a, (_, pre, _) in zip(scalar_values, [q for sc in self.scalars for q in sc.pairs()]):
+            new_dw.put(pre, m, patch, a)
         new_dw.put_reduction(self.elapsed, elapsed)
 
     # -- particle placement ----------------------------------------------------------------------

@@ -61,7 +61,8 @@ def test_source_totals_as_uintah(runs):
 def test_tracers_as_uintah(runs):
     """2560 tracers seeded at t = 0 (8 per cell of the four fans), 80 more per injecting fan
     in steps 2 and 5: the count after every step, and the IDs, positions, displacements,
-    velocities and cloned press_CC / scalar-f of every 20th particle after step 6 equal sus's
+    velocities, cloned press_CC / scalar-f and the decaying scalar p.age (with p.age_totalDecay)
+    of every 20th particle after step 6 equal sus's
     (positions to 1e-16 m: the same random points, the same motion; velocities 5e-12 m/s)."""
     da, sus = runs
     counts = [len(da.particles(0, k + 1)["p.particleID"]) for k in range(len(sus["times"]))]
@@ -75,14 +76,17 @@ def test_tracers_as_uintah(runs):
     assert np.allclose(P["p.velocity"][order], sus["pvel"], rtol=0, atol=1e-10)      # |u| up to 6 m/s
     assert np.allclose(P["p.clone-press_CC"][order], sus["clone_press"], rtol=1e-13, atol=0)
     assert np.allclose(P["p.clone-scalar-f"][order], sus["clone_f"], rtol=0, atol=1e-14)
+    assert np.allclose(P["p.age"][order], sus["age"], rtol=1e-14, atol=0)                # exp(-(c1 c2 + c3) dt) per step
+    assert np.allclose(P["p.age_totalDecay"][order], sus["age_total"], rtol=1e-14, atol=0)
+    assert len(np.unique(np.round(sus["age"], 12))) == 2                 # seeded at t = 0, injected in step 2
 
 
 @pytest.mark.parametrize("old, new, words", [
     ("<density_src>      0               </density_src>", "<density_src> 1.2 </density_src>",
      "mass source"),
     ('<CCVarLabel label="press_CC"/>', '<CCVarLabel label="vel_CC"/>', "cell-centred scalar"),
-    ("<cloneVariables>", '<scalar name="s"><initialValue>1</initialValue></scalar><cloneVariables>',
-     "<scalar> variables are not available"),
+    ('<c2 type="constant"> <value> 10 </value> </c2>', '<c2 type="variable"> <filename>c2.csv</filename> </c2>',
+     "read from a table"),
 ])
 def test_bad_model_input(tmp_path, old, new, words):
     """What the models do not accept is refused at start-up with the tag and what is accepted."""
