@@ -22,7 +22,7 @@ import sys
 
 import numpy as np
 
-from components.models.passive_scalar import read_ice_models
+from components.models.ice_models import IceModels, read_ice_models
 from framework import labels as L
 from framework.component import Component, register
 from framework.geometry import GeometryReader
@@ -99,6 +99,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     # MPMICE hook: number of (MPM) materials before ICE's in the global material index
     # space; exchange coefficients and boundary-condition ids are read for all of them
     n_before = 0
+    source_models, tracers = [], []      # <Models> of ICE alone (problem_setup)
 
     def problem_setup(self, root, level):
         self.level = level
@@ -158,8 +159,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             raise icen.error("with gravity, one ICE material needs <isSurroundingMatl> true </isSurroundingMatl> "
                              "(the background material of the hydrostatic pressure, as Uintah); or give "
                              "<CFD><ICE><applyHydrostaticPressure> false")
-        # <Models>: Uintah's PassiveScalar (ICE alone; MPMICE reads its reaction models itself)
-        self.scalars = read_ice_models(root, self, geo) if self.n_before == 0 else []
+        # <Models>: Uintah's PassiveScalar, mass_momentum_energy_src and TracerParticles (ICE alone;
+        # MPMICE reads its reaction models itself)
+        models = read_ice_models(root, self, geo) if self.n_before == 0 else IceModels()
+        self.scalars, self.source_models, self.tracers = models.scalars, models.sources, models.tracers
         self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before,
                                                {s.name: s.matl for s in self.scalars}, self.gravity), level)
         self.lodi = self.bcs.lodi
@@ -387,7 +390,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             .computes(I.speedSound_CC).computes(I.press_CC, matls=[0])
         t.computes(I.specific_heat).computes(I.gamma)
         sched.add_task(t)
-        for model in self.scalars:
+        for model in self.scalars + self.tracers:
             model.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
@@ -425,8 +428,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         if lodi:
             t.requires(OLD, I.vel_CC).requires(NEW, I.maxMach_faces)
         sched.add_task(t)
-        for model in self.scalars:          # Uintah's computeModelSources: scalar-f_src
+        for model in self.scalars + self.source_models + self.tracers:    # Uintah's computeModelSources
             model.schedule_sources(sched)
+        for model in self.tracers:          # the tracer particles to their new patches, at the end of the step
+            model.schedule_relocation(sched)
 
         t = Task("ICE::computeVel_FC", self.vel_fc, self.matls) \
             .requires(OLD, L.delT).requires(OLD, I.rho_CC, G, 1).requires(OLD, I.vel_CC, G, 1) \
@@ -529,6 +534,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.heatCond_src_CC)
         if cvm:
             t.requires(NEW, I.specific_heat, matls=cvm)
+        for model in self.source_models:
+            model.lagrangian_requires(t)
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMomentumSource", self.momentum_source, self.matls)   # only when saved
                        .requires(NEW, I.mom_L_CC).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC)

@@ -553,6 +553,8 @@ class IceTasks:
                 mom[sl] += dt * new_dw.get(I.viscous_src_CC, m, patch)[sl]
             if self.conduction:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
+            for model in self.source_models:        # Uintah's modelMom_src, modelEng_src
+                model.add_lagrangian(patch, m, mass, mom, eng, old_dw, new_dw)
             if self.lodi is not None:
                 self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
             elif not self.exchange:

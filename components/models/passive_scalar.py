@@ -244,21 +244,3 @@ def _centres(level, box):
     xs = level.cell_centers(box)
     X, Y, Z = np.meshgrid(*xs, indexing="ij")
     return np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
-
-
-def read_ice_models(root, ice, geo):
-    """The PassiveScalar models of an ICE deck's <Models> ([] without the block)."""
-    node = root.child("Models")
-    if node is None:
-        return []
-    models = []
-    for m in node.children("Model"):
-        m.attr("type", choices=("PassiveScalar",))
-        models.append(PassiveScalar(m, ice, geo))
-    if not models:
-        raise node.error('<Models> without a <Model type=...>; accepted for ICE: "PassiveScalar"')
-    names = [s.name for s in models]
-    for s in models:
-        if names.count(s.name) > 1:
-            raise node.error(f"two PassiveScalar models name their scalar {s.name}; accepted: distinct names")
-    return models
