@@ -157,8 +157,9 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
     that repeats the one two iterations back (cells full of a stiff solid, where dp never
     drops below tol p: one ulp of the solid's rho_micro moves p by ~1e-10 p) is known to
     alternate to max_iter, so the state it ends on is taken at once. The sound speed reuses
-    the last (dp/drho)_T (Thomsen_Hartka_water: Uintah's c^2, as eos_sound_speed2). Every cell does the plain per-cell iteration's operations in its
-    order: bitwise its results. Returns the largest iteration count (max_iter where a cell cycles)."""
+    the last (dp/drho)_T (Thomsen_Hartka_water: Uintah's c^2, as eos_sound_speed2). Every
+    cell does the plain per-cell iteration's operations in its order: bitwise its results.
+    Returns the largest iteration count (max_iter where a cell cycles)."""
     n = len(rhos)
     k0 = lo[2]
     nk = hi[2] - lo[2]
