@@ -237,7 +237,6 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         without it the explicit delT is Uintah's default, aggressive with knob 1."""
         tsc = self.timestep_control = ice.child("TimeStepControl")
         self.conservative_dt, self.knob, self.knob_diffusion = False, 1.0, 1.0
-        self.imp_knob_for_diffusion = False
         if tsc is not None:
             self.conservative_dt = tsc.get("Scheme_for_delT_calc", "str",
                                            choices=("aggressive", "conservative")) == "conservative"
@@ -248,7 +247,6 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                 self.knob_diffusion = tsc.get("knob_for_diffusion", "float")
                 if not self.knob_diffusion >= 0.0:
                     raise tsc.child("knob_for_diffusion").error("knob_for_diffusion must be >= 0")
-                self.imp_knob_for_diffusion = True
         # pysus extension: the CFL limit counts only directions with more than one cell
         # (Uintah also counts the one-cell directions' spacing, which can set a 1D run's step)
         self.delt_active_dirs_only = ice.get("delT_activeDirectionsOnly", "bool", False)
@@ -394,9 +392,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             model.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
-        fn = self.stable_timestep_implicit if self.implicit else self.stable_timestep
-        g = (G, 1) if self.conservative_dt and not self.implicit else ()     # the swept volume reads neighbours
-        t = Task("ICE::computeStableTimestep", fn, self.matls) \
+        g = (G, 1) if self.conservative_dt else ()     # the swept volume reads neighbours
+        t = Task("ICE::computeStableTimestep", self.stable_timestep, self.matls) \
             .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g) \
             .requires(NEW, I.speedSound_CC, *g).computes(L.delT)
         if self.cv_matls:

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from components.ice.eos import (IDEAL_GAS, MURNAGHAN, _dp_dtemp, eos_press_eos, eos_rho_micro, ideal_gas_press_eos,
-                                ideal_gas_rho_micro, murnaghan_press_eos)
+from components.ice.eos import (IDEAL_GAS, MURNAGHAN, THOMSEN_HARTKA, _dp_dtemp, eos_press_eos, eos_rho_micro,
+                                eos_sound_speed2, ideal_gas_press_eos, ideal_gas_rho_micro, murnaghan_press_eos)
 from components.ice.kernels import TINY
 
 
@@ -157,8 +157,9 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
     that repeats the one two iterations back (cells full of a stiff solid, where dp never
     drops below tol p: one ulp of the solid's rho_micro moves p by ~1e-10 p) is known to
     alternate to max_iter, so the state it ends on is taken at once. The sound speed reuses
-    the last (dp/drho)_T. Every cell does the plain per-cell iteration's operations in its
-    order: bitwise its results. Returns the largest iteration count (max_iter where a cell cycles)."""
+    the last (dp/drho)_T (Thomsen_Hartka_water: Uintah's c^2, as eos_sound_speed2). Every
+    cell does the plain per-cell iteration's operations in its order: bitwise its results.
+    Returns the largest iteration count (max_iter where a cell cycles)."""
     n = len(rhos)
     k0 = lo[2]
     nk = hi[2] - lo[2]
@@ -226,6 +227,9 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
                 for c in range(nk):
                     v_[c] = 1.0 / rm[c]
                     f_[c] = r[c] / rm[c]
+                    if code == THOMSEN_HARTKA:      # Uintah's c^2 (eos_sound_speed2)
+                        s_[c] = np.sqrt(max(eos_sound_speed2(code, prm, rm[c], t[c], cv, g), TINY))
+                        continue
                     dpdt = _dp_dtemp(code, prm, rm[c], t[c], cv, g)
                     s_[c] = np.sqrt(max(dpr[c] + t[c] * dpdt * dpdt / (rm[c] * rm[c] * cv), TINY))
     return worst

@@ -12,9 +12,9 @@ iterations (Uintah's max_outer_iterations / outer_iteration_tolerance) repeat
 "solve, update P, recompute u_m(P) (with exchange), recompute the residual" until
 max |kap P + dt sum div(theta u)| (a relative volume) is below the tolerance; with
 one material and no exchange the linearisation is exact and one iteration suffices.
-The outer iteration is a framework Loop with the PCG Loop nested in its body. delT
-then comes from the flow speed: cfl dx / (|u| + knob_for_speedSound c), the knob at
-least 1e-4.
+The outer iteration is a framework Loop with the PCG Loop nested in its body. delT is
+explicit ICE's (Uintah's one stable-timestep task serves both), with Uintah's implicit
+default knob_for_speedSound 0.5: with knob 0 it comes from the flow speed alone.
 
 Boundary faces: a fixed face velocity (Dirichlet, symmetry) or a zero-gradient
 pressure leaves delP decoupled there; a Dirichlet pressure holds delP = 0 outside.
@@ -40,7 +40,7 @@ from .solver.pcg import PCG
 G = Ghost.AROUND_CELLS
 CC, X, Y, Z, R = VarType.CC, VarType.SFCX, VarType.SFCY, VarType.SFCZ, VarType.REDUCTION
 UNIT = np.eye(3, dtype=np.int64)
-KNOB_FLOOR = 1e-4       # smallest multiple of the sound speed in the implicit delT
+IMPLICIT_KNOB = 0.5     # Uintah's knob_for_speedSound with <ImplicitSolver> and no <TimeStepControl>
 
 # labels named after Uintah's impICE where it has one
 matrix = L.create("matrix", CC, (7,))               # the stencil of eq. P, timestep level
@@ -120,7 +120,7 @@ class ImplicitSettings:
              f"preconditioner={self.precond_asked}; running pysus CG with {words}, "
              f"{self.sweeps} smoothing sweep(s), tolerance {self.tolerance:g} ({self.criteria.lower()} "
              f"{self.norm}), maxiterations {self.max_iterations}; outer iterations <= {self.max_outer} to "
-             f"max|rhs| {self.outer_tol:g}; delT from the flow speed")
+             f"max|rhs| {self.outer_tol:g}")
         if self.npre != self.npost:
             s += f"; npre={self.npre} npost={self.npost} -> {self.sweeps} each (symmetric for CG)"
         if self.ignored:
@@ -147,9 +147,7 @@ class ImplicitICE:
         self.imp = ImplicitSettings(node, root)
         self.may_recompute = self.imp.restart_iters is not None   # the controller keeps the old warehouse
         if self.timestep_control is None:
-            self.knob = 0.0                 # pysus's default: delT from the flow speed alone
-        if self.imp_knob_for_diffusion:
-            self.imp.ignored.append("knob_for_diffusion")
+            self.knob = IMPLICIT_KNOB
         lv = self.level
         precond = self.imp.precond
         note = ""
@@ -157,7 +155,7 @@ class ImplicitICE:
             precond, note = "jacobi", " (multigrid needs even patch extents: Jacobi instead)"
         self.pcg = PCG("imp.cg", imp_A, lv, self.dims, precond, self.imp.tolerance, self.imp.max_iterations,
                        self.imp.norm, self.imp.sweeps, self.imp.criteria == "Relative")
-        self.imp_banner = self.imp.describe(precond, note)
+        self.imp_banner = self.imp.describe(precond, note + f"; delT with knob_for_speedSound {self.knob:g}")
         self.imp_logged = False
         self.outer_iterations = []
 
@@ -338,27 +336,3 @@ class ImplicitICE:
                 print(f"pysus: warning: ICE implicit pressure: max|rhs| above outer_iteration_tolerance "
                       f"{self.imp.outer_tol:g} after {self.outer.iterations} outer iterations; continuing",
                       file=sys.stderr)
-
-    # -- delT ------------------------------------------------------------------------------------
-    def stable_timestep_implicit(self, patch, matls, old_dw, new_dw):
-        """Convective CFL: delT = cfl dx / (|u| + max(knob, KNOB_FLOOR) c), and the limit of the
-        (explicit) viscous and heat-conduction sources when the deck has them.
-
-        The floor keeps a fluid at rest (or a patch it reaches only below round-off of p)
-        from asking for an infinite step: at most 1 / KNOB_FLOOR acoustic CFLs per step.
-        """
-        b = self.boxes(patch)
-        dt = np.inf
-        for m in matls:
-            dt = min(dt, IK.stable_dt_flow(new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch),
-                                           new_dw.get(I.sp_vol_CC, m, patch), *self._eos(m),
-                                           self.dims.astype(np.int64), patch.level.dx, b.lo, b.hi,
-                                           max(self.knob, KNOB_FLOOR), self.conservative_dt))
-            mat = self.materials[m]
-            nu = max(4.0 / 3.0 * mat.viscosity, mat.conductivity / mat.cv)   # the explicit sources' limit
-            if nu > 0:
-                sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
-                rho_min = 1.0 / float(new_dw.get(I.sp_vol_CC, m, patch)[sl].max())
-                inv = sum(1.0 / patch.level.dx[d] ** 2 for d in range(3) if self.dims[d])
-                dt = min(dt, 0.5 * max(rho_min, 1e-300) / (2.0 * nu * inv) / self.cfl)
-        new_dw.put_reduction(L.delT, self.cfl * dt)

@@ -1,13 +1,10 @@
-"""Numba kernels of semi-implicit ICE (implicit.py): face-velocity correction, RHS, delT."""
+"""Numba kernels of semi-implicit ICE (implicit.py): face-velocity correction, RHS."""
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
-from .eos import eos_sound_speed2
 from .kernels import _exchange_matrix, solve_small
-
-TINY = 1.0e-100
 
 
 @njit(cache=True)
@@ -95,27 +92,3 @@ def add_increment(P, dP, out, lo, hi):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
                 out[i, j, k] = P[i, j, k] + dP[i, j, k]
-
-
-@njit(cache=True)
-def stable_dt_flow(vel, temp, sp_vol, code, params, cv, gamma, dims, dx, lo, hi, knob, conservative):
-    """Convective limit of semi-implicit ICE: min dx / (|u_d| + knob c) (sum over d when conservative)."""
-    best = np.inf
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                c = 0.0
-                if knob > 0.0:
-                    c = knob * np.sqrt(max(eos_sound_speed2(code, params, 1.0 / sp_vol[i, j, k], temp[i, j, k],
-                                                            cv, gamma), TINY))
-                s = 0.0
-                for d in range(3):
-                    if dims[d]:
-                        rate = (abs(vel[i, j, k, d]) + c) / dx[d]
-                        if conservative:
-                            s += rate
-                        elif rate > 0.0:
-                            best = min(best, 1.0 / rate)
-                if conservative and s > 0.0:
-                    best = min(best, 1.0 / s)
-    return best

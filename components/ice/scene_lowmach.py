@@ -88,6 +88,8 @@ IMPLICIT = """<ImplicitSolver>
           <maxiterations> {maxit} </maxiterations>
         </Parameters>
       </ImplicitSolver>"""
+TIMESTEP_CONTROL = ("<TimeStepControl><Scheme_for_delT_calc> aggressive </Scheme_for_delT_calc>"
+                    "<knob_for_speedSound> {knob} </knob_for_speedSound></TimeStepControl>")
 
 
 def speed(mach):
@@ -108,7 +110,8 @@ def vortex_deck(n, mach=0.05, t=None, implicit=None, cfl=0.4, patches="[1,1,1]",
                 tolerance=1e-10, outer=20, outer_tol=1e-9, maxit=500, max_timesteps=None, knob=None, norm=None):
     """Deck text; t defaults to 0.2 of the turnover time 1 / U; implicit=True for semi-implicit ICE.
 
-    knob: <TimeStepControl><knob_for_speedSound> (1 gives the implicit run explicit ICE's delT);
+    knob: <TimeStepControl><knob_for_speedSound> of an implicit run (default 0: delT from the
+    flow speed; 1 gives explicit ICE's delT);
     norm: the solver's <norm> (L2, LInfinity).
     """
     g = GAS
@@ -124,9 +127,8 @@ def vortex_deck(n, mach=0.05, t=None, implicit=None, cfl=0.4, patches="[1,1,1]",
     imp = IMPLICIT.format(outer=outer, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit,
                           norm=f"<norm> {norm} </norm>" if norm else "") \
         if implicit else ""
-    if implicit and knob is not None:
-        imp += ("<TimeStepControl><Scheme_for_delT_calc> aggressive </Scheme_for_delT_calc>"
-                f"<knob_for_speedSound> {knob} </knob_for_speedSound></TimeStepControl>")
+    if implicit:
+        imp += TIMESTEP_CONTROL.format(knob=0.0 if knob is None else knob)
     return DECK.format(mach=mach, n=n, kind="semi-implicit" if implicit else "explicit", t=t, cfl=cfl,
                        patches=patches, implicit=imp, solver='<Solver type="hypre"/>' if implicit else "",
                        objects="".join(objs), maxsteps=f"<max_Timesteps> {max_timesteps} </max_Timesteps>"
@@ -170,6 +172,7 @@ def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=Non
               outer_tol=1e-8, materials=1, K=None, delt=None, knob=None, maxit=5000):
     """A hot cylinder (3x T, 1/3 rho) moving at `mach` in air at rest, symmetry walls, `steps` steps.
 
+    implicit: knob_for_speedSound `knob` (default 0: delT from the flow speed);
     materials=2: the blob is a second gas (cv 1000, gamma 1.3) with exchange coefficients K;
     delt fixes delT (delt_min = delt_max); patches default to 64^2 cells each.
     """
@@ -190,8 +193,7 @@ def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=Non
     imp = ""
     if implicit:
         imp = IMPLICIT.format(outer=20, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit, norm="")
-        if knob is not None:
-            imp += f"<TimeStepControl><knob_for_speedSound> {knob} </knob_for_speedSound></TimeStepControl>"
+        imp += TIMESTEP_CONTROL.format(knob=0.0 if knob is None else knob)
     np_ = max(1, n // 64)
     dt = "<delt_init>1</delt_init>" if delt is None else \
         f"<delt_init>{delt}</delt_init><delt_min>{delt}</delt_min><delt_max>{delt}</delt_max>"

@@ -21,6 +21,7 @@ from . import labels as I
 
 FC_TYPES = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)
 UNIT = np.eye(3, dtype=np.int64)
+DELT_START = 1000.0     # s: the value Uintah's actuallyComputeStableTimestep starts its minimum from
 
 
 class Boxes:
@@ -223,7 +224,9 @@ class IceTasks:
         """Uintah's delT (ICE::actuallyComputeStableTimestep): 'aggressive' (the default) is
         cfl min dx / (knob c + |u|) over cells, materials and directions, and the diffusion
         limit cfl / (2 D sum 1/dx^2); 'conservative' is cfl vol / swept outflow volume. Like
-        Uintah, every direction counts, one-cell ones too, unless <delT_activeDirectionsOnly>."""
+        Uintah, every direction counts, one-cell ones too, unless <delT_activeDirectionsOnly>.
+        Implicit ICE takes the same step (as Uintah). A fluid at rest with knob 0 gets Uintah's
+        start value DELT_START, then the deck's delt_max and max_delt_increase."""
         b = self.boxes(patch)
         count = self.dims if self.delt_active_dirs_only else np.ones(3, dtype=bool)
         dx = patch.level.dx
@@ -247,7 +250,7 @@ class IceTasks:
                     mat.conductivity / cp, mat.viscosity)
                 inv_sum = sum(1.0 / dx[d] ** 2 for d in range(3) if count[d])
                 dt = min(dt, 0.5 / (inv_sum * max(diffusivity, 1e-300)))
-        new_dw.put_reduction(L.delT, self.cfl * dt)
+        new_dw.put_reduction(L.delT, min(self.cfl * dt, DELT_START))
 
     def specific_heat_field(self, patch, matls, old_dw, new_dw):
         """specific_heat = cv(temp_CC) of the step's start in every cell, extra cells included, and

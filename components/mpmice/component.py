@@ -159,7 +159,7 @@ class MPMICE(MPMICETasks, Component):
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
-        g = (Ghost.AROUND_CELLS, 1) if self.ice.conservative_dt and not self.ice.implicit else ()
+        g = (Ghost.AROUND_CELLS, 1) if self.ice.conservative_dt else ()
         sched.add_task(Task("MPMICE::computeStableTimestep", fn, self.ice.ice_matls)
                        .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g)
                        .requires(NEW, I.speedSound_CC, *g)
@@ -352,12 +352,11 @@ class MPMICE(MPMICETasks, Component):
                        .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))
 
     def stable_timestep_flow(self, patch, matls, old_dw, new_dw):
-        """delT with implicit ICE or prescribed solids: ICE's step over the fluids (implicit:
-        from the flow speed), and MPM's wave-speed step over the solids unless they are
-        prescribed (rmpmice: Uintah's RigidMPM sets no limit)."""
+        """delT with implicit ICE or prescribed solids: ICE's step over the fluids, and MPM's
+        wave-speed step over the solids unless they are prescribed (rmpmice: Uintah's RigidMPM
+        sets no limit)."""
         a = _Capture(new_dw)
-        fn = self.ice.stable_timestep_implicit if self.ice.implicit else self.ice.stable_timestep
-        fn(patch, self.ice.ice_matls, old_dw, a)
+        self.ice.stable_timestep(patch, self.ice.ice_matls, old_dw, a)
         dt = float(a.value)
         if not self.rigid:
             b = _Capture(new_dw)

@@ -168,3 +168,23 @@ def test_outer_iterations_beyond_the_limit_recompute_the_step(tmp_path):
     c = Controller(str(tmp_path / "b.ups"), quiet=True, filebase=str(tmp_path / "b.uda"))
     c.run()
     assert c.recomputes == 0 and c.timestep == 2
+
+
+def test_implicit_delt_is_explicit_ices_with_uintahs_default_knob(tmp_path):
+    """As Uintah, implicit ICE takes explicit ICE's delT task (the equilibration's sound speed);
+    without <TimeStepControl> its knob_for_speedSound is 0.5 (Uintah's implicit default): the
+    first step's delT, cfl min dx / (0.5 c + |u|), is the one computed here from the initial fields."""
+    text = vortex_deck(8, implicit=True, max_timesteps=1).replace(
+        "<TimeStepControl><Scheme_for_delT_calc> aggressive </Scheme_for_delT_calc>"
+        "<knob_for_speedSound> 0.0 </knob_for_speedSound></TimeStepControl>", "")
+    assert "TimeStepControl" not in text
+    (tmp_path / "d.ups").write_text(text)
+    c = Controller(str(tmp_path / "d.ups"), quiet=True, filebase=str(tmp_path / "d.uda"))
+    c.run()
+    assert c.component.knob == 0.5
+    da = DataArchive(c.archiver.dir)
+    vel, (x, _, _) = da.read("vel_CC", 0, 0)
+    c_sound = np.sqrt(1.4 * da.read("press_CC", 0, 0)[0] / da.read("rho_CC", 0, 0)[0])     # ideal gas
+    dx = x[1] - x[0]
+    want = 0.4 * min((dx / (0.5 * c_sound + np.abs(vel[..., d]))).min() for d in range(2))
+    assert da.times[0] == 0.0 and c.t == pytest.approx(want, rel=1e-12)

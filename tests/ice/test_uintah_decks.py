@@ -228,27 +228,38 @@ def test_imp_advect_term2(run_deck):
         assert a.shape == (10, 10, 10) and np.abs(a).max() < 1e-9, (label, np.abs(a).max())
 
 
-# Uintah's sus on uintah_reference/waterAirOscillator_explicit.ups: its lineExtract file (P/L-0/i20_j10_k0,
-# written after step 1; the next sample is due 1e-3 s later) and press_CC's min and max after step 3
+# Uintah's sus on uintah_reference/waterAirOscillator_explicit.ups (`sus waterAirOscillator_explicit.ups`,
+# read with framework.uintah_uda.UintahArchive): its lineExtract file (P/L-0/i20_j10_k0, written after
+# step 1; the next sample is due 1e-3 s later), press_CC's min and max and delP_Dilatate's max after step 3
 SUS_WATER_AIR_LINE = (
     "# X_CC           Y_CC             Z_CC             Timestep         Time [s]        press_CC_0      "
     "rho_CC_0        temp_CC_0       delPDilatate_0  vel_CC_0.x       vel_CC_0.y       vel_CC_0.z      \n"
     "1.250000E-02     2.625000E-01     0.000000E+00     1                1.000000E-09    1.013250E+05    "
     "9.957490E+02    3.000000E+02    -0.000000E+00   0.000000E+00     0.000000E+00     0.000000E+00    \n")
 SUS_WATER_AIR_PRESS = (101325.00000020266, 111457.50000022262)
+SUS_WATER_AIR_DELP_MAX = 0.03011806730754544
 
 
 def test_water_air_line_extract_as_uintah(run_deck):
     """lineExtract writes sus's file byte for byte (cell choice, columns, names abbreviated as
-    Uintah's, %E format); the water-air state follows sus to 1e-8 (the two materials' pressure
-    equilibration converges to a tolerance, so not to round-off)."""
+    Uintah's, %E format); the water-air state follows sus. The water's sound speed is Uintah's
+    c^2 = dp_drho + dp_de p / rho^2 of Thomsen_Hartka_water (with the thermodynamic one it was
+    1.1 % off and delP_Dilatate 2.3 %). What is left comes from a deliberate difference (ICE's
+    initialize): a material's trace in cells none of its objects covers starts at the micro
+    density of the covering materials' pressure, Uintah's at its first object's density (air
+    1.297 kg/m^3 in the water, 10 % off its equilibrium); measured after 3 steps: press_CC
+    2.1e-9, delP_Dilatate 2.5e-8, the water's vel_CC 2.3e-8 of their largest values (with
+    Uintah's trace density, measured by editing initialize: press_CC 1.8e-12, vel_CC 2.4e-11,
+    the equilibration's convergence test differing from Uintah's)."""
     da = run_deck(str(REF / "waterAirOscillator_explicit.ups"))
     assert np.allclose(np.diff(da.times), [1e-9, 2e-9, 4e-9], rtol=1e-12)
     files = list(pathlib.Path(da.path).glob("P/L-0/*"))
     assert [f.name for f in files] == ["i20_j10_k0"]
     assert files[0].read_text() == SUS_WATER_AIR_LINE
     p, _ = da.read("press_CC", 0, -1)
-    assert np.allclose((p.min(), p.max()), SUS_WATER_AIR_PRESS, rtol=1e-8, atol=0)
+    assert np.allclose((p.min(), p.max()), SUS_WATER_AIR_PRESS, rtol=1e-13, atol=0)
+    delp, _ = da.read("delP_Dilatate", 0, -1)
+    assert delp.max() == pytest.approx(SUS_WATER_AIR_DELP_MAX, rel=1e-7)
 
 
 def test_clamp_specific_volume():
@@ -341,13 +352,18 @@ def test_natural_convection_hydrostatic_as_uintah(run_deck, deck):
     """Gravity with <isSurroundingMatl>: the pressure's extra cells on the walls normal to gravity
     carry rho g dx (Uintah's HydrostaticPressureAdjustment), so the cells next to them fall at
     half the free-fall rate in the first steps (vel_CC.y's max; without it pysus's was twice
-    sus's). Agreement to 1e-7 in those tiny velocities (1e-7 m/s), round-off in p and T."""
+    sus's). p and T agree to round-off (1.4e-14). Step 1 is sus's to an ulp (rho_CC in a corner
+    cell: the advection's order of sums; temp_CC: Uintah's one-material exchange passes m e
+    through T); the velocity comes from the small difference of rho g and the pressure
+    gradient, which turns those ulps into 5e-9 of
+    vel_CC's largest value after 4 steps (measured on both decks: vel_CC.y's extremes 9.5e-9,
+    the field 5.3e-9)."""
     da = run_deck(str(REF / f"{deck}_explicit.ups"))
     assert np.allclose(da.times[1:], [1e-9, 3e-9, 7e-9, 1.5e-8], rtol=1e-12, atol=0)
     for label, (lo, hi) in SUS_CAVITY[deck].items():
         a = da.read(label, 0, -1)[0]
         a = a[..., 1] if label == "vel_CC" else a
-        tol = 1e-7 if label == "vel_CC" else 1e-13
+        tol = 3e-8 if label == "vel_CC" else 1e-13
         assert np.allclose((a.min(), a.max()), (lo, hi), rtol=tol, atol=0), (label, a.min(), a.max())
 
 
