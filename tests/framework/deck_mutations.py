@@ -252,8 +252,14 @@ def targeted_mutations(name, tree):
 
 
 def geometry_mutations(name, tree):
-    """The first geom_object of each material moved wholly outside the domain."""
+    """The first geom_object of each material moved wholly outside the domain: refused, but
+    for Uintah's idiom of an ICE material that starts absent (its only object outside, other
+    materials present), which runs."""
+    n_materials = len(tree.xpath("//MaterialProperties/*/material"))
     for i, go in enumerate(tree.xpath("//MaterialProperties/*/material/geom_object[1]")):
+        material = go.getparent()
+        absent_ice = (material.getparent().tag == "ICE" and n_materials > 1
+                      and len(material.findall("geom_object")) == 1)
         def far(el, _t):
             for c in list(el):
                 if isinstance(c.tag, str) and c.tag in ("box", "sphere", "cylinder", "union", "difference",
@@ -264,7 +270,7 @@ def geometry_mutations(name, tree):
             etree.SubElement(box, "max").text = "[2e6,2e6,2e6]"
             el.insert(0, box)
         yield Mutation(name, "geometry outside the domain", f"material {i}",
-                       _bytes(_mutate(tree, _path_of(tree, go), far)), REFUSE)
+                       _bytes(_mutate(tree, _path_of(tree, go), far)), RUN if absent_ice else REFUSE)
 
 
 def whole_deck_mutations(name, raw, tree):

@@ -29,8 +29,8 @@ def test_unknown_contact(tmp_path):
 
 def test_unknown_mpm_tag(tmp_path):
     text = open(SULSKY).read().replace("<interpolator>linear</interpolator>",
-                                       "<interpolator>linear</interpolator><XPIC2>true</XPIC2>")
-    _fails(tmp_path, text, "XPIC2")
+                                       "<interpolator>linear</interpolator><XPIC3>true</XPIC3>")
+    _fails(tmp_path, text, "XPIC3")
 
 
 def test_bad_interpolator(tmp_path):
