@@ -22,6 +22,7 @@ import sys
 
 import numpy as np
 
+from components.models import MODELS as REACTIONS
 from components.models.passive_scalar import read_ice_models
 from framework import labels as L
 from framework.component import Component, register
@@ -155,8 +156,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             raise icen.error("with gravity, one ICE material needs <isSurroundingMatl> true </isSurroundingMatl> "
                              "(the background material of the hydrostatic pressure, as Uintah); or give "
                              "<CFD><ICE><applyHydrostaticPressure> false")
-        # <Models>: Uintah's PassiveScalar (ICE alone; MPMICE reads its reaction models itself)
-        self.scalars = read_ice_models(root, self, geo) if self.n_before == 0 else []
+        # <Models>: Uintah's PassiveScalar (MPMICE reads its reaction models itself)
+        self.scalars = read_ice_models(root, self, geo, () if self.n_before == 0 else tuple(REACTIONS))
         self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before,
                                                {s.name: s.matl for s in self.scalars}, self.gravity), level)
         self.lodi = self.bcs.lodi
@@ -345,6 +346,22 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         for model in self.scalars:
             model.schedule_initialize(sched)
 
+    def schedule_transported(self, sched, matls):
+        """Uintah's computeLagrangian_Transported_Vars: the models' scalars as m f (after mass_L_CC)."""
+        if not self.scalars:
+            return
+        t = Task("ICE::computeLagrangian_Transported_Vars", self.lagrangian_transported, matls) \
+            .requires(NEW, I.mass_L_CC)
+        for model in self.scalars:
+            t.requires(OLD, model.f, matls=[model.matl]).requires(NEW, model.src, matls=[model.matl]) \
+                .computes(model.f_L, matls=[model.matl])
+        sched.add_task(t)
+
+    def advect_scalars(self, t, gadv):
+        """The advection task t carries the models' m f too and computes their f."""
+        for model in self.scalars:
+            t.requires(NEW, model.f_L, G, gadv, matls=[model.matl]).computes(model.f, matls=[model.matl])
+
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_implicit if self.implicit else self.stable_timestep
         g = (G, 1) if self.conservative_dt and not self.implicit else ()     # the swept volume reads neighbours
@@ -495,13 +512,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.int_eng_L_ME_CC).requires(OLD, I.temp_CC)
         sched.add_task(t)
 
-        if self.scalars:
-            t = Task("ICE::computeLagrangian_Transported_Vars", self.lagrangian_transported, self.matls) \
-                .requires(NEW, I.mass_L_CC)
-            for model in self.scalars:
-                t.requires(OLD, model.f, matls=[model.matl]).requires(NEW, model.src, matls=[model.matl]) \
-                    .computes(model.f_L, matls=[model.matl])
-            sched.add_task(t)
+        self.schedule_transported(sched, self.matls)
 
         t = Task("ICE::advectAndAdvanceInTime", self.advect_and_advance, self.matls) \
             .requires(OLD, L.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
@@ -512,8 +523,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         if self.conserve_energy:
             t.requires(NEW, I.tot_eng_L_ME_CC, G, gadv)
-        for model in self.scalars:
-            t.requires(NEW, model.f_L, G, gadv, matls=[model.matl]).computes(model.f, matls=[model.matl])
+        self.advect_scalars(t, gadv)
         if lodi:
             t.requires(NEW, I.press_CC, matls=m0).requires(NEW, I.speedSound_CC).requires(NEW, I.maxMach_faces)
         sched.add_task(t)

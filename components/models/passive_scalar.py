@@ -118,7 +118,8 @@ class PassiveScalar:
     def __init__(self, node, ice, geo):
         self.ice = ice
         ps = node.child("PassiveScalar", required=True)
-        self.matl = _material(ps, "material", ice.material_names())
+        solids = [m.name for m in getattr(ice, "_mpm_materials", ())]      # MPMICE: the global index space
+        self.matl = _material(ps, "material", solids + ice.material_names())
         scalars = ps.children("scalar")
         if len(scalars) != 1:
             raise ps.error(f"{len(scalars)} <scalar> blocks; accepted: one per PassiveScalar model (as Uintah)")
@@ -246,16 +247,22 @@ def _centres(level, box):
     return np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
 
 
-def read_ice_models(root, ice, geo):
-    """The PassiveScalar models of an ICE deck's <Models> ([] without the block)."""
+def read_ice_models(root, ice, geo, others=()):
+    """The PassiveScalar models of a deck's <Models> ([] without the block). others: the model
+    types another reader takes (MPMICE's reactions, components/models), skipped here."""
     node = root.child("Models")
     if node is None:
         return []
     models = []
     for m in node.children("Model"):
-        m.attr("type", choices=("PassiveScalar",))
-        models.append(PassiveScalar(m, ice, geo))
-    if not models:
+        if m.attr("type", choices=("PassiveScalar",) + tuple(others)) != "PassiveScalar":
+            continue
+        model = PassiveScalar(m, ice, geo)
+        if model.matl < ice.n_before:
+            raise m.child("PassiveScalar").child("material").error(
+                "a PassiveScalar is carried by an ICE material's flow; accepted: an ICE material")
+        models.append(model)
+    if not models and not others:
         raise node.error('<Models> without a <Model type=...>; accepted for ICE: "PassiveScalar"')
     names = [s.name for s in models]
     for s in models:
