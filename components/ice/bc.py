@@ -511,7 +511,7 @@ class BoundaryConditions:
         self._work = (np.empty(0), np.empty(0))         # u and T work buffers of lagrangian_extra_cells
         self.lodi = table.pop("LODI", None)
         self.subfaces = table.pop("subfaces", {})
-        self._sel = {}                  # (patch id, face, sub-faces): each boundary cell's part
+        self._sel = {}                  # (patch id, face, sub-faces, array box): each boundary cell's part
         self.table = table
         self.level = level
 
@@ -521,32 +521,33 @@ class BoundaryConditions:
             i = FACE_NAMES.index(name)
             yield name, i // 2, i % 2
 
-    def _parts(self, patch, name, var, m):
+    def _parts(self, patch, name, var, m, vt=CC):
         """[(kind, value, sel, want)]: the conditions of var for material m on face `name`, each
-        with the cells it sets (see _skip): the side's on every cell, or, with sub-faces that
-        name m, the side's on the cells outside them and each sub-face's on its own cells."""
+        with the cells it sets (see _skip; sel indexed like an array of type vt): the side's on
+        every cell, or, with sub-faces that name m, the side's on the cells outside them and each
+        sub-face's on its own cells."""
         side = self.table[name][var][m]
         subs = tuple(k for k, sf in enumerate(self.subfaces.get(name, ())) if sf.table[var][m] is not None)
         if not subs:
             return ((side[0], side[1], ALL_CELLS, 0),)
-        key = (patch.id, name, subs)
+        key = (patch.id, name, subs, vt, patch.low_index(vt), patch.alloc_shape(vt))   # halos differ, change
         sel = self._sel.get(key)
         if sel is None:
-            sel = self._sel[key] = self.face_parts(patch, name, subs)
+            sel = self._sel[key] = self.face_parts(patch, name, subs, vt)
         parts = [(side[0], side[1], sel, 0)]
         for k in subs:
             kind, value = self.subfaces[name][k].table[var][m]
             parts.append((kind, value, sel, k + 1))
         return parts
 
-    def face_parts(self, patch, name, subs=None):
-        """Per boundary cell of face `name` of this patch (indexed by the CC array's two
-        tangential local indices): 0 on the side, k + 1 inside sub-face k (of subs, the
-        sub-faces considered; the last one that holds a cell takes it, as Uintah applies its
-        sub-faces in deck order)."""
+    def face_parts(self, patch, name, subs=None, vt=CC):
+        """Per boundary cell of face `name` of this patch (indexed by the two tangential local
+        indices of an array of type vt: CC, or the face's own SFC type): 0 on the side, k + 1
+        inside sub-face k (of subs, the sub-faces considered; the last one that holds a cell
+        takes it, as Uintah applies its sub-faces in deck order)."""
         subfaces = self.subfaces.get(name, ())
         subs = range(len(subfaces)) if subs is None else subs
-        low, shape = patch.low_index(CC), patch.alloc_shape(CC)
+        low, shape = patch.low_index(vt), patch.alloc_shape(vt)
         sel = None
         for k in subs:
             inside = subfaces[k].geom.cells(self.level, low, shape)
@@ -670,13 +671,13 @@ class BoundaryConditions:
             if not at:
                 continue
             idx = flo[d] if s == 0 else fhi[d] - 1
-            for kind, value, sel, want in self._parts(patch, FACE_NAMES[2 * d + s], "Velocity", m):
+            vt = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)[d]
+            for kind, value, sel, want in self._parts(patch, FACE_NAMES[2 * d + s], "Velocity", m, vt):
                 if kind == DIRICHLET:
                     bc_face_velocity_part(uf, d, idx, float(value[d]), sel, want)
                 elif kind in (SYMMETRY, FREE_SLIP):
                     bc_face_velocity_part(uf, d, idx, 0.0, sel, want)
                 elif kind in INLET:
                     ip, lv = self.inlet, self.level
-                    vt = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)[d]
                     bc_inlet_face(uf, d, idx, kind, float(value[d]), ip.vdir, ip.params(), lv.anchor, lv.dx,
                                   int(patch.low_index(vt)[ip.vdir]), sel, want)

@@ -120,25 +120,22 @@ class GridBCs:
         self.temperature_items = place(self.temperature_items, 3)
 
     def _where(self, patch, where, d, lo, hi):
-        """The nodes [lo, hi) of the face's tangential directions (d+1, d+2 mod 3) that `where`
-        selects: inside its sub-face, or outside every sub-face it cuts out."""
+        """Which nodes of the local box [lo, hi) (the face's nodes and the extra nodes beyond) `where`
+        selects, by the position of the face node they share: inside its sub-face, or outside
+        every sub-face it cuts out."""
         geom, cut = where
-        key = (patch.id, d, geom, cut, tuple(lo), tuple(hi))
+        base = patch.low_index(VarType.NC)
+        key = (patch.id, d, geom, cut, tuple(lo), tuple(hi), base)
         mask = self._masks.get(key)
         if mask is None:
             lv = patch.level
-            base = patch.low_index(VarType.NC)
-            d1, d2 = (d + 1) % 3, (d + 2) % 3
-            a = lv.anchor[d1] + (np.arange(lo[d1], hi[d1]) + base[d1]) * lv.dx[d1]
-            b = lv.anchor[d2] + (np.arange(lo[d2], hi[d2]) + base[d2]) * lv.dx[d2]
-            pts = np.zeros((a.size, b.size, 3))
-            pts[..., d1], pts[..., d2] = a[:, None], b[None, :]
+            axes = [lv.anchor[c] + (np.arange(lo[c], hi[c]) + base[c]) * lv.dx[c] for c in range(3)]
+            pts = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
             g0 = geom if geom is not None else cut[0]
-            pts[..., d] = (lv.upper if g0.s else lv.anchor)[d]
-            mask = geom.inside(pts) if geom is not None else np.ones((a.size, b.size), np.bool_)
+            pts[..., d] = (lv.upper if g0.s else lv.anchor)[d]          # the face node above each node
+            mask = geom.inside(pts) if geom is not None else np.ones(pts.shape[:3], np.bool_)
             for g in cut:
                 mask &= ~g.inside(pts)
-            mask = np.moveaxis(np.broadcast_to(mask[None], (hi[d] - lo[d],) + mask.shape), 0, d)
             self._masks[key] = mask
         return mask
 
