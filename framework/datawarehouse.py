@@ -122,6 +122,15 @@ class DataWarehouse:
             raise WarehouseError(f"particle set of material {matl} on patch {patch.id} created twice")
         self.nparticles[key] = int(n)
 
+    def add_particles(self, matl: int, patch, k: int):
+        """Grow the set of matl on patch carried from the old warehouse by k particles made in
+        this step (Uintah's ParticleSubset::addParticles): the pre-relocation variables put after
+        this hold them, after the old ones; relocation then hands them on like any others."""
+        key = (matl, patch.id)
+        if key in self.nparticles:
+            raise WarehouseError(f"particles added to material {matl} on patch {patch.id} after its set was made")
+        self.pre_counts[key] = self.num_particles(matl, patch) + int(k)
+
     def num_particles(self, matl: int, patch) -> int:
         """Particles of matl on patch; before relocation, the count carried from the old warehouse."""
         key = (matl, patch.id)

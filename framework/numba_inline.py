@@ -1,23 +1,29 @@
-"""Faster numba IR inlining: copy a callee's IR with one deepcopy memo for all its blocks.
+"""Faster numba IR inlining: a callee's untyped IR built once, copied with one deepcopy memo.
 
 numba's InlineWorker.inline_ir copies the callee's IR block by block, each block with a fresh
 deepcopy memo, so every block copies the callee's whole Scope (every variable of the callee,
 its own inlined callees' included) again. For MPM's transfer kernels, whose helpers are
 inlined several levels deep (inline="always"), that is most of the compile time and memory.
 Sharing the memo between the blocks of one copy makes one Scope copy per inlined call; the
-copied IR is the same IR (the blocks shared one Scope before and share one copy after), so the
-typed IR and the machine code do not change. Importing this module installs it once.
+copied IR is the same IR (the blocks shared one Scope before and share one copy after). numba
+also runs a callee's untyped passes (its own inlining included) again at every call site; the
+result depends only on the callee and the compile flags, and inline_ir never mutates it (it
+copies it first), so it is built once per (callee, flags) and handed out under a fresh function
+identity, as numba's own would be. The typed IR and the machine code do not change. Importing
+this module installs both once.
 """
 from __future__ import annotations
 
 import contextvars
 import copy as _copy
 
+from numba.core import bytecode as _bytecode
 from numba.core import inline_closurecall as _icc
 from numba.core import ir as _ir
 
 _memos = contextvars.ContextVar("pysus_inline_memos", default=None)
-ENABLED = True          # False: numba's own per-block copies (for comparison in tests)
+ENABLED = True          # False: numba's own copies and untyped passes (for comparison in tests)
+_untyped = {}           # callee function -> [(flags, locals, its untyped IR)]
 
 
 class _SharedMemoCopy:
@@ -36,6 +42,22 @@ class _SharedMemoCopy:
         return _copy.deepcopy(x, memo)
 
 
+def _callee_untyped_ir(worker, function):
+    """The callee's untyped IR as numba's run_untyped_passes gives it, built once per (callee,
+    compile flags, locals); a shallow copy under a fresh FunctionIdentity (inline_ir names the
+    inlined variables after it and deep-copies the blocks before changing anything)."""
+    worker.flags.enable_ssa = False             # what run_untyped_passes does to the flags
+    entries = _untyped.setdefault(function, [])
+    for flags, local_types, func_ir in entries:
+        if flags == worker.flags and local_types == worker.locals:
+            out = func_ir.copy()
+            out.func_id = _bytecode.FunctionIdentity.from_function(function)
+            return out
+    func_ir = worker.run_untyped_passes(function)
+    entries.append((type(worker.flags)(copy_from=worker.flags), dict(worker.locals or {}), func_ir))
+    return func_ir
+
+
 def _install():
     worker = _icc.InlineWorker
     if getattr(worker.inline_ir, "_pysus_shared_memo", False):
@@ -51,8 +73,17 @@ def _install():
         finally:
             _memos.reset(token)
 
+    def inline_function(self, caller_ir, block, i, function, arg_typs=None):
+        if not ENABLED:
+            return original_inline_function(self, caller_ir, block, i, function, arg_typs=arg_typs)
+        callee_ir = _callee_untyped_ir(self, function)
+        return self.inline_ir(caller_ir, block, i, callee_ir, function.__code__.co_freevars,
+                              arg_typs=arg_typs)
+
+    original_inline_function = worker.inline_function
     inline_ir._pysus_shared_memo = True
     worker.inline_ir = inline_ir
+    worker.inline_function = inline_function
     _icc.copy = _SharedMemoCopy()
 
 

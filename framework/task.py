@@ -196,3 +196,8 @@ class TaskView:
         if self.which != NEW:
             raise TaskError(f"task {self.task.name} creates particles in the old warehouse")
         self.dw.create_particles(matl, patch, n)
+
+    def add_particles(self, matl: int, patch, k: int):
+        if self.which != NEW:
+            raise TaskError(f"task {self.task.name} adds particles in the old warehouse")
+        self.dw.add_particles(matl, patch, k)

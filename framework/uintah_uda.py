@@ -1,10 +1,11 @@
-"""Read the cell-centred output of Uintah's sus (a .uda directory) with DataArchive's interface.
+"""Read the output of Uintah's sus (a .uda directory) with DataArchive's interface.
 
 Enough for comparing a run of sus with pysus on the same deck (scripts/accuracy_cost.py
 --uintah): one level, any number of patches, CCVariable<double> and CCVariable<Vector>
 saved uncompressed as 64-bit little-endian (sus's default). `read` returns the interior
 cells only, x fastest in the file (Uintah's layout), as an (nx, ny, nz[, 3]) array like
-DataArchive.read, with the cell-centre coordinates.
+DataArchive.read, with the cell-centre coordinates. `particles` returns one particle variable
+(double, long64, Point, Vector) of all patches.
 """
 from __future__ import annotations
 
@@ -82,3 +83,25 @@ class UintahArchive:
         if out.shape[3] == 9:                               # Matrix3, row-major on disk
             return out.reshape(out.shape[:3] + (3, 3)), xyz
         return (out if out.shape[3] == 3 else out[..., 0]), xyz
+
+    def particles(self, label, matl=0, timestep=-1):
+        """One particle variable (double, long64, Point/Vector) of every patch, in patch order:
+        an (n,) or (n, 3) array."""
+        step = self.steps[timestep]
+        ts = etree.parse(os.path.join(step, "timestep.xml"))
+        parts = []
+        for href in (d.get("href") for d in ts.findall("Data/Datafile")):
+            for var in etree.parse(os.path.join(step, href)).findall("Variable"):
+                if var.findtext("variable").strip() != label or int(var.findtext("index")) != matl:
+                    continue
+                kind = var.get("type")
+                ncomp = 3 if ("Point" in kind or "Vector" in kind) else 1
+                dtype = "<i8" if "long64" in kind else "<f8"
+                start, end = int(var.findtext("start")), int(var.findtext("end"))
+                with open(os.path.join(step, os.path.dirname(href), var.findtext("filename").strip()), "rb") as f:
+                    f.seek(start)
+                    raw = np.frombuffer(f.read(end - start), dtype=dtype)
+                parts.append((int(var.findtext("patch")), raw.reshape(-1, ncomp) if ncomp > 1 else raw))
+        if not parts:
+            raise KeyError(f"{step}: no {label} for material {matl}")
+        return np.concatenate([a for _, a in sorted(parts, key=lambda it: it[0])])

@@ -30,6 +30,7 @@ import numpy as np
 from numba import njit
 
 from .eos import IDEAL_GAS, eos_cold_energy
+from .specific_heat import cv_at
 
 NQ = 7  # mass, velocity x/y/z, specific internal energy, specific volume, specific total energy
 VAN_LEER, EXTREMA = 0, 1    # second-order limiters: slope along the face normal / Uintah's SecondOrderAdvector
@@ -497,7 +498,7 @@ def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, 
             for k in range(n):
                 m = max(am[k], 1e-300)
                 ro[k] = m / vol
-                to[k] = ae[k] / (m * cv)
+                to[k] = ae[k] / (m * cv_at(cv, i, j, k0 + k))
                 so[k] = av[k] / m
             for c in range(3):
                 ac = acc[1 + c, i, j, k0:k0 + n]
@@ -509,7 +510,7 @@ def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, 
                     m = max(am[k], 1e-300)
                     e = ae[k] / m - 0.5 * (vo[k, 0] ** 2 + vo[k, 1] ** 2 + vo[k, 2] ** 2)
                     if e > 0.0:
-                        to[k] = e / cv
+                        to[k] = e / cv_at(cv, i, j, k0 + k)
             elif with_e:
                 ae, eo = acc[6, i, j, k0:k0 + n], tot_o[i, j, k0:k0 + n]
                 for k in range(n):
@@ -537,7 +538,7 @@ def energy_finish(rho_o, vel_o, temp_o, tot_o, lo, hi, vol, cv, code, params):
                 if code != IDEAL_GAS:
                     e -= eos_cold_energy(code, params, rho_o[i, j, k])
                 if e > 0.0:
-                    temp_o[i, j, k] = e / cv
+                    temp_o[i, j, k] = e / cv_at(cv, i, j, k)
                 else:
                     bad += 1
     return bad

@@ -34,6 +34,7 @@ from framework.variables import VarType
 CC = VarType.CC
 
 from .lodi import LODI_KIND, LodiInputs
+from .specific_heat import cv_at
 
 NEUMANN, DIRICHLET, SYMMETRY, FROM_DENSITY, FREE_SLIP, POWER_LAW, LOG_LAW = 0, 1, 2, 3, 4, 5, 6
 LODI = LODI_KIND
@@ -135,7 +136,7 @@ def lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, d, side, lo, hi, o
             for b in range(olo[d2], ohi[d2]):
                 i, j, k = _idx(d, e, a, b)
                 m = mass[i, j, k]
-                temp[i, j, k] = eng[i, j, k] / (m * cv)
+                temp[i, j, k] = eng[i, j, k] / (m * cv_at(cv, i, j, k))
                 for c in range(3):
                     vel[i, j, k, c] = mom[i, j, k, c] / m
 
@@ -149,7 +150,7 @@ def lagrangian_face_conserved(mass, vel, temp, cv, mom, eng, d, side, lo, hi, ol
         for b in range(olo[d2], ohi[d2]):
             i, j, k = _idx(d, e, a, b)
             m = mass[i, j, k]
-            eng[i, j, k] = temp[i, j, k] * cv * m
+            eng[i, j, k] = temp[i, j, k] * cv_at(cv, i, j, k) * m
             for c in range(3):
                 mom[i, j, k, c] = vel[i, j, k, c] * m
 

@@ -23,7 +23,7 @@ import sys
 import numpy as np
 
 from components.models import MODELS as REACTIONS
-from components.models.passive_scalar import read_ice_models
+from components.models.ice_models import read_ice_models
 from framework import labels as L
 from framework.component import Component, register
 from framework.geometry import GeometryReader
@@ -39,6 +39,7 @@ from .turbulence import read_turbulence
 from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .lodi import LodiTasks
+from .specific_heat import read_specific_heat_model
 from .tasks import IceTasks
 
 G = Ghost.AROUND_CELLS
@@ -80,6 +81,7 @@ class Material:
         self.tiny_rho = props["tiny_rho"]
         self.is_surrounding = props["isSurroundingMatl"]
         self.objects = objects          # [(piece, {res, velocity, temperature, density, pressure})]
+        self.cv_model = None            # <SpecificHeatModel> (specific_heat.py)
 
 
 LIMITERS = {"vanLeer": VAN_LEER, "BarthJespersen": EXTREMA}    # <advection limiter="...">
@@ -98,6 +100,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     # MPMICE hook: number of (MPM) materials before ICE's in the global material index
     # space; exchange coefficients and boundary-condition ids are read for all of them
     n_before = 0
+    source_models, tracers = [], []      # <Models> of ICE alone (problem_setup)
 
     def problem_setup(self, root, level):
         self.level = level
@@ -140,6 +143,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         mp = root.child("MaterialProperties", required=True)
         icen = mp.child("ICE", required=True)
         geo = getattr(root, "_geometry_reader", None) or GeometryReader(level)   # MPMICE shares one
+        self.n_all = self.n_before + len(icen.children("material"))     # every material of the problem
         self.materials = [self._read_material(m, geo) for m in icen.children("material")]
         if not self.materials:
             raise icen.error("no <material>: ICE needs at least one")
@@ -156,8 +160,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             raise icen.error("with gravity, one ICE material needs <isSurroundingMatl> true </isSurroundingMatl> "
                              "(the background material of the hydrostatic pressure, as Uintah); or give "
                              "<CFD><ICE><applyHydrostaticPressure> false")
-        # <Models>: Uintah's PassiveScalar (MPMICE reads its reaction models itself)
-        self.scalars = read_ice_models(root, self, geo, () if self.n_before == 0 else tuple(REACTIONS))
+        # <Models>: Uintah's PassiveScalar, mass_momentum_energy_src and TracerParticles (MPMICE:
+        # PassiveScalar; it reads its reaction models itself)
+        models = read_ice_models(root, self, geo, () if self.n_before == 0 else tuple(REACTIONS))
+        self.scalars, self.source_models, self.tracers = models.scalars, models.sources, models.tracers
         self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before,
                                                {s.name: s.matl for s in self.scalars}, self.gravity), level)
         self.lodi = self.bcs.lodi
@@ -198,6 +204,20 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             self._check_sub_faces_implicit()
         if self.lodi is not None:
             self._check_lodi(n)
+        self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]
+        if self.cv_matls:
+            self._check_cv_models(n)
+
+    def _check_cv_models(self, n):
+        """<SpecificHeatModel> is available for explicit ICE alone with one material and no LODI
+        faces (Uintah's also with several, implicit and LODI)."""
+        where = self.materials[self.cv_matls[0]].cv_model.node
+        if n > 1:
+            raise where.error(f"<SpecificHeatModel> is available with one ICE material; this deck has {n}")
+        if self.implicit:
+            raise where.error("<SpecificHeatModel> is available with explicit ICE only (no <ImplicitSolver>)")
+        if self.lodi is not None:
+            raise where.error("<SpecificHeatModel> is not available with LODI boundaries")
 
     def _check_lodi(self, n):
         """LODI faces are available for explicit ICE alone with one material (Uintah's also with
@@ -248,15 +268,43 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
         models = self._read_viscosity_models(node, props)
+        cv_model = read_specific_heat_model(node)
+        if cv_model is not None and self.n_before:
+            raise cv_model.node.error("<SpecificHeatModel> is available for ICE alone, not in MPMICE")
         objects = []
-        for go in node.children("geom_object"):
-            objects.append((geo.read_object(go), go.read(GEOM)))
-            self._check_initial_state(go, objects[-1][1], eos, props)
+        gos = node.children("geom_object")
+        for go in gos:
+            objects.append((geo.read_object(go, outside_ok=True), go.read(GEOM)))
+            self._check_initial_state(go, objects[-1][1], eos, props, cv_model)
         if not objects:
             raise node.error("material has no <geom_object> (initial condition)")
+        self._check_absent(node, geo, objects, gos)
         mat = Material(name, eos, props, objects)
         mat.viscosity_models = models
+        mat.cv_model = cv_model
         return mat
+
+    def _check_absent(self, node, geo, objects, gos):
+        """Uintah's idiom for a material that starts with no mass (a reaction's product): its
+        geometry objects all lie outside the domain. With other materials present it is
+        accepted, and the material starts as Uintah's initializeCells leaves it in cells no
+        object covers: volume fraction 0 plus the trace tiny_rho, temperature and velocity
+        from its first object. An object outside the domain is refused where it is likely a
+        mistake: the problem's only material, or a material with another object inside."""
+        if geo.level is None:
+            return
+        out = [geo.outside(piece) for piece, _ in objects]
+        if not any(out):
+            return
+        n_all = getattr(self, "n_all", 1)
+        k = out.index(True)
+        if all(out) and n_all > 1:
+            return
+        hint = (" (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
+                "product, only where other materials fill the domain)" if n_all == 1 else
+                " (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
+                "product; this one has another object inside the domain)")
+        geo.check_overlap(objects[k][0], gos[k], hint)
 
     def _read_viscosity_models(self, node, props):
         """<dynamicViscosityModels>: Uintah's Sutherland (a, b) and SpongeLayer (maxDynamicViscosity
@@ -290,7 +338,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                            "(its per-cell diffusion step limit); accepted: the models with dynamic_viscosity 0")
         return [m for _, m in sorted(out, key=lambda e: e[0])]
 
-    def _check_initial_state(self, go, values, eos, props):
+    def _check_initial_state(self, go, values, eos, props, cv_model=None):
         """Say when <pressure> is not the EOS pressure at <density> and <temperature>: like
         Uintah, the run starts from those two."""
         if not (values["volumeFraction"] == -1.0 or 0.0 <= values["volumeFraction"] <= 1.0):
@@ -299,8 +347,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             return
         params = np.zeros(MAX_PARAMS)
         params[:len(eos.params())] = eos.params()
-        p_eos = float(eos_press_eos(eos.code, params, values["density"],
-                                    values["temperature"], props["specific_heat"], props["gamma"])[0])
+        cv = props["specific_heat"] if cv_model is None else cv_model.cv(values["temperature"])
+        p_eos = float(eos_press_eos(eos.code, params, values["density"], values["temperature"], cv, props["gamma"])[0])
         p_deck = values["pressure"]
         if abs(p_eos - p_deck) > 1e-6 * max(abs(p_deck), abs(p_eos)) and _rank() == 0:
             node = go.child("pressure")
@@ -340,10 +388,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
 
     # -- scheduling -----------------------------------------------------------------------
     def schedule_initialize(self, level, sched):
-        sched.add_task(Task("ICE::actuallyInitialize", self.initialize, self.matls)
-                       .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC)
-                       .computes(I.speedSound_CC).computes(I.press_CC, matls=[0]))
-        for model in self.scalars:
+        t = Task("ICE::actuallyInitialize", self.initialize, self.matls) \
+            .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).computes(I.sp_vol_CC) \
+            .computes(I.speedSound_CC).computes(I.press_CC, matls=[0])
+        t.computes(I.specific_heat).computes(I.gamma)
+        sched.add_task(t)
+        for model in self.scalars + self.tracers:
             model.schedule_initialize(sched)
 
     def schedule_transported(self, sched, matls):
@@ -365,10 +415,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_implicit if self.implicit else self.stable_timestep
         g = (G, 1) if self.conservative_dt and not self.implicit else ()     # the swept volume reads neighbours
-        sched.add_task(Task("ICE::computeStableTimestep", fn, self.matls)
-                       .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g)
-                       .requires(NEW, I.speedSound_CC, *g)
-                       .computes(L.delT))
+        t = Task("ICE::computeStableTimestep", fn, self.matls) \
+            .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g) \
+            .requires(NEW, I.speedSound_CC, *g).computes(L.delT)
+        if self.cv_matls:
+            t.requires(NEW, I.specific_heat, matls=self.cv_matls)
+        sched.add_task(t)
 
     def schedule_time_advance(self, level, sched):
         m0 = [0]
@@ -379,17 +431,26 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         if lodi:
             sched.add_task(Task("ICE::maxMach_on_Lodi_BC_Faces", self.max_mach_faces, self.matls)
                            .requires(OLD, I.vel_CC).requires(OLD, I.speedSound_CC).computes(I.maxMach_faces))
+        cvm = self.cv_matls
+        # Uintah's computeThermoTransportProperties: cv(T) of the step's start (runs only with a
+        # <SpecificHeatModel> or when specific_heat or gamma is saved)
+        sched.add_task(Task("ICE::computeSpecificHeat", self.specific_heat_field, self.matls)
+                       .requires(OLD, I.temp_CC).computes(I.specific_heat).computes(I.gamma))
         t = Task("ICE::computeEquilibrationPressure", self.equilibration_pressure, self.matls) \
             .requires(OLD, I.rho_CC).requires(OLD, I.temp_CC).requires(OLD, I.sp_vol_CC) \
             .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \
             .computes(I.speedSound_CC)
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
         if many:
             t.requires(OLD, I.press_CC, matls=m0)
         if lodi:
             t.requires(OLD, I.vel_CC).requires(NEW, I.maxMach_faces)
         sched.add_task(t)
-        for model in self.scalars:          # Uintah's computeModelSources: scalar-f_src
+        for model in self.scalars + self.source_models + self.tracers:    # Uintah's computeModelSources
             model.schedule_sources(sched)
+        for model in self.tracers:          # the tracer particles to their new patches, at the end of the step
+            model.schedule_relocation(sched)
 
         t = Task("ICE::computeVel_FC", self.vel_fc, self.matls) \
             .requires(OLD, L.delT).requires(OLD, I.rho_CC, G, 1).requires(OLD, I.vel_CC, G, 1) \
@@ -490,6 +551,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.viscous_src_CC)
         if self.conduction:
             t.requires(NEW, I.heatCond_src_CC)
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
+        for model in self.source_models:
+            model.lagrangian_requires(t)
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMomentumSource", self.momentum_source, self.matls)   # only when saved
                        .requires(NEW, I.mom_L_CC).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC)
@@ -526,6 +591,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.advect_scalars(t, gadv)
         if lodi:
             t.requires(NEW, I.press_CC, matls=m0).requires(NEW, I.speedSound_CC).requires(NEW, I.maxMach_faces)
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
         sched.add_task(t)
         if lodi:
             t = Task("ICE::LODI_Li", self.lodi_li, self.matls) \
@@ -542,6 +609,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             .computes(I.TotalMass).computes(I.KineticEnergy).computes(I.TotalIntEng).computes(I.TotalMomentum)
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d])
+        if cvm:
+            t.requires(NEW, I.specific_heat, matls=cvm)
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", self.compute_mach, self.matls)
                        .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))

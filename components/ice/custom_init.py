@@ -23,6 +23,7 @@ import numpy as np
 from numba import njit
 
 from .eos import eos_press_eos
+from .specific_heat import cv_at
 
 POWER_LAW, POWER_LAW2, LOG_LAW = 0, 1, 2
 ORDER = ("logLawProfile", "powerLawProfile", "powerLawProfile2")     # Uintah's reading order
@@ -103,7 +104,7 @@ def speed_sound_at_pressure(sp_vol, temp, press, out, lo, hi, code, params, cv, 
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
                 rho = 1.0 / sp_vol[i, j, k]
-                _, dp_drho, dp_de = eos_press_eos(code, params, rho, temp[i, j, k], cv, gamma)
+                _, dp_drho, dp_de = eos_press_eos(code, params, rho, temp[i, j, k], cv_at(cv, i, j, k), gamma)
                 out[i, j, k] = np.sqrt(dp_drho + dp_de * press[i, j, k] / (rho * rho))
 
 

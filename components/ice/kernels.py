@@ -15,6 +15,7 @@ from numba import njit
 
 from .eos import (IDEAL_GAS, THOMSEN_HARTKA, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro,
                   eos_sound_speed2, ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2)
+from .specific_heat import cv_at, cv_at_flat
 
 TINY = 1.0e-100
 
@@ -34,17 +35,19 @@ def equilibrate_one(rho, temp, sp_vol, press, vol_frac, cs, code, params, cv, ga
                 vol_frac[i, j, lo[2]:hi[2]], cs[i, j, lo[2]:hi[2]]
             if code == IDEAL_GAS:          # the same operations without the EOS dispatch: vectorizes
                 for k in range(n):
-                    p_[k] = ideal_gas_press_eos(r[k], t[k], cv, gamma)[0]
+                    cvk = cv_at(cv, i, j, lo[2] + k)
+                    p_[k] = ideal_gas_press_eos(r[k], t[k], cvk, gamma)[0]
                     v_[k] = 1.0 / r[k]
                     f_[k] = 1.0
-                    c_[k] = np.sqrt(max(ideal_gas_sound_speed2(r[k], t[k], cv, gamma), TINY))
+                    c_[k] = np.sqrt(max(ideal_gas_sound_speed2(r[k], t[k], cvk, gamma), TINY))
                 continue
             for k in range(n):
-                p, dpdr, dpde = eos_press_eos(code, params, r[k], t[k], cv, gamma)
+                cvk = cv_at(cv, i, j, lo[2] + k)
+                p, dpdr, dpde = eos_press_eos(code, params, r[k], t[k], cvk, gamma)
                 p_[k] = p
                 v_[k] = 1.0 / r[k]
                 f_[k] = 1.0
-                c_[k] = np.sqrt(max(eos_sound_speed2(code, params, r[k], t[k], cv, gamma), TINY))
+                c_[k] = np.sqrt(max(eos_sound_speed2(code, params, r[k], t[k], cvk, gamma), TINY))
 
 @njit(cache=True, error_model="numpy")
 def equilibrate_ideal(rhos, temps, sp_new, vfs, css, press, cvs, gammas, lo, hi):
@@ -388,7 +391,7 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
             for k in range(n):
                 m = r[k] * vol
                 ms[k] = m
-                es[k] = m * cv * t[k]
+                es[k] = m * cv_at(cv, i, j, olo[2] + k) * t[k]
                 for c in range(3):
                     mu[k, c] = m * u[k, c]
     n = hi[2] - lo[2]
@@ -418,11 +421,12 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
                         mu[k, c] += dt * ms[k] * g[c]
                 cc = cs_[k] ** 2
                 t = t_[k]
+                cvk = cv_at(cv, i, j, k0 + k)
                 if code == IDEAL_GAS:
-                    pe, dpdr, dpde = ideal_gas_press_eos(1.0 / v_[k], t, cv, gamma)
+                    pe, dpdr, dpde = ideal_gas_press_eos(1.0 / v_[k], t, cvk, gamma)
                 else:
-                    pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / v_[k], t, cv, gamma)
-                pw = p_[k] if code == THOMSEN_HARTKA else p_[k] + (dpde * cv * t - pe)
+                    pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / v_[k], t, cvk, gamma)
+                pw = p_[k] if code == THOMSEN_HARTKA else p_[k] + (dpde * cvk * t - pe)
                 es[k] += vol * th * v_[k] / cc * pw * d_[k]
 
 
@@ -632,7 +636,7 @@ def conserved_sums(rho, vel, temp, cv, vol, lo, hi, out):
                 u0, u1, u2 = vel[i, j, k, 0], vel[i, j, k, 1], vel[i, j, k, 2]
                 out[0] += m
                 out[1] += 0.5 * m * (u0 * u0 + u1 * u1 + u2 * u2)
-                out[2] += m * cv * temp[i, j, k]
+                out[2] += m * cv_at(cv, i, j, k) * temp[i, j, k]
                 out[3] += m * u0
                 out[4] += m * u1
                 out[5] += m * u2
@@ -654,7 +658,7 @@ def upper_face_fluxes(rho, vel, temp, cv, vol, face_vel, d, lo, hi, shift, delt,
             w = delt * u_face * m
             out[0] -= w
             out[1] -= w * 0.5 * (u0 * u0 + u1 * u1 + u2 * u2)
-            out[2] -= w * cv * temp[i, j, k]
+            out[2] -= w * cv_at(cv, i, j, k) * temp[i, j, k]
             out[3] -= w * u0
             out[4] -= w * u1
             out[5] -= w * u2
@@ -668,7 +672,7 @@ def speed_sound_fill(sp_vol, temp, out, code, params, cv, gamma):
             out[n] = 0.0
             continue
         rho = 1.0 / sp_vol[n]
-        p, dp_drho, dp_de = eos_press_eos(code, params, rho, temp[n], cv, gamma)
+        p, dp_drho, dp_de = eos_press_eos(code, params, rho, temp[n], cv_at_flat(cv, n), gamma)
         out[n] = np.sqrt(max(dp_drho + dp_de * p / (rho * rho), TINY))
 
 
@@ -676,14 +680,14 @@ def speed_sound_fill(sp_vol, temp, out, code, params, cv, gamma):
 def press_fill(rho_micro, temp, out, code, params, cv, gamma):
     """EOS pressure p(rho_micro, T) for flat arrays (initial condition)."""
     for n in range(rho_micro.size):
-        out[n] = eos_press_eos(code, params, rho_micro[n], temp[n], cv, gamma)[0]
+        out[n] = eos_press_eos(code, params, rho_micro[n], temp[n], cv_at_flat(cv, n), gamma)[0]
 
 
 @njit(cache=True)
 def rho_micro_fill(press, temp, out, guess, code, params, cv, gamma):
     """rho_micro(p, T) from the EOS for flat arrays (initial condition)."""
     for n in range(press.size):
-        out[n] = eos_rho_micro(code, params, press[n], temp[n], cv, gamma, guess)
+        out[n] = eos_rho_micro(code, params, press[n], temp[n], cv_at_flat(cv, n), gamma, guess)
 
 
 @njit(cache=True)
@@ -841,7 +845,7 @@ def total_energy_lagrangian(rho, vel, temp, vf, sp_vol, one, px, py, pz, ux, uy,
             for k in range(olo[2], ohi[2]):
                 m = rho[i, j, k] * vol
                 u0, u1, u2 = vel[i, j, k, 0], vel[i, j, k, 1], vel[i, j, k, 2]
-                e = cv * temp[i, j, k]
+                e = cv_at(cv, i, j, k) * temp[i, j, k]
                 if code != IDEAL_GAS:
                     e += eos_cold_energy(code, params, 1.0 / sp_vol[i, j, k])
                 out[i, j, k] = m * (e + 0.5 * (u0 * u0 + u1 * u1 + u2 * u2))
@@ -906,7 +910,7 @@ def lagrangian_to_primitive(mass, mom, eng, cv, vel, temp, lo, hi):
             for k in range(lo[2], hi[2]):
                 for c in range(3):
                     vel[i, j, k, c] = mom[i, j, k, c] / mass[i, j, k]
-                temp[i, j, k] = eng[i, j, k] / (mass[i, j, k] * cv)
+                temp[i, j, k] = eng[i, j, k] / (mass[i, j, k] * cv_at(cv, i, j, k))
 
 
 @njit(cache=True, error_model="numpy")
@@ -917,4 +921,4 @@ def primitive_to_lagrangian(mass, vel, temp, cv, mom, eng, lo, hi):
             for k in range(lo[2], hi[2]):
                 for c in range(3):
                     mom[i, j, k, c] = vel[i, j, k, c] * mass[i, j, k]
-                eng[i, j, k] = temp[i, j, k] * cv * mass[i, j, k]
+                eng[i, j, k] = temp[i, j, k] * cv_at(cv, i, j, k) * mass[i, j, k]

@@ -16,6 +16,12 @@ temp_CC = L.create("temp_CC", CC)
 sp_vol_CC = L.create("sp_vol_CC", CC)           # specific volume 1/rho_micro
 press_CC = L.create("press_CC", CC)             # material 0
 
+# cv and gamma per cell (Uintah's computeThermoTransportProperties): with a <SpecificHeatModel>
+# (specific_heat.py) specific_heat = cv(temp_CC) of the step's start, which the step reads;
+# else the material's <specific_heat>; gamma is <gamma> (computed only when saved)
+specific_heat = L.create("specific_heat", CC)
+gamma = L.create("gamma", CC)
+
 # step 2: equilibration (eq. 13)
 press_equil_CC = L.create("press_equil_CC", CC)
 vol_frac_CC = L.create("vol_frac_CC", CC)

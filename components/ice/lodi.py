@@ -306,7 +306,7 @@ class LodiTasks:
         every face's conditions (the L's from them, press_CC and the old density), and
         mom_L_ME_CC = m u, eng_L_ME_CC = m cv T in every cell."""
         b = self.boxes(patch)
-        cv = self.cvs[m]
+        cv = self._cv(new_dw, m, patch)
         vel, temp = np.empty(mom.shape), np.empty(eng.shape)
         K.lagrangian_to_primitive(mass, mom, eng, cv, vel, temp, b.olo, b.ohi)
         self.lodi_set(patch, new_dw, old_dw.get(I.rho_CC, m, patch), new_dw.get(I.press_CC, 0, patch), vel,

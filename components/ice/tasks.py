@@ -97,6 +97,19 @@ class IceTasks:
     def _eos(self, m):
         return self.codes[m], self.params[m], self.cvs[m], self.gammas[m]
 
+    def _cv_model(self, m):
+        """Material m's <SpecificHeatModel> (specific_heat.py), None without one."""
+        return getattr(self.materials[m], "cv_model", None)
+
+    def _cv(self, dw, m, patch, view=None):
+        """Material m's cv in this step: its <specific_heat>, or with a <SpecificHeatModel> the
+        field specific_heat (one value per cell) that the step computed, seen through view (a
+        Boxes.view) when given."""
+        if self._cv_model(m) is None:
+            return self.cvs[m]
+        cv = dw.get(I.specific_heat, m, patch)
+        return cv if view is None else view(cv)
+
     def _faces(self, dw, labels, m, patch):
         """The three face arrays of a material (a 1-element dummy for absent directions)."""
         dummy = np.zeros((1, 1, 1))
@@ -166,7 +179,13 @@ class IceTasks:
                 self.custom_init.temperature(arrs[2], b.lo, b.hi, np.array(patch.low_index(VarType.CC)))
                 temp = arrs[2][sl]
             arrs[3][sl] = 1.0 / rho_micro
-            p_arr[sl] = _press_array(rho_micro, temp, *self._eos(m))
+            model = self._cv_model(m)
+            eos = self._eos(m)
+            if model is not None:           # cv(T) of the cells' own temperature
+                cv_own = np.empty(temp.shape)
+                model.fill(temp, cv_own)
+                eos = (eos[0], eos[1], cv_own, eos[3])
+            p_arr[sl] = _press_array(rho_micro, temp, *eos)
             if vortices:
                 # Uintah's doesComputePressure: the objects' <pressure>, then the vortices' own
                 p_arr[sl] = self._deck_pressure(mat, patch, own, shape)
@@ -178,10 +197,14 @@ class IceTasks:
             self.bcs.velocity(patch, arrs[1], m, b, initial=True)
             self.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
             arrs_by_m[m] = arrs[3]
-            _speed_sound(arrs[3], arrs[2], arrs[4], *self._eos(m))
+            eos = self._eos(m)
+            cv_field = self._thermo_fields(patch, m, arrs[2], new_dw)   # Uintah's: after T's conditions
+            if model is not None:
+                eos = (eos[0], eos[1], cv_field, eos[3])
+            _speed_sound(arrs[3], arrs[2], arrs[4], *eos)
         self.bcs.scalar(patch, p_arr, "Pressure", 0, b)
         if vortices:                # the sound speed at the vortices' pressure, extra cells included
-            CI.speed_sound_at_pressure(arrs[3], arrs[2], p_arr, arrs[4], b.olo, b.ohi, *self._eos(0))
+            CI.speed_sound_at_pressure(arrs[3], arrs[2], p_arr, arrs[4], b.olo, b.ohi, *eos)
         if self.hydrostatic:        # Uintah's initializeSubTask_hydrostaticAdj, extra cells included
             K.hydrostatic_adjust(p_arr, 1.0 / arrs_by_m[self.surrounding], self.gravity,
                                  patch.level.anchor + np.array(patch.low_index(VarType.CC)) * patch.level.dx,
@@ -208,19 +231,43 @@ class IceTasks:
         for m in matls:
             mat = self.materials[m]
             vel, speed_sound, sp_vol = (new_dw.get(lab, m, patch) for lab in (I.vel_CC, I.speedSound_CC, I.sp_vol_CC))
+            cp = mat.cv * mat.gamma
+            if self._cv_model(m) is not None:       # the field's smallest cp: the largest diffusivity
+                sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+                cp = float(new_dw.get(I.specific_heat, m, patch)[sl].min()) * mat.gamma
             if self.conservative_dt:
                 grav_vel = float(np.sqrt(np.sum(dx * np.abs(self.gravity))))
-                dt = min(dt, K.stable_dt_swept(vel, speed_sound, sp_vol, mat.cv * mat.gamma, count, self.dims, dx, b.lo,
+                dt = min(dt, K.stable_dt_swept(vel, speed_sound, sp_vol, cp, count, self.dims, dx, b.lo,
                                                b.hi, self.knob, mat.conductivity, mat.viscosity, grav_vel))
                 continue
             dt = min(dt, K.stable_dt(vel, speed_sound, count, dx, b.lo, b.hi, np.arange(3), self.knob))
             if mat.viscosity > 0 or mat.conductivity > 0:
                 sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
                 diffusivity = self.knob_diffusion * float(sp_vol[sl].max()) * max(
-                    mat.conductivity / (mat.cv * mat.gamma), mat.viscosity)
+                    mat.conductivity / cp, mat.viscosity)
                 inv_sum = sum(1.0 / dx[d] ** 2 for d in range(3) if count[d])
                 dt = min(dt, 0.5 / (inv_sum * max(diffusivity, 1e-300)))
         new_dw.put_reduction(L.delT, self.cfl * dt)
+
+    def specific_heat_field(self, patch, matls, old_dw, new_dw):
+        """specific_heat = cv(temp_CC) of the step's start in every cell, extra cells included, and
+        gamma (Uintah's computeThermoTransportProperties)."""
+        for m in matls:
+            self._thermo_fields(patch, m, old_dw.get(I.temp_CC, m, patch), new_dw)
+
+    def _thermo_fields(self, patch, m, temp, new_dw):
+        """Material m's specific_heat (its model's cv(temp), else <specific_heat>) and gamma
+        (<gamma>, as sus: see specific_heat.py) in a patch's own cells; returns specific_heat."""
+        b = self.boxes(patch)
+        own = tuple(slice(l, h) for l, h in zip(b.olo, b.ohi))
+        cv = new_dw.allocate(I.specific_heat, m, patch)
+        model = self._cv_model(m)
+        if model is None:
+            cv[own] = self.cvs[m]
+        else:
+            model.fill(temp, cv, b.olo, b.ohi)
+        new_dw.allocate(I.gamma, m, patch)[own] = self.gammas[m]
+        return cv
 
     # -- step 2: equilibration pressure (eq. 13) ------------------------------------------------
     def equilibration_pressure(self, patch, matls, old_dw, new_dw):
@@ -230,7 +277,8 @@ class IceTasks:
             out = [new_dw.allocate(lab, 0, patch) for lab in (I.sp_vol_CC, I.vol_frac_CC, I.speedSound_CC)]
             v = b.view
             K.equilibrate_one(v(old_dw.get(I.rho_CC, 0, patch)), v(old_dw.get(I.temp_CC, 0, patch)), v(out[0]),
-                              v(peq), v(out[1]), v(out[2]), *self._eos(0), b.v_olo, b.v_ohi)
+                              v(peq), v(out[1]), v(out[2]), self.codes[0], self.params[0],
+                              self._cv(new_dw, 0, patch, v), self.gammas[0], b.v_olo, b.v_ohi)
         else:
             get = lambda lab: tuple(old_dw.get(lab, m, patch) for m in matls)
             new = lambda lab: tuple(new_dw.allocate(lab, m, patch) for m in matls)
@@ -497,17 +545,20 @@ class IceTasks:
                          v(old_dw.get(I.temp_CC, m, patch)), v(new_dw.get(I.vol_frac_CC, m, patch)),
                          v(new_dw.get(I.sp_vol_CC, m, patch)), v(new_dw.get(I.speedSound_CC, m, patch)), v(press),
                          v(delP), *(v(pf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
-                         v(mass), v(mom), v(eng), b.v_olo, b.v_ohi, b.v_lo, b.v_hi, b.vol, b.v_dx, dt, self.cvs[m],
-                         self.gravity, self.use_gravity, self.codes[m], self.params[m], self.gammas[m], b.perm)
+                         v(mass), v(mom), v(eng), b.v_olo, b.v_ohi, b.v_lo, b.v_hi, b.vol, b.v_dx, dt,
+                         self._cv(new_dw, m, patch, v), self.gravity, self.use_gravity, self.codes[m],
+                         self.params[m], self.gammas[m], b.perm)
             sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
             if self.viscous:
                 mom[sl] += dt * new_dw.get(I.viscous_src_CC, m, patch)[sl]
             if self.conduction:
                 eng[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
+            for model in self.source_models:        # Uintah's modelMom_src, modelEng_src
+                model.add_lagrangian(patch, m, mass, mom, eng, old_dw, new_dw)
             if self.lodi is not None:
                 self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
             elif not self.exchange:
-                self._lagrangian_bcs(patch, m, mass, mom, eng, b)
+                self._lagrangian_bcs(patch, m, mass, mom, eng, b, new_dw)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
             if self.conserve_energy:
@@ -518,8 +569,8 @@ class IceTasks:
                                           new_dw.get(I.sp_vol_CC, m, patch), len(matls) == 1,
                                           pf[0], pf[1], pf[2], uf[0], uf[1], uf[2],
                                           b.sh[0], b.sh[1], b.sh[2], self.dims, tot, b.olo, b.ohi, b.lo, b.hi,
-                                          b.vol, patch.level.dx, dt, self.cvs[m], self.gravity, self.use_gravity,
-                                          self.codes[m], self.params[m])
+                                          b.vol, patch.level.dx, dt, self._cv(new_dw, m, patch), self.gravity,
+                                          self.use_gravity, self.codes[m], self.params[m])
                 if self.conduction:
                     tot[sl] += new_dw.get(I.heatCond_src_CC, m, patch)[sl]
                 tots.append(tot)
@@ -548,14 +599,14 @@ class IceTasks:
                          vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
         for m, mass, mom, eng in zip(matls, get(I.mass_L_CC), mom_out, eng_out):
             if m in self.matls:                # fluids (MPMICE: not the solids)
-                self._lagrangian_bcs(patch, m, mass, mom, eng, b)
+                self._lagrangian_bcs(patch, m, mass, mom, eng, b, new_dw)
         if self.conserve_energy:
             self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
 
-    def _lagrangian_bcs(self, patch, m, mass, mom, eng, b):
+    def _lagrangian_bcs(self, patch, m, mass, mom, eng, b, new_dw):
         """mom_L_ME_CC and int_eng_L_ME_CC in the extra cells from u and T with every face's
         conditions, as Uintah's exchange task ends (BoundaryConditions.lagrangian_extra_cells)."""
-        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, self.cvs[m], m, b, self.dims)
+        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, self._cv(new_dw, m, patch), m, b, self.dims)
 
     # -- step 11: specific volume (eq. 40) --------------------------------------------------------
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
@@ -625,7 +676,7 @@ class IceTasks:
                       b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm])
             scratch = (self._scratch("q", (nq,) + shape), self._scratch("acc", (nq,) + shape),
                        self._scratch("buf", (nq, shape[2] + 1)))
-            out = (b.vol, self.cvs[m], v(rho), v(vel), v(temp), v(spv), v(tot_o), scal_o)
+            out = (b.vol, self._cv(new_dw, m, patch, v), v(rho), v(vel), v(temp), v(spv), v(tot_o), scal_o)
             if self.second_order and self.limiter == A.EXTREMA:
                 A.advect_extrema(*common, self.compatible_fluxes, *scratch,
                                  self._scratch("grad", (3, nq) + shape), self._scratch("rc", (3,) + shape), *out)
@@ -633,7 +684,8 @@ class IceTasks:
                 A.advect(*common, b.perm, self.second_order, self.transverse, *scratch,
                          self._scratch("sl", (shape[2],)), *out)
             if self.conserve_energy:
-                A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self.cvs[m], self.codes[m], self.params[m])
+                A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self._cv(new_dw, m, patch), self.codes[m],
+                                self.params[m])
             if self.lodi is not None:
                 self.lodi_advected(patch, m, rho, vel, temp, new_dw)
             self.bcs.scalar(patch, rho, "Density", m, b)
@@ -670,10 +722,11 @@ class IceTasks:
         delt = float(old_dw.get_reduction(L.delT))
         for m in matls:
             rho, vel, temp = new_dw.get(I.rho_CC, m, patch), new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch)
-            K.conserved_sums(rho, vel, temp, self.cvs[m], b.vol, b.lo, b.hi, acc)
+            cv = self._cv(new_dw, m, patch)
+            K.conserved_sums(rho, vel, temp, cv, b.vol, b.lo, b.hi, acc)
             for d in range(3):
                 if self.dims[d] and "xyz"[d] + "+" in patch.boundary_faces:
-                    K.upper_face_fluxes(rho, vel, temp, self.cvs[m], b.vol, new_dw.get(I.FC_VEL_ME[d], m, patch), d,
+                    K.upper_face_fluxes(rho, vel, temp, cv, b.vol, new_dw.get(I.FC_VEL_ME[d], m, patch), d,
                                         b.lo, b.hi, b.sh[d], delt, acc)
         return acc
 
@@ -688,7 +741,7 @@ def _speed_sound(sp_vol, temp, out, code, params, cv, gamma):
     """Initial speedSound_CC of one material over a whole array, extra cells included."""
     flat = np.empty(sp_vol.size)
     K.speed_sound_fill(np.ascontiguousarray(sp_vol).ravel(), np.ascontiguousarray(temp).ravel(), flat,
-                       code, params, cv, gamma)
+                       code, params, _flat_cv(cv), gamma)
     out[...] = flat.reshape(sp_vol.shape)
 
 
@@ -696,7 +749,7 @@ def _press_array(rho_micro, temp, code, params, cv, gamma):
     """EOS pressure of one material over an array (initial press_CC)."""
     out = np.empty(rho_micro.size)
     K.press_fill(np.ascontiguousarray(rho_micro).ravel(), np.ascontiguousarray(temp).ravel(), out,
-                 code, params, cv, gamma)
+                 code, params, _flat_cv(cv), gamma)
     return out.reshape(rho_micro.shape)
 
 
@@ -704,5 +757,10 @@ def _rho_micro_array(press, temp, guess, code, params, cv, gamma):
     """rho_micro(p, T) of one material over an array (initial condition, eos_rho_micro per cell)."""
     out = np.empty(press.size)
     K.rho_micro_fill(np.ascontiguousarray(press).ravel(), np.ascontiguousarray(temp).ravel(), out, guess,
-                     code, params, cv, gamma)
+                     code, params, _flat_cv(cv), gamma)
     return out.reshape(press.shape)
+
+
+def _flat_cv(cv):
+    """cv for the flat-array kernels: one number as it is, a per-cell field flattened."""
+    return np.ascontiguousarray(cv).ravel() if np.ndim(cv) else cv

@@ -355,3 +355,75 @@ def scalar_upper_face_flux(rho, f, vol, face_vel, d, lo, hi, shift):
             i, j, k = c[0], c[1], c[2]
             total += face_vel[i - shift[0], j - shift[1], k - shift[2]] * (rho[i, j, k] * vol * f[i, j, k])
     return total
+
+
+@njit(cache=True)
+def move_tracers(x_old, disp_old, vel_cc, anchor, dx, cc_low, dom_lo, dom_hi, dt, x_new, disp_new, vel_new, cells):
+    """Tracer particles carried by the cell velocity at the start of the step (Uintah's
+    TracerParticles::moveParticles): x+ = x + u_cell dt, the displacement and velocity with it;
+    a particle that leaves the closed domain box gets x+ = NaN (relocation deletes it). cells:
+    the particles' local cell indices in the CC arrays (for the cloned cell values)."""
+    for p in range(x_old.shape[0]):
+        for d in range(3):
+            cells[p, d] = int(np.floor((x_old[p, d] - anchor[d]) / dx[d])) - cc_low[d]
+        u = vel_cc[cells[p, 0], cells[p, 1], cells[p, 2]]
+        out = False
+        for d in range(3):
+            x_new[p, d] = x_old[p, d] + u[d] * dt
+            disp_new[p, d] = disp_old[p, d] + (x_new[p, d] - x_old[p, d])
+            vel_new[p, d] = u[d]
+            out = out or x_new[p, d] < dom_lo[d] or x_new[p, d] > dom_hi[d]
+        if out:
+            for d in range(3):
+                x_new[p, d] = np.nan
+
+
+@njit(cache=True, inline="always")
+def _mt_seed(mt, seed):
+    """The 32-bit Mersenne Twister's state from one seed (init_genrand; Uintah's MTRand::seed)."""
+    mt[0] = seed & 0xFFFFFFFF
+    for i in range(1, 624):
+        mt[i] = (1812433253 * (mt[i - 1] ^ (mt[i - 1] >> 30)) + i) & 0xFFFFFFFF
+
+
+@njit(cache=True, inline="always")
+def _mt_reload(mt):
+    for k in range(624):
+        y = (mt[k] & 0x80000000) | (mt[(k + 1) % 624] & 0x7FFFFFFF)
+        mt[k] = mt[(k + 397) % 624] ^ (y >> 1) ^ (0x9908B0DF if y & 1 else 0)
+
+
+@njit(cache=True, inline="always")
+def _mt_temper(y):
+    y ^= y >> 11
+    y ^= (y << 7) & 0x9D2C5680
+    y ^= (y << 15) & 0xEFC60000
+    return y ^ (y >> 18)
+
+
+@njit(cache=True)
+def seed_tracers(cells, npc, anchor, dx, cc_low, count, x_out, id_out):
+    """npc particles in each cell (global indices, (n, 3)) at Uintah's random points
+    (TracerParticles::distributeParticles): the generator seeded with i + j + k of the cell, three
+    draws in [0, 1] per particle, x = (centre - dx/2) + draw dx; the IDs i << 16 | j << 32 | k << 48
+    or'ed with the cell's running count (nPPC, local indices from cc_low), which is advanced."""
+    mt = np.empty(624, np.uint64)
+    n = 0
+    for c in range(cells.shape[0]):
+        _mt_seed(mt, np.uint64(cells[c, 0] + cells[c, 1] + cells[c, 2]))
+        _mt_reload(mt)
+        used = 0
+        ci, cj, ck = cells[c, 0] - cc_low[0], cells[c, 1] - cc_low[1], cells[c, 2] - cc_low[2]
+        cell_id = (cells[c, 0] << 16) | (cells[c, 1] << 32) | (cells[c, 2] << 48)
+        for p in range(npc):
+            for d in range(3):
+                if used == 624:
+                    _mt_reload(mt)
+                    used = 0
+                r = float(_mt_temper(mt[used])) * (1.0 / 4294967295.0)
+                used += 1
+                centre = anchor[d] + dx[d] * cells[c, d] + dx[d] * 0.5      # Uintah's getCellPosition
+                x_out[n, d] = (centre - dx[d] / 2.0) + r * dx[d]
+            id_out[n] = cell_id | count[ci, cj, ck]
+            count[ci, cj, ck] += 1
+            n += 1

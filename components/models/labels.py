@@ -1,4 +1,4 @@
-"""Labels of the reaction models (Uintah's ICELabel modelMass_src ... and Simple_Burn's own)."""
+"""Labels of the models (Uintah's ICELabel modelMass_src ..., Simple_Burn's and MassMomEng_src's own)."""
 from framework import labels as L
 from framework.variables import VarType
 
@@ -15,3 +15,6 @@ totalHeatReleased = L.create("totalHeatReleased", R, reduction="sum")   # this s
 numPPC = L.create("SteadyBurn.numPPC", CC)              # reactant: its particles per cell
 burningCell = L.create("SteadyBurn.BurningCell", CC)    # reactant: 1 where a cell burns this step
 surfTemp = L.create("SteadyBurn.SurfTemp", CC)          # reactant: burning-surface temperature Ts (K)
+totalMass_src = L.create("TotalMass_src", R, reduction="sum")          # MassMomEng_src: this step's sums over
+totalMom_src = L.create("TotalMom_src", R, (3,), reduction="sum")      # the source cells (kg, kg m/s, J)
+totalEng_src = L.create("TotalEng_src", R, reduction="sum")

@@ -245,27 +245,3 @@ def _centres(level, box):
     xs = level.cell_centers(box)
     X, Y, Z = np.meshgrid(*xs, indexing="ij")
     return np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
-
-
-def read_ice_models(root, ice, geo, others=()):
-    """The PassiveScalar models of a deck's <Models> ([] without the block). others: the model
-    types another reader takes (MPMICE's reactions, components/models), skipped here."""
-    node = root.child("Models")
-    if node is None:
-        return []
-    models = []
-    for m in node.children("Model"):
-        if m.attr("type", choices=("PassiveScalar",) + tuple(others)) != "PassiveScalar":
-            continue
-        model = PassiveScalar(m, ice, geo)
-        if model.matl < ice.n_before:
-            raise m.child("PassiveScalar").child("material").error(
-                "a PassiveScalar is carried by an ICE material's flow; accepted: an ICE material")
-        models.append(model)
-    if not models and not others:
-        raise node.error('<Models> without a <Model type=...>; accepted for ICE: "PassiveScalar"')
-    names = [s.name for s in models]
-    for s in models:
-        if names.count(s.name) > 1:
-            raise node.error(f"two PassiveScalar models name their scalar {s.name}; accepted: distinct names")
-    return models

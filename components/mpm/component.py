@@ -27,6 +27,7 @@ One timestep (tasks.py), all MPM materials in each task:
   computeAndIntegrateAcceleration a_i, v*_i
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
+  computeSPlusSSPlusVp            XPIC(2)'s twice-smoothed grid velocity (only with <XPIC2>)
   interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
   computeStressTensor             (MUSL: L_p, F_p, V_p from v^L) sigma_p, strain energy,
                                   wave speed
@@ -48,7 +49,7 @@ from .bc import GridBCs
 from .contact import Contact
 from .materials import Material
 from .shape import AXI
-from .transfer import kernels, merged_p2g
+from .transfer import kernels, merged_p2g, xpic_kernel
 from .tasks import MPMTasks
 from .thermal import ThermalTasks
 
@@ -69,6 +70,8 @@ FLAGS = {
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
+    "XPIC2": Param("bool", False, doc="particle velocity and position from XPIC(2) (Hammerquist & Nairn 2017) "
+                   "instead of FLIP, as Uintah's SerialMPM; not for rigid materials"),
     "use_load_curves": Param("bool", False, doc="pressure and torque BCs follow <PhysicalBC> load curves"),
     "boundary_traction_faces": Param("str", "[]", doc="read: Uintah sums BndyForce_<face> reductions there "
                                      "for output; pysus computes none, and a <save> of them is refused"),
@@ -96,6 +99,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
     coupled_reads_grid_volume = False
     # why <axisymmetric>true is refused in this component (None: it is supported)
     axisymmetric_refused = None
+    # why <XPIC2>true is refused in this component (None: it is supported)
+    xpic_refused = None
 
     def problem_setup(self, root, level):
         self.level = level
@@ -128,6 +133,12 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.act = self.axes | (AXI if self.axisymmetric else 0)      # the kernels' mask (shape.AXI)
         self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.act)
         self.p2g = merged_p2g(self.p2g_runs)      # one array per variable (MPMICE)
+        self.xpic = self.flags["XPIC2"]
+        if self.xpic:
+            if self.xpic_refused or self.axisymmetric:
+                why = self.xpic_refused or "with <axisymmetric>true"
+                raise mpm.child("XPIC2").error(f"XPIC2 is not implemented {why}; accepted: false")
+            self.xpic_spssp = xpic_kernel(self.kind, self.act)
         self.ng = 1 if self.kind == "linear" else 2
         self.grid_volume = True           # until schedule_time_advance knows who reads g.volume
         mp = root.child("MaterialProperties", required=True).child("MPM", required=True)
@@ -140,6 +151,12 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if not self.materials:
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
+        smooth = [o for m in self.materials for o in m.objects if o.get("smooth")]
+        if smooth and self.kind != "linear":
+            raise smooth[0]["node"].child("smoothcyl").error(
+                f"a <smoothcyl>'s particles with <interpolator>{self.kind} are not implemented: Uintah gives each a "
+                "size matrix turned with its ring sector, which pysus's p.size (three half-widths) cannot hold; "
+                "accepted: <interpolator>linear")
         self.has_membrane = any(m.is_membrane for m in self.materials)
         # fluid points with artificial viscosity: its scales are reduced over the level
         self.av_matls = [i for i, m in enumerate(self.materials)
@@ -319,12 +336,20 @@ class MPM(ThermalTasks, MPMTasks, Component):
             sched.add_task(Task("MPM::setGridBoundaryConditions", self.set_grid_bcs, ms)
                            .requires(OLD, FL.delT).requires(NEW, L.gVelocity)
                            .modifies(L.gVelocityStar).modifies(L.gAcceleration))
+        gg = 2 * ng if self.musl else ng
+        if self.xpic:       # ghost particles' nodes: 2 ng around the patch
+            t = Task("MPM::computeSPlusSSPlusVp", self.xpic_grid_velocity, ms)
+            for lab in [L.pX, L.pMass] + self.size_labels():
+                t.requires(OLD, lab, g, ng)
+            sched.add_task(t.requires(NEW, L.gVelocity, Ghost.AROUND_CELLS, 2 * ng).requires(NEW, L.gMass)
+                           .computes(L.gVelSPSSP))
         t = Task("MPM::interpolateToParticlesAndUpdate", self.interpolate_to_particles, ms).requires(OLD, FL.delT)
         pg = (g, ng) if self.musl else (Ghost.NONE, 0)
         for lab in [L.pX, L.pVelocity, L.pMass] + self.size_labels():
             t.requires(OLD, lab, *pg)
-        gg = 2 * ng if self.musl else ng
         t.requires(NEW, L.gVelocityStar, Ghost.AROUND_CELLS, gg).requires(NEW, L.gAcceleration, Ghost.AROUND_CELLS, gg)
+        if self.xpic:
+            t.requires(NEW, L.gVelocity, Ghost.AROUND_CELLS, gg).requires(NEW, L.gVelSPSSP, Ghost.AROUND_CELLS, gg)
         t.computes(L.pXpre).computes(L.pVelocityPre)
         if self.musl:
             t.requires(NEW, L.gMass).requires(OLD, FL.delT).computes(L.gVelocityL)

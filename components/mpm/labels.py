@@ -72,6 +72,7 @@ gAlphaMaterial = L.create("g.alphaMaterial", NC)           # friction_LR: the al
 gNormAlphaToBeta = L.create("g.normAlphaToBeta", NC, (3,))  # friction_LR: unit normal alpha -> beta (matl 0)
 gMatlProminence = L.create("g.matlProminence", NC)         # friction_LR: extreme face projection, -99 none
 gColor = L.create("g.color", NC)                           # friction_LRVar: mass-weighted p.color
+gVelSPSSP = L.create("g.velSPSSP", NC, (3,))      # XPIC(2): sum S m_p (sum S v_i)_p / m_i (tasks.py)
 gVelocityStar = L.create("g.velocity_star", NC, (3,))
 gAcceleration = L.create("g.acceleration", NC, (3,))
 gTemperature = L.create("g.temperature", NC)            # mass-weighted nodal temperature (thermal.py)

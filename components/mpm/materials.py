@@ -16,7 +16,7 @@ import sys
 import numpy as np
 from mpi4py import MPI
 
-from framework.geometry import GeometryReader
+from framework.geometry import GeometryReader, Null, SmoothCylinder
 from framework.problemspec import Param
 
 # deck name -> module under components.mpm.constitutive
@@ -156,9 +156,28 @@ class Material:
                 raise g.child("color").error("<color> needs <MPM><withColor>true</withColor>")
             spec["piece"] = piece
             spec["node"] = g
+            spec["smooth"] = isinstance(piece, SmoothCylinder)
             self.objects.append(spec)
         if not self.objects:
             raise node.error("a material needs at least one <geom_object>")
+        self._check_smooth(node)
+
+    def _check_smooth(self, node):
+        """A <smoothcyl> lays its own particles only as the lone piece of its <geom_object>, and
+        Uintah's FileGeomPieceParticleCreator takes a material whose pieces are all such (a
+        smoothcyl inside <union> etc. is filled on the lattice like any piece)."""
+        smooth = [o for o in self.objects if o.get("smooth")]
+        if not smooth:
+            bare = [c for o in self.objects if "node" in o for c in o["node"].children("smoothcyl")]
+            if bare:
+                raise bare[0].error("a <smoothcyl> that lays its own particles must be the only piece of its "
+                                    "<geom_object> (Uintah's particle creator for it reads one piece)")
+            return
+        if len(smooth) != len(self.objects):
+            other = next(o for o in self.objects if not o.get("smooth"))
+            raise other["node"].error("a material with a <smoothcyl> object takes only <smoothcyl> objects "
+                                      "(Uintah: file geometry pieces can't be mixed with other geometry types "
+                                      "in a single material)")
 
     def initial_state(self, d):
         """The model state of new particles: plastic strain 0; ideal gas: the specific
@@ -194,7 +213,15 @@ class Material:
                 if surface:
                     out[-1]["surf"] = np.ones(len(out[-1]["x"]))      # a membrane is all surface
                 continue
+            if isinstance(obj["piece"], Null):
+                continue              # Uintah: its box is a point, so no particles
             res = np.array([1 if lv.collapsed[d] else obj["res"][d] for d in range(3)])
+            if obj.get("smooth"):
+                out.append(smooth_points(obj, patch, obj_base + k, res, pressure, self.index))
+                if surface:
+                    out[-1]["surf"] = on_surface(out[-1]["x"], obj["piece"], lv.dx / res,
+                                                 ~np.asarray(lv.collapsed)).astype(float)
+                continue
             axes = []
             for d in range(3):
                 sub = np.arange(patch.lo[d] * res[d], patch.hi[d] * res[d])
@@ -222,6 +249,10 @@ class Material:
                 out[-1]["surf"] = on_surface(x, obj["piece"], dxpp, ~np.asarray(lv.collapsed)).astype(float)
             from framework.geometry import Union
             taken = obj["piece"] if taken is None else Union([taken, obj["piece"]])
+        if not out:
+            out.append(dict(x=np.empty((0, 3)), id=np.empty(0, np.int64), vol=np.empty(0), temp=np.empty(0),
+                            lcid=np.empty((0, 3)), vel=np.empty((0, 3)), size=np.empty((0, 3)),
+                            color=np.empty(0), **({"surf": np.empty(0)} if surface else {})))
         data = {key: np.concatenate([o[key] for o in out]) for key in out[0]}
         order = np.argsort(data["id"], kind="stable")
         data = {key: np.ascontiguousarray(v[order]) for key, v in data.items()}
@@ -266,6 +297,35 @@ def read_membrane_object(g, with_color):
                 velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
                 temperature=g.get("temperature", "float", 294.0, at_least=0.0),
                 color=g.get("color", "float", 0.0) if with_color else None)
+
+
+def smooth_points(obj, patch, obj_id, res, pressure, matl):
+    """The particles of a <smoothcyl> object that lie in the patch's cells (Uintah's
+    FileGeomPieceParticleCreator): positions and volumes from SmoothCylinder.points, mass =
+    density * volume; IDs obj_id * 2^40 + the index in the piece's list. A point outside the
+    level (extra cells included) is an error, as Uintah's."""
+    lv = patch.level
+    x, vol = obj["piece"].cached_points(lv.dx)
+    extra = np.asarray(lv.extra) * lv.dx
+    lo, hi = lv.anchor - extra, lv.upper + extra
+    bad = np.nonzero(np.any((x < lo) | (x > hi), axis=1))[0]
+    if len(bad):
+        raise obj["node"].error(f"the <smoothcyl>'s particle at {_fmt(x[bad[0]])} lies outside the domain "
+                                f"{_fmt(lo)} to {_fmt(hi)} (extra cells included)")
+    cell = np.floor((x - lv.anchor) / lv.dx).astype(np.int64)
+    idx = np.nonzero(np.all((cell >= patch.lo) & (cell < patch.hi), axis=1))[0]
+    x, n = x[idx], len(idx)
+    dxpp = lv.dx / res
+    return dict(x=x, id=(obj_id * (1 << 40) + idx).astype(np.int64), vol=vol[idx],
+                temp=np.full(n, obj["temperature"]),
+                lcid=pressure.flag(x, obj["piece"], dxpp, matl) if pressure else np.zeros((n, 3)),
+                vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
+                size=np.tile(0.5 * dxpp, (n, 1)),
+                color=np.full(n, obj["color"] if obj["color"] is not None else 0.0))
+
+
+def _fmt(v):
+    return "[" + ", ".join(f"{a:g}" for a in v) + "]"
 
 
 def on_surface(x, piece, dxpp, active):

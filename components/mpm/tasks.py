@@ -392,10 +392,29 @@ class MPMTasks:
                            new_dw.get_modifiable(L.gAcceleration, m, patch),
                            new_dw.get(L.gVelocity, m, patch), dt)
 
+    def xpic_grid_velocity(self, patch, matls, old_dw, new_dw):
+        """XPIC(2) (Hammerquist & Nairn 2017; Uintah's computeSSPlusVp and computeSPlusSSPlusVp in
+        one pass): v+_p = sum S v_i at every owned and ghost particle, then g.velSPSSP =
+        sum S m_p v+_p / m_i, the grid velocity smoothed twice through the particles. Rigid
+        materials keep FLIP (zeros here, as Uintah)."""
+        lv = self.level
+        low = np.array(patch.low_index(NC), np.int64)
+        for m in matls:
+            out = new_dw.allocate(L.gVelSPSSP, m, patch, 0.0)
+            if self.materials[m].is_rigid:
+                continue
+            own, ghost, runs = self._parts(old_dw, m, patch, [L.pX, L.pMass])
+            self.xpic_spssp(tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low, new_dw.get(L.gVelocity, m, patch),
+                            out)
+            kernels.divide_by_mass(new_dw.get(L.gMass, m, patch), out, out)
+
     # -- grid -> particles ----------------------------------------------------------------------
     def interpolate_to_particles(self, patch, matls, old_dw, new_dw):
         """v_p += dt sum S a (000 eq. 26), x_p += dt sum S v* (eq. 27); totals; deletion by
         minimum_particle_mass / maximum_particle_velocity; one fused kernel (transfer.py).
+        With <XPIC2> (not for rigid materials) v_p = 2 v+ - v++ + dt sum S a and
+        x_p += dt (sum S v* - (dt sum S a + v_p - 2 v+ + v++) / 2), v+ = sum S v_i and
+        v++ = sum S g.velSPSSP (xpic_grid_velocity), as Uintah's SerialMPM.
 
         USL: L_p = sum v*_i (x) grad S (000 eq. 23) for the stress update.
         MUSL (004 eqs. 11-14): the updated velocities of owned AND ghost particles are
@@ -425,10 +444,12 @@ class MPMTasks:
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
             x_new = np.empty((n_own, 3))
             v_new = np.empty((n_own, 3))
+            xpic = ((new_dw.get(L.gVelocity, m, patch), new_dw.get(L.gVelSPSSP, m, patch))
+                    if self.xpic and not mat.is_rigid else None)
             self.g2p(self.musl, tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low,
                      new_dw.get(L.gVelocityStar, m, patch), new_dw.get(L.gAcceleration, m, patch), dt, x_new, v_new,
                      Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"], mat.uses_L,
-                     F_old, F_new, vol_new, mat.density)
+                     F_old, F_new, vol_new, mat.density, xpic=xpic)
             if self.musl:
                 kernels.divide_by_mass(new_dw.get(L.gMass, m, patch), gvl, gvl)
                 if not self.contact.active:

@@ -67,27 +67,22 @@ def _deform(act, p, o, dt, L00, L01, L02, L10, L11, L12, L20, L21, L22, F_old, F
     A01 = dt * L01
     A11 = 1.0 + dt * L11
     A21 = dt * L21
-    if act & AXI:           # L has the 2x2 (r, z) block and L22 = u_r / r: (I + L dt) is block-diagonal
-        A22 = 1.0 + dt * L22
+    if act & AXI or not act & 4:    # no z column: the (r, z) / (x, y) rows need the first two rows of F only
         F00 = A00 * G00 + A01 * G10
         F01 = A00 * G01 + A01 * G11
         F02 = A00 * G02 + A01 * G12
         F10 = A10 * G00 + A11 * G10
         F11 = A10 * G01 + A11 * G11
         F12 = A10 * G02 + A11 * G12
-        F20 = A22 * G20
-        F21 = A22 * G21
-        F22 = A22 * G22
-    elif not act & 4:
-        F00 = A00 * G00 + A01 * G10
-        F01 = A00 * G01 + A01 * G11
-        F02 = A00 * G02 + A01 * G12
-        F10 = A10 * G00 + A11 * G10
-        F11 = A10 * G01 + A11 * G11
-        F12 = A10 * G02 + A11 * G12
-        F20 = A20 * G00 + A21 * G10 + G20
-        F21 = A20 * G01 + A21 * G11 + G21
-        F22 = A20 * G02 + A21 * G12 + G22
+        if act & AXI:       # L has the 2x2 (r, z) block and L22 = u_r / r: (I + L dt) is block-diagonal
+            A22 = 1.0 + dt * L22
+            F20 = A22 * G20
+            F21 = A22 * G21
+            F22 = A22 * G22
+        else:
+            F20 = A20 * G00 + A21 * G10 + G20
+            F21 = A20 * G01 + A21 * G11 + G21
+            F22 = A20 * G02 + A21 * G12 + G22
     else:
         A02 = dt * L02
         A12 = dt * L12
@@ -310,13 +305,35 @@ def _g2p_gather(kind, act, musl, ijk, sh, fv, fa, st, sums):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
-    """Rows [first, end) of one source part = (x, v, m, lp): 000 eqs. 26-27 (see _g2p);
-    grid = (anchor, ih, node_low, shape, fv, fa, fp, dt, scratch), outs = (x_out, v_out, L_out,
+def _gather_S(kind, act, ijk, sh, fg, st, s0, s1, s2):
+    """s += sum S_i g_i over the nodes of one stencil (weights st, local base node ijk) of
+    the node vector array fg (flat): XPIC(2)'s S v_i and S (S+ S+ v)_i."""
+    na, nb, nc = _counts(kind, act)
+    i, j, k = ijk
+    sh1, sh2 = sh
+    wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2 = st
+    for a in range(na):
+        wa = _sel(a, wx0, wx1, wx2)
+        for b in range(nb):
+            wb = _sel(b, wy0, wy1, wy2)
+            for c in range(nc):
+                S = wa * wb * _sel(c, wz0, wz1, wz2)
+                f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                s0 += S * fg[f3]
+                s1 += S * fg[f3 + np.uint64(1)]
+                s2 += S * fg[f3 + np.uint64(2)]
+    return s0, s1, s2
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _g2p_rows(kind, act, musl, xpic, part, first, end, owned, grid, outs, lim, acc):
+    """Rows [first, end) of one source part = (x, v, m, lp): 000 eqs. 26-27 (see _g2p), or with
+    xpic XPIC(2)'s update; grid = (anchor, ih, node_low, shape, fv, fa, fp, dt, scratch, fg, fs)
+    (fg, fs: g.velocity and g.velSPSSP, read with xpic only), outs = (x_out, v_out, L_out,
     F_old, F_out, vol_out, rho0, write_L), lim = (check, min_mass, max_vel), acc = the
     running (o, n_del, totals); returns it updated."""
     px, pvel, pmass, lp = part
-    anchor, ih, node_low, sh, fv, fa, fp, dt, sb, sw = grid
+    anchor, ih, node_low, sh, fv, fa, fp, dt, sb, sw, fg, fs = grid
     sh0, sh1, sh2 = sh
     x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L = outs
     check, min_mass, max_vel = lim
@@ -347,9 +364,21 @@ def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
                     kind, act, musl, (sb[0, q], sb[1, q], sb[2, q]), (sh1, sh2), fv, fa,
                     _stencil_get(kind, act, q, ih, sw),
                     (a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22))
-            nv0 = pvel[u, 0] + dt * a0
-            nv1 = pvel[u, 1] + dt * a1
-            nv2 = pvel[u, 2] + dt * a2
+            if xpic:        # XPIC(2) (Hammerquist & Nairn 2017): v = 2 v+ - v++ + a dt
+                s0 = s1 = s2 = ss0 = ss1 = ss2 = 0.0
+                for cq in range(nq):
+                    q = (p - c0) * nq + cq
+                    st = _stencil_get(kind, act, q, ih, sw)
+                    ijk = (sb[0, q], sb[1, q], sb[2, q])
+                    s0, s1, s2 = _gather_S(kind, act, ijk, (sh1, sh2), fg, st, s0, s1, s2)
+                    ss0, ss1, ss2 = _gather_S(kind, act, ijk, (sh1, sh2), fs, st, ss0, ss1, ss2)
+                nv0 = 2.0 * s0 - ss0 + a0 * dt
+                nv1 = 2.0 * s1 - ss1 + a1 * dt
+                nv2 = 2.0 * s2 - ss2 + a2 * dt
+            else:
+                nv0 = pvel[u, 0] + dt * a0
+                nv1 = pvel[u, 1] + dt * a1
+                nv2 = pvel[u, 2] + dt * a2
             m = pmass[u]
             if musl:
                 mv0 = m * nv0
@@ -372,9 +401,14 @@ def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
                                 fp[f3 + np.uint64(2)] += mv2 * S
             if not owned:
                 continue
-            x0 = px[u, 0] + dt * v0
-            x1 = px[u, 1] + dt * v1
-            x2 = px[u, 2] + dt * v2
+            if xpic:        # x += dt (v* - (a dt + v_p - 2 v+ + v++) / 2), as Uintah's SerialMPM
+                x0 = px[u, 0] + v0 * dt - 0.5 * (a0 * dt + (pvel[u, 0] - 2.0 * s0) + ss0) * dt
+                x1 = px[u, 1] + v1 * dt - 0.5 * (a1 * dt + (pvel[u, 1] - 2.0 * s1) + ss1) * dt
+                x2 = px[u, 2] + v2 * dt - 0.5 * (a2 * dt + (pvel[u, 2] - 2.0 * s2) + ss2) * dt
+            else:
+                x0 = px[u, 0] + dt * v0
+                x1 = px[u, 1] + dt * v1
+                x2 = px[u, 2] + dt * v2
             w = np.uint64(o)
             if check:
                 if m < min_mass or np.sqrt(nv0 * nv0 + nv1 * nv1 + nv2 * nv2) > max_vel:
@@ -403,23 +437,24 @@ def _g2p_rows(kind, act, musl, part, first, end, owned, grid, outs, lim, acc):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _g2p(kind, act, musl, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out, gmom, tot,
-         min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
+def _g2p(kind, act, musl, xpic, own, ghost, runs, anchor, dx, node_low, gvs, gacc, dt, x_out, v_out, L_out, gmom,
+         tot, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0, gvel, gspssp):
     """Update every particle given: the owned and ghost sources (x, v, m, lp), run by run
     in their merged ID order (as p2g); write the owned ones compacted to x_out / v_out; USL:
-    F_out, vol_out (and L_out if write_L); MUSL: += m v_new S on gmom. Returns the number
-    of particles deleted (x = NaN)."""
+    F_out, vol_out (and L_out if write_L); MUSL: += m v_new S on gmom. xpic: XPIC(2)'s v and x
+    from g.velocity (gvel) and g.velSPSSP (gspssp) too. Returns the number of particles
+    deleted (x = NaN)."""
     sb, sw = _scratch(kind, act)
     grid = (anchor, _inv_dx(dx), node_low, gvs.shape[:3], gvs.reshape(-1), gacc.reshape(-1), gmom.reshape(-1), dt,
-            sb, sw)
+            sb, sw, gvel.reshape(-1), gspssp.reshape(-1))
     outs = (x_out, v_out, L_out, F_old, F_out, vol_out, rho0, write_L)
     lim = (min_mass > 0.0 or max_vel < np.inf, min_mass, max_vel)
     acc = (0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     for r in range(runs.shape[0]):
         if runs[r, 0] == 0:
-            acc = _g2p_rows(kind, act, musl, own, runs[r, 1], runs[r, 2], True, grid, outs, lim, acc)
+            acc = _g2p_rows(kind, act, musl, xpic, own, runs[r, 1], runs[r, 2], True, grid, outs, lim, acc)
         elif musl:              # USL: a ghost particle changes nothing (no remap), so no code for it
-            acc = _g2p_rows(kind, act, musl, ghost, runs[r, 1], runs[r, 2], False, grid, outs, lim, acc)
+            acc = _g2p_rows(kind, act, musl, xpic, ghost, runs[r, 1], runs[r, 2], False, grid, outs, lim, acc)
     o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     tot[0] += t0
     tot[1] += t1
@@ -493,9 +528,10 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
 #     implies has_volume (V_i); both branched once per call, so each is compiled constant
 # g2p(musl, owned, ghost, runs, anchor, dx, node_low, grid_velocity_star, grid_acceleration, dt,
 #     x_out, v_out, L_out, grid_momentum, totals, min_mass, max_vel, write_L, F_old, F_out,
-#     vol_out, rho0) -> number deleted
+#     vol_out, rho0, grid_velocity, grid_vel_spssp) -> number deleted
 #     owned/ghost: (px, pv, pm, lp); kernels() gives it; the USL and MUSL entry points take the
 #     arguments after musl
+#     grid_velocity, grid_vel_spssp: XPIC(2)'s g.velocity and g.velSPSSP (never read by FLIP's entry)
 # grad(px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt, particle_mass, rho0, F_old,
 #      F_out, vol_out, model, bulk_modulus, shear_modulus, particle_velocity, stress_out,
 #      energy_out) -> wave speed (3 floats; zeros unless model)
@@ -526,20 +562,73 @@ def _p2g_entry(interpolator, axes):
 
 
 @functools.lru_cache(maxsize=None)
-def _g2p_entry(interpolator, axes, musl):
-    """g2p after its musl flag (signature above) for one interpolator, mask and update (USL or MUSL):
-    each is compiled only where a run uses it (USL's has no remap and no code for ghost particles,
-    MUSL's no L or F; with musl a run-time flag one entry held both: 40 CPU s of disks_50x50's
-    cold compile)."""
+def _g2p_entry(interpolator, axes, musl, xpic):
+    """g2p after its musl flag (signature above) for one interpolator, mask, update (USL or MUSL)
+    and particle velocity update (FLIP or XPIC(2)): each is compiled only where a run uses it
+    (USL's has no remap and no code for ghost particles, MUSL's no L or F; with musl a run-time
+    flag one entry held both: 40 CPU s of disks_50x50's cold compile). FLIP's never reads
+    grid_velocity or grid_vel_spssp."""
     kind = INTERPOLATORS[interpolator]
 
     @njit(cache=True, fastmath=FM)
     def g2p(owned, ghost, runs, anchor, dx, node_low, grid_velocity_star, grid_acceleration, dt, x_out, v_out,
-            L_out, grid_momentum, totals, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0):
-        return _g2p(kind, axes, musl, owned, ghost, runs, anchor, dx, node_low, grid_velocity_star,
+            L_out, grid_momentum, totals, min_mass, max_vel, write_L, F_old, F_out, vol_out, rho0, grid_velocity,
+            grid_vel_spssp):
+        return _g2p(kind, axes, musl, xpic, owned, ghost, runs, anchor, dx, node_low, grid_velocity_star,
                     grid_acceleration, dt, x_out, v_out, L_out, grid_momentum, totals, min_mass, max_vel, write_L,
-                    F_old, F_out, vol_out, rho0)
+                    F_old, F_out, vol_out, rho0, grid_velocity, grid_vel_spssp)
     return g2p
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _spssp(kind, act, own, ghost, runs, anchor, dx, node_low, gvel, gout):
+    """gout_i += sum_p S_ip m_p v+_p, v+_p = sum_j S_jp v_j (gvel): the owned and ghost
+    sources (x, m, lp), run by run in their merged ID order (as p2g), so each node adds its
+    shares in particle-ID order; shares beyond the node arrays are dropped."""
+    sh0, sh1, sh2 = gvel.shape[:3]
+    na, nb, nc = _counts(kind, act)
+    ih = _inv_dx(dx)
+    fg = gvel.reshape(-1)
+    fo = gout.reshape(-1)
+    nq = _corners(kind, act)
+    for r in range(runs.shape[0]):
+        px, pmass, lp = own if runs[r, 0] == 0 else ghost
+        for p in range(runs[r, 1], runs[r, 2]):
+            s0 = s1 = s2 = 0.0
+            for q in range(nq):
+                st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+                i, j, k = st[0], st[1], st[2]
+                if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+                    raise IndexError("particle's nodes lie outside the patch node arrays")
+                s0, s1, s2 = _gather_S(kind, act, (i, j, k), (sh1, sh2), fg, st[3:], s0, s1, s2)
+            m = pmass[p]
+            mv0 = s0 * m
+            mv1 = s1 * m
+            mv2 = s2 * m
+            for q in range(nq):
+                (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+                 wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+                for a in range(na):
+                    wa = _sel(a, wx0, wx1, wx2)
+                    for b in range(nb):
+                        wb = _sel(b, wy0, wy1, wy2)
+                        for c in range(nc):
+                            S = wa * wb * _sel(c, wz0, wz1, wz2)
+                            f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
+                            fo[f3] += mv0 * S
+                            fo[f3 + np.uint64(1)] += mv1 * S
+                            fo[f3 + np.uint64(2)] += mv2 * S
+
+
+@functools.lru_cache(maxsize=None)
+def _spssp_entry(interpolator, axes):
+    """XPIC(2)'s first extra pass, (S+ S+ m v)_i (signature above), for one interpolator and mask."""
+    kind = INTERPOLATORS[interpolator]
+
+    @njit(cache=True, fastmath=FM)
+    def spssp(owned, ghost, runs, anchor, dx, node_low, grid_velocity, grid_out):
+        _spssp(kind, axes, owned, ghost, runs, anchor, dx, node_low, grid_velocity, grid_out)
+    return spssp
 
 
 @functools.lru_cache(maxsize=None)
@@ -568,12 +657,19 @@ def one_run(n):
 
 def kernels(interpolator, axes):
     """(p2g, g2p, grad) for `interpolator` on the active-axis mask `axes`, with shape.AXI for an
-    axisymmetric run (signatures above)."""
-    usl, musl = _g2p_entry(interpolator, axes, False), _g2p_entry(interpolator, axes, True)
-
-    def g2p(musl_flag, *args):
-        return (musl if musl_flag else usl)(*args)
+    axisymmetric run (signatures above). g2p(musl, *args, xpic=(grid_velocity, grid_vel_spssp))
+    is XPIC(2)'s update (FLIP's without xpic)."""
+    def g2p(musl_flag, *args, xpic=None):
+        if xpic is None:            # FLIP: the stand-ins have g.velocity_star's type (no new specialisation)
+            return _g2p_entry(interpolator, axes, musl_flag, False)(*args, args[6], args[6])
+        return _g2p_entry(interpolator, axes, musl_flag, True)(*args, *xpic)
     return _p2g_entry(interpolator, axes), g2p, _grad_entry(interpolator, axes)
+
+
+def xpic_kernel(interpolator, axes):
+    """spssp(owned, ghost, runs, anchor, dx, node_low, grid_velocity, grid_out) for XPIC(2):
+    owned/ghost (px, pm, lp); grid_out += (S+ S+ m v)_i (then divided by g.mass: g.velSPSSP)."""
+    return _spssp_entry(interpolator, axes)
 
 
 def merged_p2g(p2g):

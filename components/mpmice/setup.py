@@ -78,6 +78,7 @@ class MPMinMPMICE(MPM):
     flags_spec = {**FLAGS, "testForNegTemps_mpm": Param("bool", True, doc="MPMICE: read; no MPM temperature")}
     coupled_reads_grid_volume = True
     axisymmetric_refused = "with MPMICE (ICE's fluxes and the MPM-ICE pressure force are planar)"
+    xpic_refused = "in MPMICE (Uintah's MPMICE does not schedule its passes either)"
 
     def __init__(self, n_all):
         super().__init__()

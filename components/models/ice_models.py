@@ -1,0 +1,68 @@
+"""The <Models> of an ICE deck (MPMICE: PassiveScalar; it reads its reaction models in __init__.py).
+
+    PassiveScalar             a scalar carried by a material's flow (passive_scalar.py)
+    mass_momentum_energy_src  fans and heaters: fixed velocity/temperature regions (mass_mom_eng_src.py)
+    TracerParticles           massless particles carried by the flow (tracer_particles.py)
+
+`read_ice_models` returns them grouped by what the ICE component does with them: the
+scalars it transports, the sources it adds to the Lagrangian state, and the particle models.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .mass_mom_eng_src import MassMomEngSrc
+from .passive_scalar import PassiveScalar
+from .tracer_particles import TracerParticles
+
+ICE_MODELS = {"PassiveScalar": PassiveScalar, "mass_momentum_energy_src": MassMomEngSrc,
+              "TracerParticles": TracerParticles}
+
+
+@dataclass
+class IceModels:
+    scalars: list = field(default_factory=list)      # PassiveScalar
+    sources: list = field(default_factory=list)      # MassMomEngSrc
+    tracers: list = field(default_factory=list)      # TracerParticles
+
+
+def read_ice_models(root, ice, geo, others=()) -> IceModels:
+    """The models of an ICE deck's <Models> (none without the block), in deck order. others: the
+    model types another reader takes (MPMICE's reactions, __init__.py), skipped here; in MPMICE
+    (ice.n_before > 0) only PassiveScalar is ICE's, carried by an ICE material."""
+    out = IceModels()
+    node = root.child("Models")
+    if node is None:
+        return out
+    t0 = root.child("Time").get("initTime", "float", 0.0) if root.child("Time") is not None else 0.0
+    for m in node.children("Model"):
+        kind = m.attr("type", choices=tuple(ICE_MODELS) + tuple(others))
+        if kind in others:
+            continue
+        if ice.n_before and kind != "PassiveScalar":
+            raise m.error(f'<Model type="{kind}"> is available for ICE alone, not in MPMICE; accepted there: '
+                          + ", ".join(("PassiveScalar",) + tuple(others)))
+        if kind == "PassiveScalar":
+            out.scalars.append(PassiveScalar(m, ice, geo))
+            if out.scalars[-1].matl < ice.n_before:
+                raise m.child("PassiveScalar").child("material").error(
+                    "a PassiveScalar is carried by an ICE material's flow; accepted: an ICE material")
+        elif kind == "mass_momentum_energy_src":
+            out.sources.append(MassMomEngSrc(m, ice, geo))
+        else:
+            out.tracers.append(TracerParticles(m, ice, geo, t0))
+    if not (out.scalars or out.sources or out.tracers or others):
+        raise node.error("<Models> without a <Model type=...>; accepted for ICE: " + ", ".join(ICE_MODELS))
+    names = [s.name for s in out.scalars]
+    for s in out.scalars:
+        if names.count(s.name) > 1:
+            raise node.error(f"two PassiveScalar models name their scalar {s.name}; accepted: distinct names")
+    matls = [s.matl for s in out.sources]
+    if len(set(matls)) < len(matls):
+        raise node.error("two mass_momentum_energy_src models act on one material; accepted: one per material "
+                         "(its <sources> may hold several regions)")
+    if len(out.tracers) > 1:
+        raise node.error(f"{len(out.tracers)} TracerParticles models; accepted: one")
+    for tr in out.tracers:
+        tr.resolve()
+    return out
