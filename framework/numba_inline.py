@@ -9,13 +9,16 @@ copied IR is the same IR (the blocks shared one Scope before and share one copy 
 also runs a callee's untyped passes (its own inlining included) again at every call site; the
 result depends only on the callee and the compile flags, and inline_ir never mutates it (it
 copies it first), so it is built once per (callee, flags) and handed out under a fresh function
-identity, as numba's own would be. The typed IR and the machine code do not change. Importing
-this module installs both once.
+identity, as numba's own would be. inline_ir also copies its copy once more, for a return value
+that numba's callers (up to 0.68) discard: that copy is skipped. The typed IR and the machine
+code do not change. Importing this module installs it once.
 """
 from __future__ import annotations
 
 import contextvars
 import copy as _copy
+
+import numba
 
 from numba.core import bytecode as _bytecode
 from numba.core import inline_closurecall as _icc
@@ -24,6 +27,7 @@ from numba.core import ir as _ir
 _memos = contextvars.ContextVar("pysus_inline_memos", default=None)
 ENABLED = True          # False: numba's own copies and untyped passes (for comparison in tests)
 _untyped = {}           # callee function -> [(flags, locals, its untyped IR)]
+_SKIP_UNUSED_COPY = tuple(int(v) for v in numba.__version__.split(".")[:2]) <= (0, 68)
 
 
 class _SharedMemoCopy:
@@ -36,9 +40,17 @@ class _SharedMemoCopy:
 
     @staticmethod
     def deepcopy(x, memo=None):
-        memos = _memos.get()
-        if memo is None and memos is not None and isinstance(x, _ir.Block):
+        state = _memos.get()
+        if memo is None and state is not None and isinstance(x, _ir.Block):
+            memos, produced = state
+            if _SKIP_UNUSED_COPY and id(x.scope) in produced:
+                # inline_ir's second copy (of its own first copy) is returned as
+                # callee_ir_original, which every caller in numba <= 0.68 discards
+                return x
             memo = memos.setdefault(id(x.scope), ({}, x.scope))[0]
+            out = _copy.deepcopy(x, memo)
+            produced[id(out.scope)] = out.scope
+            return out
         return _copy.deepcopy(x, memo)
 
 
@@ -65,9 +77,8 @@ def _install():
     original = worker.inline_ir
 
     def inline_ir(self, *args, **kwargs):
-        # one memo per source Scope for this call: its two copies (the callee's IR, then the
-        # copy kept unmutated) each copy a different source once
-        token = _memos.set({} if ENABLED else None)
+        # one memo per source Scope for this call, and the Scopes its copies made
+        token = _memos.set(({}, {}) if ENABLED else None)
         try:
             return original(self, *args, **kwargs)
         finally:
