@@ -36,12 +36,16 @@ def read_ice_models(root, ice, geo, others=()) -> IceModels:
         return out
     t0 = root.child("Time").get("initTime", "float", 0.0) if root.child("Time") is not None else 0.0
     for m in node.children("Model"):
-        kind = m.attr("type", choices=tuple(ICE_MODELS) + tuple(others))
+        if ice.n_before:
+            kind = m.attr("type")
+            here = ("PassiveScalar",) + tuple(others)
+            if kind not in here:
+                alone = " (available for ICE alone)" if kind in ICE_MODELS else ""
+                raise m.error(f'attribute type="{kind}" is not accepted in MPMICE{alone}; accepted: ' + ", ".join(here))
+        else:
+            kind = m.attr("type", choices=tuple(ICE_MODELS))
         if kind in others:
             continue
-        if ice.n_before and kind != "PassiveScalar":
-            raise m.error(f'<Model type="{kind}"> is available for ICE alone, not in MPMICE; accepted there: '
-                          + ", ".join(("PassiveScalar",) + tuple(others)))
         if kind == "PassiveScalar":
             out.scalars.append(PassiveScalar(m, ice, geo))
             if out.scalars[-1].matl < ice.n_before:

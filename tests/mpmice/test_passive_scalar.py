@@ -67,7 +67,11 @@ def test_scalars_as_uintah(runs):
                        sus["q_step10"] / np.exp(-DECAY * t_sus), rtol=1e-12, atol=0)
 
 
-def test_scalar_of_a_solid_is_refused(tmp_path):
-    text = DECK.read_text(encoding="iso-8859-1").replace("<material>atmosphere</material>", "<material>0</material>", 1)
-    with pytest.raises(InputError, match="carried by an ICE material"):
+@pytest.mark.parametrize("old, new, message", [
+    ("<material>atmosphere</material>", "<material>0</material>", "carried by an ICE material"),
+    ('<Model type="PassiveScalar">', '<Model type="TracerParticles">', "available for ICE alone"),
+])
+def test_refused_under_mpmice(tmp_path, old, new, message):
+    text = DECK.read_text(encoding="iso-8859-1").replace(old, new, 1)
+    with pytest.raises(InputError, match=message):
         run_deck(text, tmp_path)
