@@ -150,11 +150,13 @@ class SubFace:
         face.attr("name", default=None)
 
     def inside(self, pts):
-        """Which points (rows of pts, on the face's plane) the sub-face covers."""
-        pts = np.asarray(pts, dtype=np.float64)
+        """Which points (rows of pts, on the face's plane: their normal coordinate is not read)
+        the sub-face covers."""
+        t = [c for c in range(3) if c != self.d]
+        pts = np.asarray(pts, dtype=np.float64)[..., t]
         if self.kind == "rectangle":
-            return np.all((pts >= self.lower) & (pts <= self.upper), axis=-1)
-        r = np.sqrt(np.sum((pts - self.origin) ** 2, axis=-1))
+            return np.all((pts >= self.lower[t]) & (pts <= self.upper[t]), axis=-1)
+        r = np.sqrt(np.sum((pts - self.origin[t]) ** 2, axis=-1))
         return (r <= self.outer) & (r > self.inner)
 
     def cells(self, level, low, shape):
