@@ -10,7 +10,9 @@ Uintah's format. `lineExtract` writes
 the values along axis-parallel lines, one file per cell (LineExtract); `controlVolFluxes` the mass
 in boxes and the mass fluxes through their faces (ControlVolFluxes); `SGS_ReynoldsStress` the
 CC tensor of ICE's face stresses tau_X_FC, ... (each row the mean of its two faces);
-`turbulentFluxes` running means, variances and covariances with the velocity (TurbulentFluxes).
+`turbulentFluxes` running means, variances and covariances with the velocity (TurbulentFluxes);
+`firstLawThermo` the fluids' and solids' internal energy and the fluids' energy flux through the
+domain's faces (FirstLawThermo).
 """
 from __future__ import annotations
 
@@ -899,9 +901,179 @@ class ControlVolFluxes:
         return text
 
 
+@njit(cache=True)
+def internal_energy_sum(rho, temp, cv, vol, lo, hi):
+    """sum rho V cv T over the cells [lo, hi) (x fastest, as Uintah's CellIterator)."""
+    total = 0.0
+    for k in range(lo[2], hi[2]):
+        for j in range(lo[1], hi[1]):
+            for i in range(lo[0], hi[0]):
+                total += rho[i, j, k] * vol * cv * temp[i, j, k]
+    return total
+
+
+@njit(cache=True)
+def enthalpy_flux_faces(uf, rho, temp, cv, gamma, conv, d, sign, lo, hi, shift, area):
+    """Uintah's 1stLawThermo face sum over the faces [lo, hi) of a face array (local indices):
+    mdot (h + conv u^2/2) with mdot = sign u A (rho_c + rho_cc)/2 and h = (T_c + T_cc) gamma cv / 2,
+    c the cell whose low face it is (CC index = face index + shift), cc the cell below."""
+    total = 0.0
+    for k in range(lo[2], hi[2]):
+        for j in range(lo[1], hi[1]):
+            for i in range(lo[0], hi[0]):
+                c0, c1, c2 = i + shift[0], j + shift[1], k + shift[2]
+                b0, b1, b2 = c0 - (d == 0), c1 - (d == 1), c2 - (d == 2)
+                vel = uf[i, j, k]
+                mdot = sign * vel * area * (rho[c0, c1, c2] + rho[b0, b1, b2]) / 2.0
+                ke = 0.5 * vel * vel
+                h = (temp[c0, c1, c2] * gamma * cv + temp[b0, b1, b2] * gamma * cv) / 2.0
+                total += mdot * (h + ke * conv)
+    return total
+
+
+class FirstLawThermo:
+    """Uintah's firstLawThermo module (1stLawThermo.cc): at its sampling times, the fluids'
+    internal energy sum rho V cv T (interior cells, ICE materials), the solids' sum m cp T over
+    the particles (MPM materials' <specific_heat>; 0 without MPM), their total, and the fluids'
+    energy flux through the control volume's faces, sum mdot (h + conv u^2/2) over the boundary
+    faces (h = gamma cv T and rho averaged over the two cells, u the face velocity uvel_FCME ...,
+    conv = <engy_convt_factor>, default 1/1000), written to <uda>/1stLawThermo.dat in Uintah's
+    format. <controlVolume> lists each domain face, extents="entireFace" or "partialFace" with
+    <startPt>, <endPt> on the face: its cells between the two points' cells (Uintah's: on a
+    minus face it reads one layer outside the domain; here the boundary faces, as on a plus face)."""
+
+    SIDES = ("x-", "x+", "y-", "y+", "z-", "z+")
+
+    def __init__(self, node, component, level):
+        self.level = level
+        self.freq = node.get("samplingFrequency", above=0.0)
+        self.start = node.get("timeStart")
+        self.stop = node.get("timeStop")
+        self.conv = node.get("engy_convt_factor", "float", 1.0 / 1000.0)
+        self.prev = self.start - 1.0 / self.freq
+        self.ice = getattr(component, "ice", component)
+        if not hasattr(self.ice, "gammas"):
+            raise node.error('<Module name="firstLawThermo"> needs ICE materials (their energy and fluxes); '
+                             "accepted with MPMICE (and ICE)")
+        self.fluids = list(getattr(self.ice, "ice_matls", self.ice.matls))
+        self.mpm = mpm = getattr(component, "mpm", None)
+        self.solid_temp = getattr(component, "solid_temp", {})
+        self.solids = [] if mpm is None else [(m, mat.specific_heat) for m, mat in enumerate(mpm.materials)]
+        cvn = node.child("controlVolume", required=True)
+        self.faces = {}
+        for face in cvn.children("Face"):
+            side = face.attr("side", choices=self.SIDES)
+            if side in self.faces:
+                raise face.error(f'<Face side="{side}"> given twice; accepted: one per side')
+            extents = face.attr("extents", choices=("entireFace", "partialFace"))
+            self.faces[side] = None if extents == "entireFace" else self._partial(face, side)
+        for f, side in enumerate(self.SIDES):
+            d = f // 2
+            if not (level.collapsed[d] or level.periodic[d]) and side not in self.faces:
+                raise cvn.error(f'no <Face side="{side}">; accepted: every face of the domain, '
+                                'extents="entireFace" or "partialFace"')
+        self.labels = [L.create(name, VarType.REDUCTION, reduction="sum")
+                       for name in ("ICE_totalIntEng", "MPM_totalIntEng", "totalFluxes")]
+        self.needed = {lab.name for lab in self.labels}
+
+    def _partial(self, face, side):
+        """The global cell-index box [lo, hi) of a partialFace (Uintah's getCellIndex of the points)."""
+        lv = self.level
+        d, plus = self.SIDES.index(side) // 2, self.SIDES.index(side) % 2
+        start = np.array(face.get("startPt", "vector"))
+        end = np.array(face.get("endPt", "vector"))
+        plane = (lv.upper if plus else lv.anchor)[d]
+        if start[d] != plane:
+            raise face.child("startPt").error(f"the plane of face {side} from {tuple(start)} to {tuple(end)} is not at "
+                                              f"the edge of the computational domain ({'xyz'[d]} = {plane:g})")
+        lo = np.floor((start - lv.anchor) / lv.dx).astype(np.int64)
+        hi = np.floor((end - lv.anchor) / lv.dx).astype(np.int64)
+        lo[d], hi[d] = (lv.ncells[d], lv.ncells[d] + 1) if plus else (0, 1)
+        return lo, hi
+
+    def schedule(self, sched):
+        rho, temp = L.find("rho_CC"), L.find("temp_CC")
+        t = Task("FirstLawThermo::compute_ICE_Contributions", self.fluid_sums, self.fluids) \
+            .requires(NEW, rho).requires(NEW, temp).computes(self.labels[0]).computes(self.labels[2])
+        for d, name in enumerate(("uvel_FCME", "vvel_FCME", "wvel_FCME")):
+            if not self.level.collapsed[d]:
+                t.requires(NEW, L.find(name))
+        sched.add_task(t)
+        t = Task("FirstLawThermo::compute_MPM_Contributions", self.solid_sums, [m for m, _ in self.solids] or [0]) \
+            .computes(self.labels[1])
+        if self.solids:
+            t.requires(NEW, L.find("p.mass+"))
+            if self.mpm.thermal:
+                t.requires(NEW, L.find("p.temperature+"))
+        sched.add_task(t)
+
+    def fluid_sums(self, patch, matls, old_dw, new_dw):
+        lv = self.level
+        vol = float(np.prod(lv.dx))
+        c0 = np.array(patch.low_index(VarType.CC))
+        lo, hi = (np.array(x, np.int64) for x in patch.interior(VarType.CC))
+        elo = np.array(patch.owned_local(VarType.CC)[0]) + c0            # the patch's cells, extra included
+        ehi = np.array(patch.owned_local(VarType.CC)[1]) + c0
+        energy = flux = 0.0
+        for m in self.fluids:
+            rho, temp = new_dw.get(L.find("rho_CC"), m, patch), new_dw.get(L.find("temp_CC"), m, patch)
+            cv, gamma = float(self.ice.cvs[m]), float(self.ice.gammas[m])
+            energy += internal_energy_sum(rho, temp, cv, vol, lo, hi)
+            for name in patch.boundary_faces:
+                f = self.SIDES.index(name)
+                d, plus = f // 2, f % 2
+                vt = FACE_TYPES[d]
+                f0 = np.array(patch.low_index(vt))
+                a, b = np.array(patch.lo), np.array(patch.hi)           # faces of the patch's interior cells
+                a[d] = b[d] = (lv.ncells[d] if plus else 0)
+                b[d] += 1
+                part = self.faces[name]
+                if part is not None:
+                    a, b = np.maximum(part[0], elo), np.minimum(part[1], ehi)
+                    a[d], b[d] = part[0][d], part[1][d]
+                if np.any(b <= a):
+                    continue
+                uf = new_dw.get(L.find(("uvel_FCME", "vvel_FCME", "wvel_FCME")[d]), m, patch)
+                flux += enthalpy_flux_faces(uf, rho, temp, cv, gamma, self.conv, d, 1.0 if plus else -1.0,
+                                            a - f0, b - f0, f0 - c0, vol / lv.dx[d])
+        new_dw.put_reduction(self.labels[0], energy)
+        new_dw.put_reduction(self.labels[2], flux)
+
+    def solid_sums(self, patch, matls, old_dw, new_dw):
+        total = 0.0
+        for m, cp in self.solids:
+            mass = new_dw.get(L.find("p.mass+"), m, patch)
+            if self.mpm.thermal:
+                temp = new_dw.get(L.find("p.temperature+"), m, patch)
+            else:
+                temp = np.full(len(mass), float(self.solid_temp[m]))
+            for i in range(len(mass)):          # Uintah's order: one particle after the other
+                total += temp[i] * mass[i] * cp
+        new_dw.put_reduction(self.labels[1], total)
+
+    def after_step(self, dw, timestep, t, uda):
+        if t < self.start or t > self.stop or t < self.prev + 1.0 / self.freq:
+            return
+        self.prev = t
+        if uda is None:
+            return
+        ice, mpm, flux = (float(dw.get_reduction(lab)) for lab in self.labels)
+        path = os.path.join(uda, "1stLawThermo.dat")
+        with open(path, "a") as f:
+            if f.tell() == 0:
+                f.write("# This assumes:\n#    - mpm matls have constant specific heat\n"
+                        "#    - mpm matls are listed in order 0, 1, 2, 3\n"
+                        f"#    - Energy conversion factor, in SI units KJ ->J {self.conv:E}\n"
+                        "#Time                      ICE_totalIntEng            MPM_totalIntEng             "
+                        "totalIntEng                 total_ICE_Flux\n")
+            f.write(f"{t:16.15E}      {ice:16.15E}      {mpm:16.15E}       {ice + mpm:16.15E}       "
+                    f"{flux:16.15E}\n")
+
+
 MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract,
            "controlVolFluxes": ControlVolFluxes, "SGS_ReynoldsStress": SGS_ReynoldsStress,
-           "turbulentFluxes": TurbulentFluxes, "planeAvgTurbFluxes": PlaneAvgTurbFluxes}
+           "turbulentFluxes": TurbulentFluxes, "planeAvgTurbFluxes": PlaneAvgTurbFluxes,
+           "firstLawThermo": FirstLawThermo}
 
 
 def read_analysis(root, component, level) -> list:

@@ -66,11 +66,29 @@ def level_from_spec(root):
         raise box.child("patches").error(str(e)) from None
 
 
+SUB_FACES = ("circle", "rectangle", "annulus")
+_NOT_SUPPORTED = ("ellipse", "rectangulus")
+
+
+def _face_kind(face):
+    """"side" or the sub-face attribute of a <Face>; other geometries are refused."""
+    for key in ("side",) + SUB_FACES:
+        if face.element.get(key) is not None:
+            return key
+    for key in _NOT_SUPPORTED:
+        if face.element.get(key) is not None:
+            raise face.error(f'<Face {key}="..."> is not supported; accepted: side, circle, rectangle, annulus')
+    raise face.error('missing required attribute side="..." (or a sub-face: circle, rectangle or annulus="...")')
+
+
 def boundary_faces(bcs, sides):
-    """[(side, <Face> node)] of a `<BoundaryConditions>` block; a side given twice is an error
-    (its conditions would otherwise be merged without a word)."""
+    """[(side, <Face> node)] of the `<Face side=...>`s of a `<BoundaryConditions>` block; a side
+    given twice is an error (its conditions would otherwise be merged without a word). The
+    sub-faces (circle, rectangle, annulus) are left to sub_faces()."""
     seen, out = {}, []
     for face in bcs.children("Face"):
+        if _face_kind(face) != "side":
+            continue
         side = face.attr("side", choices=sides)
         if side in seen:
             raise face.error(f'<Face side="{side}"> given twice (first at line {seen[side].line}); accepted: '
@@ -78,3 +96,91 @@ def boundary_faces(bcs, sides):
         seen[side] = face
         out.append((side, face))
     return out
+
+
+def sub_faces(bcs, sides, level):
+    """[(side, SubFace, <Face> node)] of the `<Face circle|rectangle|annulus=...>`s of a
+    `<BoundaryConditions>` block, in deck order (Uintah's BoundCondReader)."""
+    out = []
+    for face in bcs.children("Face"):
+        kind = _face_kind(face)
+        if kind == "side":
+            continue
+        side = face.attr(kind, choices=sides)
+        out.append((side, SubFace(face, kind, side, level), face))
+    return out
+
+
+class SubFace:
+    """The part of a domain face that a `<Face circle|rectangle|annulus>` covers.
+
+    As Uintah's CircleBCData, RectangleBCData and AnnulusBCData: a boundary cell (extra
+    cell) belongs to the sub-face when the centre of its face on the domain boundary is
+    inside the shape (|p - origin| <= radius; lower <= p <= upper; inner_radius <
+    |p - origin| <= outer_radius); a grid node on the face, when its position is. The
+    face's other cells keep the `<Face side>` conditions (Uintah's DifferenceBCData).
+    """
+
+    def __init__(self, face, kind, side, level):
+        self.kind, self.side, self.node = kind, side, face
+        self.d, self.s = "xyz".index(side[0]), int(side[1] == "+")
+        plane = (level.upper if self.s else level.anchor)[self.d]
+        span = float(np.max(level.upper - level.anchor))
+        if kind == "rectangle":
+            self.lower, self.upper = _point(face, "lower"), _point(face, "upper")
+            pts = {"lower": self.lower, "upper": self.upper}
+            if np.any(self.lower > self.upper) or np.all(self.lower == self.upper):
+                raise face.error(f"rectangle lower {tuple(self.lower)} must not exceed upper {tuple(self.upper)} "
+                                 "in any direction")
+        else:
+            self.origin = _point(face, "origin")
+            pts = {"origin": self.origin}
+            if kind == "circle":
+                self.inner, self.outer = -1.0, face.attr("radius", "float", above=0.0)
+            else:
+                self.inner = face.attr("inner_radius", "float", above=0.0)
+                self.outer = face.attr("outer_radius", "float", above=0.0)
+                if self.outer < self.inner:
+                    raise face.error(f"annulus outer_radius {self.outer:g} is smaller than inner_radius "
+                                     f"{self.inner:g}")
+        for name, p in pts.items():
+            if abs(p[self.d] - plane) > 1e-12 * span:
+                raise face.error(f'{name} {tuple(p)} is not on face {side} ({"xyz"[self.d]} = {plane:g}); '
+                                 f"accepted: a point of the face's plane")
+        face.attr("name", default=None)
+
+    def inside(self, pts):
+        """Which points (rows of pts, on the face's plane: their normal coordinate is not read)
+        the sub-face covers."""
+        t = [c for c in range(3) if c != self.d]
+        pts = np.asarray(pts, dtype=np.float64)[..., t]
+        if self.kind == "rectangle":
+            return np.all((pts >= self.lower[t]) & (pts <= self.upper[t]), axis=-1)
+        r = np.sqrt(np.sum((pts - self.origin[t]) ** 2, axis=-1))
+        return (r <= self.outer) & (r > self.inner)
+
+    def cells(self, level, low, shape):
+        """inside() for the boundary cells of face (d, s) of an array whose entry [0, 0, 0] has
+        global index `low`: a (shape[d1], shape[d2]) array over the two tangential directions
+        (d1, d2) = (d+1, d+2) mod 3, the test point the centre of each cell's boundary face."""
+        d = self.d
+        d1, d2 = (d + 1) % 3, (d + 2) % 3
+        a = level.anchor[d1] + (np.arange(shape[d1]) + low[d1] + 0.5) * level.dx[d1]
+        b = level.anchor[d2] + (np.arange(shape[d2]) + low[d2] + 0.5) * level.dx[d2]
+        pts = np.zeros((shape[d1], shape[d2], 3))
+        pts[..., d] = (level.upper if self.s else level.anchor)[d]
+        pts[..., d1], pts[..., d2] = a[:, None], b[None, :]
+        return self.inside(pts)
+
+
+def _point(face, name):
+    """A point attribute as Uintah writes it: "x y z" or "x,y,z" (brackets accepted)."""
+    raw = face.attr(name)
+    parts = raw.replace("[", " ").replace("]", " ").replace(",", " ").split()
+    try:
+        p = np.array([float(x) for x in parts])
+    except ValueError:
+        p = np.zeros(0)
+    if p.size != 3 or not np.all(np.isfinite(p)):
+        raise face.error(f'attribute {name}="{raw}" is not a point; accepted: three numbers "x y z"')
+    return p

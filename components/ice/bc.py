@@ -28,8 +28,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from framework.gridspec import boundary_faces
+from framework.gridspec import boundary_faces, sub_faces
 from framework.variables import VarType
+
+CC = VarType.CC
 
 from .lodi import LODI_KIND, LodiInputs
 from .specific_heat import cv_at
@@ -89,14 +91,17 @@ def inlet_profile(kind, value, h, p, out):
 
 
 @njit(cache=True)
-def bc_inlet(q, d, side, kind, value, vdir, p, anchor, dx, lo, hi, olo, ohi):
-    """Fill the extra-cell layer of face (d, side) of vel_CC with an inlet profile."""
+def bc_inlet(q, d, side, kind, value, vdir, p, anchor, dx, lo, hi, olo, ohi, sel, want):
+    """Fill the extra-cell layer of face (d, side) of vel_CC with an inlet profile (the cells
+    where sel is `want`: see _skip)."""
     e = lo[d] - 1 if side == 0 else hi[d]
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     ijk = np.zeros(3, dtype=np.int64)
     u = np.zeros(1)
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
+            if _skip(sel, a, b, want):
+                continue
             ijk[d], ijk[d1], ijk[d2] = e, a, b
             h = anchor[vdir] + (ijk[vdir] - lo[vdir] + 0.5) * dx[vdir]
             inside = inlet_profile(kind, value[d], h, p, u)
@@ -105,7 +110,7 @@ def bc_inlet(q, d, side, kind, value, vdir, p, anchor, dx, lo, hi, olo, ohi):
 
 
 @njit(cache=True)
-def bc_inlet_face(uf, d, index, kind, value, vdir, p, anchor, dx, f0):
+def bc_inlet_face(uf, d, index, kind, value, vdir, p, anchor, dx, f0, sel, want):
     """The normal face velocity of an inlet face (layer `index` along d) from the profile at
     each face's height; f0: the global index of uf[0, 0, 0] along vdir."""
     sh = uf.shape
@@ -113,6 +118,8 @@ def bc_inlet_face(uf, d, index, kind, value, vdir, p, anchor, dx, f0):
     ijk = np.zeros(3, dtype=np.int64)
     for a in range(sh[(d + 1) % 3]):
         for b in range(sh[(d + 2) % 3]):
+            if _skip(sel, a, b, want):
+                continue
             ijk[d], ijk[(d + 1) % 3], ijk[(d + 2) % 3] = index, a, b
             h = anchor[vdir] + (ijk[vdir] + f0 + 0.5) * dx[vdir]
             inlet_profile(kind, value, h, p, u)
@@ -169,7 +176,7 @@ def lagrangian_extra_cells_faces(mass, mom, eng, cv, vel, temp, faces, vkind, vv
 
 
 @njit(cache=True)
-def bc_hydrostatic(press, sp_vol, d, side, dirichlet, g, origin, anchor, dx, lo, hi, olo, ohi):
+def bc_hydrostatic(press, sp_vol, d, side, dirichlet, g, origin, anchor, dx, lo, hi, olo, ohi, sel, want):
     """The hydrostatic term of one face's extra-cell layer (BoundaryConditions.hydrostatic_pressure);
     origin: the position of the patch's first interior cell's low corner."""
     e = lo[d] - 1 if side == 0 else hi[d]
@@ -178,6 +185,8 @@ def bc_hydrostatic(press, sp_vol, d, side, dirichlet, g, origin, anchor, dx, lo,
     sign = -1.0 if side == 0 else 1.0
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
+            if _skip(sel, a, b, want):
+                continue
             ie = _idx(d, e, a, b)
             if dirichlet:
                 corr = 0.0
@@ -241,8 +250,11 @@ def read_bcs(root, level, nmat, material_names=(), n_before=0, scalars=None, gra
                     per[sm] = (SYMMETRY, None)
                 face[var] = per
             out[name] = face
+    out["subfaces"] = _read_sub_faces(bcn, level, out, nmat, scalars) if bcn is not None else {}
     used = any(e is not None and e[0] in INLET for t in found.values() for k, per in t.items()
                if k != "lodi_nodes" and isinstance(per, list) for e in per)
+    used = used or any(e is not None and e[0] in INLET for parts in out["subfaces"].values() for p in parts
+                       for e in p.table["Velocity"])
     out["inletVelocity"] = None
     if used:
         node = bcn.child("inletVelocity")
@@ -254,6 +266,58 @@ def read_bcs(root, level, nmat, material_names=(), n_before=0, scalars=None, gra
         bcn.child("inletVelocity").mark_used()
     out["LODI"] = _read_lodi(bcn, found, out, level, material_names, n_before, gravity)
     return out
+
+
+class SubFaceBCs:
+    """The conditions of one `<Face circle|rectangle|annulus>` (framework.gridspec.SubFace):
+    table {var: [(kind, value) or None per material]}, None for a material that none of its
+    BCTypes names (id="all" names every one): that material keeps the side's conditions there,
+    as in Uintah, where a sub-face exists only for the materials of its BCTypes."""
+
+    def __init__(self, geom, table):
+        self.geom, self.table = geom, table
+
+    def covers(self, m):
+        return self.table["Velocity"][m] is not None
+
+
+def _read_sub_faces(bcn, level, out, nmat, scalars):
+    """{side: [SubFaceBCs]} of the level's physical faces. Each material a sub-face names needs
+    all its conditions there (SpecificVol defaults to computeFromDensity), Dirichlet or
+    Neumann (Velocity: also the inlet profiles, FreeSlipWall); symmetry and LODI act on a
+    whole side."""
+    subs = {}
+    for side, geom, face in sub_faces(bcn, FACE_NAMES, level):
+        if side not in out:
+            raise face.error(f"face {side} is periodic or has one cell; it takes no boundary condition")
+        table = {}
+        for bt in face.children("BCType"):
+            kind = bt.attr("var", choices=tuple(KINDS))
+            if kind in ("symmetry", "LODI"):
+                raise bt.error(f'var="{kind}" on a sub-face is not supported; accepted: Dirichlet, Neumann '
+                               "(symmetry and LODI act on a whole <Face side>)")
+            _read_bctype(bt, table, nmat, scalars)
+        named = {m for var, per in table.items() if var not in ("given", "lodi_nodes") for m, e in enumerate(per)
+                 if e is not None}
+        if not named:
+            raise face.error("a sub-face without a <BCType>; accepted: the conditions of the materials it names")
+        per_var = {}
+        for var in VARS + tuple(scalars):
+            per = table.get(var, [None] * nmat)
+            if var == "Pressure":
+                per = per[:1]
+            for m in named:
+                if var == "Pressure" and m != 0 or var in scalars and m != scalars[var]:
+                    continue
+                if per[m] is None:
+                    if var == "SpecificVol":
+                        per[m] = (FROM_DENSITY, None)
+                        continue
+                    raise face.error(f"sub-face {geom.kind} on {side}: no boundary condition for {var} of material "
+                                     f"{m}; give <BCType id=\"{m}\" label=\"{var}\" var=\"Dirichlet|Neumann\">")
+            per_var[var] = per
+        subs.setdefault(side, []).append(SubFaceBCs(geom, per_var))
+    return subs
 
 
 def _read_lodi(bcn, found, out, level, material_names, n_before, gravity):
@@ -347,14 +411,33 @@ def _idx(d, e, a, b):
 
 
 @njit(cache=True)
+def _skip(sel, a, b, want):
+    """Cell (a, b) of a face layer is not one of the part being set: sel holds each cell's part
+    of the face (0 the side, k the k-th sub-face; BoundaryConditions._parts); an empty sel
+    selects every cell."""
+    return sel.shape[0] > 0 and sel[a, b] != want
+
+
+ALL_CELLS = np.zeros((0, 0), dtype=np.int64)
+
+
+@njit(cache=True)
 def bc_scalar(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of face (d, side) of a scalar CC array."""
+    bc_scalar_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, ALL_CELLS, 0)
+
+
+@njit(cache=True)
+def bc_scalar_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, sel, want):
+    """bc_scalar on the cells of one part of the face (see _skip)."""
     e = lo[d] - 1 if side == 0 else hi[d]
     n = lo[d] if side == 0 else hi[d] - 1
     add = -value * dx if kind == 0 else 0.0
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
+            if _skip(sel, a, b, want):
+                continue
             ie = _idx(d, e, a, b)
             if kind == 1:
                 q[ie] = value
@@ -365,11 +448,19 @@ def bc_scalar(q, d, side, kind, value, dx, lo, hi, olo, ohi):
 @njit(cache=True)
 def bc_vector(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of a vector CC array (velocity)."""
+    bc_vector_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, ALL_CELLS, 0)
+
+
+@njit(cache=True)
+def bc_vector_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, sel, want):
+    """bc_vector on the cells of one part of the face (see _skip)."""
     e = lo[d] - 1 if side == 0 else hi[d]
     n = lo[d] if side == 0 else hi[d] - 1
     d1, d2 = (d + 1) % 3, (d + 2) % 3
     for a in range(olo[d1], ohi[d1]):
         for b in range(olo[d2], ohi[d2]):
+            if _skip(sel, a, b, want):
+                continue
             ie = _idx(d, e, a, b)
             i_n = _idx(d, n, a, b)
             for c in range(3):
@@ -398,9 +489,17 @@ def bc_sp_vol_from_density(spv, vf, rho, d, side, lo, hi, olo, ohi):
 @njit(cache=True)
 def bc_face_velocity(uf, d, index, value):
     """Set every face of layer `index` (along d) of a face-velocity array to `value`."""
+    bc_face_velocity_part(uf, d, index, value, ALL_CELLS, 0)
+
+
+@njit(cache=True)
+def bc_face_velocity_part(uf, d, index, value, sel, want):
+    """bc_face_velocity on the faces of one part of the domain face (see _skip)."""
     sh = uf.shape
     for a in range(sh[(d + 1) % 3]):
         for b in range(sh[(d + 2) % 3]):
+            if _skip(sel, a, b, want):
+                continue
             uf[_idx(d, index, a, b)] = value
 
 
@@ -412,6 +511,8 @@ class BoundaryConditions:
         self._extra_cell_plans = {}     # (patch id, material): lagrangian_extra_cells_faces's arguments
         self._work = (np.empty(0), np.empty(0))         # u and T work buffers of lagrangian_extra_cells
         self.lodi = table.pop("LODI", None)
+        self.subfaces = table.pop("subfaces", {})
+        self._sel = {}                  # (patch id, face, sub-faces, array box): each boundary cell's part
         self.table = table
         self.level = level
 
@@ -420,6 +521,40 @@ class BoundaryConditions:
         for name in patch.boundary_faces:
             i = FACE_NAMES.index(name)
             yield name, i // 2, i % 2
+
+    def _parts(self, patch, name, var, m, vt=CC):
+        """[(kind, value, sel, want)]: the conditions of var for material m on face `name`, each
+        with the cells it sets (see _skip; sel indexed like an array of type vt): the side's on
+        every cell, or, with sub-faces that name m, the side's on the cells outside them and each
+        sub-face's on its own cells."""
+        side = self.table[name][var][m]
+        subs = tuple(k for k, sf in enumerate(self.subfaces.get(name, ())) if sf.table[var][m] is not None)
+        if not subs:
+            return ((side[0], side[1], ALL_CELLS, 0),)
+        key = (patch.id, name, subs, vt, patch.low_index(vt), patch.alloc_shape(vt))   # halos differ, change
+        sel = self._sel.get(key)
+        if sel is None:
+            sel = self._sel[key] = self.face_parts(patch, name, subs, vt)
+        parts = [(side[0], side[1], sel, 0)]
+        for k in subs:
+            kind, value = self.subfaces[name][k].table[var][m]
+            parts.append((kind, value, sel, k + 1))
+        return parts
+
+    def face_parts(self, patch, name, subs=None, vt=CC):
+        """Per boundary cell of face `name` of this patch (indexed by the two tangential local
+        indices of an array of type vt: CC, or the face's own SFC type): 0 on the side, k + 1
+        inside sub-face k (of subs, the sub-faces considered; the last one that holds a cell
+        takes it, as Uintah applies its sub-faces in deck order)."""
+        subfaces = self.subfaces.get(name, ())
+        subs = range(len(subfaces)) if subs is None else subs
+        low, shape = patch.low_index(vt), patch.alloc_shape(vt)
+        sel = None
+        for k in subs:
+            inside = subfaces[k].geom.cells(self.level, low, shape)
+            sel = np.zeros(inside.shape, np.int64) if sel is None else sel
+            sel[inside] = k + 1
+        return sel
 
     def scalar(self, patch, q, var, m, b, copy=False, dims=(True, True, True)):
         """Temperature, Density, Pressure (m = 0) or a model's scalar (scalar-f) in the extra cells
@@ -430,16 +565,16 @@ class BoundaryConditions:
         for name, d, s in self._faces(patch):
             if not dims[d]:
                 continue
-            kind, value = self.table[name][var][m]
-            if copy:
-                kind, value = NEUMANN, 0.0
-            if kind == LODI:        # lodi.py sets these extra cells (none at t = 0)
-                continue
-            v = 0.0 if value is None else value
-            if kind == DIRICHLET:
-                bc_scalar(q, d, s, 1, v, 0.0, b.lo, b.hi, b.olo, b.ohi)
-            else:
-                bc_scalar(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], b.lo, b.hi, b.olo, b.ohi)
+            parts = ((NEUMANN, 0.0, ALL_CELLS, 0),) if copy else self._parts(patch, name, var, m)
+            for kind, value, sel, want in parts:
+                if kind == LODI:        # lodi.py sets these extra cells (none at t = 0)
+                    continue
+                v = 0.0 if value is None else value
+                if kind == DIRICHLET:
+                    bc_scalar_part(q, d, s, 1, v, 0.0, b.lo, b.hi, b.olo, b.ohi, sel, want)
+                else:
+                    bc_scalar_part(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], b.lo, b.hi, b.olo,
+                                   b.ohi, sel, want)
 
     def velocity(self, patch, q, m, b, initial=False, dims=(True, True, True)):
         """vel_CC's extra cells (of the faces of the directions where dims is true). initial: at
@@ -449,17 +584,17 @@ class BoundaryConditions:
         for name, d, s in self._faces(patch):
             if not dims[d]:
                 continue
-            kind, value = self.table[name]["Velocity"][m]
-            v = np.zeros(3) if value is None else value
-            if kind == LODI:
-                continue
-            if kind in INLET:
-                if not initial:
-                    ip = self.inlet
-                    bc_inlet(q, d, s, kind, v, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
-                             lv.dx, b.lo, b.hi, b.olo, b.ohi)
-                continue
-            bc_vector(q, d, s, kind, v, lv.dx[d], b.lo, b.hi, b.olo, b.ohi)
+            for kind, value, sel, want in self._parts(patch, name, "Velocity", m):
+                v = np.zeros(3) if value is None else value
+                if kind == LODI:
+                    continue
+                if kind in INLET:
+                    if not initial:
+                        ip = self.inlet
+                        bc_inlet(q, d, s, kind, v, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
+                                 lv.dx, b.lo, b.hi, b.olo, b.ohi, sel, want)
+                    continue
+                bc_vector_part(q, d, s, kind, v, lv.dx[d], b.lo, b.hi, b.olo, b.ohi, sel, want)
 
     def hydrostatic_pressure(self, patch, press, sp_vol, g, b):
         """Uintah's HydrostaticPressureAdjustment of press_CC's extra cells (after the first
@@ -469,11 +604,13 @@ class BoundaryConditions:
         lv = self.level
         origin = lv.anchor + np.array(patch.lo) * lv.dx
         for name, d, s in self._faces(patch):
-            kind = self.table[name]["Pressure"][0][0]
-            if kind in (NEUMANN, SYMMETRY) and g[d] != 0.0:
-                bc_hydrostatic(press, sp_vol, d, s, 0, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
-            elif kind == DIRICHLET:
-                bc_hydrostatic(press, sp_vol, d, s, 1, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi)
+            for kind, _, sel, want in self._parts(patch, name, "Pressure", 0):
+                if kind in (NEUMANN, SYMMETRY) and g[d] != 0.0:
+                    bc_hydrostatic(press, sp_vol, d, s, 0, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi,
+                                   sel, want)
+                elif kind == DIRICHLET:
+                    bc_hydrostatic(press, sp_vol, d, s, 1, g, origin, lv.anchor, lv.dx, b.lo, b.hi, b.olo, b.ohi,
+                                   sel, want)
 
     def lagrangian_extra_cells(self, patch, mass, mom, eng, cv, m, b, dims):
         """Uintah's addExchangeToMomentumAndEnergy at the boundary: u and T from the Lagrangian
@@ -490,7 +627,7 @@ class BoundaryConditions:
         if self._work[0].size < mom.size:      # one pair of buffers for all patches, grown as needed
             self._work = (np.empty(mom.size), np.empty(eng.size))
         vel, temp = self._work[0][:mom.size].reshape(mom.shape), self._work[1][:eng.size].reshape(eng.shape)
-        if plan is False:                       # an inlet profile: the general path
+        if plan is False:                       # an inlet profile or a sub-face: the general path
             faces = [(d, s) for _, d, s in self._faces(patch) if dims[d]]
             for d, s in faces:
                 lagrangian_face_primitives(mass, mom, eng, cv, vel, temp, d, s, b.lo, b.hi, b.olo, b.ohi)
@@ -503,11 +640,13 @@ class BoundaryConditions:
 
     def _extra_cell_plan(self, patch, m, dims):
         """lagrangian_extra_cells_faces's face rows, kinds and values for one patch and material;
-        None without faces, False with an inlet-profile face."""
+        None without faces, False with an inlet-profile face or a sub-face."""
         rows, vk, vv, tk, tv = [], [], [], [], []
         for name, d, s in self._faces(patch):
             if not dims[d]:
                 continue
+            if self.subfaces.get(name):
+                return False
             kind, value = self.table[name]["Velocity"][m]
             if kind in INLET or kind == LODI:
                 return False
@@ -532,14 +671,14 @@ class BoundaryConditions:
         for s, at in ((0, patch.at_low[d]), (1, patch.at_high[d])):
             if not at:
                 continue
-            kind, value = self.table[FACE_NAMES[2 * d + s]]["Velocity"][m]
             idx = flo[d] if s == 0 else fhi[d] - 1
-            if kind == DIRICHLET:
-                bc_face_velocity(uf, d, idx, float(value[d]))
-            elif kind in (SYMMETRY, FREE_SLIP):
-                bc_face_velocity(uf, d, idx, 0.0)
-            elif kind in INLET:
-                ip, lv = self.inlet, self.level
-                vt = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)[d]
-                bc_inlet_face(uf, d, idx, kind, float(value[d]), ip.vdir, ip.params(), lv.anchor, lv.dx,
-                              int(patch.low_index(vt)[ip.vdir]))
+            vt = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)[d]
+            for kind, value, sel, want in self._parts(patch, FACE_NAMES[2 * d + s], "Velocity", m, vt):
+                if kind == DIRICHLET:
+                    bc_face_velocity_part(uf, d, idx, float(value[d]), sel, want)
+                elif kind in (SYMMETRY, FREE_SLIP):
+                    bc_face_velocity_part(uf, d, idx, 0.0, sel, want)
+                elif kind in INLET:
+                    ip, lv = self.inlet, self.level
+                    bc_inlet_face(uf, d, idx, kind, float(value[d]), ip.vdir, ip.params(), lv.anchor, lv.dx,
+                                  int(patch.low_index(vt)[ip.vdir]), sel, want)

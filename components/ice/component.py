@@ -22,7 +22,8 @@ import sys
 
 import numpy as np
 
-from components.models.ice_models import IceModels, read_ice_models
+from components.models import MODELS as REACTIONS
+from components.models.ice_models import read_ice_models
 from framework import labels as L
 from framework.component import Component, register
 from framework.geometry import GeometryReader
@@ -159,9 +160,9 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             raise icen.error("with gravity, one ICE material needs <isSurroundingMatl> true </isSurroundingMatl> "
                              "(the background material of the hydrostatic pressure, as Uintah); or give "
                              "<CFD><ICE><applyHydrostaticPressure> false")
-        # <Models>: Uintah's PassiveScalar, mass_momentum_energy_src and TracerParticles (ICE alone;
-        # MPMICE reads its reaction models itself)
-        models = read_ice_models(root, self, geo) if self.n_before == 0 else IceModels()
+        # <Models>: Uintah's PassiveScalar, mass_momentum_energy_src and TracerParticles (MPMICE:
+        # PassiveScalar; it reads its reaction models itself)
+        models = read_ice_models(root, self, geo, () if self.n_before == 0 else tuple(REACTIONS))
         self.scalars, self.source_models, self.tracers = models.scalars, models.sources, models.tracers
         self.bcs = BoundaryConditions(read_bcs(root, level, self.n_before + n, self.material_names(), self.n_before,
                                                {s.name: s.matl for s in self.scalars}, self.gravity), level)
@@ -199,6 +200,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
+        if self.implicit and self.bcs.subfaces:
+            self._check_sub_faces_implicit()
         if self.lodi is not None:
             self._check_lodi(n)
         self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]
@@ -391,6 +394,22 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         for model in self.scalars + self.tracers:
             model.schedule_initialize(sched)
 
+    def schedule_transported(self, sched, matls):
+        """Uintah's computeLagrangian_Transported_Vars: the models' scalars as m f (after mass_L_CC)."""
+        if not self.scalars:
+            return
+        t = Task("ICE::computeLagrangian_Transported_Vars", self.lagrangian_transported, matls) \
+            .requires(NEW, I.mass_L_CC)
+        for model in self.scalars:
+            t.requires(OLD, model.f, matls=[model.matl]).requires(NEW, model.src, matls=[model.matl]) \
+                .computes(model.f_L, matls=[model.matl])
+        sched.add_task(t)
+
+    def advect_scalars(self, t, gadv):
+        """The advection task t carries the models' m f too and computes their f."""
+        for model in self.scalars:
+            t.requires(NEW, model.f_L, G, gadv, matls=[model.matl]).computes(model.f, matls=[model.matl])
+
     def schedule_compute_stable_timestep(self, level, sched):
         g = (G, 1) if self.conservative_dt else ()     # the swept volume reads neighbours
         t = Task("ICE::computeStableTimestep", self.stable_timestep, self.matls) \
@@ -555,13 +574,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.int_eng_L_ME_CC).requires(OLD, I.temp_CC)
         sched.add_task(t)
 
-        if self.scalars:
-            t = Task("ICE::computeLagrangian_Transported_Vars", self.lagrangian_transported, self.matls) \
-                .requires(NEW, I.mass_L_CC)
-            for model in self.scalars:
-                t.requires(OLD, model.f, matls=[model.matl]).requires(NEW, model.src, matls=[model.matl]) \
-                    .computes(model.f_L, matls=[model.matl])
-            sched.add_task(t)
+        self.schedule_transported(sched, self.matls)
 
         t = Task("ICE::advectAndAdvanceInTime", self.advect_and_advance, self.matls) \
             .requires(OLD, L.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
@@ -572,8 +585,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.FC_VEL_ME[d], G, 1)
         if self.conserve_energy:
             t.requires(NEW, I.tot_eng_L_ME_CC, G, gadv)
-        for model in self.scalars:
-            t.requires(NEW, model.f_L, G, gadv, matls=[model.matl]).computes(model.f, matls=[model.matl])
+        self.advect_scalars(t, gadv)
         if lodi:
             t.requires(NEW, I.press_CC, matls=m0).requires(NEW, I.speedSound_CC).requires(NEW, I.maxMach_faces)
         if cvm:

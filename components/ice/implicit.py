@@ -33,7 +33,7 @@ from framework.variables import Ghost, VarType
 from . import implicit_kernels as IK
 from . import kernels as K
 from . import labels as I
-from .bc import DIRICHLET, FACE_NAMES, FREE_SLIP, SYMMETRY, bc_scalar
+from .bc import DIRICHLET, FACE_NAMES, FREE_SLIP, SYMMETRY, bc_scalar_part
 from .solver import kernels as SK
 from .solver.pcg import PCG
 
@@ -214,6 +214,22 @@ class ImplicitICE:
         sched.add_task(t)
 
     # -- task bodies -------------------------------------------------------------------------------
+    def _check_sub_faces_implicit(self):
+        """The pressure matrix takes one condition per face and material (_keep): a sub-face whose
+        face velocity answers the pressure where its side's does not (or the reverse) is refused."""
+        for name, subs in self.bcs.subfaces.items():
+            side = self.bcs.table[name]
+            for sf in subs:
+                for m in range(len(side["Velocity"])):
+                    if not sf.covers(m):
+                        continue
+                    p = sf.table["Pressure"][0] or side["Pressure"][0]
+                    if _responds(sf.table["Velocity"][m], p) != _responds(side["Velocity"][m], side["Pressure"][0]):
+                        raise sf.geom.node.error(
+                            f"with <ImplicitSolver>, a sub-face ({sf.geom.kind} on {name}) whose face velocity of "
+                            f"material {m} answers the pressure where its side's does not (a fixed pressure with a "
+                            "free velocity on one of them) is not supported; accepted: explicit ICE")
+
     def _keep(self, m):
         """Per boundary face: does material m's face velocity respond to delP there?"""
         keep = np.zeros(6, dtype=np.int64)
@@ -221,8 +237,7 @@ class ImplicitICE:
             tab = self.bcs.table.get(name)
             if tab is None:
                 continue
-            vk = tab["Velocity"][m][0]
-            keep[f] = int(vk not in (DIRICHLET, SYMMETRY, FREE_SLIP) and tab["Pressure"][0][0] == DIRICHLET)
+            keep[f] = int(_responds(tab["Velocity"][m], tab["Pressure"][0]))
         return keep
 
     def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces):
@@ -264,8 +279,8 @@ class ImplicitICE:
         for name in patch.boundary_faces:
             f = FACE_NAMES.index(name)
             d, s = f // 2, f % 2
-            kind = self.bcs.table[name]["Pressure"][0][0]
-            bc_scalar(P, d, s, 1 if kind == DIRICHLET else 0, 0.0, 0.0, b.lo, b.hi, b.olo, b.ohi)
+            for kind, _, sel, want in self.bcs._parts(patch, name, "Pressure", 0):
+                bc_scalar_part(P, d, s, 1 if kind == DIRICHLET else 0, 0.0, 0.0, b.lo, b.hi, b.olo, b.ohi, sel, want)
 
     def imp_setup(self, patch, matls, old_dw, new_dw):
         b = self.boxes(patch)
@@ -336,3 +351,9 @@ class ImplicitICE:
                 print(f"pysus: warning: ICE implicit pressure: max|rhs| above outer_iteration_tolerance "
                       f"{self.imp.outer_tol:g} after {self.outer.iterations} outer iterations; continuing",
                       file=sys.stderr)
+
+
+def _responds(velocity, pressure):
+    """Does a boundary face velocity with these (kind, value) conditions answer the pressure
+    increment (a fixed pressure behind a face whose velocity is not fixed)?"""
+    return velocity[0] not in (DIRICHLET, SYMMETRY, FREE_SLIP) and pressure[0] == DIRICHLET

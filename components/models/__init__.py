@@ -10,7 +10,8 @@
       </Model>
     </Models>
 
-Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate.
+Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate. A
+PassiveScalar model (passive_scalar.py) is ICE's: the ICE component reads and schedules it.
 `read_models(root, mpmice)` reads the block (None without it); `Models.hook(sched)` wraps
 the scheduler so that each model's tasks are added right after the MPMICE tasks they
 follow (see simple_burn.py), leaving MPMICE's own schedule untouched.
@@ -27,12 +28,17 @@ def read_models(root, component):
     node = root.child("Models")
     if node is None:
         return None
-    models = []
+    models, scalars = [], 0
     for m in node.children("Model"):
-        kind = m.attr("type", choices=tuple(MODELS))
+        kind = m.attr("type", choices=tuple(MODELS) + ("PassiveScalar",))
+        if kind == "PassiveScalar":         # ICE's transported scalar (passive_scalar.py, read by ICE)
+            scalars += 1
+            continue
         models.append(MODELS[kind](m, component, root))
     if not models:
-        raise node.error("<Models> without a <Model type=...>; accepted: " + ", ".join(MODELS))
+        if scalars:
+            return None
+        raise node.error("<Models> without a <Model type=...>; accepted: " + ", ".join(MODELS) + ", PassiveScalar")
     return Models(models)
 
 

@@ -1,4 +1,4 @@
-"""The <Models> of an ICE deck (ICE alone; MPMICE reads its reaction models in __init__.py).
+"""The <Models> of an ICE deck (MPMICE: PassiveScalar; it reads its reaction models in __init__.py).
 
     PassiveScalar             a scalar carried by a material's flow (passive_scalar.py)
     mass_momentum_energy_src  fans and heaters: fixed velocity/temperature regions (mass_mom_eng_src.py)
@@ -26,22 +26,36 @@ class IceModels:
     tracers: list = field(default_factory=list)      # TracerParticles
 
 
-def read_ice_models(root, ice, geo) -> IceModels:
-    """The models of an ICE deck's <Models> (none without the block), in deck order."""
+def read_ice_models(root, ice, geo, others=()) -> IceModels:
+    """The models of an ICE deck's <Models> (none without the block), in deck order. others: the
+    model types another reader takes (MPMICE's reactions, __init__.py), skipped here; in MPMICE
+    (ice.n_before > 0) only PassiveScalar is ICE's, carried by an ICE material."""
     out = IceModels()
     node = root.child("Models")
     if node is None:
         return out
     t0 = root.child("Time").get("initTime", "float", 0.0) if root.child("Time") is not None else 0.0
     for m in node.children("Model"):
-        kind = m.attr("type", choices=tuple(ICE_MODELS))
+        if ice.n_before:
+            kind = m.attr("type")
+            here = ("PassiveScalar",) + tuple(others)
+            if kind not in here:
+                alone = " (available for ICE alone)" if kind in ICE_MODELS else ""
+                raise m.error(f'attribute type="{kind}" is not accepted in MPMICE{alone}; accepted: ' + ", ".join(here))
+        else:
+            kind = m.attr("type", choices=tuple(ICE_MODELS))
+        if kind in others:
+            continue
         if kind == "PassiveScalar":
             out.scalars.append(PassiveScalar(m, ice, geo))
+            if out.scalars[-1].matl < ice.n_before:
+                raise m.child("PassiveScalar").child("material").error(
+                    "a PassiveScalar is carried by an ICE material's flow; accepted: an ICE material")
         elif kind == "mass_momentum_energy_src":
             out.sources.append(MassMomEngSrc(m, ice, geo))
         else:
             out.tracers.append(TracerParticles(m, ice, geo, t0))
-    if not (out.scalars or out.sources or out.tracers):
+    if not (out.scalars or out.sources or out.tracers or others):
         raise node.error("<Models> without a <Model type=...>; accepted for ICE: " + ", ".join(ICE_MODELS))
     names = [s.name for s in out.scalars]
     for s in out.scalars:

@@ -118,7 +118,8 @@ class PassiveScalar:
     def __init__(self, node, ice, geo):
         self.ice = ice
         ps = node.child("PassiveScalar", required=True)
-        self.matl = _material(ps, "material", ice.material_names())
+        solids = [m.name for m in getattr(ice, "_mpm_materials", ())]      # MPMICE: the global index space
+        self.matl = _material(ps, "material", solids + ice.material_names())
         scalars = ps.children("scalar")
         if len(scalars) != 1:
             raise ps.error(f"{len(scalars)} <scalar> blocks; accepted: one per PassiveScalar model (as Uintah)")

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from framework.grid import FACES
-from framework.gridspec import boundary_faces
+from framework.gridspec import boundary_faces, sub_faces
 from framework.variables import VarType
 
 from . import kernels
@@ -33,28 +33,21 @@ class GridBCs:
     temperature_items = ()
 
     def __init__(self, root, level, nmat):
-        self.items = []          # (d, side, comps mask, value, materials)
-        self.temperature_items = []      # (d, side, value, materials)
+        self.items = []          # (d, side, comps mask, value, materials, where)
+        self.temperature_items = []      # (d, side, value, materials, where)
         grid = root.child("Grid")
         bcs = grid.child("BoundaryConditions") if grid is not None else None
         if bcs is None:
             return
-        for side, face in boundary_faces(bcs, FACES):
+        faces = [(side, None, face) for side, face in boundary_faces(bcs, FACES)] + sub_faces(bcs, FACES, level)
+        for side, geom, face in faces:
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
             given = {"Velocity": set(), "Temperature": set()}
             for bc in face.children("BCType"):
                 ident = bc.attr("id")
                 var = bc.attr("var", choices=("Dirichlet", "symmetry", "Neumann"))
                 label = bc.attr("label", choices=("Velocity", "Symmetric", "Temperature"))
-                if ident == "all":
-                    mats = tuple(range(nmat))
-                else:
-                    try:
-                        mats = (int(ident),)
-                    except ValueError:
-                        raise bc.error(f'id="{ident}": accepted: all or a material index') from None
-                    if not 0 <= mats[0] < nmat:
-                        raise bc.error(f'id="{ident}": there are {nmat} MPM materials')
+                mats = _materials(bc, ident, nmat)
                 kind = "Temperature" if label == "Temperature" else "Velocity"
                 if given[kind] & set(mats):
                     raise bc.error(f"a second {kind} <BCType> for material {min(given[kind] & set(mats))} on this "
@@ -68,7 +61,7 @@ class GridBCs:
                     value = bc.get("value", "float")
                     self.temperature_node = bc
                     if not level.collapsed[d]:
-                        self.temperature_items.append((d, s, value, mats))
+                        self.temperature_items.append((d, s, value, mats, geom))
                     continue
                 if (var == "symmetry") != (label == "Symmetric"):
                     raise bc.error('accepted: var="Dirichlet" or "Neumann" label="Velocity", '
@@ -77,6 +70,9 @@ class GridBCs:
                     bc.get("value", "vector", (0.0, 0.0, 0.0))       # read: a free face has no value to set
                     continue
                 if var == "symmetry":
+                    if geom is not None:
+                        raise bc.error('var="symmetry" on a sub-face is not supported; accepted: Dirichlet, '
+                                       "Neumann (symmetry acts on a whole <Face side>)")
                     comps = np.zeros(3, np.bool_)
                     comps[d] = True
                     value = np.zeros(3)
@@ -86,7 +82,62 @@ class GridBCs:
                 if level.periodic[d]:
                     raise bc.error(f"face {side} is periodic; it takes no boundary condition")
                 if not level.collapsed[d]:
-                    self.items.append((d, s, comps, value, mats))
+                    self.items.append((d, s, comps, value, mats, geom))
+        self._place_sub_faces(faces, nmat)
+
+    def _place_sub_faces(self, faces, nmat):
+        """Turn each item's sub-face (or None) into where = (the sub-face, None) or, for a side's
+        condition, (None, the sub-faces of that side that name the material): the nodes of a
+        sub-face take its conditions, the side's the rest (per material, as Uintah: a sub-face
+        exists for the materials its BCTypes name). where = None: the whole face."""
+        named = {}
+        for side, geom, face in faces:
+            if geom is not None:
+                ms = set()
+                for bc in face.children("BCType"):
+                    ms |= set(_materials(bc, bc.attr("id"), nmat, strict=False))
+                named[geom] = ms
+        self.sub_faces = list(named)
+        self._masks = {}
+
+        def place(items, nvals):
+            out = []
+            for item in items:
+                head, mats, geom = item[:nvals], item[nvals], item[nvals + 1]
+                if geom is not None:
+                    out.append(head + (mats, (geom, ())))
+                    continue
+                d, s = item[0], item[1]
+                if not any((g.d, g.s) == (d, s) for g in named):
+                    out.append(head + (mats, None))
+                    continue
+                for m in mats:
+                    cut = tuple(g for g, ms in named.items() if (g.d, g.s) == (d, s) and m in ms)
+                    out.append(head + ((m,), (None, cut) if cut else None))
+            return out
+
+        self.items = place(self.items, 4)
+        self.temperature_items = place(self.temperature_items, 3)
+
+    def _where(self, patch, where, d, lo, hi):
+        """Which nodes of the local box [lo, hi) (the face's nodes and the extra nodes beyond) `where`
+        selects, by the position of the face node they share: inside its sub-face, or outside
+        every sub-face it cuts out."""
+        geom, cut = where
+        base = patch.low_index(VarType.NC)
+        key = (patch.id, d, geom, cut, tuple(lo), tuple(hi), base)
+        mask = self._masks.get(key)
+        if mask is None:
+            lv = patch.level
+            axes = [lv.anchor[c] + (np.arange(lo[c], hi[c]) + base[c]) * lv.dx[c] for c in range(3)]
+            pts = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
+            g0 = geom if geom is not None else cut[0]
+            pts[..., d] = (lv.upper if g0.s else lv.anchor)[d]          # the face node above each node
+            mask = geom.inside(pts) if geom is not None else np.ones(pts.shape[:3], np.bool_)
+            for g in cut:
+                mask &= ~g.inside(pts)
+            self._masks[key] = mask
+        return mask
 
     def apply_symmetric(self, patch, matl, gvel):
         """The symmetry conditions of this material on g.velocity (normal component 0)."""
@@ -100,7 +151,7 @@ class GridBCs:
         own_lo, own_hi = patch.owned_local(VarType.NC)
         inner = patch.level.interior_box(VarType.NC)
         base = patch.low_index(VarType.NC)
-        for d, s, comps, value, mats in self.items:
+        for d, s, comps, value, mats, where in self.items:
             if matl not in mats or not (patch.at_high if s else patch.at_low)[d]:
                 continue
             if symmetric_only and comps.all():          # a Dirichlet velocity (all components)
@@ -113,8 +164,16 @@ class GridBCs:
                 lo[d] = inner[1][d] - 1 - base[d]          # face node and the extra nodes above
             lo = np.maximum(lo, lo_all)
             hi = np.minimum(hi, hi_all)
-            kernels.velocity_bc(gvs, gacc, gvel, dt, np.asarray(lo, np.int64), np.asarray(hi, np.int64),
-                                comps, value)
+            if where is None:
+                kernels.velocity_bc(gvs, gacc, gvel, dt, np.asarray(lo, np.int64), np.asarray(hi, np.int64),
+                                    comps, value)
+                continue
+            sl = tuple(slice(a, b) for a, b in zip(lo, hi))
+            mask = self._where(patch, where, d, lo, hi)
+            vs, acc, v = gvs[sl], gacc[sl], gvel[sl]
+            for c in np.flatnonzero(comps):     # velocity_bc on the selected nodes
+                vs[..., c][mask] = value[c]
+                acc[..., c][mask] = (value[c] - v[..., c][mask]) / dt
 
     def _face_nodes(self, patch, d, s, shape):
         """The slices of a patch's node array on face (d, s): the face nodes and the extra
@@ -133,14 +192,34 @@ class GridBCs:
 
     def apply_temperature(self, patch, matl, temperature):
         """Set the Dirichlet temperatures of this material on the faces `patch` touches."""
-        for d, s, value, mats in self.temperature_items:
+        for d, s, value, mats, where in self.temperature_items:
             if matl in mats and (patch.at_high if s else patch.at_low)[d]:
-                temperature[self._face_nodes(patch, d, s, temperature.shape)] = value
+                sl = self._face_nodes(patch, d, s, temperature.shape)
+                if where is None:
+                    temperature[sl] = value
+                else:
+                    temperature[sl][self._where(patch, where, d, [x.start for x in sl], [x.stop for x in sl])] = value
 
     def symmetric_normal(self, patch, normal):
         """Remove the component into the face from a nodal normal on every symmetry face of
         material 0 (Uintah's "Symmetric" condition on g.normAlphaToBeta)."""
-        for d, s, comps, value, mats in self.items:
+        for d, s, comps, value, mats, where in self.items:
             if 0 not in mats or comps.sum() != 1 or not (patch.at_high if s else patch.at_low)[d]:
                 continue
             normal[self._face_nodes(patch, d, s, normal.shape) + (d,)] = 0.0
+
+
+def _materials(bc, ident, nmat, strict=True):
+    """The material indices of a BCType's id ("all" or one index); strict=False drops an index
+    that is not one of these nmat materials (an ICE material in an MPMICE deck)."""
+    if ident == "all":
+        return tuple(range(nmat))
+    try:
+        m = int(ident)
+    except ValueError:
+        raise bc.error(f'id="{ident}": accepted: all or a material index') from None
+    if not 0 <= m < nmat:
+        if not strict:
+            return ()
+        raise bc.error(f'id="{ident}": there are {nmat} MPM materials')
+    return (m,)

@@ -156,6 +156,8 @@ class MPMICE(MPMICETasks, Component):
         for lab in [M.pX, M.pMass, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
             t.requires(NEW, lab, Ghost.AROUND_NODES, ng, matls=self.mpm_matls)
         sched.add_task(t)
+        for model in self.ice.scalars:          # ICE's PassiveScalar models (components/models)
+            model.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
@@ -290,6 +292,9 @@ class MPMICE(MPMICETasks, Component):
         if self.add_heat is not None:
             t.requires(OLD, FL.simTime)
         sched.add_task(t)
+        for model in ice.scalars:              # the passive scalars: source, then m f
+            model.schedule_sources(sched)
+        ice.schedule_transported(sched, fl)
 
         sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", self.exchange, alls)
                        .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC)
@@ -341,7 +346,10 @@ class MPMICE(MPMICETasks, Component):
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+        ice.advect_scalars(t, gadv)
         sched.add_task(t)
+        for model in ice.scalars:
+            model.schedule_conservation(sched, dirs)
         t = Task("ICE::TestConservation", ice.internal_energy_sum, fl) \
             .requires(OLD, FL.delT).requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.temp_CC) \
             .computes(I.TotalIntEng)

@@ -24,7 +24,7 @@ from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
 from framework.grid import FACES
-from framework.gridspec import boundary_faces
+from framework.gridspec import boundary_faces, sub_faces
 from framework.problemspec import Param
 
 
@@ -57,7 +57,8 @@ class GridBCsWithICE(GridBCs):
         bcs = grid.child("BoundaryConditions") if grid is not None else None
         if bcs is None:
             return
-        for side, face in boundary_faces(bcs, FACES):
+        faces = [(side, None, face) for side, face in boundary_faces(bcs, FACES)] + sub_faces(bcs, FACES, level)
+        for side, geom, face in faces:
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
             for bc in face.children("BCType"):
                 ident, var, label = bc.attr("id"), bc.attr("var"), bc.attr("label")
@@ -69,7 +70,8 @@ class GridBCsWithICE(GridBCs):
                     continue
                 mats = tuple(range(nmat)) if ident == "all" else tuple(m for m in (int(ident),) if m < nmat)
                 if mats and not level.collapsed[d] and not level.periodic[d]:
-                    self.items.append((d, s, comps, value, mats))
+                    self.items.append((d, s, comps, value, mats, geom))
+        self._place_sub_faces(faces, nmat)
 
 
 class MPMinMPMICE(MPM):
