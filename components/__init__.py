@@ -1,2 +1,4 @@
-"""The kernels of these packages inline their numba helpers (inline="always"): install the faster IR copy first."""
+"""numba set-up for the kernels of these packages: the faster IR inlining (inline="always"
+helpers) and one compilation per kernel across processes sharing a cache."""
+import framework.numba_compile_lock  # noqa: F401
 import framework.numba_inline  # noqa: F401
