@@ -180,6 +180,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
         self.thermal_contact_node = mp.child("thermal_contact")
+        self.heat_flag_given = mpm is not None and mpm.has("DoExplicitHeatConduction")
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
         self.mms = None
