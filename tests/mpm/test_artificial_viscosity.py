@@ -113,3 +113,29 @@ def test_bad_input_is_one_clean_line(tmp_path, edit, words):
     assert "\n" not in msg
     for w in words:
         assert w in msg, msg
+
+
+SIBLINGS = np.loadtxt(Path(__file__).parent / "data" / "adiCu_flow_models_av_sus.txt")
+
+
+@pytest.mark.parametrize("index, model", list(enumerate(["MTS", "PTW", "SCG", "ZA"])))
+def test_other_flow_models_equal_sus(tmp_path, index, model):
+    """Uintah's sibling decks adiCu{MTS,PTW,SCG,ZA}4000s696K.ups are the JC deck with other
+    flow, shear-modulus and melting models (test_elastic_plastic_hp.FLOWS holds their blocks;
+    their other extra tags are implicit MPM's or read and unused): run to the end, they give
+    sus's times, stress, plastic strain and temperature (measured over every step: delT 1.4e-10,
+    stress 3e-7, ep 3.3e-8, T 1.6e-9)."""
+    from .test_elastic_plastic_hp import FLOWS
+    text = deck_text(MPM_INPUTS / "adiabatic_copper_jc.ups", outputInterval=1.0e-12)
+    start = text.index('<flow_model type = "johnson_cook">')
+    end = text.index("<yield_condition")
+    _, da = run(text[:start] + FLOWS[model] + "\n          " + text[end:], tmp_path)
+    rows = SIBLINGS[SIBLINGS[:, 0] == index]
+    assert len(da.times) - 1 == int(rows[-1, 1])
+    for _, k, t, sxx, szz, ep, T in rows:
+        p = da.particles(1, int(k))
+        s = p["p.stress"][0]
+        assert da.times[int(k)] == pytest.approx(t, rel=1e-9), k
+        assert max(abs(s[0, 0] - sxx), abs(s[2, 2] - szz)) < 1e-6 * max(abs(sxx), abs(szz)), k
+        assert p["p.plasticStrain"][0] == pytest.approx(ep, rel=1e-7), k
+        assert p["p.temperature"][0] == pytest.approx(T, rel=1e-8), k
