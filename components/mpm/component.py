@@ -65,6 +65,13 @@ FLAGS = {
     "minimum_mass_for_acc": Param("float", 0.0, doc="nodes this light get no force acceleration"),
     "do_grid_reset": Param("bool", True, (True,), doc="the grid is always reset"),
     "DoExplicitHeatConduction": Param("bool", False, doc="particle temperature and explicit heat conduction (thermal.py)"),
+    "artificial_viscosity": Param("bool", False, doc="bulk viscosity q of compressed solid particles in the "
+                                  "internal force (artificial_viscosity.py)"),
+    "artificial_viscosity_heating": Param("bool", False, doc="elastic_plastic's viscous work to heat (on with "
+                                          "<artificial_viscosity> unless false is given)"),
+    "artificial_viscosity_coeff1": Param("float", 0.2, doc="A1, the linear term of q", at_least=0.0),
+    "artificial_viscosity_coeff2": Param("float", 2.0, doc="A2, the quadratic term of q", at_least=0.0),
+    "do_contact_friction_heating": Param("bool", False, (False,), "friction work to heat: not implemented"),
     "axisymmetric": Param("bool", False, doc="Uintah's axisymmetric MPM: x is r, y the axial z, one cell in z; "
                           "particle volumes and masses per radian"),
     "stress_update": Param("str", "musl", ("musl", "usl"),
@@ -101,6 +108,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
     axisymmetric_refused = None
     # why <XPIC2>true is refused in this component (None: it is supported)
     xpic_refused = None
+    # why <artificial_viscosity>true is refused in this component (None: it is supported)
+    artificial_viscosity_refused = None
 
     def problem_setup(self, root, level):
         self.level = level
@@ -171,6 +180,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
         self.thermal_contact_node = mp.child("thermal_contact")
+        self.heat_flag_given = mpm is not None and mpm.has("DoExplicitHeatConduction")
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
         self.mms = None
@@ -185,6 +195,16 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp")
         if self.axisymmetric:
             self._check_axisymmetric_physics(mpm, mp)
+        self.av = None
+        if self.flags["artificial_viscosity"]:
+            if self.artificial_viscosity_refused:
+                raise mpm.child("artificial_viscosity").error(
+                    f"artificial viscosity is not implemented {self.artificial_viscosity_refused}; accepted: false")
+            from .artificial_viscosity import ArtificialViscosity
+            self.av = ArtificialViscosity(mpm, self.flags, self.materials, level.dx)
+        elif self.flags["artificial_viscosity_heating"]:
+            raise mpm.child("artificial_viscosity_heating").error(
+                "artificial_viscosity_heating needs <artificial_viscosity>true (as in Uintah)")
         self._carried()
 
     def _check_axisymmetric_grid(self, root, mpm, level):
@@ -245,6 +265,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 c.append((L.pExternalHeatRate, L.pExternalHeatRatePre))
         if self.mms:                          # X = p.x - p.displacement for the body force
             c.append((L.pDisp, L.pDispPre))
+        if self.av:                           # the bulk viscosity of the next step's internal force
+            c.append((L.pQ, L.pQPre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
 
@@ -436,6 +458,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             labs.append(L.pLoadCurveID)
         if self.mms:
             labs.append(L.pDisp)
+        if self.av:
+            labs.append(L.pQ)
         return labs
 
     def _read_physical_bc(self, root):

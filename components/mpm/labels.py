@@ -47,6 +47,7 @@ pPlasticStrainRate, pPlasticStrainRatePre = _pair("p.plasticStrainRate")   # ela
 pEnergy, pEnergyPre = _pair("p.energy")                  # elastic_plastic_hp: specific internal energy
 pStrainRate, pStrainRatePre = _pair("p.strainRate")      # elastic_plastic_hp: sqrt(2/3) |D|
 pDisp, pDispPre = _pair("p.displacement", (3,))          # <RunMMSProblem>: x - X (mms.py)
+pQ, pQPre = _pair("p.q")                                 # <artificial_viscosity>: bulk viscosity (Pa)
 STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model state
          "p.internalEnergy": (pIntEnergy, pIntEnergyPre),
          "p.pStatedata_vs": _pair("p.pStatedata_vs", (5, 3, 3)),        # visco_scram: Maxwell stresses

@@ -14,6 +14,7 @@ from framework.variables import VarType
 
 from . import kernels, shape, transfer
 from . import labels as L
+from .artificial_viscosity import stress_less_q
 from .thermal import divide_by_mass, p2g_heat
 
 NC = VarType.NC
@@ -138,7 +139,8 @@ class MPMTasks:
                                                    temperature=d["temp"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
-                   L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3))}
+                   L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3)),
+                   L.pQ: np.zeros(n)}
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for name, (lab, _) in L.STATE.items():
                 put[lab] = own[name] if name in own else np.zeros((n,) + lab.shape)
@@ -186,8 +188,11 @@ class MPMTasks:
         has_f = bool(self.pressure_bcs) or bool(self.mms)
         labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]
         labs += [L.pLoadCurveID] if self.pressure_bcs else [L.pDisp] if self.mms else []
+        labs += [L.pQ] if self.av else []
         for m in matls:
             own, ghost, runs = self._parts(old_dw, m, patch, labs)
+            if self.av:                 # the internal force's stress: sigma - q I
+                own, ghost = [a[:4] + [self._stress_less_q(a[4], a[-2])] + a[5:] for a in (own, ghost)]
             own, ghost = [tuple(a[:5] + [self._body_forces(old_dw, a) if has_f else _NOF, a[-1]])
                           for a in (own, ghost)]
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
@@ -197,6 +202,12 @@ class MPMTasks:
                           new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0))
             kernels.divide_by_mass(gm, gv, gv)
             self.bcs.apply_symmetric(patch, m, gv)             # as Uintah (bc.py)
+
+    @staticmethod
+    def _stress_less_q(stress, q):
+        out = np.empty_like(stress)
+        stress_less_q(stress, q, out)
+        return out
 
     def _parts(self, old_dw, m, patch, labels):
         """[owned arrays], [ghost arrays] of the (ghosted) particle labels, each list ending
@@ -631,6 +642,11 @@ class MPMTasks:
                                                        old_dw.get(L.pVelocity, m, patch), dt,
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
                                                        new, scale, temp))
+            if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
+                q = self.av.q(m, mat, Lg, F_new)
+                new_dw.put(L.pQPre, m, patch, q)
+                if mat.needs_temperature:
+                    self.av.heat(mat, q, Lg, F_old, F_new, pm, vol_new, old[-1], dTdt, news["p.energy"])
             if mat.needs_temperature:   # Uintah's finalParticleUpdate: T += dT/dt dt
                 new_dw.put(L.pdTdt, m, patch, dTdt)
                 T_new = new_dw.get(L.pTemperaturePre, m, patch)

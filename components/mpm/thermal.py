@@ -196,7 +196,12 @@ class ThermalTasks:
 
     def thermal_setup(self):
         """After the materials are read: which tasks this deck needs."""
-        self.thermal = (bool(self.flags["DoExplicitHeatConduction"]) or self.thermal_needed
+        node = self.thermal_contact_node
+        self.temperature_bcs = bool(self.bcs.temperature_items)
+        # Uintah's default is conduction on: a deck that leaves the flag out and asks for thermal
+        # contact or Temperature BCs gets it (pysus's default, off, only spares decks without them)
+        implied = not self.heat_flag_given and (node is not None or self.temperature_bcs)
+        self.thermal = (bool(self.flags["DoExplicitHeatConduction"]) or self.thermal_needed or implied
                         or any(m.needs_temperature for m in self.materials))     # elastic_plastic_hp
         self.conducting = [m for m, mat in enumerate(self.materials) if self.thermal and mat.conductivity > 0]
         for m in self.conducting:
@@ -204,15 +209,13 @@ class ThermalTasks:
                 raise self.materials[m].node.error(
                     "heat conduction needs <specific_heat> > 0 (thermal_conductivity is positive)")
         self.th_act = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask of the kernels
-        node = self.thermal_contact_node
         self.thermal_contact = node is not None and len(self.materials) > 1
-        self.temperature_bcs = bool(self.bcs.temperature_items)
         for what, given, where in (("<thermal_contact>", node is not None, node),
                                    ("a Temperature grid BC", self.temperature_bcs, None)):
             if given and not self.thermal:
                 where = where or self.bcs.temperature_node
-                raise where.error(f"{what} needs heat conduction: <MPM><DoExplicitHeatConduction>true"
-                                  "</DoExplicitHeatConduction> (Uintah's default; pysus's is false)")
+                raise where.error(f"{what} needs heat conduction, which <DoExplicitHeatConduction>false turns "
+                                  "off (Uintah then ignores it); accepted: true or no such tag")
         if node is not None:
             for child in node.children():
                 raise child.error("<thermal_contact> takes no tags (Uintah's STThermalContact)")

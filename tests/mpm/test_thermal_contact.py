@@ -50,8 +50,19 @@ def test_contact_alone_keeps_the_heat(tmp_path):
     assert da.particles(1, 3)["p.temperature"].max() > 110.0
 
 
+def test_flag_left_out_is_uintahs_default(heat, tmp_path):
+    """Uintah's heatcond2mat.ups has no <DoExplicitHeatConduction>: Uintah's default (on)
+    applies with its <thermal_contact> and Temperature BCs, so the deck without the tag
+    runs as with it true (bitwise)."""
+    text = open(DECK).read()
+    assert "<DoExplicitHeatConduction>true</DoExplicitHeatConduction>" in text
+    _, da = run(text.replace("<DoExplicitHeatConduction>true</DoExplicitHeatConduction>", ""), tmp_path)
+    for m in (0, 1):
+        assert np.array_equal(da.particles(m, 3)["p.temperature"], heat[0].particles(m, 3)["p.temperature"])
+
+
 @pytest.mark.parametrize("edit, message", [
-    (("<DoExplicitHeatConduction>true</DoExplicitHeatConduction>", ""), "needs heat conduction"),
+    (("<DoExplicitHeatConduction>true", "<DoExplicitHeatConduction>false"), "needs heat conduction"),
     (("<thermal_contact></thermal_contact>", "<thermal_contact><mu>1</mu></thermal_contact>"), "takes no tags"),
     (('var = "Dirichlet" label = "Temperature">', 'var = "Neumann" label = "Temperature">'),
      'accepted: var="Dirichlet"'),

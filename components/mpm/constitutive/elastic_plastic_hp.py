@@ -9,7 +9,8 @@ the radial return s = s* - 2 mu dgamma s*/|s*| with dgamma from Newton iteration
 g = |s*| - sqrt(2/3) sigma_y(ep + sqrt(2/3) dgamma, epdot = sqrt(2/3) dgamma/dt) - 2 mu dgamma
 (Simo and Hughes 1998, box 3.1, with Uintah's tolerances); above the melting temperature
 s = 0; the pressure from the equation of state; the stress rotated back with the R of
-F^{n+1}. The temperature rate p.dTdt = chi sigma_y epdot/(rho c_p) (plastic work to heat,
+F^{n+1}; the wave speed with that step's mu (the first step's with <shear_modulus>, as Uintah's
+computeStableTimeStep). The temperature rate p.dTdt = chi sigma_y epdot/(rho c_p) (plastic work to heat,
 <taylor_quinney_coeff> chi) + the isentropic rate of the EOS; the MPM component adds
 p.dTdt dt to p.temperature (Uintah's finalParticleUpdate). p.energy, the specific internal
 energy the Mie-Gruneisen EOS reads, accumulates the stress work.
@@ -384,7 +385,11 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
     ep, epdot, e, _, T = old
     ep_n, epdot_n, e_n, edot_n, dTdt = new
     kern = kernel_for(params.codes)
-    return kern(params.shear_modulus, params.bulk_modulus, params.density, params.melt_temp, params.specific_heat,
+    ws = kern(params.shear_modulus, params.bulk_modulus, params.density, params.melt_temp, params.specific_heat,
                 params.taylor_quinney, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
                 params.flow, params.shear, params.melt, params.eos, params.cp, T, ep, epdot, e,
                 ep_n, epdot_n, e_n, edot_n, dTdt, energy)
+    if dt == 0.0 and len(vel):      # the first step's: with <shear_modulus>, not the shear model's mu
+        c = math.sqrt((params.bulk_modulus + 4.0 * params.shear_modulus / 3.0) / params.density)
+        ws = np.max(c + np.abs(vel), axis=0)
+    return ws
