@@ -28,6 +28,7 @@ One timestep (tasks.py), all MPM materials in each task:
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
   computeSPlusSSPlusVp            XPIC(2)'s twice-smoothed grid velocity (only with <XPIC2>)
+  computeGridVelocityForFTM       a force-transmitting material's one acceleration (only with one)
   interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
   computeStressTensor             (MUSL: L_p, F_p, V_p from v^L) sigma_p, strain energy,
                                   wave speed
