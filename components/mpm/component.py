@@ -28,6 +28,7 @@ One timestep (tasks.py), all MPM materials in each task:
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
   computeSPlusSSPlusVp            XPIC(2)'s twice-smoothed grid velocity (only with <XPIC2>)
+  computeGridVelocityForFTM       a force-transmitting material's one acceleration (only with one)
   interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
   computeStressTensor             (MUSL: L_p, F_p, V_p from v^L) sigma_p, strain energy,
                                   wave speed
@@ -110,6 +111,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
     xpic_refused = None
     # why <artificial_viscosity>true is refused in this component (None: it is supported)
     artificial_viscosity_refused = None
+    # why <is_force_transmitting_material>true is refused in this component (None: it is supported)
+    ftm_refused = None
 
     def problem_setup(self, root, level):
         self.level = level
@@ -173,6 +176,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if len(self.materials) > 16 and self.av_matls:
             raise mp.error("artificial viscosity supports at most 16 MPM materials")
         self.contact = self.contact_class(mp, len(self.materials))
+        self._rigid_contact_setup()
+        self._ftm_setup(mp)
         if self.contact.needs_color and not self.flags["withColor"]:
             raise mp.child("contact").child("type").error(
                 "friction_LRVar takes mu from the colour: it needs <MPM><withColor>true</withColor>")
@@ -205,7 +210,35 @@ class MPM(ThermalTasks, MPMTasks, Component):
         elif self.flags["artificial_viscosity_heating"]:
             raise mpm.child("artificial_viscosity_heating").error(
                 "artificial_viscosity_heating needs <artificial_viscosity>true (as in Uintah)")
+        self.saves_disp = self.saves_scale = False      # until schedule_time_advance sees the <save>s
         self._carried()
+
+    def _rigid_contact_setup(self):
+        """Uintah's SpecifiedBodyContact makes its master material rigid (FLIP's particle update
+        under <XPIC2>) and, with <XPIC2>, acts after interpolation too (its OneOrTwoStep 2)."""
+        c = self.contact
+        if c.type != "rigid":
+            return
+        self.materials[c.master].is_rigid = True
+        if self.xpic and c.active:
+            c.interpolated = True
+
+    def _ftm_setup(self, mp):
+        """Force-transmitting rigid materials (Uintah's is_force_transmitting_material): each
+        moves as one rigid body, a = (sum of its nodal external forces + the force the rigid
+        contact exerts on the others' nodes, taken with the opposite sign) / its nodal mass."""
+        self.ftm = [m for m, mat in enumerate(self.materials) if mat.is_ftm]
+        self.ftm_contact = False
+        if not self.ftm:
+            return
+        tag = self.materials[self.ftm[0]].node.child("is_force_transmitting_material")
+        if self.ftm_refused or self.axisymmetric:
+            why = self.ftm_refused or "with <axisymmetric>true"
+            raise tag.error(f"a force-transmitting material is not implemented {why}; accepted: false")
+        if len(self.materials) > 16:
+            raise tag.error("a force-transmitting material needs at most 16 MPM materials")
+        # the rigid contact's reaction joins its master's force (Uintah's SpecifiedBodyContact)
+        self.ftm_contact = self.contact.active and self.contact.type == "rigid"
 
     def _check_axisymmetric_grid(self, root, mpm, level):
         """Axisymmetric MPM (Uintah's): x is r >= 0, y the axial direction, z (one cell) the angle."""
@@ -247,7 +280,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
         """(final, pre-relocation) particle labels this deck carries, besides p.x."""
         c = [(L.pVelocity, L.pVelocityPre), (L.pMass, L.pMassPre), (L.pVolume, L.pVolumePre),
              (L.pStress, L.pStressPre), (L.pF, L.pFPre), (L.pID, L.pIDPre)]
-        if self.kind != "linear" or self.contact.needs_lr:     # GIMP, CPDI; friction_LR: the particle faces
+        # GIMP, CPDI; friction_LR: the particle faces; p.scalefactor
+        if self.kind != "linear" or self.contact.needs_lr or self.saves_scale:
             c.append((L.pSize, L.pSizePre))
         if self.contact.needs_lr:
             c.append((L.pSurface, L.pSurfacePre))
@@ -263,10 +297,12 @@ class MPM(ThermalTasks, MPMTasks, Component):
             c += [(L.pExtForce, L.pExtForcePre), (L.pLoadCurveID, L.pLoadCurveIDPre)]
             if self.pressure_bcs.heat_flux:
                 c.append((L.pExternalHeatRate, L.pExternalHeatRatePre))
-        if self.mms:                          # X = p.x - p.displacement for the body force
+        if self.mms or self.saves_disp:       # X = p.x - p.displacement for the body force; saved
             c.append((L.pDisp, L.pDispPre))
         if self.av:                           # the bulk viscosity of the next step's internal force
             c.append((L.pQ, L.pQPre))
+        if self.saves_scale:
+            c.append((L.pScaleFactor, L.pScaleFactorPre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
 
@@ -309,8 +345,18 @@ class MPM(ThermalTasks, MPMTasks, Component):
         sched.add_task(Task("MPM::computeStableTimestep", self.compute_stable_timestep, self.matls)
                        .requires(NEW, L.WaveSpeed).computes(FL.delT))
 
+    def _saved_particle_labels(self, sched):
+        """p.displacement and p.scalefactor are carried only when a deck saves them (as Uintah
+        computes p.scalefactor): decks without them pay nothing."""
+        out = getattr(sched, "output_labels", ())
+        disp, scale = "p.displacement" in out, "p.scalefactor" in out
+        if (disp, scale) != (self.saves_disp, self.saves_scale):
+            self.saves_disp, self.saves_scale = disp, scale
+            self._carried()
+
     def schedule_time_advance(self, level, sched):
         ms, g, ng = self.matls, Ghost.AROUND_NODES, self.ng
+        self._saved_particle_labels(sched)
         t = Task("MPM::interpolateParticlesToGrid", self.interpolate_particles_to_grid, ms)
         for lab in self._p2g_labels():
             t.requires(OLD, lab, g, ng)
@@ -332,16 +378,19 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if self.contact.interpolated:
             t = Task("MPM::exMomInterpolated", self.ex_mom_interpolated, ms) \
                 .requires(NEW, L.gMass).modifies(L.gVelocity).requires(OLD, FL.delT)
+            if self.contact.needs_time:
+                t.requires(OLD, FL.simTime)
             if self.contact.needs_normals:
                 for lab in [L.pX, L.pMass] + self.size_labels():
                     t.requires(OLD, lab, g, ng)
                 t.computes(L.gSurfNorm)
             self._requires_lr(t)
             sched.add_task(t)
-        sched.add_task(Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
-                       .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
-                       .requires(NEW, L.gIntForce).requires(NEW, L.gExtForce)
-                       .computes(L.gVelocityStar).computes(L.gAcceleration))
+        t = (Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
+             .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
+             .requires(NEW, L.gIntForce).requires(NEW, L.gExtForce)
+             .computes(L.gVelocityStar).computes(L.gAcceleration))
+        sched.add_task(t.computes(L.FTMForce) if self.ftm else t)
         if self.contact.active:
             t = (Task("MPM::exMomIntegrated", self.ex_mom_integrated, ms)
                  .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
@@ -352,6 +401,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(OLD, FL.simTime)
             if self.contact.type == "rigid":
                 t.requires(NEW, L.gIntForce).computes(L.RigidReactionForce).computes(L.RigidReactionTorque)
+            if self.ftm and self.ftm_contact:
+                t.computes(L.FTMContactForce)
             self._requires_lr(t)
             sched.add_task(t)
         if self.bcs.items:
@@ -365,6 +416,11 @@ class MPM(ThermalTasks, MPMTasks, Component):
                 t.requires(OLD, lab, g, ng)
             sched.add_task(t.requires(NEW, L.gVelocity, Ghost.AROUND_CELLS, 2 * ng).requires(NEW, L.gMass)
                            .computes(L.gVelSPSSP))
+        if self.ftm:        # after the grid BCs, which a force-transmitting material does not see
+            t = (Task("MPM::computeGridVelocityForFTM", self.ftm_grid_velocity, self.ftm)
+                 .requires(OLD, FL.delT).requires(NEW, L.FTMForce).requires(NEW, L.gVelocity)
+                 .modifies(L.gVelocityStar).modifies(L.gAcceleration).computes(L.SumTransmittedForce))
+            sched.add_task(t.requires(NEW, L.FTMContactForce) if self.ftm_contact else t)
         t = Task("MPM::interpolateToParticlesAndUpdate", self.interpolate_to_particles, ms).requires(OLD, FL.delT)
         pg = (g, ng) if self.musl else (Ghost.NONE, 0)
         for lab in [L.pX, L.pVelocity, L.pMass] + self.size_labels():
@@ -418,10 +474,12 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(NEW, L.pVelGrad).requires(NEW, L.pFPre).requires(NEW, L.pVolumePre).requires(OLD, L.pF)
             if self.has_membrane:
                 t.requires(OLD, L.pVolume)
-        moved = {L.pVelocity.name} | (set() if self.musl else {L.pF.name, L.pVolume.name})
+        moved = {L.pVelocity.name, L.pScaleFactor.name} | (set() if self.musl else {L.pF.name, L.pVolume.name})
         for final, pre in self.carry:
             if final.name not in moved:
                 t.requires(OLD, final).computes(pre)
+        if self.saves_scale:
+            t.computes(L.pScaleFactorPre)
         t.computes(L.WaveSpeed).computes(L.StrainEnergy)
         hot = [m for m, mt in enumerate(self.materials) if mt.needs_temperature]
         if hot:                         # elastic_plastic_hp: p.temperature+ += p.dTdt dt
@@ -431,7 +489,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
             if not self.musl:
                 t.requires(OLD, L.pX)
-        if self.mms:                    # p.displacement+ = p.displacement + p.x+ - p.x
+        if self.mms or self.saves_disp:     # p.displacement+ = p.displacement + p.x+ - p.x
             t.requires(NEW, L.pXpre)
             if not self.musl and not self.pressure_bcs:
                 t.requires(OLD, L.pX)

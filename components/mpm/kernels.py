@@ -206,11 +206,17 @@ def friction(gmass, gvel, gnorm, mu, dx, delt, gacc, gvel_old, dt):
                     gacc[m, i, d] = (gvel[m, i, d] - gvel_old[m, i, d]) / dt
 
 
+# the rigid contact acts where the master material's nodal mass exceeds this (kg): Uintah's
+# Contact::compare(m, 0) with its EPSILON 1e-14, which passes over the round-off masses at the
+# edge of a GIMP particle's reach (their velocity, momentum / mass, is noise)
+RIGID_MIN_MASS = 1e-14
+
+
 @njit(cache=True)
 def rigid(gmass, gvel, gacc, gvel_old, h, dt, master, direction, vel, use_own, origin, omega, axis,
           shape, anchor, spacing, low):
     """Uintah's SpecifiedBodyContact after integration (h = dt; 0 before it): where the
-    master material has mass it takes the rigid velocity, the others its components
+    master material has mass (above RIGID_MIN_MASS) it takes the rigid velocity, the others its components
     along `direction`. The rigid velocity is vel plus the rotation part at the node x:
     (R(omega dt) (x - o) - (x - o))/dt about coordinate `axis`, else omega x (x - o)."""
     nm = gmass.shape[0]
@@ -219,7 +225,7 @@ def rigid(gmass, gvel, gacc, gvel_old, h, dt, master, direction, vel, use_own, o
     turning = omega[0] != 0.0 or omega[1] != 0.0 or omega[2] != 0.0
     nyz = shape[1] * shape[2]
     for i in range(gmass.shape[1]):
-        if not gmass[master, i] > 0.0:
+        if not gmass[master, i] > RIGID_MIN_MASS:
             continue
         if turning:
             r = np.empty(3)
@@ -502,7 +508,7 @@ def rigid_reaction(master_mass, fint, others, own_lo, own_hi, shape, anchor, spa
     (x_i - origin) x -fint (with include_rotation; Uintah's arm is 0 without it)."""
     nyz = shape[1] * shape[2]
     for i in range(master_mass.shape[0]):
-        if not master_mass[i] > 0.0:
+        if not master_mass[i] > RIGID_MIN_MASS:
             continue
         a, b, c = i // nyz, (i // shape[2]) % shape[1], i % shape[2]
         if not (own_lo[0] <= a < own_hi[0] and own_lo[1] <= b < own_hi[1] and own_lo[2] <= c < own_hi[2]):

@@ -46,8 +46,9 @@ pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / 
 pPlasticStrainRate, pPlasticStrainRatePre = _pair("p.plasticStrainRate")   # elastic_plastic_hp
 pEnergy, pEnergyPre = _pair("p.energy")                  # elastic_plastic_hp: specific internal energy
 pStrainRate, pStrainRatePre = _pair("p.strainRate")      # elastic_plastic_hp: sqrt(2/3) |D|
-pDisp, pDispPre = _pair("p.displacement", (3,))          # <RunMMSProblem>: x - X (mms.py)
+pDisp, pDispPre = _pair("p.displacement", (3,))          # x - X: <RunMMSProblem> (mms.py) or saved
 pQ, pQPre = _pair("p.q")                                 # <artificial_viscosity>: bulk viscosity (Pa)
+pScaleFactor, pScaleFactorPre = _pair("p.scalefactor", (3, 3))   # F diag(2 p.size): the deformed particle (saved)
 STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model state
          "p.internalEnergy": (pIntEnergy, pIntEnergyPre),
          "p.pStatedata_vs": _pair("p.pStatedata_vs", (5, 3, 3)),        # visco_scram: Maxwell stresses
@@ -89,6 +90,11 @@ CenterOfMassPosition = L.create("CenterOfMassPosition", R, (3,), reduction="sum"
 ThermalEnergy = L.create("ThermalEnergy", R, reduction="sum")   # sum m_p cv T_p (thermal.py)
 RigidReactionForce = L.create("RigidReactionForce", R, (3,), reduction="sum")     # specified contact (contact.py)
 RigidReactionTorque = L.create("RigidReactionTorque", R, (3,), reduction="sum")
+SumTransmittedForce = L.create("SumTransmittedForce", R, (3,), reduction="sum")   # force-transmitting material
+# force-transmitting materials (materials.py): per material m, [4m] its nodal mass and [4m+1:4m+4]
+# its nodal external force summed over the level; the contact's part of the force comes apart
+FTMForce = L.create("MPM.ftmMassAndForce", R, (64,), reduction="sum")
+FTMContactForce = L.create("MPM.ftmContactForce", R, (3,), reduction="sum")
 WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")
 # fluid points' artificial viscosity (004 eq. 24): per material m, [2m] the largest sound
 # speed and [2m+1] the largest |div v| over the whole level (MPM materials <= 16)

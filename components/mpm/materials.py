@@ -52,6 +52,8 @@ MATERIAL = {
     "room_temp": Param("float", 294.0, doc="K; read, no thermal model uses it", above=0.0),
     "melt_temp": Param("float", 1e30, doc="K; read, no thermal model uses it", above=0.0),
     "is_rigid": Param("bool", False, doc="rigid body for <contact type=rigid>"),
+    "is_force_transmitting_material": Param("bool", False, doc="Uintah's force-transmitting rigid material: "
+                                            "moves as one body under the sum of its external and contact forces"),
     "includeFlowWork": Param("bool", False, doc="read, MPMICE only"),
 }
 
@@ -83,6 +85,7 @@ class Material:
         if self.density <= 0:
             raise node.child("density").error("density must be positive")
         self.is_rigid = props["is_rigid"]
+        self.is_ftm = props["is_force_transmitting_material"]
         self.conductivity = props["thermal_conductivity"]
         self.specific_heat = props["specific_heat"]
         if self.conductivity < 0 or self.specific_heat < 0:

@@ -63,6 +63,12 @@ def _split(dw, label, m, patch):
     return own, own[:0], None
 
 
+def scale_factor(F, size):
+    """Uintah's p.scalefactor, F diag(dx) p.size with its p.size in cells: F diag(2 h) with
+    pysus's half-widths h (the particle's deformed extent, for visualisation)."""
+    return F * (2.0 * size)[:, None, :]
+
+
 def matls_not_in(matls, chosen):
     return [m for m in matls if m not in chosen]
 
@@ -141,6 +147,8 @@ class MPMTasks:
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
                    L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3)),
                    L.pQ: np.zeros(n)}
+            if self.saves_scale:
+                put[L.pScaleFactor] = scale_factor(F, d["size"])
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for name, (lab, _) in L.STATE.items():
                 put[lab] = own[name] if name in own else np.zeros((n,) + lab.shape)
@@ -266,8 +274,10 @@ class MPMTasks:
         gv = {m: new_dw.get_modifiable(L.gVelocity, m, patch) for m in matls}
         normals = self._normals(patch, old_dw, new_dw) if self.contact.needs_normals else None
         lr, color = self._lr(patch, new_dw)
-        self.contact.exchange(gm, gv, None, None, old_dw.get_reduction(FL.delT), normals=normals,
-                              dx=self.level.dx, lr=lr, color=color)
+        t = old_dw.get_reduction(FL.simTime) if self.contact.needs_time else 0.0
+        self.contact.exchange(gm, gv, None, None, old_dw.get_reduction(FL.delT), t=t, normals=normals,
+                              dx=self.level.dx, node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)),
+                              lr=lr, color=color)
 
     def logistic_regression(self, patch, matls, old_dw, new_dw):
         """friction_LR's g.alphaMaterial, g.normAlphaToBeta (material 0) and each material's
@@ -368,14 +378,24 @@ class MPMTasks:
         """a_i = (fint + fext)/m_i + g (000 eq. 21), v*_i = v_i + a_i dt (000 eq. 25)."""
         dt = old_dw.get_reduction(FL.delT)
         f = self.flags
+        ftm_sums = np.zeros(L.FTMForce.shape) if self.ftm else None
         for m in matls:
             gm = new_dw.get(L.gMass, m, patch)
             gv = new_dw.get(L.gVelocity, m, patch)
             gvs = new_dw.allocate(L.gVelocityStar, m, patch, None)
             ga = new_dw.allocate(L.gAcceleration, m, patch, None)
-            kernels.integrate_acceleration(gm, gv, new_dw.get(L.gIntForce, m, patch),
-                                           new_dw.get(L.gExtForce, m, patch), self.gravity, dt,
+            fext = new_dw.get(L.gExtForce, m, patch)
+            kernels.integrate_acceleration(gm, gv, new_dw.get(L.gIntForce, m, patch), fext, self.gravity, dt,
                                            f["minimum_mass_for_acc"], f["artificial_damping_coeff"], gvs, ga)
+            if ftm_sums is not None:    # nodal mass and external force over the patch's nodes
+                own = patch.slices(NC, patch.owned(NC))
+                ftm_sums[4 * m] = gm[own].sum()
+                ftm_sums[4 * m + 1:4 * m + 4] = fext[own].reshape(-1, 3).sum(axis=0)
+                if m in self.ftm:       # moves with its initial grid velocity until ftm_grid_velocity
+                    ga[...] = 0.0
+                    gvs[...] = gv
+        if ftm_sums is not None:
+            new_dw.put_reduction(L.FTMForce, ftm_sums)
 
     def ex_mom_integrated(self, patch, matls, old_dw, new_dw):
         """Contact on the integrated velocities; a = (v* - v)/dt where it acts."""
@@ -394,7 +414,15 @@ class MPMTasks:
                                        node_x, patch.owned_local(NC))
             new_dw.put_reduction(L.RigidReactionForce, force)
             new_dw.put_reduction(L.RigidReactionTorque, torque)
+        before = {m: gvs[m].copy() for m in c.materials} if self.ftm_contact else None
         c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx, node_x=node_x, lr=lr, color=color)
+        if before is not None:      # the force the rigid body exerts, taken back by it (Uintah's STF)
+            inner = tuple(slice(lo, hi) for lo, hi in zip(*patch.interior(NC)))     # no extra nodes, as Uintah
+            force = np.zeros(3)
+            for m in c.materials:
+                dmv = (gm[m][..., None] * (gvs[m] - before[m]))[inner]
+                force -= dmv.reshape(-1, 3).sum(axis=0) / dt
+            new_dw.put_reduction(L.FTMContactForce, force)
 
     def set_grid_bcs(self, patch, matls, old_dw, new_dw):
         dt = old_dw.get_reduction(FL.delT)
@@ -418,6 +446,24 @@ class MPMTasks:
             self.xpic_spssp(tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low, new_dw.get(L.gVelocity, m, patch),
                             out)
             kernels.divide_by_mass(new_dw.get(L.gMass, m, patch), out, out)
+
+    def ftm_grid_velocity(self, patch, matls, old_dw, new_dw):
+        """Force-transmitting materials (Uintah's computeGridVelocityForFTM): a = F / M at every
+        node, F the sum over the level of the material's nodal external forces (and, for the
+        rigid contact's master, the force it exerts on the others, with the opposite sign), M
+        its nodal mass; v* = v + a dt. SumTransmittedForce: all materials' external forces
+        and that contact force."""
+        dt = old_dw.get_reduction(FL.delT)
+        sums = np.asarray(new_dw.get_reduction(L.FTMForce)).reshape(-1, 4)
+        contact = np.asarray(new_dw.get_reduction(L.FTMContactForce)) if self.ftm_contact else np.zeros(3)
+        for m in matls:
+            force = sums[m, 1:] + (contact if self.ftm_contact and m == self.contact.master else 0.0)
+            acc = force / sums[m, 0]
+            ga = new_dw.get_modifiable(L.gAcceleration, m, patch)
+            ga[...] = acc
+            np.add(new_dw.get(L.gVelocity, m, patch), acc * dt, out=new_dw.get_modifiable(L.gVelocityStar, m, patch))
+        first = patch.id == min(p.id for p in self.level.patches)     # the level's total, put once
+        new_dw.put_reduction(L.SumTransmittedForce, sums[:, 1:].sum(axis=0) + contact if first else np.zeros(3))
 
     # -- grid -> particles ----------------------------------------------------------------------
     def interpolate_to_particles(self, patch, matls, old_dw, new_dw):
@@ -659,9 +705,11 @@ class MPMTasks:
             for final, pre in self.carry:
                 if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID, L.pSurface):
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
-            if self.mms:
+            if self.mms or self.saves_disp:
                 new_dw.put(L.pDispPre, m, patch, old_dw.get(L.pDisp, m, patch) + new_dw.get(L.pXpre, m, patch)
                            - old_dw.get(L.pX, m, patch))
+            if self.saves_scale:
+                new_dw.put(L.pScaleFactorPre, m, patch, scale_factor(F_new, old_dw.get(L.pSize, m, patch)))
             if self.pressure_bcs:
                 lcid = old_dw.get(L.pLoadCurveID, m, patch)
                 px_old = old_dw.get(L.pX, m, patch)

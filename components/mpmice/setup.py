@@ -80,6 +80,7 @@ class MPMinMPMICE(MPM):
     axisymmetric_refused = "with MPMICE (ICE's fluxes and the MPM-ICE pressure force are planar)"
     xpic_refused = "in MPMICE (Uintah's MPMICE does not schedule its passes either)"
     artificial_viscosity_refused = "in MPMICE"
+    ftm_refused = "in MPMICE (Uintah's MPMICE does not schedule its task either)"
 
     def __init__(self, n_all):
         super().__init__()

@@ -137,3 +137,45 @@ def test_rigid_reaction_equals_uintahs_sus(spin):
                       (torque[second], ref["rigid_reaction_torque"][1, 1:])):
         assert abs(sus[2]) > 1e3
         assert np.abs(mine - sus).max() < 1e-7 * abs(sus[2])
+
+
+def spin_xpic2_text():
+    """load_curve_spin.ups as Uintah's deck has it, with <XPIC2>: the rigid contact then acts
+    after interpolation too (Uintah's OneOrTwoStep 2), its master keeps FLIP's update; 3 steps,
+    p.displacement and p.scalefactor saved."""
+    text = open(os.path.join(HERE, "load_curve_spin.ups")).read()
+    for old, new in {"<stress_update>usl</stress_update>": "<stress_update>usl</stress_update><XPIC2>true</XPIC2>",
+                     '<save label="p.stress"/>':
+                         '<save label="p.stress"/><save label="p.displacement"/><save label="p.scalefactor"/>',
+                     "<max_Timesteps>2</max_Timesteps>": "<max_Timesteps>3</max_Timesteps>"}.items():
+        assert old in text, old
+        text = text.replace(old, new)
+    return text
+
+
+def test_spin_with_xpic2_equals_uintahs_sus(tmp_path):
+    """The spinning stem and the sample with <XPIC2> against sus on the same deck without the
+    stress_update line (tests/mpm/data/sus_load_curve_spin_xpic2.npz: puda -partvar LABEL
+    -matl M at steps 1 and 3; every 4th sample and every 10th stem particle ordered by initial
+    x, y, z). Measured: x 5e-10 m, v 2e-9 relative, stress 3e-9, p.displacement 5e-11 m,
+    p.scalefactor 5e-9 relative, RigidReactionForce 4e-14; without the contact after
+    interpolation the sample's velocity is 10 % off at step 3."""
+    (tmp_path / "spin.txt").write_text(f"0.0 0 0 0 0 0 0 0 0 {OMEGA}\n9.9 0 0 0 0 0 0 0 0 {OMEGA}\n")
+    _, da = run(spin_xpic2_text(), tmp_path)
+    ref = np.load(os.path.join(HERE, "data", "sus_load_curve_spin_xpic2.npz"))
+    assert np.allclose(da.times[1:], ref["time"], rtol=1e-13, atol=0)
+    for step in (1, 3):
+        for m, every in ((0, 4), (1, 10)):
+            p = da.particles(m, step)
+            o = np.lexsort(np.round(p["p.x"] - p["p.displacement"], 6).T)[::every]
+            for lab, tol in (("x", 2e-9), ("velocity", 1e-8), ("stress", 1e-8), ("displacement", 1e-8),
+                             ("scalefactor", 2e-8)):
+                s = ref[f"step{step}_m{m}_{lab}"]
+                q = p[f"p.{lab}"][o].reshape(len(s), -1)
+                scale = 1.0 if lab in ("x", "displacement") else max(np.abs(s).max(), 1e-30)
+                assert np.abs(q - s).max() <= tol * scale, (step, m, lab)
+    for name in ("RigidReactionForce", "RigidReactionTorque"):
+        t, v = da.reduction(name)
+        r = ref[name]
+        v = np.asarray(v)[-len(r):].reshape(len(r), -1)
+        assert np.abs(v - r[:, 1:]).max() <= 1e-12 * np.abs(r[:, 1:]).max(), name

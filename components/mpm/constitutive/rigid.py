@@ -1,19 +1,19 @@
 """Rigid material: stress stays zero (Uintah ``type="rigid"``).
 
 Optional tags ``shear_modulus``, ``bulk_modulus`` (default 0) and
-``coeff_thermal_expansion`` are accepted and, as by Uintah's rigid model, not used: a rigid
-material adds nothing to the wave speed, so it does not limit the timestep (Uintah's
-RigidMaterial puts no stable-timestep bound of its own; a piston moving at 40 m/s would
-otherwise shorten every step of adiCuJC4000s696K.ups by 1 %).
+``coeff_thermal_expansion`` are accepted and, as by Uintah's rigid model, not used: a
+rigid material has no wave speed, so it bounds the timestep at 1 s only (Uintah's
+RigidMaterial puts delT = 1; a piston moving at 40 m/s would otherwise shorten every step
+of adiCuJC4000s696K.ups by 1 %).
 """
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
 from ._common import _get
 
 ENERGY_IS_INCREMENT = True
+MAX_DELT = 1.0          # s, Uintah's RigidMaterial::carryForward
 
 
 @dataclass(frozen=True)
@@ -27,16 +27,8 @@ class Params:
         return cls(_get(d, "shear_modulus", 0.0), _get(d, "bulk_modulus", 0.0))
 
 
-@njit(cache=True)
-def kernel(stress_new, energy):
-    for p in range(stress_new.shape[0]):
-        for i in range(3):
-            for j in range(3):
-                stress_new[p, i, j] = 0.0
-        energy[p] = 0.0
-
-
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy):
-    """Zero stress and energy; returns the wave speed, zero (no timestep bound)."""
-    kernel(stress_new, energy)
+    """Zero stress and energy; no wave speed (zeros (3,))."""
+    stress_new[...] = 0.0
+    energy[...] = 0.0
     return np.zeros(3)
