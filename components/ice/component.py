@@ -131,6 +131,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100, at_least=1)
         # Uintah's <ClampSpecificVolume>: the Lagrangian m v kept >= tiny_rho V v (MPMICE too)
         self.clamp_sp_vol = ice.get("ClampSpecificVolume", "bool", False)
+        self.save_sp_vol_src = False     # sp_vol_src_CC: set at scheduling when a deck saves it
         # pysus extension: advect a conservative total energy and take e = E/m - |u|^2/2,
         # so that mass, momentum and total energy are conserved to round-off on closed
         # domains (Uintah's ICE, the default, advects internal energy: see tasks.py)
@@ -254,6 +255,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         # (Uintah also counts the one-cell directions' spacing, which can set a 1D run's step)
         self.delt_active_dirs_only = ice.get("delT_activeDirectionsOnly", "bool", False)
 
+    def schedule_sp_vol_src(self, t, sched):
+        """computeLagrangianSpecificVolume also computes sp_vol_src_CC when a deck saves it."""
+        self.save_sp_vol_src = I.sp_vol_src_CC.name in getattr(sched, "output_labels", ())
+        if self.save_sp_vol_src:
+            t.computes(I.sp_vol_src_CC)
+
     def _read_material(self, node, geo):
         name = node.attr("name", default=f"ice{len(getattr(self, 'materials', []))}")
         props = node.read(MATERIAL)
@@ -265,6 +272,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                                             f"number > 1 (the {etype} EOS)")
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
+        gc = en.child("gas_constant") if etype == "ideal_gas" else None
+        if gc is not None:
+            # Uintah's IdealGas reads no tags: R follows from cv and gamma, R = (gamma - 1) cv
+            gc.mark_used()
+            print(f"pysus: note: {gc.filename}:{gc.line}: <gas_constant> of the ideal_gas EOS has no effect "
+                  f"(Uintah's IdealGas does not read it either; R = (gamma - 1) cv)", file=sys.stderr)
         models = self._read_viscosity_models(node, props)
         cv_model = read_specific_heat_model(node)
         if cv_model is not None and self.n_before:
@@ -572,6 +585,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.sp_vol_L_CC)
         if many:
             t.requires(NEW, I.int_eng_L_ME_CC).requires(OLD, I.temp_CC)
+        self.schedule_sp_vol_src(t, sched)
         sched.add_task(t)
 
         self.schedule_transported(sched, self.matls)

@@ -53,6 +53,7 @@ int_eng_L_CC = L.create("int_eng_L_CC", CC)
 mom_L_ME_CC = L.create("mom_L_ME_CC", CC, (3,))
 int_eng_L_ME_CC = L.create("eng_L_ME_CC", CC)       # Uintah's name
 sp_vol_L_CC = L.create("sp_vol_L_CC", CC)       # material volume m*v, advected
+sp_vol_src_CC = L.create("sp_vol_src_CC", CC)   # diagnostic: ((m v)^L - m v) / (rho V), eq. 40's source
 # <conserveTotalEnergy> (pysus extension): Lagrangian total energy m (e + |u|^2/2)
 tot_eng_L_CC = L.create("tot_eng_L_CC", CC)
 tot_eng_L_ME_CC = L.create("tot_eng_L_ME_CC", CC)

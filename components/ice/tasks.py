@@ -629,10 +629,22 @@ class IceTasks:
                                      tuple(v(old_dw.get(I.temp_CC, m, patch)) for m in matls),
                                      self.codes, self.params, self.cvs, self.gammas, tuple(v(o) for o in outs),
                                      b.v_olo, b.v_ohi, b.vol, dt)
+        if self.save_sp_vol_src:
+            self._sp_vol_source(patch, matls, new_dw, outs, b)
         if self.clamp_sp_vol:
             for m, out in zip(matls, outs):
                 tiny_rho = getattr(self.materials[m], "tiny_rho", 1e-12)    # MPMICE's solids: Uintah's 1e-12
                 K.clamp_sp_vol_lagrangian(out, new_dw.get(I.sp_vol_CC, m, patch), tiny_rho, b.vol, b.lo, b.hi)
+
+    def _sp_vol_source(self, patch, matls, new_dw, outs, b):
+        """Uintah's sp_vol_src_CC, computed only when a deck saves it: the specific volume source of
+        eq. 40 per unit mass, ((m v)^L - m v) / (rho V) with rho = theta / v, in the interior cells
+        (before the clamp and the reactions' volume sources; zero in the extra cells)."""
+        inner = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+        for m, out in zip(matls, outs):
+            sp, vf = new_dw.get(I.sp_vol_CC, m, patch)[inner], new_dw.get(I.vol_frac_CC, m, patch)[inner]
+            src = new_dw.allocate(I.sp_vol_src_CC, m, patch)
+            src[inner] = (out[inner] - new_dw.get(I.mass_L_CC, m, patch)[inner] * sp) * sp / (vf * b.vol)
 
     # -- models' transported scalars ---------------------------------------------------------------
     def lagrangian_transported(self, patch, matls, old_dw, new_dw):

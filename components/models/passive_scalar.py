@@ -6,6 +6,7 @@
         <test_conservation> bool </test_conservation>      totalSum_scalar-f each step
         <constants> <diffusivity/> <rateOfChange0/> <rateOfChange1/> </constants>
         <exponentialDecay> <c1/> <c2 type="constant"><value/></c2> <c3/> </exponentialDecay>
+                           or <c2 type="variable"><filename> x,y,z,c2 table </filename></c2>
         <initialization> <geom_object> pieces <scalar/> [a profile flag] </geom_object> ...
         <interiorSources> <geom_object> pieces <scalar/> <maxScalar/> </geom_object> ...
       </scalar>
@@ -15,7 +16,9 @@ f is mass specific: ICE advects m f with the material's mass fluxes (components/
 ICE::computeLagrangian_Transported_Vars and advectAndAdvanceInTime), so f stays bounded and
 sum m f is conserved. Each step the model computes the Lagrangian source scalar-f_src from the
 old f (Uintah's PassiveScalar::computeModelSources, in this order): diffusion, linear decay
--dt (r0 + r1 f), exponential decay f (exp(-(c1 c2 + c3) dt) - 1), then inside an interior
+-dt (r0 + r1 f), exponential decay f (exp(-(c1 c2 + c3) dt) - 1) (c2 a number, or per cell
+from a csv table of cell centres and values, '#' lines a header, every interior cell once, as
+Uintah's PassiveScalar::readTable), then inside an interior
 source the source is *set* to <scalar>, with f + src kept at most <maxScalar>, and everywhere
 f + src >= 0 (Uintah's rateOfChangeInterior is left out: its input specification refuses it). Uintah's diffusion source is
 -dt sum_faces (flux area) with the flux -D grad f (D the harmonic mean on a face): not divided
@@ -143,10 +146,12 @@ class PassiveScalar:
         ed = sc.child("exponentialDecay")
         if ed is not None:
             c2 = ed.child("c2", required=True)
+            c1, c3 = ed.get("c1", "float"), ed.get("c3", "float", 0.0)
             if c2.attr("type", default="constant", choices=("constant", "variable")) == "variable":
-                raise c2.error('a c2 read from a table (type="variable") is not available; accepted: '
-                               'type="constant" with <value>')
-            self.decay = ed.get("c1", "float") * c2.get("value", "float") + ed.get("c3", "float", 0.0)
+                c2_cells = _read_c2_table(c2.child("filename", required=True), geo.level)
+                self.decay = c1 * c2_cells + c3               # per interior cell of the level
+            else:
+                self.decay = c1 * c2.get("value", "float") + c3
         init = sc.child("initialization", required=True)
         self.regions = [Region(go, geo) for go in init.children("geom_object")]
         if not self.regions:
@@ -208,7 +213,7 @@ class PassiveScalar:
         if self.rate0 != 0.0 or self.rate1 != 0.0:
             si -= dt * (self.rate0 + self.rate1 * fi)
         if self.decay is not None:
-            si += fi * np.exp(-self.decay * dt) - fi
+            si += fi * np.exp(-self._decay_rate(patch, b) * dt) - fi
         for n, region in enumerate(self.sources):
             inside = self._mask(patch, n, region, b)
             si[inside] = region.value
@@ -229,6 +234,14 @@ class PassiveScalar:
                                                        d, b.lo, b.hi, b.sh[d])
         new_dw.put_reduction(self.total, total)
 
+    def _decay_rate(self, patch, b):
+        """c1 c2 + c3: the number, or the table's values over the patch's interior cells."""
+        if np.ndim(self.decay) == 0:
+            return self.decay
+        lo = np.array(patch.low_index(VarType.CC)) + b.lo
+        hi = np.array(patch.low_index(VarType.CC)) + b.hi
+        return self.decay[tuple(slice(l, h) for l, h in zip(lo, hi))]
+
     def _mask(self, patch, n, region, b):
         """Whether each interior cell's centre lies in interior source n (cached per patch)."""
         key = (patch.id, n)
@@ -245,3 +258,35 @@ def _centres(level, box):
     xs = level.cell_centers(box)
     X, Y, Z = np.meshgrid(*xs, indexing="ij")
     return np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
+
+
+def _read_c2_table(node, level):
+    """Uintah's c2 table (PassiveScalar::readTable): lines x,y,z,c2 after '#' header lines, one
+    per interior cell of the level (the cell holding the point), as an array over those cells.
+    The file is looked for as named, then next to the deck."""
+    import os
+    name = node.value("str").strip()
+    cands = [name] if os.path.isabs(name) else [name, os.path.join(os.path.dirname(os.path.abspath(node.filename)), name)]
+    path = next((c for c in cands if os.path.isfile(c)), None)
+    if path is None:
+        raise node.error(f"no file {name} (looked in " + " and ".join(os.path.dirname(os.path.abspath(c)) for c in cands)
+                         + "); accepted: a csv table x,y,z,c2")
+    try:
+        table = np.atleast_2d(np.loadtxt(path, delimiter=",", comments="#", dtype=np.float64))
+    except ValueError as e:
+        raise node.error(f"{name}: not a csv table x,y,z,c2 ({e})") from None
+    if table.shape[1] != 4:
+        raise node.error(f"{name}: {table.shape[1]} columns; accepted: x,y,z,c2")
+    cells = level.cells_of(table[:, :3])
+    n = np.asarray(level.ncells)
+    outside = np.any((cells < 0) | (cells >= n), axis=1)
+    if outside.any():
+        raise node.error(f"{name}: the point {tuple(table[np.argmax(outside), :3])} is not in an interior cell "
+                         "of the level")
+    flat = np.ravel_multi_index(tuple(cells.T), tuple(n))
+    if len(flat) != n.prod() or len(np.unique(flat)) != n.prod():
+        raise node.error(f"{name}: {len(np.unique(flat))} of the level's {n.prod()} cells given ({len(flat)} lines); "
+                         "accepted: every interior cell once")
+    c2 = np.empty(n.prod())
+    c2[flat] = table[:, 3]
+    return c2.reshape(tuple(n))

@@ -306,6 +306,7 @@ class MPMICE(MPMICETasks, Component):
             .requires(NEW, I.vol_frac_CC).requires(NEW, I.speedSound_CC) \
             .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.sp_vol_L_CC).requires(NEW, I.int_eng_L_ME_CC)
         self._start_state(t, (I.temp_CC,), 0)
+        ice.schedule_sp_vol_src(t, sched)
         sched.add_task(t)
 
         self._schedule_diagnostics(sched)

@@ -94,3 +94,54 @@ def test_scalar_label_without_model(run_deck):
     text = re.sub(r"<Models>.*</Models>", "", text, flags=re.S)
     with pytest.raises(InputError, match='needs a <Models><Model type="PassiveScalar">'):
         run_deck(text=text)
+
+
+def _c2_table(path, value_of_x, header="# x, y, z, c2\n"):
+    """A c2 table for advectScalar_variant.ups's 20 x 20 x 1 cells (Uintah's readTable format)."""
+    xs = -0.5 + (np.arange(20) + 0.5) * 0.05
+    with open(path, "w") as f:
+        f.write(header)
+        for x in xs:
+            for y in xs:
+                f.write(f"{float(x)!r},{float(y)!r},0.0,{float(value_of_x(x))!r}\n")
+    return path
+
+
+def test_exponential_decay_c2_from_table(run_deck, tmp_path):
+    """<c2 type="variable">: c2 per cell from a csv table (Uintah's PassiveScalar::readTable). A
+    table of 5 everywhere gives sus's run of the deck with c2 = 5 (the constant) to round-off."""
+    sus = np.load(DATA / "sus_advectScalar_variant.npz")
+    text = open(REF / "advectScalar_variant.ups", encoding="iso-8859-1").read()
+    table = _c2_table(tmp_path / "c2.csv", lambda x: 5.0)
+    da = run_deck(text=_edit(text, '<c2 type="constant"> <value> 5.0 </value> </c2>',
+                             f'<c2 type="variable"> <filename> {table} </filename> </c2>'))
+    assert np.allclose(da.read("scalar-f", 0, -1)[0][:, :, 0], sus["f_step10"], rtol=0, atol=1e-13)
+    assert np.allclose(da.read("scalar-q", 0, -1)[0][:, :, 0], sus["q_step10"], rtol=0, atol=1e-13)
+
+
+def test_exponential_decay_c2_table_varies(run_deck, tmp_path):
+    """A larger c2 on x > 0 decays the scalar there faster (step 1, before the flow mixes it):
+    the left half up to the cell next to x = 0 equals the constant run's, the right half holds less."""
+    text = open(REF / "advectScalar_variant.ups", encoding="iso-8859-1").read()
+    table = _c2_table(tmp_path / "c2.csv", lambda x: 5.0 if x < 0 else 50.0)
+    one = _edit(text, "<max_Timesteps>10</max_Timesteps>", "<max_Timesteps>1</max_Timesteps>")
+    ref = run_deck(text=one).read("scalar-f", 0, 1)[0][:, :, 0]
+    got = run_deck(text=_edit(one, '<c2 type="constant"> <value> 5.0 </value> </c2>',
+                              f'<c2 type="variable"> <filename> {table} </filename> </c2>')).read("scalar-f", 0, 1)[0][:, :, 0]
+    assert np.array_equal(got[:9], ref[:9])
+    smaller = got[10:] < ref[10:] * (1 - 1e-6)
+    assert smaller.sum() >= 10 and got[10:].sum() < ref[10:].sum()
+    assert np.all(got[10:] <= ref[10:] * (1 + 1e-8))      # (most of the deck's cells are sources or emptied)
+
+
+@pytest.mark.parametrize("drop_last, message", [(True, "399 of the level's 400 cells"), (False, "no file")])
+def test_c2_table_bad_input_one_line(run_deck, tmp_path, drop_last, message):
+    text = open(REF / "advectScalar_variant.ups", encoding="iso-8859-1").read()
+    table = _c2_table(tmp_path / "c2.csv", lambda x: 5.0)
+    lines = open(table).readlines()
+    open(table, "w").writelines(lines[:-1] if drop_last else lines)
+    name = table if message != "no file" else tmp_path / "missing.csv"
+    with pytest.raises(InputError, match=message) as e:
+        run_deck(text=_edit(text, '<c2 type="constant"> <value> 5.0 </value> </c2>',
+                            f'<c2 type="variable"> <filename> {name} </filename> </c2>'))
+    assert "\n" not in str(e.value)
