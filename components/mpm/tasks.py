@@ -142,8 +142,9 @@ class MPMTasks:
                    L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3)),
                    L.pQ: np.zeros(n)}
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
-            for name, (lab, _) in L.STATE.items():
-                put[lab] = own[name] if name in own else np.zeros((n,) + lab.shape)
+            for lab, _ in self.carry:           # the carried model states: this material's, else zeros
+                if lab.name in L.STATE:
+                    put[lab] = own[lab.name] if lab.name in own else np.zeros((n,) + lab.shape)
             put[L.pTangent] = state[0] if mat.is_membrane else np.zeros((n, 3))
             put[L.pThickness] = state[1] if mat.is_membrane else np.zeros(n)
             new_dw.put(L.pX, m, patch, d["x"])
