@@ -85,8 +85,8 @@ class UintahArchive:
         return (out if out.shape[3] == 3 else out[..., 0]), xyz
 
     def particles(self, label, matl=0, timestep=-1):
-        """One particle variable (double, long64, Point/Vector) of every patch, in patch order:
-        an (n,) or (n, 3) array."""
+        """One particle variable (double, long64, Point/Vector, Matrix3) of every patch, in patch
+        order: an (n,), (n, 3) or (n, 3, 3) array."""
         step = self.steps[timestep]
         ts = etree.parse(os.path.join(step, "timestep.xml"))
         parts = []
@@ -95,7 +95,7 @@ class UintahArchive:
                 if var.findtext("variable").strip() != label or int(var.findtext("index")) != matl:
                     continue
                 kind = var.get("type")
-                ncomp = 3 if ("Point" in kind or "Vector" in kind) else 1
+                ncomp = 9 if "Matrix3" in kind else 3 if ("Point" in kind or "Vector" in kind) else 1
                 dtype = "<i8" if "long64" in kind else "<f8"
                 start, end = int(var.findtext("start")), int(var.findtext("end"))
                 with open(os.path.join(step, os.path.dirname(href), var.findtext("filename").strip()), "rb") as f:
@@ -104,4 +104,5 @@ class UintahArchive:
                 parts.append((int(var.findtext("patch")), raw.reshape(-1, ncomp) if ncomp > 1 else raw))
         if not parts:
             raise KeyError(f"{step}: no {label} for material {matl}")
-        return np.concatenate([a for _, a in sorted(parts, key=lambda it: it[0])])
+        out = np.concatenate([a for _, a in sorted(parts, key=lambda it: it[0])])
+        return out.reshape(-1, 3, 3) if out.ndim == 2 and out.shape[1] == 9 else out

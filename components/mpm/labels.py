@@ -58,6 +58,11 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.energy": (pEnergy, pEnergyPre),
          "p.strainRate": (pStrainRate, pStrainRatePre),
          "p.bElBar": (pBElBar, pBElBarPre)}                              # comp_neo_hook_plastic, UCNH
+# elastic_plastic_hp with <deviatoric_stress_model type="hypoViscoElastic">: the deviatoric
+# stress of Maxwell element j (Uintah's names sigmaDevj, sigmaDevj+)
+MAX_MAXWELL_ELEMENTS = 8
+for _j in range(MAX_MAXWELL_ELEMENTS):
+    STATE[f"sigmaDev{_j}"] = _pair(f"sigmaDev{_j}", (3, 3))
 pdTdt = L.create("p.dTdt", P)                      # elastic_plastic_hp: the model's temperature rate (not carried)
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)

@@ -131,6 +131,8 @@ class Material:
         self.increment_energy = self.model.ENERGY_IS_INCREMENT
         self.uses_L = kind not in NO_L       # the model reads the velocity gradient
         st = getattr(self.model, "STATE", STATE.get(kind))
+        if hasattr(self.model, "state_of"):       # state that depends on the deck (Maxwell elements)
+            st = self.model.state_of(self.params)
         if not getattr(self.params, "usePlasticity", True):
             st = None                         # UCNH without plasticity: comp_neo_hook, no state
         self.state = st                       # the model's state label name(s), or None

@@ -150,8 +150,9 @@ class MPMTasks:
             if self.saves_scale:
                 put[L.pScaleFactor] = scale_factor(F, d["size"])
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
-            for name, (lab, _) in L.STATE.items():
-                put[lab] = own[name] if name in own else np.zeros((n,) + lab.shape)
+            for lab, _ in self.carry:           # the carried model states: this material's, else zeros
+                if lab.name in L.STATE:
+                    put[lab] = own[lab.name] if lab.name in own else np.zeros((n,) + lab.shape)
             put[L.pTangent] = state[0] if mat.is_membrane else np.zeros((n, 3))
             put[L.pThickness] = state[1] if mat.is_membrane else np.zeros(n)
             new_dw.put(L.pX, m, patch, d["x"])

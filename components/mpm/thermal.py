@@ -201,9 +201,13 @@ class ThermalTasks:
         # Uintah's default is conduction on: a deck that leaves the flag out and asks for thermal
         # contact or Temperature BCs gets it (pysus's default, off, only spares decks without them)
         implied = not self.heat_flag_given and (node is not None or self.temperature_bcs)
-        self.thermal = (bool(self.flags["DoExplicitHeatConduction"]) or self.thermal_needed or implied
-                        or any(m.needs_temperature for m in self.materials))     # elastic_plastic_hp
-        self.conducting = [m for m, mat in enumerate(self.materials) if self.thermal and mat.conductivity > 0]
+        # elastic_plastic_hp carries p.temperature (its p.dTdt heats the particles) but conducts
+        # only where Uintah would: not with <DoExplicitHeatConduction>false
+        carries_T = any(m.needs_temperature for m in self.materials)
+        conduct = (bool(self.flags["DoExplicitHeatConduction"]) or self.thermal_needed or implied
+                   or (carries_T and not self.heat_flag_given))
+        self.thermal = conduct or carries_T
+        self.conducting = [m for m, mat in enumerate(self.materials) if conduct and mat.conductivity > 0]
         for m in self.conducting:
             if self.materials[m].specific_heat <= 0:
                 raise self.materials[m].node.error(

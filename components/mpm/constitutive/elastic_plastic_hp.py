@@ -27,6 +27,17 @@ Tags Uintah's model reads and uses only in code pysus does not have (implicit MP
 modified EOS, porosity for Gurson and the TEPLA erosion check) are accepted and recorded;
 a deck whose run would need them (a Gurson yield condition, the biswajit algorithm, a
 porosity-driven erosion) is refused.
+``deviatoric_stress_model`` (DEV): ``hypoElastic`` (the default, the trial stress above) or
+``hypoViscoElastic`` with Maxwell elements ``<mu>[mu_1, ...]</mu>`` ``<tau>[tau_1, ...]</tau>``:
+each element j carries its deviatoric stress s_j (Uintah's sigmaDevj), the trial stress is
+s* = s + dt sum_j (2 mu_j eta - s_j/tau_j) (an element whose rate is under 1e-4 of its
+elastic rate 2 mu_j |eta| left out, as Uintah), the radial return uses <shear_modulus>, and
+s_j += dt (2 mu_j (eta - d_p) - s_j/tau_j) with d_p = dgamma n/dt the plastic rate; the
+dissipated power sum_j |s_j|^2/(2 mu_j tau_j) heats as chi/(rho c_p) times it. The s_j are
+rotated into the material frame with R^n and back with R^{n+1} as sigma (Uintah leaves them
+unrotated into the step and rotates them with R^{n+1 T} ... R^{n+1} after it: the same without
+rotation); melted, they are set to zero (Uintah leaves them unset). A step longer than the
+smallest tau stops the run (Uintah's InternalError).
 Uintah's artificial bulk viscosity of this model is not implemented (refused with <MPM>
 <artificial_viscosity> by the component). The kernel for a deck's choice of sub-models
 is made by `kernel_for` (one compiled kernel per choice, cached).
@@ -39,14 +50,17 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from framework.errors import RunStopped
 from framework.problemspec import Param
 
 from . import plasticity_kernels as pk
 from ._common import det3, inv3, max_wavespeed
 
 ENERGY_IS_INCREMENT = True
-# carried per-particle state (labels.STATE names), in the order of `old`/`new` in update()
+# carried per-particle state (labels.STATE names), in the order of `old`/`new` in update();
+# hypoViscoElastic adds the Maxwell element stresses sigmaDev0, sigmaDev1, ... (state_of)
 STATE = ("p.plasticStrain", "p.plasticStrainRate", "p.energy", "p.strainRate")
+MAX_MAXWELL_ELEMENTS = 8          # labels.MAX_MAXWELL_ELEMENTS
 NEEDS_TEMPERATURE = True
 
 def _F(doc=""):
@@ -104,6 +118,8 @@ CP = {"constant_Cp": (pk.CONST_CP, {}),
                                    "C_LowT": _opt(6.21), "D_LowT": _opt(142.6), "A_HighT": _opt(0.1009),
                                    "B_HighT": _opt(358.4)})}
 YIELD = ("vonMises",)
+HYPO_ELASTIC, HYPO_VISCO_ELASTIC = 0, 1
+DEV = {"hypoElastic": HYPO_ELASTIC, "hypoViscoElastic": HYPO_VISCO_ELASTIC}
 # <stability_check> types: Uintah consults them only for erosion, which this model refuses
 STABILITY = ("none", "drucker", "becker", "drucker_becker")
 
@@ -146,6 +162,45 @@ class Params:
     melt: np.ndarray
     eos: np.ndarray
     cp: np.ndarray
+    dev: int = HYPO_ELASTIC          # deviatoric stress model (DEV)
+    maxwell_mu: np.ndarray = None    # hypoViscoElastic: mu_j and tau_j of the Maxwell elements
+    maxwell_tau: np.ndarray = None
+
+
+def state_of(params):
+    """The carried state names of this deck's model: STATE, and one sigmaDevj per Maxwell element."""
+    if params.dev != HYPO_VISCO_ELASTIC:
+        return STATE
+    return STATE + tuple(f"sigmaDev{j}" for j in range(len(params.maxwell_mu)))
+
+
+def _numbers(node, tag):
+    """The list [a, b, ...] of positive numbers in <tag> of `node`."""
+    c = node.child(tag, required=True)
+    text = c.text()
+    words = text[1:-1].replace(",", " ").split() if text.startswith("[") and text.endswith("]") else None
+    try:
+        vals = [float(w) for w in words] if words else None
+    except ValueError:
+        vals = None
+    if not vals or not all(math.isfinite(v) and v > 0.0 for v in vals):
+        raise c.error(f"<{tag}> '{text}' is not accepted; accepted: a list [a, b, ...] of positive numbers, "
+                      "one per Maxwell element")
+    return np.array(vals)
+
+
+def _deviatoric(cm):
+    """(code, mu_j, tau_j) of <deviatoric_stress_model>: hypoElastic (none), hypoViscoElastic."""
+    node = cm.child("deviatoric_stress_model")
+    if node is None or node.attr("type", choices=tuple(DEV)) == "hypoElastic":
+        return HYPO_ELASTIC, np.zeros(0), np.zeros(0)
+    mu, tau = _numbers(node, "mu"), _numbers(node, "tau")
+    if len(mu) != len(tau):
+        raise node.error(f"<mu> has {len(mu)} and <tau> {len(tau)} values; accepted: one mu and one tau per "
+                         "Maxwell element")
+    if len(mu) > MAX_MAXWELL_ELEMENTS:
+        raise node.error(f"{len(mu)} Maxwell elements; accepted: at most {MAX_MAXWELL_ELEMENTS}")
+    return HYPO_VISCO_ELASTIC, mu, tau
 
 
 def _vector(node, table):
@@ -212,9 +267,11 @@ def read_params(cm, material, props):
         raise material.error("elastic_plastic needs the material's <specific_heat> > 0 (plastic heating)")
     if props["melt_temp"] <= 0.0:
         raise material.child("melt_temp").error("<melt_temp> must be positive")
+    dev, maxwell_mu, maxwell_tau = _deviatoric(cm)
     return Params(top["shear_modulus"], top["bulk_modulus"], props["density"], props["melt_temp"],
                   props["specific_heat"], top["taylor_quinney_coeff"], top["initial_material_temperature"],
-                  (code, shear_code, melt_code, eos_code, cp_code), flow, shear, melt, eos, cp)
+                  (code, shear_code, melt_code, eos_code, cp_code), flow, shear, melt, eos, cp,
+                  dev, maxwell_mu, maxwell_tau)
 
 
 def _linear_melt(node):
@@ -233,9 +290,9 @@ def _linear_melt(node):
 
 
 def initial_state(params, n, temperature=None):
-    """Plastic strain, its rate, specific energy and strain rate of new particles: zero
-    (whatever their temperature)."""
-    return tuple(np.zeros(n) for _ in STATE)
+    """Plastic strain, its rate, specific energy, strain rate and Maxwell element stresses of
+    new particles: zero (whatever their temperature)."""
+    return tuple(np.zeros(n) for _ in STATE) + tuple(np.zeros((n, 3, 3)) for _ in state_of(params)[len(STATE):])
 
 
 @njit(cache=True)
@@ -276,19 +333,24 @@ def _rotate(R, A, out, forward, B):
 _KERNELS = {}
 
 
-def kernel_for(codes):
-    """The stress kernel of one choice of sub-models (flow, shear, melt, eos, cp): the codes
-    are compile-time constants of the closure, so each choice compiles (and caches) its own."""
-    if codes in _KERNELS:
-        return _KERNELS[codes]
+def kernel_for(codes, dev=HYPO_ELASTIC):
+    """The stress kernel of one choice of sub-models (flow, shear, melt, eos, cp) and
+    deviatoric model `dev`: the codes are compile-time constants of the closure, so each
+    choice compiles (and caches) its own. mw_mu, mw_inv_tau (mu_j, 1/tau_j) and sd_old,
+    sd_new (n, elements, 3, 3) are the Maxwell elements' (empty with hypoElastic)."""
+    if (codes, dev) in _KERNELS:
+        return _KERNELS[codes, dev]
     FLOW_C, SHEAR_C, MELT_C, EOS_C, CP_C = codes
+    VISCO = dev == HYPO_VISCO_ELASTIC
 
     def kernel(G0, K, rho0, Tm0, cp0, chi, L, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                fp, sp, mp, qp, cpp, T_p, ep_old, epdot_old, e_old, ep_new, epdot_new, e_new, edot_new, dTdt,
-               work):
+               work, mw_mu, mw_inv_tau, sd_old, sd_new):
         ws = np.zeros(3)
         R, Rinv = np.empty((3, 3)), np.empty((3, 3))
         D, sig, tmp, B = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
+        n_mw = mw_mu.shape[0]
+        sdm, eta, rate_j, sdot = np.empty((n_mw, 3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
         s23 = math.sqrt(2.0 / 3.0)
         for p in range(L.shape[0]):
             J = det3(F_new[p])
@@ -312,18 +374,42 @@ def kernel_for(codes):
             Tm = pk.melt_temperature(MELT_C, mp, Tm0, pres, rho, rho0)
             mu = pk.shear_modulus(SHEAR_C, sp, G0, T, Tm, pres, rho, rho0)
             c = math.sqrt((K + 4.0 * mu / 3.0) / rho)
-            # trial deviatoric stress s* = s + 2 mu dev(D) dt, q* = sqrt(3/2) |s*|
             ss = 0.0
-            for i in range(3):
-                for j in range(3):
-                    tmp[i, j] = sig[i, j] - (pres if i == j else 0.0) + 2.0 * mu * dt * (
-                        D[i, j] - (trD / 3.0 if i == j else 0.0))
-                    ss += tmp[i, j] * tmp[i, j]
+            if VISCO:
+                # trial s* = s + dt sum_j (2 mu_j eta - s_j/tau_j), the Maxwell elements' rates
+                for i in range(3):
+                    for j in range(3):
+                        eta[i, j] = D[i, j] - (trD / 3.0 if i == j else 0.0)
+                        sdot[i, j] = 0.0
+                for k in range(n_mw):
+                    _rotate(R, sd_old[p, k], sdm[k], False, B)
+                    n_el, n_tr = 0.0, 0.0
+                    for i in range(3):
+                        for j in range(3):
+                            el = 2.0 * mw_mu[k] * eta[i, j]
+                            rate_j[i, j] = el - sdm[k, i, j] * mw_inv_tau[k]
+                            n_el += el * el
+                            n_tr += rate_j[i, j] * rate_j[i, j]
+                    if math.sqrt(n_tr) > 1.0e-4 * math.sqrt(n_el):
+                        for i in range(3):
+                            for j in range(3):
+                                sdot[i, j] += rate_j[i, j]
+                for i in range(3):
+                    for j in range(3):
+                        tmp[i, j] = sig[i, j] - (pres if i == j else 0.0) + sdot[i, j] * dt
+                        ss += tmp[i, j] * tmp[i, j]
+            else:
+                # trial deviatoric stress s* = s + 2 mu dev(D) dt, q* = sqrt(3/2) |s*|
+                for i in range(3):
+                    for j in range(3):
+                        tmp[i, j] = sig[i, j] - (pres if i == j else 0.0) + 2.0 * mu * dt * (
+                            D[i, j] - (trD / 3.0 if i == j else 0.0))
+                        ss += tmp[i, j] * tmp[i, j]
             norm_s = math.sqrt(ss)
             ep, epdot = ep_old[p] + epdot_old[p] * dt, epdot_old[p]
             sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)[0]
             plastic = False
-            fac = 1.0
+            fac, dg = 1.0, 0.0
             if T > Tm:                                   # melted: no deviatoric stress
                 fac = 0.0
             elif 1.5 * ss - sy * sy >= 0.0:              # von Mises: radial return (Newton on dgamma)
@@ -348,6 +434,24 @@ def kernel_for(codes):
                 fac = 1.0 - 2.0 * mu * dg / norm_s
             p_new = pk.eos_pressure(EOS_C, qp, K, pres, trD, dt, rho, rho0, e_old[p])
             rate = pk.isentropic_dTdt(EOS_C, qp, T, rho0, rho, trD)
+            if VISCO:
+                # s_j += dt (2 mu_j (eta - d_p) - s_j/tau_j), d_p = dgamma n/dt; the dissipation heats
+                power = 0.0
+                for k in range(n_mw):
+                    ns = 0.0
+                    for i in range(3):
+                        for j in range(3):
+                            if T > Tm:
+                                v = 0.0
+                            else:
+                                dp = (tmp[i, j] / norm_s * dg) / dt if plastic else 0.0
+                                v = sdm[k, i, j] + (2.0 * mw_mu[k] * (eta[i, j] - dp)
+                                                    - sdm[k, i, j] * mw_inv_tau[k]) * dt
+                            rate_j[i, j] = v
+                            ns += v * v
+                    sdm[k] = rate_j
+                    power += ns * mw_inv_tau[k] / (2.0 * mw_mu[k])
+                rate += power * (chi / (rho * cp))
             if plastic:
                 ep_new[p], epdot_new[p] = ep, epdot
                 rate += sy * epdot * chi / (rho * cp)        # plastic work to heat
@@ -359,6 +463,8 @@ def kernel_for(codes):
                     sig[i, j] = fac * tmp[i, j] + (p_new if i == j else 0.0)
             polar_rotation(F_new[p], R, Rinv)
             _rotate(R, sig, s_new[p], True, B)
+            for k in range(n_mw):
+                _rotate(R, sdm[k], sd_new[p, k], True, B)
             _rotate(R, D, tmp, True, B)
             vol_old = mass[p] / rho0 * det3(F_old[p])
             w = 0.0
@@ -373,22 +479,41 @@ def kernel_for(codes):
 
     # its own name per choice: numba's cache keeps one file and one environment per name (two
     # cached closures of one name clash when both are loaded in a process)
-    kernel.__name__ = kernel.__qualname__ = "elastic_plastic_kernel_" + "_".join(map(str, codes))
-    _KERNELS[codes] = njit(cache=True)(kernel)
-    return _KERNELS[codes]
+    kernel.__name__ = kernel.__qualname__ = ("elastic_plastic_kernel_" + "_".join(map(str, codes))
+                                             + ("_visco" if VISCO else ""))
+    _KERNELS[codes, dev] = njit(cache=True)(kernel)
+    return _KERNELS[codes, dev]
+
+
+_NO_MAXWELL = np.zeros(0)
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new):
     """Stress, state and temperature rate of one material's particles; returns the wave speed.
-    old = (p.plasticStrain, p.plasticStrainRate, p.energy, p.strainRate, p.temperature);
-    new = the first four updated and p.dTdt; `energy` receives the stress-work increment."""
-    ep, epdot, e, _, T = old
-    ep_n, epdot_n, e_n, edot_n, dTdt = new
-    kern = kernel_for(params.codes)
+    old = (p.plasticStrain, p.plasticStrainRate, p.energy, p.strainRate, [sigmaDevj ...,] p.temperature);
+    new = the same updated, with p.dTdt last; `energy` receives the stress-work increment."""
+    ep, epdot, e, _ = old[:4]
+    ep_n, epdot_n, e_n, edot_n = new[:4]
+    T, dTdt = old[-1], new[-1]
+    kern = kernel_for(params.codes, params.dev)
+    n = len(L)
+    if params.dev == HYPO_VISCO_ELASTIC:
+        if dt > params.maxwell_tau.min():
+            raise RunStopped(f"elastic_plastic hypoViscoElastic: the time step {dt:g} is longer than the Maxwell "
+                             f"element's tau {params.maxwell_tau.min():g} (Uintah stops there too); a smaller "
+                             "<delt_max> or <timestep_multiplier> avoids it")
+        mw_mu, mw_inv_tau = params.maxwell_mu, 1.0 / params.maxwell_tau
+        sd_old = np.stack(old[4:-1], axis=1) if n else np.zeros((0, len(mw_mu), 3, 3))
+        sd_new = np.empty_like(sd_old)
+    else:
+        mw_mu = mw_inv_tau = _NO_MAXWELL
+        sd_old = sd_new = np.zeros((0, 0, 3, 3))
     ws = kern(params.shear_modulus, params.bulk_modulus, params.density, params.melt_temp, params.specific_heat,
                 params.taylor_quinney, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
                 params.flow, params.shear, params.melt, params.eos, params.cp, T, ep, epdot, e,
-                ep_n, epdot_n, e_n, edot_n, dTdt, energy)
+                ep_n, epdot_n, e_n, edot_n, dTdt, energy, mw_mu, mw_inv_tau, sd_old, sd_new)
+    for k, out in enumerate(new[4:-1]):
+        out[:] = sd_new[:, k]
     if dt == 0.0 and len(vel):      # the first step's: with <shear_modulus>, not the shear model's mu
         c = math.sqrt((params.bulk_modulus + 4.0 * params.shear_modulus / 3.0) / params.density)
         ws = np.max(c + np.abs(vel), axis=0)
