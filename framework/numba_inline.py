@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import contextvars
 import copy as _copy
+import inspect
 
 import numba
 
@@ -70,9 +71,23 @@ def _callee_untyped_ir(worker, function):
     return func_ir
 
 
+def _numba_as_expected():
+    """The internals patched here, as numba 0.59-0.68 has them; otherwise numba's own inliner."""
+    worker = getattr(_icc, "InlineWorker", None)
+    try:
+        params = list(inspect.signature(worker.inline_function).parameters)
+        ir_params = list(inspect.signature(worker.inline_ir).parameters)
+    except (AttributeError, TypeError, ValueError):
+        return False
+    return (isinstance(getattr(_icc, "copy", None), type(_copy)) or isinstance(_icc.copy, _SharedMemoCopy)) \
+        and params == ["self", "caller_ir", "block", "i", "function", "arg_typs"] \
+        and ir_params[:6] == ["self", "caller_ir", "block", "i", "callee_ir", "callee_freevars"] \
+        and hasattr(worker, "run_untyped_passes")
+
+
 def _install():
     worker = _icc.InlineWorker
-    if getattr(worker.inline_ir, "_pysus_shared_memo", False):
+    if getattr(worker.inline_ir, "_pysus_shared_memo", False) or not _numba_as_expected():
         return
     original = worker.inline_ir
 
