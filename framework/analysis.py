@@ -29,6 +29,14 @@ FACE_TYPES = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)
 
 
 @njit(cache=True)
+def _add_heat_content(total, temp, mass, cp):
+    """total + sum of T m cp over the particles, one after the other (Uintah's order)."""
+    for i in range(mass.shape[0]):
+        total += temp[i] * mass[i] * cp
+    return total
+
+
+@njit(cache=True)
 def curl_central(vel, out, lo, hi, dx, dims):
     """omega = curl(vel), (u[c+1] - u[c-1]) / 2 dx per direction; absent directions add 0."""
     for i in range(lo[0], hi[0]):
@@ -1047,8 +1055,7 @@ class FirstLawThermo:
                 temp = new_dw.get(L.find("p.temperature+"), m, patch)
             else:
                 temp = np.full(len(mass), float(self.solid_temp[m]))
-            for i in range(len(mass)):          # Uintah's order: one particle after the other
-                total += temp[i] * mass[i] * cp
+            total = _add_heat_content(total, temp, mass, cp)
         new_dw.put_reduction(self.labels[1], total)
 
     def after_step(self, dw, timestep, t, uda):
