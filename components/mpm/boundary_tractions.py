@@ -2,20 +2,22 @@
 reductions BndyForce_<face>, BndyTraction_<face> and BndyContactArea_<face> (SerialMPM's
 computeContactArea and the end of its computeInternalForce), and AccStrainEnergy.
 
-On each listed face (xminus ... zplus) of the domain, over the face's nodes i and the
-materials that are not rigid, at the start of the step:
+On each listed face (xminus ... zplus) of the domain, over the face's nodes i at the start of
+the step:
 
-  BndyForce    = -sum_i f_int,i          (pushing on the wall counts positive)
-  BndyTraction = sum_i sigma_i . n A_i / A,    sigma_i = sum_p S_ip sigma_p V_p / V_i,
-                                               A_i = 2 V_i / h,  A = sum_i A_i (all materials)
+  BndyContactCellArea = A = sum_i A_i over all materials,   A_i = 2 V_i / h
+  BndyForce    = -sum_i f_int,i                     (pushing on the wall counts positive)
+  BndyTraction = sum_i sigma_i . n A_i / A,          sigma_i = sum_p S_ip sigma_p V_p / V_i
   BndyContactArea = BndyForce_d / BndyTraction_d where BndyTraction_d^2 > 1e-12, else A
 
-with f_int the internal force before the symmetry conditions (with artificial viscosity, of
-sigma - q I; under MPMICE with the pressure), V_i the nodal volume, n the outward normal, d
-its direction and h the cell width along it; A_i is twice the nodal volume over h because a
-face node gathers volume from one side only. Uintah's per-rank ratio for the contact area is
-taken over the whole level here (the same on one rank). They are output only: the tasks are
-scheduled when the deck saves one of them.
+the force and traction over the materials that are not rigid, f_int the internal force before
+the symmetry conditions (with artificial viscosity of sigma - q I; under MPMICE with the
+pressure), V_i the nodal volume, n the outward normal, d its direction and h the cell width
+along it; A_i is twice the nodal volume over h because a face node gathers volume from one side
+only. As in Uintah, the three are summed over the patches, each patch taking the ratio of its
+own force and traction for the contact area (or A): on a level of N patches that is about N
+times the contact area (sus gives the same). They are output only: the tasks are scheduled
+when the deck saves one of them, and g.volume is then computed.
 
 AccStrainEnergy (a <save> turns it on, as in Uintah): the sum over the steps of Uintah's
 StrainEnergy, which is the step's increment for the rate models (hypo-elastic, elastic-plastic
@@ -34,7 +36,7 @@ from . import labels as L
 
 NC = VarType.NC
 FACE_NAMES = L.BOUNDARY_FACES       # Uintah's Patch::getFaceName order: xminus, xplus, yminus ...
-_PER_FACE = 7                       # force (3), traction before the division by A (3), A
+_SMALL = 1e-200                     # Uintah's nodal volume starts at d_SMALL_NUM_MPM
 
 
 def read_traction_faces(mpm, text, level):
@@ -59,86 +61,99 @@ def read_traction_faces(mpm, text, level):
     return faces
 
 
-def saved_face_labels(faces, saved):
+def saves_face_labels(faces, saved):
     """Whether the deck saves any of the listed faces' reductions."""
-    return any(lab.name in saved for f in faces for lab in (L.BndyForce[f], L.BndyTraction[f],
-                                                            L.BndyContactArea[f]))
+    return any(lab.name in saved for f in faces
+               for lab in (L.BndyForce[f], L.BndyTraction[f], L.BndyContactArea[f], L.BndyContactCellArea[f]))
 
 
 class BoundaryTractionTasks:
     """Mixed into the MPM component: needs self.level, self.materials, self.kind, self.act, self.ng,
-    self._lp, self.size_labels and self.traction_faces."""
+    self.dims, self._lp, self.size_labels and self.traction_faces."""
 
     def schedule_boundary_tractions(self, sched):
-        """The face sums after the internal force is final (MPMICE adds the pressure's part
-        before computeAndIntegrateAcceleration), then the reductions saved."""
-        if not (self.traction_faces and saved_face_labels(self.traction_faces, getattr(sched, "output_labels", ()))):
+        """The nodal area of the faces, then force, traction and contact area, after the
+        internal force is final (MPMICE adds the pressure's part before
+        computeAndIntegrateAcceleration)."""
+        if not self.saves_tractions:
             return
-        t = Task("MPM::computeBoundaryFaceSums", self.boundary_face_sums, self.matls).requires(NEW, L.gIntForce)
+        t = Task("MPM::computeContactArea", self.contact_cell_area, self.matls).requires(NEW, L.gVolume)
+        for f in self.traction_faces:
+            t.computes(L.BndyContactCellArea[f])
+        sched.add_task(t)
+        t = Task("MPM::computeBoundaryTractions", self.boundary_tractions, self.matls) \
+            .requires(NEW, L.gIntForce).requires(NEW, L.gVolume)
         for lab in [L.pX, L.pVolume, L.pStress] + self.size_labels():
             t.requires(OLD, lab, Ghost.AROUND_NODES, self.ng)
-        sched.add_task(t.computes(L.BoundaryFaceSums))
-        t = Task("MPM::computeBoundaryTractions", self.boundary_tractions, self.matls).requires(NEW, L.BoundaryFaceSums)
         for f in self.traction_faces:
+            t.requires(NEW, L.BndyContactCellArea[f])
             t.computes(L.BndyForce[f]).computes(L.BndyTraction[f]).computes(L.BndyContactArea[f])
         sched.add_task(t)
 
-    def boundary_face_sums(self, patch, matls, old_dw, new_dw):
-        """Per listed face on this patch: -sum f_int, sum sigma_i . n A_i and sum A_i over the
-        face's nodes (the module's docstring)."""
+    def _face_slices(self, patch, f, base):
+        """Slices of the patch's nodes on face f in an array whose [0, 0, 0] is global node
+        `base`; None where the patch's side is not on the domain's face (inside, periodic)."""
+        d, upper = f // 2, f % 2
+        if not (patch.at_high if upper else patch.at_low)[d]:
+            return None
+        own, inner = patch.owned(NC), self.level.interior_box(NC)
+        lo = [max(a, b) for a, b in zip(own[0], inner[0])]
+        hi = [min(a, b) for a, b in zip(own[1], inner[1])]
+        lo[d] = inner[1][d] - 1 if upper else 0
+        hi[d] = lo[d] + 1
+        return tuple(slice(l - b, h - b) for l, h, b in zip(lo, hi, base))
+
+    def contact_cell_area(self, patch, matls, old_dw, new_dw):
+        """BndyContactCellArea_<face> = sum over the face's nodes and all materials of 2 V_i / h."""
+        base = patch.low_index(NC)
+        for f in self.traction_faces:
+            face = self._face_slices(patch, f, base)
+            area = 0.0
+            if face is not None:
+                for m in matls:
+                    area += 2.0 * (new_dw.get(L.gVolume, m, patch)[face] + _SMALL).sum() / self.level.dx[f // 2]
+            new_dw.put_reduction(L.BndyContactCellArea[f], area)
+
+    def boundary_tractions(self, patch, matls, old_dw, new_dw):
+        """This patch's part of BndyForce, BndyTraction and BndyContactArea (the module's
+        docstring): sums over its face nodes and the materials that are not rigid."""
         lv = self.level
         alo, ahi = patch.alloc(NC)
         pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
         shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
         base = np.array(alo) - pad                  # global index of the padded arrays' [0, 0, 0]
         kind = transfer.INTERPOLATORS[self.kind]
-        own = patch.owned(NC)
-        inner = lv.interior_box(NC)
-        sums = np.zeros(6 * _PER_FACE)
+        force = {f: np.zeros(3) for f in self.traction_faces}
+        traction = {f: np.zeros(3) for f in self.traction_faces}
+        faces = {f: (self._face_slices(patch, f, base), self._face_slices(patch, f, patch.low_index(NC)))
+                 for f in self.traction_faces}
         for m in matls:
+            if self.materials[m].is_rigid or all(face is None for face, _ in faces.values()):
+                continue
             px = old_dw.get(L.pX, m, patch)
-            gvol = np.zeros(shape)
             gsv = np.zeros(shape + (3, 3))           # sum S sigma_p V_p
             kernels.p2g_stress(kind, self.act, px, old_dw.get(L.pVolume, m, patch), old_dw.get(L.pStress, m, patch),
-                               self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, base, gvol, gsv)
-            gvol += 1e-200                           # Uintah's nodal volume starts at d_SMALL_NUM_MPM
-            rigid = self.materials[m].is_rigid
-            fint = None if rigid else new_dw.get(L.gIntForce, m, patch)
-            for f in self.traction_faces:
-                d, upper = f // 2, f % 2
-                if not (patch.at_high if upper else patch.at_low)[d]:
-                    continue                         # an interior or periodic patch face
-                lo, hi = [max(a, b) for a, b in zip(own[0], inner[0])], [min(a, b) for a, b in zip(own[1], inner[1])]
-                lo[d] = inner[1][d] - 1 if upper else 0
-                hi[d] = lo[d] + 1
-                face = tuple(slice(l - b, h - b) for l, h, b in zip(lo, hi, base))
-                area = 2.0 * gvol[face] / lv.dx[d]
-                s = sums[_PER_FACE * f:_PER_FACE * (f + 1)]
-                s[6] += area.sum()
-                if rigid:
+                               self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, base, np.zeros(shape), gsv)
+            gvol = new_dw.get(L.gVolume, m, patch)
+            fint = new_dw.get(L.gIntForce, m, patch)
+            for f, (face, own) in faces.items():
+                if face is None:
                     continue
-                fl = patch.low_index(NC)
-                s[0:3] -= fint[tuple(slice(l - b, h - b) for l, h, b in zip(lo, hi, fl))].reshape(-1, 3).sum(axis=0)
-                normal = 1.0 if upper else -1.0
-                stress = gsv[face] / gvol[face][..., None, None]
-                s[3:6] += ((stress[..., :, d] * normal) * area[..., None]).reshape(-1, 3).sum(axis=0)
-        new_dw.put_reduction(L.BoundaryFaceSums, sums)
-
-    def boundary_tractions(self, patch, matls, old_dw, new_dw):
-        """BndyForce, BndyTraction = the traction sum / A, BndyContactArea: the level's
-        totals, put by the level's first patch."""
-        sums = np.asarray(new_dw.get_reduction(L.BoundaryFaceSums)).reshape(6, _PER_FACE)
-        first = patch.id == min(p.id for p in self.level.patches)
+                d, normal = f // 2, (1.0 if f % 2 else -1.0)
+                vol = gvol[own] + _SMALL
+                area = 2.0 * vol / lv.dx[d]
+                stress = gsv[face] / vol[..., None, None]
+                force[f] -= fint[own].reshape(-1, 3).sum(axis=0)
+                traction[f] += ((stress[..., :, d] * normal) * area[..., None]).reshape(-1, 3).sum(axis=0)
         for f in self.traction_faces:
-            force, traction, cell_area = sums[f, 0:3], sums[f, 3:6].copy(), sums[f, 6]
+            cell_area = new_dw.get_reduction(L.BndyContactCellArea[f])
             if cell_area > 0.0:
-                traction /= cell_area
+                traction[f] /= cell_area
             d = f // 2
-            area = force[d] / traction[d] if traction[d] * traction[d] > 1e-12 else cell_area
-            scale = 1.0 if first else 0.0
-            new_dw.put_reduction(L.BndyForce[f], force * scale)
-            new_dw.put_reduction(L.BndyTraction[f], traction * scale)
-            new_dw.put_reduction(L.BndyContactArea[f], area * scale)
+            contact = force[f][d] / traction[f][d] if traction[f][d] * traction[f][d] > 1e-12 else cell_area
+            new_dw.put_reduction(L.BndyForce[f], force[f])
+            new_dw.put_reduction(L.BndyTraction[f], traction[f])
+            new_dw.put_reduction(L.BndyContactArea[f], contact)
 
 
 def schedule_acc_strain_energy(component, sched, initialize=False):

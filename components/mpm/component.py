@@ -47,7 +47,8 @@ from framework.variables import Ghost
 from . import labels as L
 from .analysis import ParticleExtract
 from .bc import GridBCs
-from .boundary_tractions import BoundaryTractionTasks, read_traction_faces, schedule_acc_strain_energy
+from .boundary_tractions import (BoundaryTractionTasks, read_traction_faces, saves_face_labels,
+                                 schedule_acc_strain_energy)
 from .contact import Contact
 from .materials import Material
 from .shape import AXI
@@ -213,7 +214,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             raise mpm.child("artificial_viscosity_heating").error(
                 "artificial_viscosity_heating needs <artificial_viscosity>true (as in Uintah)")
         self.saves_disp = self.saves_scale = False      # until schedule_time_advance sees the <save>s
-        self.saves_acc_energy = False
+        self.saves_acc_energy = self.saves_tractions = False
         self.traction_faces = read_traction_faces(mpm, self.flags["boundary_traction_faces"], level)
         self._carried()
 
@@ -355,6 +356,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         computes p.scalefactor): decks without them pay nothing."""
         out = getattr(sched, "output_labels", ())
         self.saves_acc_energy = L.AccStrainEnergy.name in out
+        self.saves_tractions = saves_face_labels(self.traction_faces, out)
         disp, scale = "p.displacement" in out, "p.scalefactor" in out
         if (disp, scale) != (self.saves_disp, self.saves_scale):
             self.saves_disp, self.saves_scale = disp, scale
@@ -514,8 +516,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     def _grid_volume_needed(self, sched):
         """g.volume costs a sixth of the particle-to-grid scatter: it is computed when a task
         reads it (<density_from_grid>; a coupled component, coupled_reads_grid_volume) or
-        the deck saves it."""
+        the deck saves it or the boundary reductions (boundary_tractions.py)."""
         return (self.coupled_reads_grid_volume or "g.volume" in getattr(sched, "output_labels", ())
+                or self.saves_tractions
                 or any(getattr(m.params, "density_from_grid", False) for m in self.materials)
                 or bool(self.pressure_bcs) or bool(self.mms))    # the scatter variant with fext adds V_i too
 

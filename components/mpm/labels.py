@@ -110,8 +110,7 @@ BOUNDARY_FACES = ("xminus", "xplus", "yminus", "yplus", "zminus", "zplus")
 BndyForce = [L.create(f"BndyForce_{f}", R, (3,), reduction="sum") for f in BOUNDARY_FACES]
 BndyTraction = [L.create(f"BndyTraction_{f}", R, (3,), reduction="sum") for f in BOUNDARY_FACES]
 BndyContactArea = [L.create(f"BndyContactArea_{f}", R, reduction="sum") for f in BOUNDARY_FACES]
-# per face: the force (3), the traction before the division by the area (3), the nodal area
-BoundaryFaceSums = L.create("MPM.boundaryFaceSums", R, (42,), reduction="sum")
+BndyContactCellArea = [L.create(f"BndyContactCellArea_{f}", R, reduction="sum") for f in BOUNDARY_FACES]
 # fluid points' artificial viscosity (004 eq. 24): per material m, [2m] the largest sound
 # speed and [2m+1] the largest |div v| over the whole level (MPM materials <= 16)
 AVScale = L.create("MPM.artificialViscosityScale", R, (32,), reduction="max")
