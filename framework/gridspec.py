@@ -61,7 +61,7 @@ def _read_box(lv, box, spacing):
     b = box.read(BOX)
     lower, upper = np.array(b["lower"]), np.array(b["upper"])
     if np.any(upper <= lower):
-        raise box.error(f"<upper> {tuple(upper)} must exceed <lower> {tuple(lower)} in every direction")
+        raise box.error(f"<upper> {_vec(upper)} must exceed <lower> {_vec(lower)} in every direction")
     if b["resolution"] is not None and spacing is not None:
         raise lv.error("give either <Box><resolution> or <Level><spacing>, not both")
     if b["resolution"] is not None:
@@ -81,13 +81,18 @@ def _read_box(lv, box, spacing):
     return lower, upper, tuple(res), tuple(b["patches"]), tuple(b["extraCells"])
 
 
+def _vec(v):
+    """[x, y, z] as a deck writes it."""
+    return "[" + ", ".join(f"{float(x):g}" for x in v) + "]"
+
+
 def _tile(lv, boxes, read):
     """(lower, upper, resolution, patch splits) of the one box that several <Box>es tile."""
     dx = (read[0][1] - read[0][0]) / np.array(read[0][2], dtype=float)
     for box, (lo, hi, res, _, _) in zip(boxes[1:], read[1:]):
         other = (hi - lo) / np.array(res, dtype=float)
         if np.any(np.abs(other - dx) > 1e-10 * dx):
-            raise box.error(f"cell size {tuple(other)} differs from the first <Box>'s {tuple(dx)}; accepted: the "
+            raise box.error(f"cell size {_vec(other)} differs from the first <Box>'s {_vec(dx)}; accepted: the "
                             "same cell size in every <Box> of a level")
     lower = np.min([r[0] for r in read], axis=0)
     upper = np.max([r[1] for r in read], axis=0)
@@ -95,7 +100,7 @@ def _tile(lv, boxes, read):
     for box, (lo, hi, res, _, _) in zip(boxes, read):
         first = np.round((lo - lower) / dx).astype(int)
         if np.any(np.abs(first * dx - (lo - lower)) > 1e-8 * (upper - lower)):
-            raise box.error(f"<lower> {tuple(lo)} is not on the cell faces of the level's first <Box>; accepted: "
+            raise box.error(f"<lower> {_vec(lo)} is not on the cell faces of the level's first <Box>; accepted: "
                             "boxes whose corners lie on one grid of cells")
         cells.append((first, first + np.array(res)))
     total = np.round((upper - lower) / dx).astype(int)
@@ -107,8 +112,8 @@ def _tile(lv, boxes, read):
                 raise boxes[j].error(f"this <Box> overlaps <Box> {labels[i]}; accepted: boxes that "
                                      "do not overlap")
     if sum(int(np.prod(h - l)) for l, h in cells) != int(np.prod(total)):
-        raise lv.error(f"the {len(boxes)} <Box>es ({names}) do not fill the rectangular box {tuple(lower)} .. "
-                       f"{tuple(upper)} that holds them (their union is L-shaped or has a gap), and a pysus level "
+        raise lv.error(f"the {len(boxes)} <Box>es ({names}) do not fill the rectangular box {_vec(lower)} .. "
+                       f"{_vec(upper)} that holds them (their union is L-shaped or has a gap), and a pysus level "
                        "is one box of cells; accepted: boxes that tile one rectangular box")
     splits = []
     for d in range(3):
