@@ -47,6 +47,18 @@ def test_four_patches_equal_sus(tmp_path):
     assert area == pytest.approx(4.0, rel=0.003)
 
 
+def test_two_ranks_write_the_same_sums(tmp_path):
+    """The patches' sums are combined in patch order: 1 and 2 MPI ranks write the same .dat
+    files, byte for byte."""
+    from tests.conftest import pysus
+    for n in (1, 2):
+        r = pysus(DECK, "--filebase", tmp_path / f"r{n}.uda", np_=n, timeout=300)
+        assert r.returncode == 0, r.stderr[-2000:]
+    for name in ("BndyForce_zminus", "BndyTraction_zminus", "BndyContactArea_zminus", "AccStrainEnergy"):
+        one, two = ((tmp_path / f"r{n}.uda" / f"{name}.dat").read_text() for n in (1, 2))
+        assert one == two and len(one.splitlines()) >= 4, name
+
+
 def _controller(tmp_path, old, new):
     from framework.controller import Controller
     text = open(DECK).read()
