@@ -25,6 +25,8 @@ One timestep (tasks.py), all MPM materials in each task:
   computeLogisticRegression       friction_LR's alpha material, normal, prominences
   exMomInterpolated               contact on v_i          (only with contact)
   computeAndIntegrateAcceleration a_i, v*_i
+  computeContactArea, computeBoundaryTractions  the <boundary_traction_faces> reductions
+                                  (only when saved, boundary_tractions.py)
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
   computeSPlusSSPlusVp            XPIC(2)'s twice-smoothed grid velocity (only with <XPIC2>)
@@ -32,6 +34,7 @@ One timestep (tasks.py), all MPM materials in each task:
   interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
   computeStressTensor             (MUSL: L_p, F_p, V_p from v^L) sigma_p, strain energy,
                                   wave speed
+  computeAccStrainEnergy          AccStrainEnergy (only when saved)
   relocateParticles, computeStableTimestep
 """
 from __future__ import annotations
