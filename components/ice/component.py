@@ -40,6 +40,7 @@ from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .lodi import LodiTasks
 from .specific_heat import read_specific_heat_model
+from .slip_exchange import read_slip
 from .tasks import IceTasks
 
 G = Ghost.AROUND_CELLS
@@ -151,6 +152,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         n = len(self.materials)
         self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n)
         self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
+        self.slip = read_slip(mp.child("exchange_properties"), self.n_before + n, self.n_before)
+        self.exchange = self.exchange or self.slip is not None
         # Uintah's hydrostatic pressure (gravity): initial press_CC and the pressure's extra cells
         # from the <isSurroundingMatl> material's rho_micro; ICE alone (MPMICE: not yet)
         surr = [m for m, mat in enumerate(self.materials) if mat.is_surrounding]

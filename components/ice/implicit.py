@@ -33,6 +33,7 @@ from framework.variables import Ghost, VarType
 from . import implicit_kernels as IK
 from . import kernels as K
 from . import labels as I
+from . import slip_exchange as SL
 from .bc import DIRICHLET, FACE_NAMES, FREE_SLIP, SYMMETRY, bc_scalar_part
 from .solver import kernels as SK
 from .solver.pcg import PCG
@@ -179,6 +180,8 @@ class ImplicitICE:
             .computes(matrix, matls=m0).computes(imp_P0, matls=m0).computes(rhs0, matls=m0)
         for d in dirs:
             t.requires(NEW, I.FC_VEL[d], G, 1)
+        if getattr(self, "slip", None) is not None:         # the slip model's K of each cell
+            t.requires(NEW, SL.slipK_CC, G, 1, matls=m0)
         if self.pcg.precond == "mg":
             t.computes(self.pcg.OP)
         sched.add_task(t)
@@ -197,6 +200,8 @@ class ImplicitICE:
             .computes(rhs, matls=m0).computes(max_RHS)
         for d in dirs:
             fc.requires(PARENT_NEW, I.FC_VEL[d], G, 1).computes(imp_UF[d])
+        if getattr(self, "slip", None) is not None:
+            fc.requires(PARENT_NEW, SL.slipK_CC, G, 1, matls=m0)
         # rhs: the last outer iteration's residual of eq. P, handed back for <save label="rhs"> (Uintah's)
         results = {imp_P.name: (I.delP_Dilatate, m0), rhs.name: (rhs, m0)}
         results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
@@ -240,7 +245,7 @@ class ImplicitICE:
             keep[f] = int(_responds(tab["Velocity"][m], tab["Pressure"][0]))
         return keep
 
-    def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces):
+    def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces, coeffs):
         """Face velocities u_m(P) (exchange, BCs) and the residual of eq. P; returns (rhs, rr, max)."""
         b = self.boxes(patch)
         dx = patch.level.dx
@@ -261,7 +266,7 @@ class ImplicitICE:
             outs = [out_faces(d, m) for m in matls] if self.exchange else pre
             if self.exchange:
                 K.exchange_faces(tuple(pre), tuple(vfs), tuple(sps), tuple(outs), b.sh[d], UNIT[d], b.flo[d],
-                                 b.fhi[d], dt, self.K)
+                                 b.fhi[d], dt, *coeffs)
             for m in matls:
                 self.bcs.face_velocity(patch, outs[m], d, m, b.flo[d], b.fhi[d])
         dummy = np.zeros((1, 1, 1))
@@ -294,16 +299,17 @@ class ImplicitICE:
         sps = [new_dw.get(I.sp_vol_CC, m, patch) for m in matls]
         one = len(matls) == 1
         s_faces = np.zeros(3) if self.exchange else s        # with exchange: faces below
+        coeffs = self.face_exchange_coefficients(new_dw, patch)
         for m in matls:
             SK.add_material(A, vfs[m], sps[m], new_dw.get(I.speedSound_CC, m, patch), one, self.dims, b.lo, b.hi,
                             s_faces, self._keep(m), atb)
         if self.exchange:
             keep = np.array([self._keep(m) for m in matls], dtype=np.int64)
-            IK.add_exchange_faces(A, tuple(vfs), tuple(sps), self.dims, b.lo, b.hi, s, keep, atb, dt, self.K)
+            IK.add_exchange_faces(A, tuple(vfs), tuple(sps), self.dims, b.lo, b.hi, s, keep, atb, dt, *coeffs)
         P = new_dw.allocate(imp_P0, 0, patch)
         r, rr, rmax = self._faces_and_rhs(
             patch, matls, P, A, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
-            lambda d, m: np.empty(patch.alloc_shape(I.FC_VEL[d].vartype)))
+            lambda d, m: np.empty(patch.alloc_shape(I.FC_VEL[d].vartype)), coeffs)
         new_dw.put(rhs0, 0, patch, r)
         if self.pcg.precond == "mg":
             self.pcg.put_coarse_operator(patch, A, new_dw)
@@ -327,7 +333,8 @@ class ImplicitICE:
         r, rr, rmax = self._faces_and_rhs(
             patch, matls, new_dw.get(imp_P, 0, patch), new_dw.get(imp_A, 0, patch),
             lambda d, m: parent_new.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
-            lambda d, m: new_dw.allocate(imp_UF[d], m, patch, fill=None))
+            lambda d, m: new_dw.allocate(imp_UF[d], m, patch, fill=None),
+            self.face_exchange_coefficients(parent_new, patch))
         new_dw.put(rhs, 0, patch, r)
         new_dw.put_reduction(max_RHS, rmax)
 

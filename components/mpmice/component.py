@@ -59,6 +59,7 @@ from framework.variables import Ghost
 from . import labels as MI
 from .rigid import RigidSolid, activate_master_contact, describe
 from .setup import ICEinMPMICE, MPMinMPMICE
+from .slip import SlipTasks
 from .tasks import MPMICETasks, _Capture
 
 G = Ghost.AROUND_CELLS
@@ -142,6 +143,7 @@ class MPMICE(MPMICETasks, Component):
         self.models = read_models(root, self)        # <Models> (components/models), else None
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
+        self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
 
     def material_names(self):
         return self.ice.material_names()
@@ -204,6 +206,8 @@ class MPMICE(MPMICETasks, Component):
             .computes(I.speedSound_CC)
         self._start_state(t, (I.rho_CC, I.temp_CC, I.sp_vol_CC), 0)
         sched.add_task(t)
+        if self.slip is not None:
+            self.slip.schedule_pre_exchange(sched)
 
         t = Task("ICE::computeVel_FC", self.vel_fc, alls) \
             .requires(OLD, FL.delT).requires(NEW, I.sp_vol_CC, G, 1).requires(NEW, I.press_equil_CC, G, 1, matls=m0)
@@ -219,6 +223,8 @@ class MPMICE(MPMICETasks, Component):
                 .requires(OLD, FL.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
             for d in dirs:
                 t.requires(NEW, I.FC_VEL[d], G, 1).computes(I.FC_VEL_ME[d])
+            if self.slip is not None:
+                self.slip.face_requires(t)
             sched.add_task(t)
 
             t = Task("ICE::computeDelPressAndUpdatePressCC", ice.delp_press, alls) \
@@ -296,10 +302,14 @@ class MPMICE(MPMICETasks, Component):
             model.schedule_sources(sched)
         ice.schedule_transported(sched, fl)
 
-        sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", self.exchange, alls)
-                       .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC)
-                       .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC)
-                       .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC))
+        t = Task("ICE::addExchangeToMomentumAndEnergy", self.exchange, alls) \
+            .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC) \
+            .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC) \
+            .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+        if self.slip is not None:
+            self.slip.cell_requires(t)
+            self.slip.schedule_diagnostics(sched)
+        sched.add_task(t)
 
         t = Task("ICE::computeLagrangianSpecificVolume", self.lagrangian_sp_vol, alls) \
             .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.sp_vol_CC) \
