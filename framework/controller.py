@@ -243,7 +243,7 @@ class Controller:
         for module in self.analysis:
             module.schedule(sched)
         comp.schedule_compute_stable_timestep(level, sched)
-        step_tasks, step_reloc = list(sched.tasks), sched.relocation
+        step_tasks, step_reloc = list(sched.tasks), list(sched.relocation)
         probe = sched.compile({L.delT.name} | self.outputs | self._old_requires(step_tasks),
                               old_available=_Anything(), build_patch_graph=False)
         carried = probe.carried - provided
@@ -258,7 +258,7 @@ class Controller:
         all_computed = set()
         for t in init_tasks + step_tasks:
             all_computed |= {d.label.name for d in t.computes_}
-        if step_reloc is not None:
+        if step_reloc:
             all_computed |= {d.label.name for d in relocation_task(step_reloc).computes_}
         for name in sorted(self.outputs):
             if name not in all_computed:

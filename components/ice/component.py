@@ -464,6 +464,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             model.schedule_sources(sched)
         for model in self.tracers:          # the tracer particles to their new patches, at the end of the step
             model.schedule_relocation(sched)
+            model.schedule_diagnostics(sched)
 
         t = Task("ICE::computeVel_FC", self.vel_fc, self.matls) \
             .requires(OLD, L.delT).requires(OLD, I.rho_CC, G, 1).requires(OLD, I.vel_CC, G, 1) \

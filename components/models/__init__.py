@@ -11,7 +11,8 @@
     </Models>
 
 Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate. A
-PassiveScalar model (passive_scalar.py) is ICE's: the ICE component reads and schedules it.
+PassiveScalar and a TracerParticles model (passive_scalar.py, tracer_particles.py) are ICE's: the ICE
+component reads them and MPMICE schedules them.
 `read_models(root, mpmice)` reads the block (None without it); `Models.hook(sched)` wraps
 the scheduler so that each model's tasks are added right after the MPMICE tasks they
 follow (see simple_burn.py), leaving MPMICE's own schedule untouched.
@@ -30,15 +31,15 @@ def read_models(root, component):
         return None
     models, scalars = [], 0
     for m in node.children("Model"):
-        kind = m.attr("type", choices=tuple(MODELS) + ("PassiveScalar",))
-        if kind == "PassiveScalar":         # ICE's transported scalar (passive_scalar.py, read by ICE)
+        kind = m.attr("type", choices=tuple(MODELS) + ("PassiveScalar", "TracerParticles"))
+        if kind in ("PassiveScalar", "TracerParticles"):    # ICE's models (ice_models.py, read by ICE)
             scalars += 1
             continue
         models.append(MODELS[kind](m, component, root))
     if not models:
         if scalars:
             return None
-        raise node.error("<Models> without a <Model type=...>; accepted: " + ", ".join(MODELS) + ", PassiveScalar")
+        raise node.error("<Models> without a <Model type=...>; accepted: " + ", ".join(MODELS) + ", PassiveScalar, TracerParticles")
     return Models(models)
 
 

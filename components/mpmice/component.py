@@ -158,7 +158,7 @@ class MPMICE(MPMICETasks, Component):
         for lab in [M.pX, M.pMass, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
             t.requires(NEW, lab, Ghost.AROUND_NODES, ng, matls=self.mpm_matls)
         sched.add_task(t)
-        for model in self.ice.scalars:          # ICE's PassiveScalar models (components/models)
+        for model in self.ice.scalars + self.ice.tracers:      # ICE's PassiveScalar, TracerParticles models
             model.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
@@ -298,8 +298,11 @@ class MPMICE(MPMICETasks, Component):
         if self.add_heat is not None:
             t.requires(OLD, FL.simTime)
         sched.add_task(t)
-        for model in ice.scalars:              # the passive scalars: source, then m f
+        for model in ice.scalars + ice.tracers:     # the passive scalars: source, then m f; tracers move
             model.schedule_sources(sched)
+        for model in ice.tracers:       # their relocation joins the MPM particles' (one relocation task)
+            model.schedule_relocation(sched)
+            model.schedule_diagnostics(sched)
         ice.schedule_transported(sched, fl)
 
         t = Task("ICE::addExchangeToMomentumAndEnergy", self.exchange, alls) \
