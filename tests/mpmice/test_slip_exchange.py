@@ -59,3 +59,16 @@ def test_slip_exchange_as_uintah(runs):
     assert np.abs(temp - sus["noslip_temp_CC_1"])[air].max() > 50.0     # the slip's temperature jump
     press = da.read("press_CC", 0, 1)[0]
     assert np.abs(press - sus["press_CC_0"])[air].max() < 5e-4 * sus["press_CC_0"].max()
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("<solidMatlIndex>  0  </solidMatlIndex>", "<solidMatlIndex> 1 </solidMatlIndex>", "not an MPM material"),
+    ("<fluidMatlIndex>  1  </fluidMatlIndex>", "<fluidMatlIndex> 2 </fluidMatlIndex>", "not an ICE material"),
+    ('<Model type="slip">', '<Model type="scalar">', "slip"),
+])
+def test_bad_slip_input_refused(tmp_path, old, new, message):
+    from framework.problemspec import InputError
+    text = DECK.read_text(encoding="latin-1")
+    assert old in text
+    with pytest.raises(InputError, match=message):
+        run_deck(text.replace(old, new, 1), tmp_path)

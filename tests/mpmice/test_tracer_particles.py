@@ -62,3 +62,14 @@ def test_tracer_values_as_uintah(runs, step, tol_x, tol_s):
     assert np.abs(tr["p.scalar_totalDecay"] - sus[f"totalDecay_step{step}"]).max() < tol_s
     assert sus[f"scalar_step{step}"].min() < 0.99             # the decay acts
     assert np.array_equal(da.read("p.scalar_expDecayCoef", 1, 1)[0], sus["expDecayCoef"])
+
+
+def test_tracers_on_a_solid_refused(tmp_path):
+    """Tracers ride on a fluid: an MPM material is refused with the tag."""
+    from framework.problemspec import InputError
+    text = DECK.read_text(encoding="latin-1").replace("advect_tracers_c2.csv", str(HERE / "uintah_reference" /
+                                                                                  "advect_tracers_c2.csv"))
+    model = text.index('<Model type="TracerParticles">')
+    text = text[:model] + text[model:].replace("<material>atmosphere</material>", "<material>0</material>", 1)
+    with pytest.raises(InputError, match="carried by an ICE material"):
+        run_deck(text, tmp_path)
