@@ -336,7 +336,7 @@ class IceTasks:
         dt = old_dw.get_reduction(L.delT)
         vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in matls)
         sps = tuple(new_dw.get(I.sp_vol_CC, m, patch) for m in matls)
-        slip = self.face_exchange_coefficients(new_dw, patch, b.view)
+        coeffs = self.face_exchange_coefficients(new_dw, patch, b.view)
         for d in range(3):
             if not self.dims[d]:
                 continue
@@ -344,7 +344,7 @@ class IceTasks:
             out = tuple(new_dw.allocate(I.FC_VEL_ME[d], m, patch) for m in matls)
             a, v = b.axis[d], b.view
             K.exchange_faces(tuple(v(x) for x in ufs), tuple(v(x) for x in vfs), tuple(v(x) for x in sps),
-                             tuple(v(x) for x in out), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a], dt, *slip)
+                             tuple(v(x) for x in out), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a], dt, *coeffs)
             for m in matls:
                 self.bcs.face_velocity(patch, out[m], d, m, b.flo[d], b.fhi[d])
 

@@ -40,6 +40,11 @@ names them. Validation: inputs/MPMICE/ slab_rest, piston, pressurized_cylinder (
 sec. 4.1, scripts/accuracy_cost.py cylinder), piston_validation (sec. 4.2, implicit,
 scripts/piston_validation.py), wedge_mach3 (sec. 4.3, scripts/wedge_shock_angle.py);
 Uintah's symAnnulus.ups and pistonValidation.ups run unchanged.
+
+<exchange_properties><Model type="slip">: Uintah's slip exchange (slip.py schedules its surface
+normals, mean free path and face coefficients before step 3; ICE's exchange tasks read them).
+ICE's TracerParticles model rides on a fluid; its particles relocate with the MPM particles in
+the step's one relocation task.
 """
 from __future__ import annotations
 
