@@ -201,8 +201,6 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
-        if self.implicit and self.bcs.subfaces:
-            self._check_sub_faces_implicit()
         if self.lodi is not None:
             self._check_lodi(n)
         self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]

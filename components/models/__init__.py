@@ -10,7 +10,8 @@
       </Model>
     </Models>
 
-Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate. A
+Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate, Unsteady_Burn
+(unsteady_burn.py) Steady_Burn's with the burn rate relaxed in time. A
 PassiveScalar model (passive_scalar.py) is ICE's: the ICE component reads and schedules it.
 `read_models(root, mpmice)` reads the block (None without it); `Models.hook(sched)` wraps
 the scheduler so that each model's tasks are added right after the MPMICE tasks they
@@ -20,8 +21,9 @@ from __future__ import annotations
 
 from .simple_burn import SimpleBurn
 from .steady_burn import SteadyBurn
+from .unsteady_burn import UnsteadyBurn
 
-MODELS = {"Simple_Burn": SimpleBurn, "Steady_Burn": SteadyBurn}
+MODELS = {"Simple_Burn": SimpleBurn, "Steady_Burn": SteadyBurn, "Unsteady_Burn": UnsteadyBurn}
 
 
 def read_models(root, component):
@@ -45,6 +47,19 @@ def read_models(root, component):
 class Models:
     def __init__(self, models):
         self.models = models
+
+    def schedule_initialize(self, sched):
+        for m in self.models:
+            if hasattr(m, "schedule_initialize"):
+                m.schedule_initialize(sched)
+
+    # semi-implicit ICE's eq. P (components/ice/implicit.py: ImplicitICE.mass_exchange)
+    def requires(self, task, dw):
+        for m in self.models:
+            m.mass_exchange_requires(task, dw)
+
+    def term(self, patch, dw):
+        return sum(m.mass_exchange_term(patch, dw) for m in self.models)
 
     def hook(self, sched):
         after = {}

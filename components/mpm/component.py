@@ -113,6 +113,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
     artificial_viscosity_refused = None
     # why <is_force_transmitting_material>true is refused in this component (None: it is supported)
     ftm_refused = None
+    # (final, pre-relocation) particle labels a coupled model computes and relocation carries
+    carry_models = ()
 
     def problem_setup(self, root, level):
         self.level = level
@@ -496,7 +498,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
         sched.add_task(t)
         if self.analysis.active:
             self.analysis.schedule(sched)
-        carry = self.carry + self.carry_thermal
+        carry = self.carry + self.carry_thermal + list(self.carry_models)
         sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in carry], L.pX,
                                            [final for final, _ in carry], ms, id_label=L.pID,
                                            mass_pre=L.pMassPre, on_leaving=self.flags["particles_leaving_domain"])

@@ -140,6 +140,8 @@ class MPMICE(MPMICETasks, Component):
         self.materials = self.ice.materials
         self.dims_i = np.array(self.ice.dims, dtype=np.int64)
         self.models = read_models(root, self)        # <Models> (components/models), else None
+        if self.models is not None and self.ice.implicit:
+            self.ice.mass_exchange = self.models     # the burned mass in eq. P (ice/implicit.py)
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
 
@@ -158,6 +160,8 @@ class MPMICE(MPMICETasks, Component):
         sched.add_task(t)
         for model in self.ice.scalars:          # ICE's PassiveScalar models (components/models)
             model.schedule_initialize(sched)
+        if self.models is not None:             # the reaction models' own state (Unsteady_Burn)
+            self.models.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
@@ -234,7 +238,7 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
-        if not ice.implicit:
+        if not ice.implicit or self.models is not None:
             sched.add_task(Task("ICE::computeDelP_MassX", ice.delp_mass_exchange, m0)     # only when saved
                            .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
                            .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))

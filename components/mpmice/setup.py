@@ -38,8 +38,9 @@ class ContactWithICE(Contact):
         self.materials = tuple(m for m in self.materials if m < nmat)
         many = len(self.materials) > 1
         self.active = self.active and many
-        if hasattr(self, "interpolated"):
-            self.interpolated = self.interpolated and many
+        for flag in ("interpolated", "needs_normals", "needs_lr", "needs_color", "needs_time"):
+            if hasattr(self, flag):         # one solid left (TBurner_2dRT's approach on [0]): no contact
+                setattr(self, flag, getattr(self, flag) and many)
 
 
 class GridBCsWithICE(GridBCs):
@@ -79,7 +80,7 @@ class MPMinMPMICE(MPM):
     coupled_reads_grid_volume = True
     axisymmetric_refused = "with MPMICE (ICE's fluxes and the MPM-ICE pressure force are planar)"
     xpic_refused = "in MPMICE (Uintah's MPMICE does not schedule its passes either)"
-    artificial_viscosity_refused = "in MPMICE"
+    artificial_viscosity_refused = None
     ftm_refused = "in MPMICE (Uintah's MPMICE does not schedule its task either)"
 
     def __init__(self, n_all):
