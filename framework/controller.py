@@ -55,6 +55,8 @@ ARCHIVER = {
     "filebase": Param("str", "pysus_output.uda"),
     "outputInterval": Param("float", 0.0, at_least=0.0),
     "outputTimestepInterval": Param("int", 0, at_least=0),
+    "compression": Param("str", "none", choices=("none", "gzip"),
+                         doc="Uintah's compression of its .uda files; read, pysus's HDF5 output is the same"),
 }
 
 
