@@ -11,7 +11,8 @@
     </Models>
 
 Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate, Unsteady_Burn
-(unsteady_burn.py) Steady_Burn's with the burn rate relaxed in time. A
+(unsteady_burn.py) Steady_Burn's with the burn rate relaxed in time; JWLpp (jwlpp.py) turns an
+ICE explosive into ICE products. A
 PassiveScalar model (passive_scalar.py) is ICE's: the ICE component reads and schedules it.
 `read_models(root, mpmice)` reads the block (None without it); `Models.hook(sched)` wraps
 the scheduler so that each model's tasks are added right after the MPMICE tasks they
@@ -20,10 +21,11 @@ follow (see simple_burn.py), leaving MPMICE's own schedule untouched.
 from __future__ import annotations
 
 from .simple_burn import SimpleBurn
+from .jwlpp import JWLpp
 from .steady_burn import SteadyBurn
 from .unsteady_burn import UnsteadyBurn
 
-MODELS = {"Simple_Burn": SimpleBurn, "Steady_Burn": SteadyBurn, "Unsteady_Burn": UnsteadyBurn}
+MODELS = {"Simple_Burn": SimpleBurn, "Steady_Burn": SteadyBurn, "Unsteady_Burn": UnsteadyBurn, "JWLpp": JWLpp}
 
 
 def read_models(root, component):

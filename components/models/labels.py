@@ -26,3 +26,5 @@ ubPartSurfTemp = L.create("UnsteadyBurn.PartSurfTemp", P)
 ubPartSurfTempPre = L.create("UnsteadyBurn.PartSurfTemp+", P)
 ubPartSurfTempGrad = L.create("UnsteadyBurn.PartSurfTempGrad", P)
 ubPartSurfTempGradPre = L.create("UnsteadyBurn.PartSurfTempGrad+", P)
+jwlF = L.create("F", CC)                                  # JWLpp: the reactant's reacted fraction
+jwlDelF = L.create("delF", CC)                            # JWLpp: its growth this step

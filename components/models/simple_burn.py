@@ -241,3 +241,14 @@ def _material(node, tag, names):
     if raw.isdigit() and int(raw) < len(names):
         return int(raw)
     raise node.child(tag).error(f"<{tag}> '{raw}' is not a material; accepted: {', '.join(names)}")
+
+
+def copy_to_symmetry_extra_cells(a, b, sym_lo, sym_hi):
+    """The interior layer next to a symmetry face copied into the patch's extra cells there."""
+    for d in range(3):
+        for on, out, src in ((sym_lo[d], slice(b.olo[d], b.lo[d]), slice(b.lo[d], b.lo[d] + 1)),
+                             (sym_hi[d], slice(b.hi[d], b.ohi[d]), slice(b.hi[d] - 1, b.hi[d]))):
+            if on and out.start < out.stop:
+                dst, s = [slice(None)] * 3, [slice(None)] * 3
+                dst[d], s[d] = out, src
+                a[tuple(dst)] = a[tuple(s)]

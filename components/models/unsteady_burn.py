@@ -37,7 +37,7 @@ from framework.variables import Ghost, VarType
 
 from . import kernels as K
 from . import labels as ML
-from .simple_burn import symmetry_nodes
+from .simple_burn import copy_to_symmetry_extra_cells, symmetry_nodes
 from .steady_burn import EPSILON, TABLE as STEADY, TINY_RHO, SteadyBurn
 
 CC = VarType.CC
@@ -148,20 +148,10 @@ class UnsteadyBurn(SteadyBurn):
                                "large to compute the unsteady burn rate (b^2 < 4c; Uintah stops here too)")
         sym_lo, sym_hi = c._sym(r)
         for a in (burning, ts, beta):            # Uintah's set_if_sym_BC
-            _copy_to_symmetry_extra_cells(a, b, sym_lo, sym_hi)
+            copy_to_symmetry_extra_cells(a, b, sym_lo, sym_hi)
         pts, pbeta = np.empty(len(px)), np.empty(len(px))
         K.unsteady_particles_from_cells(px, lv.anchor, lv.dx, cc_low, b.lo, b.hi, burning, beta, ts, INIT_BETA,
                                         INIT_TS, pbeta, pts)
         new_dw.put(ML.ubPartSurfTempPre, r, patch, pts)
         new_dw.put(ML.ubPartSurfTempGradPre, r, patch, pbeta)
 
-
-def _copy_to_symmetry_extra_cells(a, b, sym_lo, sym_hi):
-    """The interior layer next to a symmetry face copied into the patch's extra cells there."""
-    for d in range(3):
-        for on, out, src in ((sym_lo[d], slice(b.olo[d], b.lo[d]), slice(b.lo[d], b.lo[d] + 1)),
-                             (sym_hi[d], slice(b.hi[d], b.ohi[d]), slice(b.hi[d] - 1, b.hi[d]))):
-            if on and out.start < out.stop:
-                dst, s = [slice(None)] * 3, [slice(None)] * 3
-                dst[d], s[d] = out, src
-                a[tuple(dst)] = a[tuple(s)]
