@@ -134,6 +134,13 @@ class JWLpp:
             .requires(NEW, ML.modelMass_src).requires(NEW, ML.modelVol_src).requires(NEW, I.sp_vol_CC) \
             .modifies(I.sp_vol_L_CC)
 
+    def volume_sources_requires(self, t):
+        t.requires(NEW, ML.modelVol_src, matls=[self.react, self.prod])
+
+    def volume_sources(self, patch, new_dw):
+        """{material: the volume it gains this step} (Uintah's modelVol_src)."""
+        return {m: new_dw.get(ML.modelVol_src, m, patch) for m in (self.react, self.prod)}
+
     def mass_exchange_requires(self, t, dw):
         """What mass_exchange_term reads (semi-implicit ICE's eq. P)."""
         t.requires(dw, ML.modelMass_src, matls=[self.prod]).requires(dw, I.sp_vol_CC, matls=[self.react, self.prod])

@@ -133,6 +133,16 @@ class SimpleBurn:
         return Task(f"{self.name}::burnParticles", self.burn_particles, [self.react]) \
             .requires(NEW, ML.pBurnFraction).modifies(M.pMassPre).modifies(M.pVolumePre).modifies(M.pXpre)
 
+    def volume_sources_requires(self, t):
+        t.requires(NEW, ML.modelMass_src, matls=[self.prod]).requires(NEW, ML.modelVol_src, matls=[self.prod])
+
+    def volume_sources(self, patch, new_dw):
+        """{material: the volume it gains this step}: the product its V_created, the reactant
+        loses the burned mass at its specific volume (Uintah's modelVol_src of both)."""
+        ms = new_dw.get(ML.modelMass_src, self.prod, patch)
+        return {self.prod: new_dw.get(ML.modelVol_src, self.prod, patch),
+                self.react: -ms * new_dw.get(I.sp_vol_CC, self.react, patch)}
+
     def mass_exchange_requires(self, t, dw):
         """What mass_exchange_term reads (semi-implicit ICE's eq. P)."""
         t.requires(dw, ML.modelMass_src, matls=[self.prod]).requires(dw, I.sp_vol_CC, matls=[self.react, self.prod])
