@@ -205,6 +205,7 @@ class Controller:
         if lbn is not None:
             lbn.attr("type", default="SFC", choices=("SFC", "DLB", "Simple", "SimpleLoadBalancer"))
             self.lb_interval = lbn.get("timestepInterval", "int", 0, at_least=0)
+            lbn.get("hasParticles", "bool", False)     # Uintah's DLB: weigh patches by particles; read
         self.archive_spec = read_archiver(root)
         self.component = cls()
         self.component.problem_setup(root, self.level)

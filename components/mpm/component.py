@@ -484,9 +484,13 @@ class MPM(ThermalTasks, MPMTasks, Component):
             t.computes(L.pScaleFactorPre)
         t.computes(L.WaveSpeed).computes(L.StrainEnergy)
         hot = [m for m, mt in enumerate(self.materials) if mt.needs_temperature]
+        warm = [m for m, mt in enumerate(self.materials) if mt.uses_temperature and not mt.needs_temperature]
         if hot:                         # elastic_plastic_hp: p.temperature+ += p.dTdt dt
-            t.requires(OLD, L.pTemperature, matls=hot).modifies(L.pTemperaturePre, matls=hot)
+            t.requires(OLD, L.pTemperature, matls=hot + (warm if self.thermal else [])) \
+                .modifies(L.pTemperaturePre, matls=hot)
             t.computes(L.pdTdt, matls=hot)
+        elif warm and self.thermal:     # visco_scram reads the particles' temperature
+            t.requires(OLD, L.pTemperature, matls=warm)
         if self.pressure_bcs:
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
             if not self.musl:

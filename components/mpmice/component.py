@@ -122,10 +122,15 @@ class MPMICE(MPMICETasks, Component):
                         "the heat exchange and the gas's EOS in mixed cells); accepted: a number > 0")
         for mat in self.mpm.materials:          # visco_scram's own solid EOS options
             flag = mat.params.eos_flag() if hasattr(mat.params, "eos_flag") else None
-            if flag:
-                raise mat.node.child("constitutive_model").child(flag).error(
+            cm = mat.node.child("constitutive_model")
+            if flag == "useJWLEOS":             # Uintah's ViscoScram JWL (ice/eos.py SOLID_JWL)
+                missing = [t for t in ("A", "B", "R1", "R2", "om", "Cv") if not cm.has(t)]
+                if missing:
+                    raise cm.error(f"<useJWLEOS> true needs <{'>, <'.join(missing)}> (the solid's JWL EOS)")
+            elif flag:
+                raise cm.child(flag).error(
                     f"<{flag}> true is not implemented in MPMICE (the solid's EOS is the bulk modulus "
-                    "with the low-pressure threshold); accepted: false")
+                    "with the low-pressure threshold, or <useJWLEOS>'s JWL); accepted: false")
         self.mpm_matls = list(range(nm))
         bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]

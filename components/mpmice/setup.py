@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from components.ice.component import ICE
-from components.ice.eos import MAX_PARAMS, MURNAGHAN
+from components.ice.eos import MAX_PARAMS, MURNAGHAN, SOLID_JWL
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
@@ -119,9 +119,14 @@ class ICEinMPMICE(ICE):
         rows, codes, cvs, gammas = [], [], [], []
         for mat, K in zip(self._mpm_materials, self._solid_bulk):
             row = np.zeros(MAX_PARAMS)
-            row[:4] = (1.0 / K, 1.0, mat.density, p_ref)       # Murnaghan: compressibility, n, rho0, P0
+            if getattr(mat.params, "useJWLEOS", False):        # visco_scram's JWL (Uintah's ViscoScram)
+                q = mat.params
+                row[:8] = (q.A, q.B, q.R1, q.R2, q.om, q.Cv, mat.density, p_ref if q.useModifiedEOS else 0.0)
+                codes.append(SOLID_JWL)
+            else:
+                row[:4] = (1.0 / K, 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
+                codes.append(MURNAGHAN)
             rows.append(row)
-            codes.append(MURNAGHAN)
         cvs = list(self._solid_cv)
         gammas = [1.0] * nm
         self.params = np.vstack(rows + [self.params])
