@@ -623,7 +623,8 @@ class DataArchive:
 # SI units by the physical quantity a label's stem names (press_CC, p.stress, vel_CC ...)
 _UNITS = {"press": "Pa", "temp": "K", "rho": "kg/m^3", "vel": "m/s", "velocity": "m/s", "mass": "kg",
           "volume": "m^3", "vol": "m^3", "sp_vol": "m^3/kg", "x": "m", "stress": "Pa", "int_eng": "J",
-          "KineticEnergy": "J", "TotalMass": "kg", "delP_Dilatate": "Pa", "speedSound": "m/s",
+          "KineticEnergy": "J", "TotalIntEng": "J", "StrainEnergy": "J", "AccStrainEnergy": "J",
+          "TotalMass": "kg", "TotalMomentum": "kg m/s", "temperature": "K", "delP_Dilatate": "Pa", "speedSound": "m/s",
           "displacement": "m", "externalforce": "N", "size": "1", "vol_frac": "1", "heatRate": "W/m^3",
           "thermalCond": "W/(m K)", "viscosity": "Pa s", "f": "1", "deformationMeasure": "1"}
 

@@ -43,7 +43,9 @@ class Level:
     """A box of cells split into a tensor layout of patches."""
 
     def __init__(self, lower, upper, ncells, patches=(1, 1, 1), extra=(0, 0, 0),
-                 periodic=(False, False, False), index=0):
+                 periodic=(False, False, False), index=0, splits=None):
+        """splits: the patch boundaries (cell indices from 0 to ncells) in each direction, in
+        place of `patches` nearly equal parts (a level read from several <Box>es)."""
         self.index = index
         self.ncells = tuple(int(n) for n in ncells)
         self.anchor = np.asarray(lower, dtype=np.float64)
@@ -54,11 +56,18 @@ class Level:
         self.extra = tuple(0 if (c or p) else int(e)
                            for e, c, p in zip(extra, self.collapsed, self.periodic))
         self.dim = sum(not c for c in self.collapsed)
+        if splits is not None:
+            patches = [len(sp) - 1 for sp in splits]
         self.layout = tuple(int(p) for p in patches)
         for d in range(3):
             if self.layout[d] > self.ncells[d]:
                 raise ValueError(f"{self.layout[d]} patches along {'xyz'[d]} but only {self.ncells[d]} cells")
-        self.splits = [split_points(self.ncells[d], self.layout[d]) for d in range(3)]
+        if splits is None:
+            splits = [split_points(self.ncells[d], self.layout[d]) for d in range(3)]
+        self.splits = [[int(x) for x in sp] for sp in splits]
+        for d, sp in enumerate(self.splits):
+            if sp[0] != 0 or sp[-1] != self.ncells[d] or any(b <= a for a, b in zip(sp, sp[1:])):
+                raise ValueError(f"patch boundaries {sp} along {'xyz'[d]} must rise from 0 to {self.ncells[d]}")
         self.halo = {vt: 0 for vt in GRID_TYPES}
         self.patches: list[Patch] = []
         for k, j, i in itertools.product(range(self.layout[2]), range(self.layout[1]), range(self.layout[0])):

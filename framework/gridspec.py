@@ -17,7 +17,13 @@ BOX = {
 
 
 def level_from_spec(root):
-    """The single level of `<Grid><Level>`; boundary conditions are left to components."""
+    """The single level of `<Grid><Level>`; boundary conditions are left to components.
+
+    Several `<Box>`es (Uintah allows a level of any union of boxes) are one pysus level when
+    they tile one rectangular box of cells of one size and their patches line up into one
+    grid of patches: the level is that box, with the same cells and patches (extraCells the
+    largest of the boxes', as in Uintah). Any other union is refused, saying why.
+    """
     grid = root.child("Grid", required=True)
     levels = grid.children("Level")
     if not levels:
@@ -28,19 +34,34 @@ def level_from_spec(root):
     boxes = lv.children("Box")
     if not boxes:
         raise lv.error("missing required tag <Box>")
-    if len(boxes) > 1:
-        raise boxes[1].error(f"a <Level> made of {len(boxes)} <Box>es is not supported (a pysus level is one "
-                             "box of cells, split into patches); accepted: one <Box> per <Level>")
-    box = boxes[0]
-    box.attr("label", default=None)
-    b = box.read(BOX)
     spacing = lv.get("spacing", "vector", None, above=0.0)
     periodic = lv.get("periodic", "ivector", (0, 0, 0))
     if any(p not in (0, 1) for p in periodic):
         raise lv.child("periodic").error(f"periodic {periodic} is not accepted; accepted: 0 or 1 in every direction")
+    read = [_read_box(lv, box, spacing) for box in boxes]
+    extra = tuple(max(r[4][d] for r in read) for d in range(3))
+    if any(e > 1 for e in extra):
+        node = next(box for box, r in zip(boxes, read) if any(e > 1 for e in r[4]))
+        raise node.child("extraCells").error(f"extraCells {extra} is not accepted; accepted: 0 or 1 in "
+                                             "each direction (the components fill one layer of boundary cells)")
+    per = tuple(bool(x) for x in periodic)
+    if len(boxes) == 1:
+        lower, upper, res, patches, _ = read[0]
+        try:
+            return Level(lower, upper, res, patches, extra, per)
+        except ValueError as e:
+            raise boxes[0].child("patches").error(str(e)) from None
+    lower, upper, res, splits = _tile(lv, boxes, read)
+    return Level(lower, upper, res, extra=extra, periodic=per, splits=splits)
+
+
+def _read_box(lv, box, spacing):
+    """(lower, upper, resolution, patches, extraCells) of one <Box>, checked."""
+    box.attr("label", default=None)
+    b = box.read(BOX)
     lower, upper = np.array(b["lower"]), np.array(b["upper"])
     if np.any(upper <= lower):
-        raise box.error(f"<upper> {tuple(upper)} must exceed <lower> {tuple(lower)} in every direction")
+        raise box.error(f"<upper> {_vec(upper)} must exceed <lower> {_vec(lower)} in every direction")
     if b["resolution"] is not None and spacing is not None:
         raise lv.error("give either <Box><resolution> or <Level><spacing>, not both")
     if b["resolution"] is not None:
@@ -57,13 +78,54 @@ def level_from_spec(root):
         if n > r:
             raise box.child("patches").error(f"{n} patches along {'xyz'[d]} but only {r} cells; accepted: "
                                              "1 to the number of cells in each direction")
-    if any(e > 1 for e in b["extraCells"]):
-        raise box.child("extraCells").error(f"extraCells {b['extraCells']} is not accepted; accepted: 0 or 1 in "
-                                            "each direction (the components fill one layer of boundary cells)")
-    try:
-        return Level(lower, upper, res, b["patches"], b["extraCells"], tuple(bool(x) for x in periodic))
-    except ValueError as e:
-        raise box.child("patches").error(str(e)) from None
+    return lower, upper, tuple(res), tuple(b["patches"]), tuple(b["extraCells"])
+
+
+def _vec(v):
+    """[x, y, z] as a deck writes it."""
+    return "[" + ", ".join(f"{float(x):g}" for x in v) + "]"
+
+
+def _tile(lv, boxes, read):
+    """(lower, upper, resolution, patch splits) of the one box that several <Box>es tile."""
+    dx = (read[0][1] - read[0][0]) / np.array(read[0][2], dtype=float)
+    for box, (lo, hi, res, _, _) in zip(boxes[1:], read[1:]):
+        other = (hi - lo) / np.array(res, dtype=float)
+        if np.any(np.abs(other - dx) > 1e-10 * dx):
+            raise box.error(f"cell size {_vec(other)} differs from the first <Box>'s {_vec(dx)}; accepted: the "
+                            "same cell size in every <Box> of a level")
+    lower = np.min([r[0] for r in read], axis=0)
+    upper = np.max([r[1] for r in read], axis=0)
+    cells = []                               # each box's [lo, hi) in cells from `lower`
+    for box, (lo, hi, res, _, _) in zip(boxes, read):
+        first = np.round((lo - lower) / dx).astype(int)
+        if np.any(np.abs(first * dx - (lo - lower)) > 1e-8 * (upper - lower)):
+            raise box.error(f"<lower> {_vec(lo)} is not on the cell faces of the level's first <Box>; accepted: "
+                            "boxes whose corners lie on one grid of cells")
+        cells.append((first, first + np.array(res)))
+    total = np.round((upper - lower) / dx).astype(int)
+    labels = [repr(b.element.get("label", str(i))) for i, b in enumerate(boxes)]
+    names = ", ".join(labels)
+    for i in range(len(cells)):
+        for j in range(i + 1, len(cells)):
+            if np.all(np.maximum(cells[i][0], cells[j][0]) < np.minimum(cells[i][1], cells[j][1])):
+                raise boxes[j].error(f"this <Box> overlaps <Box> {labels[i]}; accepted: boxes that "
+                                     "do not overlap")
+    if sum(int(np.prod(h - l)) for l, h in cells) != int(np.prod(total)):
+        raise lv.error(f"the {len(boxes)} <Box>es ({names}) do not fill the rectangular box {_vec(lower)} .. "
+                       f"{_vec(upper)} that holds them (their union is L-shaped or has a gap), and a pysus level "
+                       "is one box of cells; accepted: boxes that tile one rectangular box")
+    splits = []
+    for d in range(3):
+        cuts = set()
+        for (l, h), (_, _, res, patches, _) in zip(cells, read):
+            cuts |= {int(l[d]) + res[d] * i // patches[d] for i in range(patches[d] + 1)}
+        splits.append(sorted(cuts))
+    if int(np.prod([len(s) - 1 for s in splits])) != sum(int(np.prod(r[3])) for r in read):
+        raise lv.error(f"the patches of the {len(boxes)} <Box>es ({names}) do not line up into one grid of patches "
+                       "across the level, which a pysus level is; accepted: <patches> whose boundaries continue "
+                       "from box to box")
+    return lower, upper, tuple(int(t) for t in total), splits
 
 
 SUB_FACES = ("circle", "rectangle", "annulus")

@@ -25,6 +25,8 @@ One timestep (tasks.py), all MPM materials in each task:
   computeLogisticRegression       friction_LR's alpha material, normal, prominences
   exMomInterpolated               contact on v_i          (only with contact)
   computeAndIntegrateAcceleration a_i, v*_i
+  computeContactArea, computeBoundaryTractions  the <boundary_traction_faces> reductions
+                                  (only when saved, boundary_tractions.py)
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
   computeSPlusSSPlusVp            XPIC(2)'s twice-smoothed grid velocity (only with <XPIC2>)
@@ -32,6 +34,7 @@ One timestep (tasks.py), all MPM materials in each task:
   interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
   computeStressTensor             (MUSL: L_p, F_p, V_p from v^L) sigma_p, strain energy,
                                   wave speed
+  computeAccStrainEnergy          AccStrainEnergy (only when saved)
   relocateParticles, computeStableTimestep
 """
 from __future__ import annotations
@@ -47,6 +50,8 @@ from framework.variables import Ghost
 from . import labels as L
 from .analysis import ParticleExtract
 from .bc import GridBCs
+from .boundary_tractions import (BoundaryTractionTasks, read_traction_faces, saves_face_labels,
+                                 schedule_acc_strain_energy)
 from .contact import Contact
 from .materials import Material
 from .shape import AXI
@@ -81,8 +86,9 @@ FLAGS = {
     "XPIC2": Param("bool", False, doc="particle velocity and position from XPIC(2) (Hammerquist & Nairn 2017) "
                    "instead of FLIP, as Uintah's SerialMPM; not for rigid materials"),
     "use_load_curves": Param("bool", False, doc="pressure and torque BCs follow <PhysicalBC> load curves"),
-    "boundary_traction_faces": Param("str", "[]", doc="read: Uintah sums BndyForce_<face> reductions there "
-                                     "for output; pysus computes none, and a <save> of them is refused"),
+    "boundary_traction_faces": Param("str", "[]", doc="[xminus, ..., zplus]: the BndyForce_, BndyTraction_ and "
+                                     "BndyContactArea_<face> reductions there, computed when saved "
+                                     "(boundary_tractions.py)"),
     "particles_leaving_domain": Param("str", "warn", ("warn", "error"),
                                       "pysus: particles leaving through a face without a wall are deleted "
                                       "(as in Uintah) with a warning line, or stop the run"),
@@ -94,7 +100,7 @@ FLAGS = {
 
 
 @register("mpm")
-class MPM(ThermalTasks, MPMTasks, Component):
+class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     """Explicit single-grid MPM with Uintah's deck tags and variable names."""
 
     analysis_modules = ("particleExtract",)    # <DataAnalysis> modules this component reads itself
@@ -213,6 +219,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
             raise mpm.child("artificial_viscosity_heating").error(
                 "artificial_viscosity_heating needs <artificial_viscosity>true (as in Uintah)")
         self.saves_disp = self.saves_scale = False      # until schedule_time_advance sees the <save>s
+        self.saves_acc_energy = self.saves_tractions = False
+        self.traction_faces = read_traction_faces(mpm, self.flags["boundary_traction_faces"], level)
         self._carried()
 
     def _rigid_contact_setup(self):
@@ -319,6 +327,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if self.pressure_bcs:
             t.computes(L.PressureBCParticles)
         sched.add_task(t)
+        schedule_acc_strain_energy(self, sched, initialize=True)
         self.schedule_thermal_initialize(sched)
         sched.register_particle_labels(L.pX, L.pID)
 
@@ -351,6 +360,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
         """p.displacement and p.scalefactor are carried only when a deck saves them (as Uintah
         computes p.scalefactor): decks without them pay nothing."""
         out = getattr(sched, "output_labels", ())
+        self.saves_acc_energy = L.AccStrainEnergy.name in out
+        self.saves_tractions = saves_face_labels(self.traction_faces, out)
         disp, scale = "p.displacement" in out, "p.scalefactor" in out
         if (disp, scale) != (self.saves_disp, self.saves_scale):
             self.saves_disp, self.saves_scale = disp, scale
@@ -393,6 +404,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
              .requires(NEW, L.gIntForce).requires(NEW, L.gExtForce)
              .computes(L.gVelocityStar).computes(L.gAcceleration))
         sched.add_task(t.computes(L.FTMForce) if self.ftm else t)
+        self.schedule_boundary_tractions(sched)
         if self.contact.active:
             t = (Task("MPM::exMomIntegrated", self.ex_mom_integrated, ms)
                  .requires(OLD, FL.delT).requires(NEW, L.gMass).requires(NEW, L.gVelocity)
@@ -483,6 +495,8 @@ class MPM(ThermalTasks, MPMTasks, Component):
         if self.saves_scale:
             t.computes(L.pScaleFactorPre)
         t.computes(L.WaveSpeed).computes(L.StrainEnergy)
+        if self.saves_acc_energy:
+            t.computes(L.StepStrainEnergy)
         hot = [m for m, mt in enumerate(self.materials) if mt.needs_temperature]
         warm = [m for m, mt in enumerate(self.materials) if mt.uses_temperature and not mt.needs_temperature]
         if hot:                         # elastic_plastic_hp: p.temperature+ += p.dTdt dt
@@ -500,6 +514,7 @@ class MPM(ThermalTasks, MPMTasks, Component):
             if not self.musl and not self.pressure_bcs:
                 t.requires(OLD, L.pX)
         sched.add_task(t)
+        schedule_acc_strain_energy(self, sched)
         if self.analysis.active:
             self.analysis.schedule(sched)
         carry = self.carry + self.carry_thermal + list(self.carry_models)
@@ -510,8 +525,9 @@ class MPM(ThermalTasks, MPMTasks, Component):
     def _grid_volume_needed(self, sched):
         """g.volume costs a sixth of the particle-to-grid scatter: it is computed when a task
         reads it (<density_from_grid>; a coupled component, coupled_reads_grid_volume) or
-        the deck saves it."""
+        the deck saves it or the boundary reductions (boundary_tractions.py)."""
         return (self.coupled_reads_grid_volume or "g.volume" in getattr(sched, "output_labels", ())
+                or self.saves_tractions
                 or any(getattr(m.params, "density_from_grid", False) for m in self.materials)
                 or bool(self.pressure_bcs) or bool(self.mms))    # the scatter variant with fext adds V_i too
 

@@ -101,6 +101,16 @@ SumTransmittedForce = L.create("SumTransmittedForce", R, (3,), reduction="sum") 
 FTMForce = L.create("MPM.ftmMassAndForce", R, (64,), reduction="sum")
 FTMContactForce = L.create("MPM.ftmContactForce", R, (3,), reduction="sum")
 WaveSpeed = L.create("MPM.waveSpeed", R, (3,), reduction="max")
+# Uintah's StrainEnergy (the rate models' increments of the step, the others' totals) and its
+# sum over the steps; pysus's StrainEnergy is the total strain energy of every model
+StepStrainEnergy = L.create("MPM.stepStrainEnergy", R, reduction="sum")
+AccStrainEnergy = L.create("AccStrainEnergy", R, reduction="max")
+# <boundary_traction_faces> (boundary_tractions.py), per face in Uintah's order and names
+BOUNDARY_FACES = ("xminus", "xplus", "yminus", "yplus", "zminus", "zplus")
+BndyForce = [L.create(f"BndyForce_{f}", R, (3,), reduction="sum") for f in BOUNDARY_FACES]
+BndyTraction = [L.create(f"BndyTraction_{f}", R, (3,), reduction="sum") for f in BOUNDARY_FACES]
+BndyContactArea = [L.create(f"BndyContactArea_{f}", R, reduction="sum") for f in BOUNDARY_FACES]
+BndyContactCellArea = [L.create(f"BndyContactCellArea_{f}", R, reduction="sum") for f in BOUNDARY_FACES]
 # fluid points' artificial viscosity (004 eq. 24): per material m, [2m] the largest sound
 # speed and [2m+1] the largest |div v| over the whole level (MPM materials <= 16)
 AVScale = L.create("MPM.artificialViscosityScale", R, (32,), reduction="max")

@@ -617,11 +617,13 @@ class MPMTasks:
 
     def compute_stress_tensor(self, patch, matls, old_dw, new_dw):
         """F, V (004 eqs. 14, 17) and the stress from the constitutive model; strain energy
-        (the total: rate models accumulate their increments in p.strainEnergy); wave speed
+        (the total: rate models accumulate their increments in p.strainEnergy; and, for
+        AccStrainEnergy, Uintah's StrainEnergy: the rate models' increments of the step, the
+        others' totals); wave speed
         (c + |v| with the velocity the step started with, as Uintah's models)."""
         dt = old_dw.get_reduction(FL.delT)
         ws = np.zeros(3)
-        se = 0.0
+        se = se_step = 0.0
         for m in matls:
             mat = self.materials[m]
             pm = old_dw.get(L.pMass, m, patch)
@@ -698,6 +700,7 @@ class MPMTasks:
                 new_dw.put(L.pdTdt, m, patch, dTdt)
                 T_new = new_dw.get(L.pTemperaturePre, m, patch)
                 T_new += dTdt * dt
+            se_step += energy.sum()
             if any(f is L.pStrainEnergy for f, _ in self.carry):
                 if mat.increment_energy:
                     energy = old_dw.get(L.pStrainEnergy, m, patch) + energy
@@ -720,4 +723,6 @@ class MPMTasks:
                         px_old, lcid, old_dw.get_reduction(FL.simTime), old_dw.get_reduction(L.PressureBCParticles)))
                 new_dw.put_reduction(L.PressureBCParticles, self.pressure_bcs.counts(lcid))
         new_dw.put_reduction(L.StrainEnergy, se)
+        if self.saves_acc_energy:
+            new_dw.put_reduction(L.StepStrainEnergy, se_step)
         new_dw.put_reduction(L.WaveSpeed, ws)

@@ -1,10 +1,12 @@
 """Uintah's artificial bulk viscosity of the MPM solids (components/mpm/artificial_viscosity.py).
 
 inputs/MPM/adiabatic_copper_jc.ups is Uintah's adiCuJC4000s696K.ups (artificial viscosity on)
-less some saves. tests/mpm/data/adiCuJC_av_sus.txt holds sus's copper particle after steps
+with Uintah's stress update (<stress_update>usl). tests/mpm/data/adiCuJC_av_sus.txt holds sus's copper particle after steps
 1-20, every 10th and the last of its whole run (the file's header says how it was made); pysus
 must give the same times, stress, plastic strain and temperature to round-off (measured over
-every step: delT 6e-12, stress 2e-7 of its largest component, plastic strain 2e-8, T 1.5e-9).
+every step: delT 6e-12, stress 2e-7 of its largest component, plastic strain 2e-8, T 1.5e-9);
+tests/mpm/data/adiCuJC_bndy_sus.txt holds sus's sums on the faces of its <boundary_traction_faces>
+and AccStrainEnergy, which pysus must also give.
 The flow stress must also follow the Johnson-Cook law on the adiabatic path (closed form
 below), which is what Uintah's test is for.
 """
@@ -40,6 +42,38 @@ def test_whole_run_equals_sus(copper):
         assert p["p.plasticStrain"][0] == pytest.approx(ep, rel=1e-7), k
         assert p["p.temperature"][0] == pytest.approx(T, rel=1e-8), k
     assert DATA[-1, 4] > 0.5                                  # strained past 50 %
+
+
+BNDY = np.loadtxt(Path(__file__).parent / "data" / "adiCuJC_bndy_sus.txt")
+
+
+def _per_step(da, label):
+    """A saved reduction's (times, values) of steps 1, 2, ... (pysus also writes t = 0 for some)."""
+    t, v = da.reduction(label)
+    return t[t > 0], v[t > 0]
+
+
+def test_boundary_sums_equal_sus(copper):
+    """Its <boundary_traction_faces>[zminus,zplus] (components/mpm/boundary_tractions.py): the
+    force on z- as the copper is pulled off it, the contact areas of z- and z+ (the rigid piston's
+    volume reaches the nodes of z+ near step 230) and AccStrainEnergy, a line every step as sus
+    writes them, against sus's (measured over every step: the force 1.4e-8 of its largest, the
+    areas 1.2e-6 and 2e-11 of theirs, AccStrainEnergy 7e-9)."""
+    series = {n: _per_step(copper, n) for n in ("BndyForce_zminus", "BndyForce_zplus", "BndyContactArea_zminus",
+                                                "BndyContactArea_zplus", "AccStrainEnergy")}
+    for n, (t, _) in series.items():
+        assert len(t) == int(BNDY[-1, 0]), n
+    fmax, amax = np.abs(BNDY[:, 2]).max(), BNDY[:, 4].max()
+    assert fmax > 5e4 and BNDY[-1, 5] > 1e-5                 # both faces are reached
+    for k, t, fz_minus, fz_plus, a_minus, a_plus, acc in BNDY:
+        i = int(k) - 1
+        f_minus = series["BndyForce_zminus"][1][i]
+        assert series["BndyForce_zminus"][0][i] == pytest.approx(t, rel=1e-10), k
+        assert abs(f_minus[2] - fz_minus) < 1e-7 * fmax and abs(f_minus[:2]).max() < 1e-9 * fmax, k
+        assert np.all(series["BndyForce_zplus"][1][i] == fz_plus), k       # the piston is rigid: no force
+        assert abs(series["BndyContactArea_zminus"][1][i] - a_minus) < 5e-6 * amax, k
+        assert series["BndyContactArea_zplus"][1][i] == pytest.approx(a_plus, rel=1e-9, abs=1e-15 * amax), k
+        assert series["AccStrainEnergy"][1][i] == pytest.approx(acc, rel=1e-7), k
 
 
 def _jc(ep, T):

@@ -1,13 +1,13 @@
 """elastic_plastic with <deviatoric_stress_model type="hypoViscoElastic"> (Maxwell elements;
 constitutive/elastic_plastic_hp.py) on Uintah's test_hypoviscoelastic_rad_ret.ups
-(inputs/MPM/hypoviscoelastic_radial_return.ups: the same deck without the save of a boundary
-traction reduction):
+(inputs/MPM/hypoviscoelastic_radial_return.ups, the same deck):
 
 - against sus: tests/mpm/data/hypoviscoelastic_rr_sus.txt holds sus's stress of the particle
   at its 21 outputs over the whole run (4779 steps); pysus must take the same steps (the output
   step numbers and times, so delT) and give its stress to 1e-5 of the largest component (seen:
   4e-6, the same as the deck with the plain hypoElastic model gives against sus: the difference
-  lies in the shared kinematics, not in the Maxwell element);
+  lies in the shared kinematics, not in the Maxwell element); its BndyTraction_zminus over every
+  step the same (tests/mpm/data/hypoviscoelastic_rr_bndy_sus.txt);
 - against the Maxwell solution: the piston drives d_zz = -v/dx = -0.5 per us in the particle's
   cell (uniaxial strain), so until it yields s_zz - s_xx = 2 mu tau d_zz (1 - exp(-t/tau)),
   to the first-order error dt/(2 tau) = 2e-4 of the explicit update; after it, von Mises holds
@@ -47,6 +47,22 @@ def test_against_sus(archive):
         got, want = s[k].diagonal(), np.array([sxx, syy, szz])
         assert np.abs(got - want).max() < 1e-5 * np.abs(want).max(), (step, got, want)
         assert np.abs(s[k] - np.diag(s[k].diagonal())).max() < 1e-12 * np.abs(want).max()
+
+
+TRACTION = np.loadtxt(Path(__file__).parent / "data" / "hypoviscoelastic_rr_bndy_sus.txt")
+
+
+def test_boundary_traction_equals_sus(archive):
+    """BndyTraction_zminus (components/mpm/boundary_tractions.py), a line every step: the
+    particle's -s_zz over the z- face, as sus writes it (measured over every step: 4e-6 of the
+    largest, as the stress)."""
+    t, traction = archive.reduction("BndyTraction_zminus")
+    assert len(t) == int(TRACTION[-1, 0])
+    scale = np.abs(TRACTION[:, 2]).max()
+    for k, tk, tz in TRACTION:
+        i = int(k) - 1
+        assert t[i] == pytest.approx(tk, rel=1e-9), k
+        assert abs(traction[i, 2] - tz) < 1e-5 * scale and traction[i, 0] == traction[i, 1] == 0.0, k
 
 
 def test_maxwell_relaxation_and_yield(archive):
