@@ -111,3 +111,24 @@ def test_burn_conserves_mass_and_hands_over_its_energy(runs):
     assert np.allclose(heat, burned * QC_QG, rtol=1e-12)
     src = _cc(da, "modelMass_src", 1, 3)
     assert src.sum() == pytest.approx(burned[-1], rel=1e-12)
+
+
+def test_restart_carries_the_burn_memory(tmp_path):
+    """A restart from the step-2 checkpoint continues with the cells' and particles' (beta, Ts)
+    and the solid's last temp_CC: steps 3-4 equal the straight run's bit for bit."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    text = DECK.read_text().replace("<max_Timesteps> 3 </max_Timesteps>", "<max_Timesteps> 4 </max_Timesteps>") \
+        .replace('<outputTimestepInterval> 1 </outputTimestepInterval>',
+                 '<outputTimestepInterval> 1 </outputTimestepInterval><checkpoint timestepInterval="2" cycle="2"/>')
+    straight = run_deck(text, tmp_path, "straight")
+    again = Controller(restart=straight.archiver.dir, restart_index=0, quiet=True, filebase=str(tmp_path / "again.uda"))
+    again.run()
+    a, b = DataArchive(straight.archiver.dir), DataArchive(again.archiver.dir)
+    assert a.times[-1] == b.times[-1] and len(b.times) == 2
+    for label, m in (("press_CC", 0), ("temp_CC", 1), ("UnsteadyBurn.SurfTemp", 0), ("UnsteadyBurn.SurfTempGrad", 0),
+                     ("UnsteadyBurn.BurningCell", 0)):
+        assert np.array_equal(a.read(label, m, -1)[0], b.read(label, m, -1)[0]), label
+    pa, pb = a.particles(0, -1), b.particles(0, -1)
+    for label in ("p.mass", "UnsteadyBurn.PartSurfTemp", "UnsteadyBurn.PartSurfTempGrad"):
+        assert np.array_equal(pa[label], pb[label]), label
