@@ -55,6 +55,8 @@ ARCHIVER = {
     "filebase": Param("str", "pysus_output.uda"),
     "outputInterval": Param("float", 0.0, at_least=0.0),
     "outputTimestepInterval": Param("int", 0, at_least=0),
+    "compression": Param("str", "none", choices=("none", "gzip"),
+                         doc="Uintah's compression of its .uda files; read, pysus's HDF5 output is the same"),
 }
 
 
@@ -203,6 +205,7 @@ class Controller:
         if lbn is not None:
             lbn.attr("type", default="SFC", choices=("SFC", "DLB", "Simple", "SimpleLoadBalancer"))
             self.lb_interval = lbn.get("timestepInterval", "int", 0, at_least=0)
+            lbn.get("hasParticles", "bool", False)     # Uintah's DLB: weigh patches by particles; read
         self.archive_spec = read_archiver(root)
         self.component = cls()
         self.component.problem_setup(root, self.level)

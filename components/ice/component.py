@@ -204,8 +204,6 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
-        if self.implicit and self.bcs.subfaces:
-            self._check_sub_faces_implicit()
         if self.lodi is not None:
             self._check_lodi(n)
         self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]
@@ -275,6 +273,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                                             f"number > 1 (the {etype} EOS)")
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
+        jc = en.child("C") if etype == "JWL" else None
+        if jc is not None:
+            # Uintah's JWL reads A, B, R1, R2, om, rho0 only (JWLC's third term is <C>)
+            jc.mark_used()
+            print(f"pysus: note: {jc.filename}:{jc.line}: <C> of the JWL EOS has no effect (Uintah's JWL "
+                  f"does not read it either; <C> belongs to JWLC)", file=sys.stderr)
         gc = en.child("gas_constant") if etype == "ideal_gas" else None
         if gc is not None:
             # Uintah's IdealGas reads no tags: R follows from cv and gamma, R = (gamma - 1) cv

@@ -6,7 +6,8 @@ are local index ranges (int64[3]). Face arrays (SFCX/Y/Z) have their own origin:
 (i,j,k)+sh; the left cell is one step back along the face normal `dd`. Materials of
 a multi-material kernel come as tuples of arrays (one entry per material), so one
 compiled kernel serves any number of materials. Kernels loop only over the
-directions that exist: a 2D run never touches a third face direction.
+directions that exist: a 2D run never touches a third face direction. EOS codes are
+eos.py's (MPMICE's solids: Murnaghan with n = 1, or SOLID_JWL for visco_scram's <useJWLEOS>).
 """
 from __future__ import annotations
 

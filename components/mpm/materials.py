@@ -43,6 +43,8 @@ STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEne
          "visco_scram": ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious"),
          "comp_neo_hook_plastic": ("p.plasticStrain", "p.bElBar"), "UCNH": ("p.plasticStrain", "p.bElBar")}
 
+EROSION_ALGORITHMS = ("none", "AllowNoTension", "ZeroStress", "AllowNoShear", "PreserveStress")
+
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
     "thermal_conductivity": Param("float", 0.0, doc="W/(m K) (thermal.py)", at_least=0.0),
@@ -122,6 +124,10 @@ class Material:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
+        elif node.has("erosion"):
+            # Uintah's ErosionModel acts only on failed (localized) particles; a model without
+            # failure never has any, so <erosion> is read and has no effect (TBurner_2dRT)
+            node.child("erosion").attr("algorithm", choices=EROSION_ALGORITHMS)
         self._finish(node, props, self.params, kind, with_color, geom_reader)
 
     def _finish(self, node, props, params, kind, with_color, geom_reader):

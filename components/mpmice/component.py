@@ -128,10 +128,15 @@ class MPMICE(MPMICETasks, Component):
                         "the heat exchange and the gas's EOS in mixed cells); accepted: a number > 0")
         for mat in self.mpm.materials:          # visco_scram's own solid EOS options
             flag = mat.params.eos_flag() if hasattr(mat.params, "eos_flag") else None
-            if flag:
-                raise mat.node.child("constitutive_model").child(flag).error(
+            cm = mat.node.child("constitutive_model")
+            if flag == "useJWLEOS":             # Uintah's ViscoScram JWL (ice/eos.py SOLID_JWL)
+                missing = [t for t in ("A", "B", "R1", "R2", "om", "Cv") if not cm.has(t)]
+                if missing:
+                    raise cm.error(f"<useJWLEOS> true needs <{'>, <'.join(missing)}> (the solid's JWL EOS)")
+            elif flag:
+                raise cm.child(flag).error(
                     f"<{flag}> true is not implemented in MPMICE (the solid's EOS is the bulk modulus "
-                    "with the low-pressure threshold); accepted: false")
+                    "with the low-pressure threshold, or <useJWLEOS>'s JWL); accepted: false")
         self.mpm_matls = list(range(nm))
         bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]
@@ -146,6 +151,8 @@ class MPMICE(MPMICETasks, Component):
         self.materials = self.ice.materials
         self.dims_i = np.array(self.ice.dims, dtype=np.int64)
         self.models = read_models(root, self)        # <Models> (components/models), else None
+        if self.models is not None and self.ice.implicit:
+            self.ice.mass_exchange = self.models     # the burned mass in eq. P (ice/implicit.py)
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
         self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
@@ -165,6 +172,8 @@ class MPMICE(MPMICETasks, Component):
         sched.add_task(t)
         for model in self.ice.scalars + self.ice.tracers:      # ICE's PassiveScalar, TracerParticles models
             model.schedule_initialize(sched)
+        if self.models is not None:             # the reaction models' own state (Unsteady_Burn)
+            self.models.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
@@ -245,7 +254,7 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
-        if not ice.implicit:
+        if not ice.implicit or self.models is not None:
             sched.add_task(Task("ICE::computeDelP_MassX", ice.delp_mass_exchange, m0)     # only when saved
                            .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
                            .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
