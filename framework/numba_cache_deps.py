@@ -1,0 +1,114 @@
+"""A cached numba kernel is stale when a module it compiled in has changed, not only its own file.
+
+numba keys a kernel's cache by its own source file, but a kernel's machine code also holds
+what it took from other modules at compile time: the helpers it calls (inlined or linked)
+and the module constants it reads (an EOS code, a table). After an edit or a `git pull` that
+changes `eos.py` but not `equilibration.py`, numba would load equilibration's old machine
+code. For source files of this repository the cache stamp here is numba's own stamp plus a
+digest of the modules the file imports from the repository: every module it imports, and
+further the imports of those that use numba (a kernel calling a kernel calling a kernel).
+Importing this module installs it once (framework/__init__.py does).
+"""
+from __future__ import annotations
+
+import ast
+import functools
+import hashlib
+import os
+
+from numba.core import caching as _caching
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _module_file(parts):
+    """The repository file of a dotted module (a list of names), or None."""
+    base = os.path.join(ROOT, *parts)
+    for path in (base + ".py", os.path.join(base, "__init__.py")):
+        if os.path.isfile(path):
+            return path
+    return None
+
+
+def _module_parts(path):
+    rel = os.path.relpath(path, ROOT)[:-3].split(os.sep)
+    return rel[:-1] if rel[-1] == "__init__" else rel
+
+
+@functools.lru_cache(maxsize=None)
+def _source(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+@functools.lru_cache(maxsize=None)
+def direct_imports(path):
+    """Repository modules that the file at path imports anywhere in it (files, sorted)."""
+    try:
+        tree = ast.parse(_source(path))
+    except (SyntaxError, ValueError):
+        return ()
+    own = _module_parts(path)
+    package = own if path.endswith("__init__.py") else own[:-1]
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                found.add(_module_file(alias.name.split(".")))
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package[:len(package) - (node.level - 1)] if node.level > 1 else list(package)
+            else:
+                base = []
+            full = base + (node.module.split(".") if node.module else [])
+            found.add(_module_file(full))
+            for alias in node.names:                 # `from . import eos`: a submodule
+                found.add(_module_file(full + [alias.name]))
+    found.discard(None)
+    found.discard(path)
+    return tuple(sorted(found))
+
+
+@functools.lru_cache(maxsize=None)
+def dependencies(path):
+    """The files whose change makes a kernel of `path` stale: its imports, and transitively the
+    imports of those that use numba."""
+    seen, todo = set(), list(direct_imports(path))
+    while todo:
+        dep = todo.pop()
+        if dep in seen or dep == path:
+            continue
+        seen.add(dep)
+        if b"numba" in _source(dep):
+            todo.extend(direct_imports(dep))
+    return tuple(sorted(seen))
+
+
+@functools.lru_cache(maxsize=None)
+def digest(path):
+    """sha256 over the dependencies' names and contents."""
+    h = hashlib.sha256()
+    for dep in dependencies(path):
+        h.update(os.path.relpath(dep, ROOT).encode())
+        h.update(hashlib.sha256(_source(dep)).digest())
+    return h.hexdigest()
+
+
+def _install():
+    mixin = _caching._SourceFileBackedLocatorMixin
+    if getattr(mixin.get_source_stamp, "_pysus_deps", False):
+        return
+    original = mixin.get_source_stamp
+
+    def get_source_stamp(self):
+        stamp = original(self)
+        path = os.path.abspath(getattr(self, "_py_file", ""))
+        if path.startswith(ROOT + os.sep) and path.endswith(".py"):
+            return stamp, digest(path)
+        return stamp
+
+    get_source_stamp._pysus_deps = True
+    mixin.get_source_stamp = get_source_stamp
+
+
+_install()
