@@ -57,7 +57,9 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.plasticStrainRate": (pPlasticStrainRate, pPlasticStrainRatePre),
          "p.energy": (pEnergy, pEnergyPre),
          "p.strainRate": (pStrainRate, pStrainRatePre),
-         "p.bElBar": (pBElBar, pBElBarPre)}                              # comp_neo_hook_plastic, UCNH
+         "p.bElBar": (pBElBar, pBElBarPre),                              # comp_neo_hook_plastic, UCNH
+         "p.epsf": _pair("p.epsf"),                      # damage.py: Brittle's energy threshold
+         "p.damage": _pair("p.damage")}                  # damage.py: Brittle's damage
 # elastic_plastic_hp with <deviatoric_stress_model type="hypoViscoElastic">: the deviatoric
 # stress of Maxwell element j (Uintah's names sigmaDevj, sigmaDevj+)
 MAX_MAXWELL_ELEMENTS = 8

@@ -19,6 +19,8 @@ from mpi4py import MPI
 from framework.geometry import GeometryReader, Null, SmoothCylinder
 from framework.problemspec import Param
 
+from .constitutive import damage
+
 # deck name -> module under components.mpm.constitutive
 MODELS = {
     "comp_neo_hook": "comp_neo_hook",
@@ -79,6 +81,7 @@ class Material:
     def __init__(self, node, index, geom_reader, with_color):
         self.index = index
         self.node = node
+        self.damage = None                    # damage.py: <damage_model> beside the constitutive model
         self.name = node.attr("name", default=f"mpm{index}")
         props = node.read(MATERIAL)
         self.density = props["density"]
@@ -122,6 +125,12 @@ class Material:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
+        elif node.has("damage_model"):                # Uintah's damage model beside the constitutive model
+            if kind not in damage.MODELS:
+                raise node.child("damage_model").error(
+                    f"a <damage_model> of a {kind} material is not implemented; accepted with the "
+                    f"constitutive models {', '.join(damage.MODELS)}")
+            self.damage = damage.read(node, cm)
         self._finish(node, props, self.params, kind, with_color, geom_reader)
 
     def _finish(self, node, props, params, kind, with_color, geom_reader):
@@ -137,6 +146,10 @@ class Material:
             st = None                         # UCNH without plasticity: comp_neo_hook, no state
         self.state = st                       # the model's state label name(s), or None
         self.state_names = (st,) if isinstance(st, str) else tuple(st or ())
+        if self.damage is not None:           # the damage model's state follows the model's
+            self.model = damage.Damaged(self.model, len(self.state_names), self.damage)
+            self.state_names += self.damage.STATE
+            self.state = self.state_names
         self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
         self.needs_temperature = getattr(self.model, "NEEDS_TEMPERATURE", False)   # p.temperature / p.dTdt in the state
         self.max_delT = getattr(self.model, "MAX_DELT", np.inf)

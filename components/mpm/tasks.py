@@ -631,7 +631,7 @@ class MPMTasks:
             n = len(F_old)
             s_new = new_dw.allocate(L.pStressPre, m, patch, None)
             energy = np.empty(n)
-            fused = self.musl and mat.model_name in transfer.FUSED      # stress in the grad pass
+            fused = self.musl and mat.model_name in transfer.FUSED and mat.damage is None   # stress in the grad pass
             if self.musl:
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
