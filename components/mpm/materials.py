@@ -34,10 +34,11 @@ MODELS = {
     "visco_scram": "visco_scram",
     "comp_neo_hook_plastic": "comp_neo_hook_plastic",
     "UCNH": "ucnh",
+    "UCNHVar": "ucnh_var",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
-NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH")
+NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH", "UCNHVar")
 
 # models with state per particle: the carried particle label holding it (one name), or the
 # labels (a tuple: the model's update gets tuples of old and new arrays in that order)
@@ -102,7 +103,10 @@ class Material:
             kind = "elastic_plastic_hp"
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
-        if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp)
+        if getattr(self.model, "USES_COLOR", False) and not with_color:
+            raise cm.error(f'constitutive_model type="{kind}" reads p.color: it needs <MPM><withColor>true'
+                           '</withColor>')
+        if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp, UCNHVar)
             self._finish(node, props, self.model.read_params(cm, node, props), kind, with_color, geom_reader)
             return
         fields = dataclasses.fields(self.model.Params)

@@ -96,10 +96,14 @@ class MPMTasks:
         return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [L.pSize, L.pF])
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
-                      old=None, new=None, scale=None, temperature=None):
+                      old=None, new=None, scale=None, temperature=None, color=None):
         """Call the material's model; `old`/`new` are its state arrays (plastic strain; a tuple
         for a model with several); membrane: (tangent, thickness, volume) before and after (the
-        model sets the volume); `temperature`: p.temperature for the models that read it."""
+        model sets the volume); `temperature`: p.temperature for the models that read it;
+        `color`: p.color for those that read it (UCNHVar)."""
+        if getattr(mat.model, "USES_COLOR", False):
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new, color=color)
         if mat.is_membrane:
             (t_old, h_old, v_old), (t_new, h_new, v_new) = old, new
             return mat.model.update(mat.params, Lg, F_old, F_new, v_old, mass, vel, dt, s_old, s_new,
@@ -142,7 +146,7 @@ class MPMTasks:
                 old, new = state + (d["temp"],), state + (np.zeros(n),)
             ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
                                                    d["vel"], 0.0, stress, stress, energy, old, new,
-                                                   temperature=d["temp"]))
+                                                   temperature=d["temp"], color=d["color"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
                    L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3)),
@@ -690,7 +694,9 @@ class MPMTasks:
                 ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
                                                        old_dw.get(L.pVelocity, m, patch), dt,
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
-                                                       new, scale, temp))
+                                                       new, scale, temp,
+                                                       old_dw.get(L.pColor, m, patch) if self.flags["withColor"]
+                                                       else None))
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
                 q = self.av.q(m, mat, Lg, F_new)
                 new_dw.put(L.pQPre, m, patch, q)
