@@ -107,7 +107,10 @@ class Material:
             raise cm.error(f'constitutive_model type="{kind}" reads p.color: it needs <MPM><withColor>true'
                            '</withColor>')
         if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp, UCNHVar)
-            self._finish(node, props, self.model.read_params(cm, node, props), kind, with_color, geom_reader)
+            params = self.model.read_params(cm, node, props)
+            if kind in damage.MODELS:
+                self._read_damage(node, cm, kind)
+            self._finish(node, props, params, kind, with_color, geom_reader)
             return
         fields = dataclasses.fields(self.model.Params)
         accepted = [f.name for f in fields]
@@ -129,13 +132,19 @@ class Material:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
-        elif node.has("damage_model"):                # Uintah's damage model beside the constitutive model
-            if kind not in damage.MODELS:
-                raise node.child("damage_model").error(
-                    f"a <damage_model> of a {kind} material is not implemented; accepted with the "
-                    f"constitutive models {', '.join(damage.MODELS)}")
-            self.damage = damage.read(node, cm)
+        else:
+            self._read_damage(node, cm, kind)
         self._finish(node, props, self.params, kind, with_color, geom_reader)
+
+    def _read_damage(self, node, cm, kind):
+        """Uintah's damage model beside the constitutive model, and its erosion (damage.py)."""
+        if not node.has("damage_model"):
+            return
+        if kind not in damage.MODELS:
+            raise node.child("damage_model").error(
+                f"a <damage_model> of a {kind} material is not implemented; accepted with the "
+                f"constitutive models {', '.join(damage.MODELS)}")
+        self.damage = damage.read(node, cm)
 
     def _finish(self, node, props, params, kind, with_color, geom_reader):
         """The model's params, its flags and the geometry objects."""
@@ -151,7 +160,8 @@ class Material:
         self.state = st                       # the model's state label name(s), or None
         self.state_names = (st,) if isinstance(st, str) else tuple(st or ())
         if self.damage is not None:           # the damage model's state follows the model's
-            self.model = damage.Damaged(self.model, len(self.state_names), self.damage)
+            self.model = damage.Damaged(self.model, len(self.state_names), self.damage,
+                                        kind in damage.NO_ENERGY_WHEN_LOCALIZED)
             self.state_names += self.damage.STATE
             self.state = self.state_names
         self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
@@ -206,6 +216,8 @@ class Material:
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
         (unit tangent, thickness) from the chain; the models with an initial_state
         (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple."""
+        if self.damage is not None:
+            return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"])
         if self.state_names and hasattr(self.model, "initial_state"):
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":

@@ -96,11 +96,15 @@ class MPMTasks:
         return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [L.pSize, L.pF])
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
-                      old=None, new=None, scale=None, temperature=None, color=None):
+                      old=None, new=None, scale=None, temperature=None, color=None, time=0.0):
         """Call the material's model; `old`/`new` are its state arrays (plastic strain; a tuple
         for a model with several); membrane: (tangent, thickness, volume) before and after (the
         model sets the volume); `temperature`: p.temperature for the models that read it;
-        `color`: p.color for those that read it (UCNHVar)."""
+        `color`: p.color for those that read it (UCNHVar); `time`: the step's start, for the
+        erosion of a damage model (damage.py)."""
+        if mat.damage is not None:
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new, time=time, color=color)
         if getattr(mat.model, "USES_COLOR", False):
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new, color=color)
@@ -696,7 +700,9 @@ class MPMTasks:
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
                                                        new, scale, temp,
                                                        old_dw.get(L.pColor, m, patch) if self.flags["withColor"]
-                                                       else None))
+                                                       else None,
+                                                       old_dw.get_reduction(FL.simTime) if mat.damage is not None
+                                                       else 0.0))
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
                 q = self.av.q(m, mat, Lg, F_new)
                 new_dw.put(L.pQPre, m, patch, q)
