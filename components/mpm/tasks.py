@@ -650,6 +650,9 @@ class MPMTasks:
                 Lg = new_dw.get(L.pVelGrad, m, patch)
                 F_new = new_dw.get(L.pFPre, m, patch)
                 vol_new = new_dw.get(L.pVolumePre, m, patch)
+                if getattr(mat.damage, "erodes_F", False):     # the erosion sets F of localized particles
+                    F_new = F_new.copy()
+                    new_dw.replace(L.pFPre, m, patch, F_new)
             if getattr(mat.params, "density_from_grid", False):    # fluid points (ideal_gas_fluid)
                 lv = self.level
                 gvol = {k: new_dw.get(L.gVolume, k, patch) for k in matls     # membranes: no area

@@ -142,3 +142,133 @@ def test_const_test_brittle_damage_as_sus(tmp_path):
     assert np.allclose([q["p.damage"][0] for q in p], sus["damage"], rtol=0, atol=5e-7)
     assert np.allclose([q["p.epsf"][0] for q in p], sus["epsf"], rtol=1e-7, atol=0)
     assert sus["damage"][10] == 0.0 and sus["damage"][-1] > 0.6
+
+
+# -- ThresholdVar and erosion -----------------------------------------------------------
+DISK = HERE / "uintah_reference" / "disk_UCNHVar.ups"
+SUS_TV = HERE / "data" / "sus_disk_UCNHVar_threshold.npz"
+
+
+def threshold(erosion, criterion=0, char_time=1e-99):
+    return damage.ThresholdVar((0.0, 1.0), (7.0e4, 7.0e3), criterion, True, damage.EROSION[erosion], char_time)
+
+
+def tv_step(model, stress, F, loc=0.0, tloc=-1e99, time=1.0):
+    s = np.array([stress], float)
+    state = (np.array([model.means[0]]), np.array([loc]), np.array([tloc]))
+    new = (np.zeros(1), np.zeros(1), np.zeros(1))
+    model.apply(np.array([F], float), np.ones(1), s, state, new, np.zeros(1), time)
+    return s[0], new[1][0], new[2][0]
+
+
+def test_threshold_localizes_and_zero_stress_erodes():
+    """A particle whose largest principal stress passes its threshold localizes at the step's
+    start time and keeps its stress that step (D = exp(0)); the next step ZeroStress takes it
+    (D = exp(-dt/1e-99)); below the threshold nothing happens; with a char_time the stress
+    decays as exp(-(t - t_loc)/char_time)."""
+    m = threshold("ZeroStress")
+    shear = np.array([[0.0, 8e4, 0], [8e4, 0, 0], [0, 0, -1e5]])          # principal: 8e4, -8e4, -1e5
+    s, loc, tl = tv_step(m, shear, np.eye(3), time=2.0)
+    assert loc == 1.0 and tl == 2.0 and np.array_equal(s, shear)
+    s, loc, tl = tv_step(m, shear, np.eye(3), loc=1.0, tloc=2.0, time=2.5)
+    assert loc == 1.0 and tl == 2.0 and np.array_equal(s, 0 * shear)
+    s, loc, _ = tv_step(m, 0.8 * shear, np.eye(3))
+    assert loc == 0.0 and np.array_equal(s, 0.8 * shear)
+    s, _, _ = tv_step(threshold("ZeroStress", char_time=0.25), shear, np.eye(3), loc=1.0, tloc=2.0, time=2.5)
+    assert np.allclose(s, np.exp(-2.0) * shear, rtol=1e-15)
+
+
+def test_erosion_algorithms_of_a_localized_particle():
+    """AllowNoShear keeps the pressure only; AllowNoTension too in compression, in tension it
+    decays as ZeroStress; PreserveStress and none keep the stress."""
+    comp = np.array([[-3e5, 1e5, 0], [1e5, -1e5, 0], [0, 0, -2e5]])
+    p = np.trace(comp) / 3
+    for name, expect in (("AllowNoShear", p * np.eye(3)), ("AllowNoTension", p * np.eye(3)),
+                         ("PreserveStress", comp), ("none", comp)):
+        s, _, _ = tv_step(threshold(name), comp, np.eye(3), loc=1.0, tloc=0.5)
+        assert np.allclose(s, expect, rtol=1e-15), name
+    s, _, _ = tv_step(threshold("AllowNoTension"), -comp, np.eye(3), loc=1.0, tloc=0.5)
+    assert np.array_equal(s, 0 * comp)
+
+
+def test_strain_criterion_and_kinematics():
+    """MaximumPrincipalStrain: the Almansi strain (1 - 1/l^2)/2 of a stretch l against the
+    threshold; ZeroStress keeps F^n for a localized particle, AllowNoShear makes F = J^(1/3) I
+    and L its trace part."""
+    m = damage.ThresholdVar((0.0,), (0.1,), 1, True, damage.EROSION["ZeroStress"], 1e-99)
+    _, loc, _ = tv_step(m, np.zeros((3, 3)), np.diag([1.0, 1.0, 1.2]))       # (1 - 1/1.44)/2 = 0.153
+    assert loc == 1.0
+    _, loc, _ = tv_step(m, np.zeros((3, 3)), np.diag([1.0, 1.0, 1.1]))       # 0.087
+    assert loc == 0.0
+    F_old = np.array([np.eye(3), np.eye(3)])
+    F_new = np.array([np.diag([1.1, 1.0, 0.9]), np.diag([1.1, 1.0, 0.9])])
+    Lg = np.array([np.diag([1.0, 2.0, 6.0])] * 2)
+    L2 = m.erode_kinematics(np.array([1.0, 0.0]), F_old, F_new, Lg)
+    assert np.array_equal(F_new[0], np.eye(3)) and np.array_equal(F_new[1], np.diag([1.1, 1.0, 0.9]))
+    assert np.array_equal(L2[0], np.zeros((3, 3))) and np.array_equal(L2[1], Lg[1]) and Lg[0, 2, 2] == 6.0
+    ns = damage.ThresholdVar((0.0,), (0.1,), 1, True, damage.EROSION["AllowNoShear"], 1e-99)
+    F_new = np.array([np.diag([1.1, 1.0, 0.9])])
+    L2 = ns.erode_kinematics(np.array([1.0]), F_old[:1], F_new, Lg[:1])
+    assert np.allclose(F_new[0], np.cbrt(0.99) * np.eye(3), rtol=1e-15) and np.allclose(L2[0], 3 * np.eye(3))
+
+
+def disk_with_threshold(steps=300, every=10):
+    """disk_UCNHVar.ups with ThresholdVar's constant distribution (Uintah's gauss draws are not
+    implemented), without the gradient-enhanced velocity projection, with GIMP and both
+    objects at 10 m/s (test_ucnh_var.py says why), sus's USL stress update."""
+    text = open(DISK).read()
+    for old, new in (("<UseGradientEnhancedVelocityProjection>true\n                         "
+                      "</UseGradientEnhancedVelocityProjection>", ""),
+                     ("<failure_distrib>gauss     </failure_distrib>", "<failure_distrib>constant</failure_distrib>"),
+                     ("fast_cpdi", "gimp"),
+                     ("<time_integrator>explicit  </time_integrator>",
+                      "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>"),
+                     ("<maxTime>0.30</maxTime>", f"<maxTime>0.30</maxTime><max_Timesteps>{steps}</max_Timesteps>"),
+                     ("<outputInterval>.01</outputInterval>",
+                      f"<outputTimestepInterval>{every}</outputTimestepInterval>"),
+                     ('<save label = "p.localizedMPM"/>', '<save label = "p.localizedMPM"/><save label = "p.timeofloc"/>')):
+        assert old in text, old
+        text = text.replace(old, new)
+    text = text.replace("<velocity>[1.0,0.0,0]</velocity>", "<velocity>[10.0,0.0,0]</velocity>")
+    return text
+
+
+def test_disk_UCNHVar_threshold_as_sus(tmp_path):
+    """UCNHVar with ThresholdVar damage and ZeroStress erosion, 300 steps: the particles sus
+    localized (14 of 1612, from step 230, on its maximum principal stress criterion) and
+    when, sus's count every 10 steps, p.stress of every tenth particle at steps 250 and 300
+    (measured: 4e-7 of the largest) and StrainEnergy every step (7e-10, localized particles
+    left out)."""
+    _, da = run(disk_with_threshold(), tmp_path)
+    sus = np.load(SUS_TV)
+    steps = list(da.timesteps)
+    p40 = da.particles(0, steps.index(40))
+    order = np.lexsort(np.round(p40["p.x"], 9).T[::-1])
+    assert np.abs(p40["p.x"][order][::10] - sus["x40"]).max() < 1e-14
+    x_of = dict(zip(p40["p.particleID"], p40["p.x"]))
+    count = [int(da.particles(0, steps.index(s))["p.localizedMPM"].sum()) for s in sus["count_step"]]
+    assert count == list(sus["count"])
+    ids = p40["p.particleID"][order][::10]
+    for k, step in enumerate(sus["timestep"]):
+        p = da.particles(0, steps.index(step))
+        assert da.times[steps.index(step)] == pytest.approx(sus["time"][k], rel=1e-11)
+        at = {v: i for i, v in enumerate(p["p.particleID"])}
+        s = p["p.stress"][[at[v] for v in ids]]
+        assert np.abs(s - sus["stress"][k]).max() < 2e-6 * np.abs(sus["stress"][k]).max()
+    loc = p["p.localizedMPM"] != 0
+    x_loc = np.array([x_of[v] for v in p["p.particleID"][loc]])
+    o1, o2 = np.lexsort(np.round(x_loc, 9).T[::-1]), np.lexsort(np.round(sus["x40_localized"], 9).T[::-1])
+    assert np.abs(x_loc[o1] - sus["x40_localized"][o2]).max() < 1e-14
+    assert np.allclose(p["p.timeofloc"][loc][o1], sus["timeofloc"][o2], rtol=1e-11)
+    t, se = da.reduction("StrainEnergy")
+    assert np.allclose(t[1:], sus["se_time"], rtol=1e-11)
+    assert np.allclose(se[1:], sus["StrainEnergy"], rtol=1e-8, atol=1e-9 * np.max(sus["StrainEnergy"]))
+
+
+def test_disk_UCNHVar_unchanged_is_refused(tmp_path):
+    with pytest.raises(InputError) as e:
+        run(open(DISK).read().replace("<maxTime>0.30</maxTime>",
+                                      "<maxTime>0.30</maxTime><max_Timesteps>1</max_Timesteps>"), tmp_path)
+    msg = str(e.value)
+    assert "\n" not in msg and ".ups:" in msg
+    assert "UseGradientEnhancedVelocityProjection" in msg or "failure_distrib" in msg, msg

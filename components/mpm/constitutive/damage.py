@@ -93,6 +93,11 @@ class ThresholdVar:
 
     STATE = ("p.epsf", "p.localizedMPM", "p.timeofloc")
 
+    @property
+    def erodes_F(self):
+        """The erosion changes F^{n+1} of localized particles (ZeroStress, AllowNo...)."""
+        return self.erosion in (1, 2, 3)
+
     def initial_state(self, n, color):
         """p.epsf = the mean at the particle's color, not localized, p.timeofloc = -1e99."""
         eps = np.empty(n)
@@ -100,9 +105,15 @@ class ThresholdVar:
         return eps, np.zeros(n), np.full(n, -1.0e99)
 
     def erode_kinematics(self, loc_old, F_old, F_new, L):
-        """Uintah's updateVariables_Erosion on the particles localized at the step's start."""
-        if self.erosion in (1, 2, 3):
-            erosion_kinematics(self.erosion, loc_old, F_old, F_new, L, L is not None and len(L) == len(F_new))
+        """Uintah's updateVariables_Erosion on the particles localized at the step's start (F in
+        place); returns the L the model then reads (a changed copy when one is eroded)."""
+        if self.erosion not in (1, 2, 3) or not loc_old.any():
+            return L
+        has_L = L is not None and len(L) == len(F_new)
+        if has_L:
+            L = L.copy()
+        erosion_kinematics(self.erosion, loc_old, F_old, F_new, L if has_L else F_new, has_L)
+        return L
 
     def apply(self, F_new, vol_new, stress_new, old, new, color=None, time=0.0):
         """Localize by the criterion, then erode the stress; (p.epsf, p.localizedMPM,
@@ -348,7 +359,7 @@ class Damaged:
         k = self.n_model
         dold, dnew = old[k:], new[k:]
         if isinstance(self.damage, ThresholdVar):
-            self.damage.erode_kinematics(dold[1], F_old, F_new, L)
+            L = self.damage.erode_kinematics(dold[1], F_old, F_new, L)
         extra = {"color": color} if getattr(self.model, "USES_COLOR", False) else {}
         if k == 0:
             ws = self.model.update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy,
