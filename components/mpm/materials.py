@@ -137,8 +137,11 @@ class Material:
         self._finish(node, props, self.params, kind, with_color, geom_reader)
 
     def _read_damage(self, node, cm, kind):
-        """Uintah's damage model beside the constitutive model, and its erosion (damage.py)."""
+        """Uintah's damage model beside the constitutive model, and its erosion (damage.py); an
+        <erosion> without a damage model does nothing, as in Uintah (no particle localizes)."""
         if not node.has("damage_model"):
+            if node.has("erosion"):
+                damage.read_erosion(node.child("erosion"))
             return
         if kind not in damage.MODELS:
             raise node.child("damage_model").error(

@@ -8,6 +8,7 @@ p.damage, p.epsf of material 1, read from the uda's binary files) are in
 tests/mpm/data/sus_const_test_brittle_damage.npz.
 """
 import pathlib
+import re
 
 import numpy as np
 import pytest
@@ -272,3 +273,21 @@ def test_disk_UCNHVar_unchanged_is_refused(tmp_path):
     msg = str(e.value)
     assert "\n" not in msg and ".ups:" in msg
     assert "UseGradientEnhancedVelocityProjection" in msg or "failure_distrib" in msg, msg
+
+
+def test_erosion_without_damage_changes_nothing(tmp_path):
+    """An <erosion> without a damage model (as in Uintah's TBurner_2dRT) is read and, as in
+    Uintah where then no particle localizes, changes nothing."""
+    text = re.sub(r'<damage_model type="Brittle">.*?</damage_model>', "", open(DECK).read(), flags=re.S)
+    text = text.replace("<maxTime>0.004</maxTime>", "<maxTime>0.004</maxTime><max_Timesteps>20</max_Timesteps>")
+    text = text.replace('<save label = "p.damage"/>', "").replace(
+        "<outputInterval>1.0e-4</outputInterval>", "<outputTimestepInterval>20</outputTimestepInterval>")
+    _, plain = run(text, tmp_path / "plain")
+    _, eroded = run(text.replace('<specific_heat>5</specific_heat>\n              <geom_object>\n'
+                                 '                  <box label = "box">',
+                                 '<specific_heat>5</specific_heat><erosion algorithm="ZeroStress"/>\n'
+                                 '              <geom_object>\n                  <box label = "box">'),
+                    tmp_path / "eroded")
+    assert np.array_equal(eroded.times, plain.times) and plain.timesteps[-1] == 20
+    assert np.array_equal(eroded.particles(1, -1)["p.stress"], plain.particles(1, -1)["p.stress"])
+    assert np.abs(plain.particles(1, -1)["p.stress"]).max() > 1e5

@@ -44,7 +44,9 @@ in the step of localization, 0 after):
     PreserveStress, none: nothing.
 
 The UCNH family (comp_neo_hook, UCNH, UCNHVar) leaves a particle localized at the step's
-start out of the strain energy, as Uintah's.
+start out of the strain energy, as Uintah's.  An ``<erosion>`` without a damage model is
+read and does nothing (in Uintah no particle localizes then), whatever the constitutive model
+(but elastic_plastic's own failure, elastic_plastic.py, and elastic_plastic_hp's refusal).
 """
 from __future__ import annotations
 
@@ -232,8 +234,7 @@ def read(material, cm):
     if er is None:
         raise dm.error(f'a <damage_model type="{kind}"> needs an <erosion algorithm="..."> in its material '
                        "(Uintah: an erosion model must be specified when a damage model is used)")
-    erosion = EROSION[er.attr("algorithm", default="none", choices=tuple(EROSION))]
-    char_time = er.get("char_time", default=1.0e-99, above=0.0)
+    erosion, char_time = read_erosion(er)
     if kind == "ThresholdVar":
         return read_threshold_var(dm, erosion, char_time)
     v = {t: dm.get(t, "float", d) for t, d in BRITTLE_TAGS.items()}
@@ -250,6 +251,12 @@ def read(material, cm):
                    v["brittle_damage_constant_D"], v["brittle_damage_max_damage_increment"],
                    dm.get("brittle_damage_allowRecovery", "bool", False), v["brittle_damage_recoveryCoeff"],
                    dm.get("brittle_damage_printDamage", "bool", False), 9.0 * K * G / (3.0 * K + G))
+
+
+def read_erosion(er):
+    """<erosion algorithm="..."> and its <char_time>: (EROSION code, char_time)."""
+    return (EROSION[er.attr("algorithm", default="none", choices=tuple(EROSION))],
+            er.get("char_time", default=1.0e-99, above=0.0))
 
 
 def read_threshold_var(dm, erosion, char_time):
