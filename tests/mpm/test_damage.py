@@ -192,6 +192,22 @@ def test_erosion_algorithms_of_a_localized_particle():
     assert np.array_equal(s, 0 * comp)
 
 
+def test_threshold_reads_one_mean(tmp_path):
+    """type="Threshold": one <failure_mean> for every particle, as a one-entry ThresholdVar."""
+    text = re.sub(r'<damage_model type="Brittle">.*?</damage_model>',
+                  '<erosion algorithm="ZeroStress"/><damage_model type="Threshold"><failure_criteria>'
+                  'MaximumPrincipalStress</failure_criteria><failure_mean>1.5e6</failure_mean></damage_model>',
+                  open(DECK).read(), flags=re.S)
+    text = text.replace('<save label = "p.damage"/>', '<save label = "p.localizedMPM"/>')
+    text = text.replace("<maxTime>0.004</maxTime>", "<maxTime>0.004</maxTime><max_Timesteps>300</max_Timesteps>")
+    text = text.replace("<outputInterval>1.0e-4</outputInterval>",
+                        "<outputTimestepInterval>100</outputTimestepInterval>")
+    _, da = run(text, tmp_path)
+    loc = [da.particles(1, k)["p.localizedMPM"][0] for k in range(1, 4)]
+    s = [da.particles(1, k)["p.stress"][0, 2, 2] for k in range(1, 4)]
+    assert loc == [0.0, 1.0, 1.0] and s[0] > 0 and s[1] == 0.0 and s[2] == 0.0    # sigma_zz passes 1.5e6 at ~step 155
+
+
 def test_strain_criterion_and_kinematics():
     """MaximumPrincipalStrain: the Almansi strain (1 - 1/l^2)/2 of a stretch l against the
     threshold; ZeroStress keeps F^n for a localized particle, AllowNoShear makes F = J^(1/3) I
@@ -227,7 +243,8 @@ def disk_with_threshold(steps=300, every=10):
                      ("<maxTime>0.30</maxTime>", f"<maxTime>0.30</maxTime><max_Timesteps>{steps}</max_Timesteps>"),
                      ("<outputInterval>.01</outputInterval>",
                       f"<outputTimestepInterval>{every}</outputTimestepInterval>"),
-                     ('<save label = "p.localizedMPM"/>', '<save label = "p.localizedMPM"/><save label = "p.timeofloc"/>')):
+                     ('<save label = "p.localizedMPM"/>',
+                      '<save label = "p.localizedMPM"/><save label = "p.timeofloc"/>')):
         assert old in text, old
         text = text.replace(old, new)
     text = text.replace("<velocity>[1.0,0.0,0]</velocity>", "<velocity>[10.0,0.0,0]</velocity>")

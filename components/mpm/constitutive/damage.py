@@ -29,11 +29,12 @@ Brittle damage never localizes a particle, so its erosion algorithm changes noth
 
 ThresholdVar (Uintah's ThresholdDamageVar): ``<variable_properties>`` with ``<entry>``s of
 ``color``, ``mean`` and ``std``: a particle's failure threshold p.epsf is the mean at its
-p.color (interpolated as UCNHVar's moduli), ``failure_distrib`` "constant" (Uintah's random
-"gauss", "weibull" and "uniform" draws are not implemented), ``failure_criteria``
-MaximumPrincipalStress (the largest eigenvalue of p.stress+ above p.epsf) or
-MaximumPrincipalStrain (of the Almansi strain (I - (F F^T)^-1)/2), ``LocalizeParticles``
-(true).  A particle that meets it is localized (p.localizedMPM = 1, for good).  The erosion
+p.color (interpolated as UCNHVar's moduli); Threshold (ThresholdDamage): the one
+``failure_mean`` (``failure_std`` for a random draw) for every particle; ``failure_distrib``
+"constant" (Uintah's random "gauss", "weibull" and "uniform" draws are not implemented),
+``failure_criteria`` MaximumPrincipalStress (the largest eigenvalue of p.stress+ above
+p.epsf) or MaximumPrincipalStrain (of the Almansi strain (I - (F F^T)^-1)/2),
+``LocalizeParticles`` (true).  A particle that meets it is localized (p.localizedMPM = 1, for good).  The erosion
 then acts on the localized particles (Uintah's ErosionModel), with p.timeofloc the step-start
 time at which it localized and D = exp(-(t - p.timeofloc)/char_time) (<char_time>, 1e-99: 1
 in the step of localization, 0 after):
@@ -55,7 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-TYPES = ("Brittle", "ThresholdVar")
+TYPES = ("Brittle", "Threshold", "ThresholdVar")
 EROSION = {"none": 0, "AllowNoTension": 1, "ZeroStress": 2, "AllowNoShear": 3, "PreserveStress": 4}
 CRITERIA = {"MaximumPrincipalStress": 0, "MaximumPrincipalStrain": 1}
 
@@ -235,8 +236,8 @@ def read(material, cm):
         raise dm.error(f'a <damage_model type="{kind}"> needs an <erosion algorithm="..."> in its material '
                        "(Uintah: an erosion model must be specified when a damage model is used)")
     erosion, char_time = read_erosion(er)
-    if kind == "ThresholdVar":
-        return read_threshold_var(dm, erosion, char_time)
+    if kind in ("Threshold", "ThresholdVar"):
+        return read_threshold_var(dm, erosion, char_time, kind == "ThresholdVar")
     v = {t: dm.get(t, "float", d) for t, d in BRITTLE_TAGS.items()}
     for t in ("brittle_damage_fracture_energy", "brittle_damage_constant_D"):
         if v[t] <= 0.0:
@@ -259,8 +260,9 @@ def read_erosion(er):
             er.get("char_time", default=1.0e-99, above=0.0))
 
 
-def read_threshold_var(dm, erosion, char_time):
-    """<damage_model type="ThresholdVar">: the entries, the criterion, a constant distribution."""
+def read_threshold_var(dm, erosion, char_time, by_color):
+    """<damage_model type="ThresholdVar"> (the entries) or "Threshold" (one <failure_mean>): the
+    criterion, a constant distribution."""
     crit = dm.get("failure_criteria", "str", choices=tuple(CRITERIA) + ("MohrCoulomb",))
     if crit == "MohrCoulomb":
         raise dm.child("failure_criteria").error("MohrCoulomb is not implemented; accepted: "
@@ -272,6 +274,9 @@ def read_threshold_var(dm, erosion, char_time):
     if dm.get("scaling", "str", "none") != "none":
         raise dm.child("scaling").error("only <scaling>none</scaling> is implemented (no volume scaling)")
     dm.get("failure_seed", "int", 0)
+    if not by_color:
+        return ThresholdVar((0.0,), (dm.get("failure_mean"),), CRITERIA[crit],
+                            dm.get("LocalizeParticles", "bool", True), erosion, char_time)
     vp = dm.child("variable_properties", required=True)
     rows = [(e.get("color"), e.get("mean"), e.get("std", at_least=0.0)) for e in vp.children("entry")]
     if not rows:
