@@ -14,7 +14,9 @@ import numpy as np
 import pytest
 
 from components.mpm.constitutive import comp_neo_hook, damage
+from framework.archiver import DataArchive
 from framework.problemspec import InputError
+from tests.conftest import pysus
 
 from .helpers import run
 
@@ -308,3 +310,21 @@ def test_erosion_without_damage_changes_nothing(tmp_path):
     assert np.array_equal(eroded.times, plain.times) and plain.timesteps[-1] == 20
     assert np.array_equal(eroded.particles(1, -1)["p.stress"], plain.particles(1, -1)["p.stress"])
     assert np.abs(plain.particles(1, -1)["p.stress"]).max() > 1e5
+
+
+def test_damage_state_on_two_ranks(tmp_path):
+    """The damage state travels with its particles: disk_UCNHVar with ThresholdVar (4 patches)
+    on 1 and 2 MPI ranks, 280 steps (12 localized), gives bitwise the same p.stress,
+    p.localizedMPM and p.timeofloc per particle."""
+    path = tmp_path / "disk.ups"
+    path.write_text(disk_with_threshold(steps=280, every=140))
+    out = {}
+    for n in (1, 2):
+        r = pysus(path, "--filebase", tmp_path / f"disk_{n}.uda", np_=n, timeout=300)
+        assert r.returncode == 0, r.stderr[-2000:]
+        p = DataArchive(tmp_path / f"disk_{n}.uda").particles(0, -1)
+        o = np.argsort(p["p.particleID"])
+        out[n] = {k: p[k][o] for k in ("p.particleID", "p.stress", "p.localizedMPM", "p.timeofloc")}
+    assert out[1]["p.localizedMPM"].sum() == 12
+    for k in out[1]:
+        assert np.array_equal(out[1][k], out[2][k]), k
