@@ -115,7 +115,7 @@ class ThresholdVar:
         has_L = L is not None and len(L) == len(F_new)
         if has_L:
             L = L.copy()
-        erosion_kinematics(self.erosion, loc_old, F_old, F_new, L if has_L else F_new, has_L)
+        erosion_kinematics(self.erosion, loc_old, F_old, F_new, L if has_L else F_new, has_L)   # F_new: no L
         return L
 
     def apply(self, F_new, vol_new, stress_new, old, new, color=None, time=0.0):
@@ -204,11 +204,11 @@ def threshold_kernel(criterion, localize, erosion, char_time, time, F, stress, e
                 m = almansi_max(F, p)
             if m > eps_old[p]:
                 loc_new[p] = 1.0
-        if erosion == 0 or erosion == 4:
+        if erosion == 0:
             continue
         if loc_old[p] != loc_new[p]:
             tl_new[p] = time
-        if loc_new[p] == 0.0:
+        if loc_new[p] == 0.0 or erosion == 4:     # PreserveStress keeps the stress
             continue
         pr = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
         D = np.exp(-(time - tl_new[p]) / char_time)
