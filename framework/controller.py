@@ -55,6 +55,8 @@ ARCHIVER = {
     "filebase": Param("str", "pysus_output.uda"),
     "outputInterval": Param("float", 0.0, at_least=0.0),
     "outputTimestepInterval": Param("int", 0, at_least=0),
+    "compression": Param("str", "none", choices=("none", "gzip"),
+                         doc="Uintah's compression of its .uda files; read, pysus's HDF5 output is the same"),
 }
 
 
@@ -204,6 +206,7 @@ class Controller:
         if lbn is not None:
             lbn.attr("type", default="SFC", choices=("SFC", "DLB", "Simple", "SimpleLoadBalancer"))
             self.lb_interval = lbn.get("timestepInterval", "int", 0, at_least=0)
+            lbn.get("hasParticles", "bool", False)     # Uintah's DLB: weigh patches by particles; read
         self.archive_spec = read_archiver(root)
         self.component = cls()
         self.component.problem_setup(root, self.level)
@@ -244,7 +247,7 @@ class Controller:
         for module in self.analysis:
             module.schedule(sched)
         comp.schedule_compute_stable_timestep(level, sched)
-        step_tasks, step_reloc = list(sched.tasks), sched.relocation
+        step_tasks, step_reloc = list(sched.tasks), list(sched.relocation)
         probe = sched.compile({L.delT.name} | self.outputs | self._old_requires(step_tasks),
                               old_available=_Anything(), build_patch_graph=False)
         carried = probe.carried - provided
@@ -259,7 +262,7 @@ class Controller:
         all_computed = set()
         for t in init_tasks + step_tasks:
             all_computed |= {d.label.name for d in t.computes_}
-        if step_reloc is not None:
+        if step_reloc:
             all_computed |= {d.label.name for d in relocation_task(step_reloc).computes_}
         for name in sorted(self.outputs):
             if name not in all_computed:

@@ -40,6 +40,7 @@ from .eos import IDEAL_GAS, MAX_PARAMS, THOMSEN_HARTKA, eos_press_eos, make_eos
 from .implicit import ImplicitICE
 from .lodi import LodiTasks
 from .specific_heat import read_specific_heat_model
+from .slip_exchange import read_slip
 from .tasks import IceTasks
 
 G = Ghost.AROUND_CELLS
@@ -151,6 +152,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         n = len(self.materials)
         self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n)
         self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
+        self.slip = read_slip(mp.child("exchange_properties"), self.n_before + n, self.n_before)
+        self.exchange = self.exchange or self.slip is not None
         # Uintah's hydrostatic pressure (gravity): initial press_CC and the pressure's extra cells
         # from the <isSurroundingMatl> material's rho_micro; ICE alone (MPMICE: not yet)
         surr = [m for m, mat in enumerate(self.materials) if mat.is_surrounding]
@@ -201,8 +204,6 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
-        if self.implicit and self.bcs.subfaces:
-            self._check_sub_faces_implicit()
         if self.lodi is not None:
             self._check_lodi(n)
         self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]
@@ -272,6 +273,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                                             f"number > 1 (the {etype} EOS)")
         eos = make_eos(etype, {t: en.get(t, "float", above=0.0 if t in EOS_POSITIVE else None)
                                for t in EOS_TAGS[etype]})
+        jc = en.child("C") if etype == "JWL" else None
+        if jc is not None:
+            # Uintah's JWL reads A, B, R1, R2, om, rho0 only (JWLC's third term is <C>)
+            jc.mark_used()
+            print(f"pysus: note: {jc.filename}:{jc.line}: <C> of the JWL EOS has no effect (Uintah's JWL "
+                  f"does not read it either; <C> belongs to JWLC)", file=sys.stderr)
         gc = en.child("gas_constant") if etype == "ideal_gas" else None
         if gc is not None:
             # Uintah's IdealGas reads no tags: R follows from cv and gamma, R = (gamma - 1) cv
@@ -461,6 +468,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             model.schedule_sources(sched)
         for model in self.tracers:          # the tracer particles to their new patches, at the end of the step
             model.schedule_relocation(sched)
+            model.schedule_diagnostics(sched)
 
         t = Task("ICE::computeVel_FC", self.vel_fc, self.matls) \
             .requires(OLD, L.delT).requires(OLD, I.rho_CC, G, 1).requires(OLD, I.vel_CC, G, 1) \

@@ -26,6 +26,11 @@ Codes and parameter layouts (Uintah deck tags in brackets):
   STIFFENED_GAS = 4  ``Stiffened_gas`` [Pinf]   (not in Uintah; pysus tag names)
                      p = (gamma-1) rho e - gamma Pinf with e = cv T + Pinf/rho,
                      i.e. p = (gamma-1) rho cv T - Pinf.
+  SOLID_JWL = 6      (MPMICE: a visco_scram solid's <useJWLEOS>) [A, B, R1, R2, om, Cv, rho0, p_ref]
+                     p = A exp(-R1 V) + B exp(-R2 V) + om Cv T / V, V = rho0/rho, Cv per volume
+                     (Uintah's ViscoScram computePressEOSCM); dp_de = 0, c^2 = dp/drho. p_ref > 0
+                     (<useModifiedEOS>): below the density rho_ref(T) where p = p_ref, the
+                     threshold curve p_ref (rho/rho_ref)^(K0/p_ref), K0 = rho dp/drho there.
   THOMSEN_HARTKA = 5 ``Thomsen_Hartka_water`` [a, b, co, ko, To, L, vo]
                      v = vo (1 - ko p + L (a p + T - To)^2) (Uintah Thomsen_Hartka_water.cc:
                      p(rho, T) the root of that quadratic, dp_drho, dp_de and alpha its
@@ -73,6 +78,8 @@ JWL = 2
 JWLC = 3
 STIFFENED_GAS = 4
 THOMSEN_HARTKA = 5
+SOLID_JWL = 6
+RHO_REF_TOL = 1e-10       # SOLID_JWL: relative tolerance of rho_ref (Uintah's computeRhoRef)
 MAX_PARAMS = 8
 
 
@@ -165,6 +172,94 @@ def jwlc_press_eos(rho, A, B, C, R1, R2, om, rho0):
 
 
 # ----------------------------------------------------------------------------
+# a solid's JWL (Uintah's ViscoScram, useJWLEOS)
+@njit(cache=True)
+def _solid_jwl_p(rho, temp, A, B, R1, R2, om, Cv, rho0):
+    v = rho0 / (rho + 1e-100)
+    return A * math.exp(-R1 * v) + B * math.exp(-R2 * v) + om * Cv * temp / v
+
+
+@njit(cache=True)
+def _solid_jwl_root(press, temp, A, B, R1, R2, om, Cv, rho0, rho, eps):
+    """The density where the solid's JWL gives press, by Uintah's bisection-Newton
+    (ViscoScram::computeRhoMicroCM, computeRhoRef): Newton steps from rho while they stay in
+    the bracket [0, 1e5] and shrink by 0.7, else a bisection, until the step (or the bracket)
+    is below eps relative. From the guess it finds the condensed root, not the low-density one
+    JWL also has."""
+    IL, IR = 0.0, 100000.0
+    it = 0
+    while it < 300:
+        f = _solid_jwl_p(rho, temp, A, B, R1, R2, om, Cv, rho0) - press
+        if f < 0.0:
+            IL = rho
+        elif f > 0.0:
+            IR = rho
+        else:
+            IL = IR = rho
+        if abs((IL - IR) / rho) < eps:
+            return 0.5 * (IL + IR)
+        delta_new = 1e100
+        while True:
+            v = rho0 / (rho + 1e-100)
+            P1 = A * math.exp(-R1 * v)
+            P2 = B * math.exp(-R2 * v)
+            P3 = om * Cv * temp / v
+            delta_old = delta_new
+            delta_new = -f / ((P1 * R1 * v + P2 * R2 * v + P3) / rho)
+            rho += delta_new
+            if abs(delta_new / rho) < eps:
+                return rho
+            if it >= 100 or rho < IL or rho > IR or abs(delta_new) > abs(delta_old * 0.7):
+                break
+            f = _solid_jwl_p(rho, temp, A, B, R1, R2, om, Cv, rho0) - press
+            if f < 0.0:
+                IL = rho
+            elif f > 0.0:
+                IR = rho
+            else:
+                IL = IR = rho
+            it += 1
+        rho = 0.5 * (IL + IR)
+        it += 1
+    return rho
+
+
+@njit(cache=True)
+def solid_jwl_rho_ref(temp, A, B, R1, R2, om, Cv, rho0, p_ref):
+    """(rho_ref, K0): the density where the solid's JWL gives p_ref at temp (Uintah's
+    computeRhoRef: from rho0, relative 1e-10) and K0 = rho dp/drho there."""
+    rho = _solid_jwl_root(p_ref, temp, A, B, R1, R2, om, Cv, rho0, rho0, RHO_REF_TOL)
+    v = rho0 / rho
+    return rho, v * (A * R1 * math.exp(-R1 * v) + B * R2 * math.exp(-R2 * v)) + temp * Cv * om / v
+
+
+@njit(cache=True)
+def solid_jwl_press_eos(rho, temp, A, B, R1, R2, om, Cv, rho0, p_ref):
+    """(p, dp/drho, 0) of a solid's JWL (Uintah's ViscoScram computePressEOSCM)."""
+    if p_ref > 0.0:
+        rho_ref, K0 = solid_jwl_rho_ref(temp, A, B, R1, R2, om, Cv, rho0, p_ref)
+        if rho < rho_ref:
+            p, dp = threshold_press(rho, p_ref, rho_ref, K0)
+            return p, dp, 0.0
+    v = rho0 / rho
+    P1 = A * math.exp(-R1 * v)
+    P2 = B * math.exp(-R2 * v)
+    P3 = om * Cv * temp / v
+    return P1 + P2 + P3, (R1 * rho0 * P1 + R2 * rho0 * P2) / (rho * rho) + om * Cv * temp / rho0, 0.0
+
+
+@njit(cache=True)
+def solid_jwl_rho_micro(press, temp, A, B, R1, R2, om, Cv, rho0, p_ref, rho_guess):
+    """The density at (press, temp) (Uintah's ViscoScram computeRhoMicroCM: the threshold curve
+    below p_ref, else JWL's root from the guess, relative 1e-15)."""
+    if p_ref > 0.0 and press < p_ref:
+        rho_ref, K0 = solid_jwl_rho_ref(temp, A, B, R1, R2, om, Cv, rho0, p_ref)
+        return threshold_rho_micro(press, p_ref, rho_ref, K0)
+    rho = rho_guess if rho_guess <= 100000.0 else 50000.0
+    return _solid_jwl_root(press, temp, A, B, R1, R2, om, Cv, rho0, rho, 1e-15)
+
+
+# ----------------------------------------------------------------------------
 # Thomsen-Hartka water (Thomsen_Hartka_water.cc)
 @njit(cache=True)
 def thomsen_hartka_press_eos(rho, temp, a, b, co, ko, To, L, vo):
@@ -213,6 +308,9 @@ def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
     elif code == THOMSEN_HARTKA:
         return thomsen_hartka_press_eos(rho_micro, temp, params[0], params[1], params[2], params[3],
                                         params[4], params[5], params[6])
+    elif code == SOLID_JWL:
+        return solid_jwl_press_eos(rho_micro, temp, params[0], params[1], params[2], params[3], params[4],
+                                   params[5], params[6], params[7])
     return math.nan, math.nan, math.nan
 
 
@@ -238,7 +336,7 @@ def eos_cold_energy(code, params, rho_micro):
     so that e = cv T + e_c(rho) is the energy whose conservation the Euler equations state.
     Ideal gas 0; stiffened gas Pinf/rho; JWL/JWLC A/(R1 rho0) exp(-R1 V) + B/(R2 rho0) exp(-R2 V)
     (+ C rho^om / (om rho0^(1+om)) for JWLC); Murnaghan the integral of p/rho^2 from rho0."""
-    if code == IDEAL_GAS:
+    if code == IDEAL_GAS or code == SOLID_JWL:     # a solid's energy is its particles'
         return 0.0
     elif code == STIFFENED_GAS:
         return params[0] / rho_micro
@@ -316,6 +414,9 @@ def eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess):
         if press <= 0.0:
             return 0.0
         return _solve_rho(code, params, press, temp, cv, gamma, rho_guess)
+    elif code == SOLID_JWL:
+        return solid_jwl_rho_micro(press, temp, params[0], params[1], params[2], params[3], params[4], params[5],
+                                   params[6], params[7], rho_guess)
     return math.nan
 
 

@@ -1,6 +1,7 @@
 """Eq. 13 of paper 000 for several materials of any EOS: the equilibration pressure by Newton
 per cell (ICE's computeEquilibrationPressure; MPMICE's step 2 over solids and fluids, the solids
-with the sec. 3.1 threshold EOS, ICE's Murnaghan with n = 1, mpmice/setup.py).
+with the sec. 3.1 threshold EOS, ICE's Murnaghan with n = 1, or a visco_scram solid's JWL, eos.py's
+SOLID_JWL: mpmice/setup.py).
 
 The first Newton iteration runs a row of cells at a time in loops that vectorize; the
 Murnaghan n = 1 EOS skips its powers of 1 and 0; the round-off cycle of a cell full of a stiff

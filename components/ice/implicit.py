@@ -17,7 +17,10 @@ explicit ICE's (Uintah's one stable-timestep task serves both), with Uintah's im
 default knob_for_speedSound 0.5: with knob 0 it comes from the flow speed alone.
 
 Boundary faces: a fixed face velocity (Dirichlet, symmetry) or a zero-gradient
-pressure leaves delP decoupled there; a Dirichlet pressure holds delP = 0 outside.
+pressure leaves delP decoupled there; a Dirichlet pressure holds delP = 0 outside. Each
+boundary cell takes its own conditions, so a sub-face (circle, rectangle, annulus) with a
+fixed pressure behind a free velocity may sit in a side with a fixed velocity (TBurner_2dRT's
+outlet).
 """
 from __future__ import annotations
 
@@ -33,6 +36,7 @@ from framework.variables import Ghost, VarType
 from . import implicit_kernels as IK
 from . import kernels as K
 from . import labels as I
+from . import slip_exchange as SL
 from .bc import DIRICHLET, FACE_NAMES, FREE_SLIP, SYMMETRY, bc_scalar_part
 from .solver import kernels as SK
 from .solver.pcg import PCG
@@ -45,6 +49,7 @@ IMPLICIT_KNOB = 0.5     # Uintah's knob_for_speedSound with <ImplicitSolver> and
 # labels named after Uintah's impICE where it has one
 matrix = L.create("matrix", CC, (7,))               # the stencil of eq. P, timestep level
 imp_A = L.create("imp.matrix", CC, (7,))            # the same arrays inside the outer iteration
+sum_imp_delP = L.create("sum_imp_delP", CC)         # the step's whole increment (Uintah's label)
 imp_P = L.create("imp.P", CC)                       # accumulated increment, outer iteration
 imp_P0 = L.create("imp.P0", CC)
 imp_delP = L.create("imp_delP", CC)                 # one outer iteration's increment
@@ -136,6 +141,10 @@ class ImplicitSettings:
 class ImplicitICE:
     """Tasks of the implicit pressure solve (mixed into the ICE component)."""
 
+    # the reaction models' mass exchange in eq. P, or None: an object with requires(task, dw) and
+    # term(patch, dw) (sum_m m_src,m v_m / V per cell); MPMICE sets it (components/models)
+    mass_exchange = None
+
     def read_implicit(self, ice, root):
         node = ice.child("ImplicitSolver")
         self.implicit = node is not None
@@ -158,6 +167,7 @@ class ImplicitICE:
         self.imp_banner = self.imp.describe(precond, note + f"; delT with knob_for_speedSound {self.knob:g}")
         self.imp_logged = False
         self.outer_iterations = []
+        self._keep_cache = {}           # (patch, material) -> the boundary cells' _keep
 
     # -- scheduling ------------------------------------------------------------------------------
     def schedule_implicit_pressure(self, sched, dirs, matls=None):
@@ -179,6 +189,10 @@ class ImplicitICE:
             .computes(matrix, matls=m0).computes(imp_P0, matls=m0).computes(rhs0, matls=m0)
         for d in dirs:
             t.requires(NEW, I.FC_VEL[d], G, 1)
+        if getattr(self, "slip", None) is not None:         # the slip model's K of each cell
+            t.requires(NEW, SL.slipK_CC, G, 1, matls=m0)
+        if self.mass_exchange is not None:
+            self.mass_exchange.requires(t, NEW)
         if self.pcg.precond == "mg":
             t.computes(self.pcg.OP)
         sched.add_task(t)
@@ -197,8 +211,12 @@ class ImplicitICE:
             .computes(rhs, matls=m0).computes(max_RHS)
         for d in dirs:
             fc.requires(PARENT_NEW, I.FC_VEL[d], G, 1).computes(imp_UF[d])
+        if getattr(self, "slip", None) is not None:
+            fc.requires(PARENT_NEW, SL.slipK_CC, G, 1, matls=m0)
+        if self.mass_exchange is not None:
+            self.mass_exchange.requires(fc, PARENT_NEW)
         # rhs: the last outer iteration's residual of eq. P, handed back for <save label="rhs"> (Uintah's)
-        results = {imp_P.name: (I.delP_Dilatate, m0), rhs.name: (rhs, m0)}
+        results = {imp_P.name: (sum_imp_delP, m0), rhs.name: (rhs, m0)}
         results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
         tol = self.imp.outer_tol
         self.outer = Loop("ICE::implicitPressureOuter", matls, [seed, inner, upd, fc],
@@ -207,41 +225,53 @@ class ImplicitICE:
                           max_iterations=self.imp.max_outer, fail="continue")
         sched.add_task(self.outer)
         t = Task("ICE::updatePressCC", self.imp_press, m0) \
-            .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
-            .computes(I.press_CC, matls=m0)
+            .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, sum_imp_delP, matls=m0) \
+            .computes(I.press_CC, matls=m0).computes(I.delP_Dilatate, matls=m0)
+        if self.mass_exchange is not None:
+            self.mass_exchange.requires(t.requires(NEW, matrix, matls=m0), NEW)
         if getattr(self, "hydrostatic", False):
             t.requires(NEW, I.sp_vol_CC, matls=[self.surrounding])
         sched.add_task(t)
 
     # -- task bodies -------------------------------------------------------------------------------
-    def _check_sub_faces_implicit(self):
-        """The pressure matrix takes one condition per face and material (_keep): a sub-face whose
-        face velocity answers the pressure where its side's does not (or the reverse) is refused."""
-        for name, subs in self.bcs.subfaces.items():
-            side = self.bcs.table[name]
-            for sf in subs:
-                for m in range(len(side["Velocity"])):
-                    if not sf.covers(m):
-                        continue
-                    p = sf.table["Pressure"][0] or side["Pressure"][0]
-                    if _responds(sf.table["Velocity"][m], p) != _responds(side["Velocity"][m], side["Pressure"][0]):
-                        raise sf.geom.node.error(
-                            f"with <ImplicitSolver>, a sub-face ({sf.geom.kind} on {name}) whose face velocity of "
-                            f"material {m} answers the pressure where its side's does not (a fixed pressure with a "
-                            "free velocity on one of them) is not supported; accepted: explicit ICE")
-
-    def _keep(self, m):
-        """Per boundary face: does material m's face velocity respond to delP there?"""
-        keep = np.zeros(6, dtype=np.int64)
-        for f, name in enumerate(FACE_NAMES):
-            tab = self.bcs.table.get(name)
-            if tab is None:
+    def _keep(self, patch, m):
+        """Per extra cell of the patch's domain-boundary faces (a CC array, 0 elsewhere): does
+        material m's face velocity there respond to delP (a fixed pressure behind a face velocity
+        that is not fixed)? Sub-faces (circle, rectangle, annulus) have their own conditions."""
+        key = (patch.id, m, patch.low_index(CC), patch.alloc_shape(CC))
+        cache = self._keep_cache
+        if key in cache:
+            return cache[key]
+        b, shape = self.boxes(patch), patch.alloc_shape(CC)
+        keep = np.zeros(shape, np.int64)
+        for name in patch.boundary_faces:
+            if self.bcs.table.get(name) is None:
                 continue
-            keep[f] = int(_responds(tab["Velocity"][m], tab["Pressure"][0]))
+            f = FACE_NAMES.index(name)
+            d, s = f // 2, f % 2
+            d1, d2 = (d + 1) % 3, (d + 2) % 3
+            tangential = (shape[d1], shape[d2])
+            vel = self._face_kinds(patch, name, "Velocity", m, tangential)
+            press = self._face_kinds(patch, name, "Pressure", 0, tangential)
+            responds = ~np.isin(vel, (DIRICHLET, SYMMETRY, FREE_SLIP)) & (press == DIRICHLET)
+            layer = np.moveaxis(keep, d, 0)[b.lo[d] - 1 if s == 0 else b.hi[d]]
+            layer[...] = responds if d1 < d2 else responds.T
+        cache[key] = keep
         return keep
 
-    def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces):
-        """Face velocities u_m(P) (exchange, BCs) and the residual of eq. P; returns (rhs, rr, max)."""
+    def _face_kinds(self, patch, name, var, m, shape):
+        """The condition kind of var for material m on each cell of face `name` (side, then sub-faces)."""
+        kinds = np.empty(shape, np.int64)
+        for kind, _, sel, want in self.bcs._parts(patch, name, var, m):
+            if sel.shape[0] == 0:
+                kinds[...] = kind
+            else:
+                kinds[sel == want] = kind
+        return kinds
+
+    def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces, coeffs, dw):
+        """Face velocities u_m(P) (exchange, BCs) and the residual of eq. P, with the models' mass
+        exchange (dw: the timestep's warehouse); returns (rhs, rr, max)."""
         b = self.boxes(patch)
         dx = patch.level.dx
         one = len(matls) == 1
@@ -261,7 +291,7 @@ class ImplicitICE:
             outs = [out_faces(d, m) for m in matls] if self.exchange else pre
             if self.exchange:
                 K.exchange_faces(tuple(pre), tuple(vfs), tuple(sps), tuple(outs), b.sh[d], UNIT[d], b.flo[d],
-                                 b.fhi[d], dt, self.K)
+                                 b.fhi[d], dt, *coeffs)
             for m in matls:
                 self.bcs.face_velocity(patch, outs[m], d, m, b.flo[d], b.fhi[d])
         dummy = np.zeros((1, 1, 1))
@@ -269,6 +299,8 @@ class ImplicitICE:
             uf = [out_faces(d, m) if self.dims[d] else dummy for d in range(3)]
             K.div_theta_u(vfs[m], one, uf[0], uf[1], uf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, b.lo, b.hi,
                           dt, dx, div)
+        if self.mass_exchange is not None:      # Uintah's massExchTerm: sum_m m_src,m v_m / V
+            div -= self.mass_exchange.term(patch, dw)
         r = np.zeros(patch.alloc_shape(CC))
         rr, rmax = IK.pressure_rhs(A, P, div, r, b.lo, b.hi)
         return r, rr, rmax
@@ -294,16 +326,17 @@ class ImplicitICE:
         sps = [new_dw.get(I.sp_vol_CC, m, patch) for m in matls]
         one = len(matls) == 1
         s_faces = np.zeros(3) if self.exchange else s        # with exchange: faces below
+        coeffs = self.face_exchange_coefficients(new_dw, patch)
         for m in matls:
             SK.add_material(A, vfs[m], sps[m], new_dw.get(I.speedSound_CC, m, patch), one, self.dims, b.lo, b.hi,
-                            s_faces, self._keep(m), atb)
+                            s_faces, self._keep(patch, m), atb)
         if self.exchange:
-            keep = np.array([self._keep(m) for m in matls], dtype=np.int64)
-            IK.add_exchange_faces(A, tuple(vfs), tuple(sps), self.dims, b.lo, b.hi, s, keep, atb, dt, self.K)
+            keep = tuple(self._keep(patch, m) for m in matls)
+            IK.add_exchange_faces(A, tuple(vfs), tuple(sps), self.dims, b.lo, b.hi, s, keep, atb, dt, *coeffs)
         P = new_dw.allocate(imp_P0, 0, patch)
         r, rr, rmax = self._faces_and_rhs(
             patch, matls, P, A, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
-            lambda d, m: np.empty(patch.alloc_shape(I.FC_VEL[d].vartype)))
+            lambda d, m: np.empty(patch.alloc_shape(I.FC_VEL[d].vartype)), coeffs, new_dw)
         new_dw.put(rhs0, 0, patch, r)
         if self.pcg.precond == "mg":
             self.pcg.put_coarse_operator(patch, A, new_dw)
@@ -327,7 +360,8 @@ class ImplicitICE:
         r, rr, rmax = self._faces_and_rhs(
             patch, matls, new_dw.get(imp_P, 0, patch), new_dw.get(imp_A, 0, patch),
             lambda d, m: parent_new.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
-            lambda d, m: new_dw.allocate(imp_UF[d], m, patch, fill=None))
+            lambda d, m: new_dw.allocate(imp_UF[d], m, patch, fill=None),
+            self.face_exchange_coefficients(parent_new, patch), parent_new)
         new_dw.put(rhs, 0, patch, r)
         new_dw.put_reduction(max_RHS, rmax)
 
@@ -335,8 +369,14 @@ class ImplicitICE:
         """p = p_eq + delP (eq. 30) with the pressure boundary conditions; notes the outer count."""
         b = self.boxes(patch)
         press = new_dw.allocate(I.press_CC, 0, patch)
-        IK.add_increment(new_dw.get(I.press_equil_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch), press,
-                         b.lo, b.hi)
+        total = new_dw.get(sum_imp_delP, 0, patch)
+        IK.add_increment(new_dw.get(I.press_equil_CC, 0, patch), total, press, b.lo, b.hi)
+        dil = new_dw.allocate(I.delP_Dilatate, 0, patch)
+        dil[...] = total
+        if self.mass_exchange is not None:      # Uintah's delP_MassX = massExchTerm / sumKappa, taken out
+            kap = new_dw.get(matrix, 0, patch)[..., 0]
+            sl = tuple(slice(lo, hi) for lo, hi in zip(b.lo, b.hi))
+            dil[sl] -= self.mass_exchange.term(patch, new_dw)[sl] / kap[sl]
         self.press_bc(patch, press, new_dw.get(I.sp_vol_CC, self.surrounding, patch) if self.hydrostatic else None)
         if self._step_seen is not new_dw.dw:                # once per rank and step
             self._step_seen = new_dw.dw
@@ -353,7 +393,3 @@ class ImplicitICE:
                       file=sys.stderr)
 
 
-def _responds(velocity, pressure):
-    """Does a boundary face velocity with these (kind, value) conditions answer the pressure
-    increment (a fixed pressure behind a face whose velocity is not fixed)?"""
-    return velocity[0] not in (DIRICHLET, SYMMETRY, FREE_SLIP) and pressure[0] == DIRICHLET

@@ -21,19 +21,22 @@ def face_correct(u0, sp_vol, P, uf, sh, dd, flo, fhi, dt, dx):
 
 
 @njit(cache=True)
-def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K):
+def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K, kcell=None):
     """Face terms of eq. P with the momentum exchange: a_f += s_d sum_m theta_m,f (E v_f)_m.
 
     The exchanged face velocities are u_m = E (u* - dt v_f grad dP) (eq. 28, then eq. 38 on
     faces with its implicit matrix E, exchange_faces), so their response to grad dP is E v_f,
     not v_f (Uintah's exchange-corrected sp_vol_FC). With K = 1e15 a gas face next to a
     solid moves with the solid; without E the outer iteration would stall there.
-    keep[m, 2d+side] = 0 drops material m on a domain-boundary face (fixed face velocity).
+    keep[m] (CC, the domain's extra cells) = 0 drops material m on the domain-boundary face
+    next to that extra cell (fixed face velocity).
+    kcell: the slip model's coefficient per cell, as in exchange_faces.
     """
     n = len(vfs)
     a = np.empty((n, n))
     b = np.empty(n)
     th = np.empty(n)
+    thk = np.empty(n)
     sv = np.empty(n)
     for d in range(3):
         if not dims[d]:
@@ -43,22 +46,22 @@ def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K):
             for j in range(lo[1], hi[1] + dj):
                 for k in range(lo[2], hi[2] + dk):
                     e = (i, j, k)[d]
-                    side = -1
-                    if e == lo[d] and atb[2 * d]:
-                        side = 2 * d
-                    elif e == hi[d] and atb[2 * d + 1]:
-                        side = 2 * d + 1
+                    bnd = e == lo[d] and atb[2 * d] or e == hi[d] and atb[2 * d + 1]
+                    x0, x1, x2 = (i - di, j - dj, k - dk) if e == lo[d] else (i, j, k)   # its extra cell
                     for m in range(n):
                         vL = sps[m][i - di, j - dj, k - dk]
                         vR = sps[m][i, j, k]
                         th[m] = 0.5 * (vfs[m][i - di, j - dj, k - dk] + vfs[m][i, j, k])
                         sv[m] = 2.0 * (vL * vR) / (vL + vR)     # as exchange_faces
                         b[m] = sv[m]
-                    _exchange_matrix(a, th, sv, K, dt, n, None)
+                        if kcell is not None:
+                            thk[m] = 0.5 * (vfs[m][i - di, j - dj, k - dk] * kcell[i - di, j - dj, k - dk]
+                                            + vfs[m][i, j, k] * kcell[i, j, k])
+                    _exchange_matrix(a, th if kcell is None else thk, sv, K, dt, n, None)
                     solve_small(a, b, n)
                     c = 0.0
                     for m in range(n):
-                        if side < 0 or keep[m, side]:
+                        if not bnd or keep[m][x0, x1, x2]:
                             c += th[m] * b[m]
                     c *= s[d]
                     if e > lo[d]:

@@ -6,7 +6,8 @@ are local index ranges (int64[3]). Face arrays (SFCX/Y/Z) have their own origin:
 (i,j,k)+sh; the left cell is one step back along the face normal `dd`. Materials of
 a multi-material kernel come as tuples of arrays (one entry per material), so one
 compiled kernel serves any number of materials. Kernels loop only over the
-directions that exist: a 2D run never touches a third face direction.
+directions that exist: a 2D run never touches a third face direction. EOS codes are
+eos.py's (MPMICE's solids: Murnaghan with n = 1, or SOLID_JWL for visco_scram's <useJWLEOS>).
 """
 from __future__ import annotations
 
@@ -115,15 +116,17 @@ def solve_small(a, b, n):
 
 
 @njit(cache=True, error_model="numpy")
-def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
+def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K, kcell=None):
     """Eqs. 28+38 on faces: implicit momentum exchange of the face velocities of all materials.
 
     With face-averaged theta and v: u_m - u_m* = sum_n dt theta_n K_mn v_m (u_n - u_m);
     theta is the mean of the two cells', v their harmonic mean (Uintah's vel_FC_exchange).
     Two materials: rows of faces with the 2 x 2 solve written out (the same operations).
+    kcell (the slip model, slip_exchange.py): a coefficient per cell; theta_n K_mn is then
+    the mean of the two cells' theta_n kcell, times K_mn (ones).
     """
     n = len(ufs)
-    if n == 2:
+    if n == 2 and kcell is None:
         k0, k1 = flo[2], fhi[2]
         nk = k1 - k0
         for i in range(flo[0], fhi[0]):
@@ -154,7 +157,10 @@ def exchange_faces(ufs, vfs, sps, out, sh, dd, flo, fhi, dt, K):
                 x, y, z = i + sh[0], j + sh[1], k + sh[2]
                 l0, l1, l2 = x - dd[0], y - dd[1], z - dd[2]
                 for m in range(n):
-                    th[m] = 0.5 * (vfs[m][x, y, z] + vfs[m][l0, l1, l2])
+                    if kcell is None:
+                        th[m] = 0.5 * (vfs[m][x, y, z] + vfs[m][l0, l1, l2])
+                    else:
+                        th[m] = 0.5 * (vfs[m][x, y, z] * kcell[x, y, z] + vfs[m][l0, l1, l2] * kcell[l0, l1, l2])
                     sR, sL = sps[m][x, y, z], sps[m][l0, l1, l2]
                     sv[m] = 2.0 * (sL * sR) / (sL + sR)
                     b[m] = ufs[m][i, j, k]

@@ -18,6 +18,7 @@ from . import custom_init as CI
 from . import equilibration as E
 from . import kernels as K
 from . import labels as I
+from . import slip_exchange as SL
 
 FC_TYPES = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)
 UNIT = np.eye(3, dtype=np.int64)
@@ -335,6 +336,7 @@ class IceTasks:
         dt = old_dw.get_reduction(L.delT)
         vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in matls)
         sps = tuple(new_dw.get(I.sp_vol_CC, m, patch) for m in matls)
+        coeffs = self.face_exchange_coefficients(new_dw, patch, b.view)
         for d in range(3):
             if not self.dims[d]:
                 continue
@@ -342,9 +344,17 @@ class IceTasks:
             out = tuple(new_dw.allocate(I.FC_VEL_ME[d], m, patch) for m in matls)
             a, v = b.axis[d], b.view
             K.exchange_faces(tuple(v(x) for x in ufs), tuple(v(x) for x in vfs), tuple(v(x) for x in sps),
-                             tuple(v(x) for x in out), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a], dt, self.K)
+                             tuple(v(x) for x in out), b.v_sh[a], UNIT[a], b.v_flo[a], b.v_fhi[a], dt, *coeffs)
             for m in matls:
                 self.bcs.face_velocity(patch, out[m], d, m, b.flo[d], b.fhi[d])
+
+    def face_exchange_coefficients(self, dw, patch, view=None):
+        """The coefficient arguments of the face exchange: (K,), or with the slip model
+        (slip_exchange.py) (ones, its K of each cell) from dw."""
+        if getattr(self, "slip", None) is None:
+            return (self.K,)
+        kc = dw.get(SL.slipK_CC, 0, patch)
+        return np.ones_like(self.K), kc if view is None else view(kc)
 
     # -- step 5: pressure increment (eqs. 29-30) ------------------------------------------------
     def delp_press(self, patch, matls, old_dw, new_dw):
@@ -600,6 +610,14 @@ class IceTasks:
         vs = lambda arrs: tuple(v(x) for x in arrs)
         K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
                          vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
+        sl = getattr(self, "slip", None)
+        if sl is not None and sl.use_coeffs:        # the solid's surface cells again, with slip
+            SL.exchange_surface_cells(
+                vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
+                vs(get(I.sp_vol_CC)), self.cvs, v(new_dw.get(SL.isSurfaceCell, 0, patch)),
+                v(new_dw.get(SL.surfaceNorm, sl.solid, patch)), v(new_dw.get(SL.meanFreePath, sl.fluid, patch)),
+                self.gammas[sl.fluid], patch.level.dx, sl.fluid, sl.solid, sl.a_v, sl.a_t, vs(mom_out), vs(eng_out),
+                b.v_lo, b.v_hi, dt, self.K, self.H)
         for m, mass, mom, eng in zip(matls, get(I.mass_L_CC), mom_out, eng_out):
             if m in self.matls:                # fluids (MPMICE: not the solids)
                 self._lagrangian_bcs(patch, m, mass, mom, eng, b, new_dw)

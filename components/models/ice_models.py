@@ -1,4 +1,5 @@
-"""The <Models> of an ICE deck (MPMICE: PassiveScalar; it reads its reaction models in __init__.py).
+"""The <Models> of an ICE deck (MPMICE: PassiveScalar, TracerParticles; it reads its reaction models
+in __init__.py).
 
     PassiveScalar             a scalar carried by a material's flow (passive_scalar.py)
     mass_momentum_energy_src  fans and heaters: fixed velocity/temperature regions (mass_mom_eng_src.py)
@@ -29,7 +30,7 @@ class IceModels:
 def read_ice_models(root, ice, geo, others=()) -> IceModels:
     """The models of an ICE deck's <Models> (none without the block), in deck order. others: the
     model types another reader takes (MPMICE's reactions, __init__.py), skipped here; in MPMICE
-    (ice.n_before > 0) only PassiveScalar is ICE's, carried by an ICE material."""
+    (ice.n_before > 0) PassiveScalar and TracerParticles are ICE's, carried by an ICE material."""
     out = IceModels()
     node = root.child("Models")
     if node is None:
@@ -38,7 +39,7 @@ def read_ice_models(root, ice, geo, others=()) -> IceModels:
     for m in node.children("Model"):
         if ice.n_before:
             kind = m.attr("type")
-            here = ("PassiveScalar",) + tuple(others)
+            here = ("PassiveScalar", "TracerParticles") + tuple(others)
             if kind not in here:
                 alone = " (available for ICE alone)" if kind in ICE_MODELS else ""
                 raise m.error(f'attribute type="{kind}" is not accepted in MPMICE{alone}; accepted: ' + ", ".join(here))
@@ -55,6 +56,9 @@ def read_ice_models(root, ice, geo, others=()) -> IceModels:
             out.sources.append(MassMomEngSrc(m, ice, geo))
         else:
             out.tracers.append(TracerParticles(m, ice, geo, t0))
+            if out.tracers[-1].matl < ice.n_before:
+                raise m.child("TracerParticles").child("material").error(
+                    "tracer particles are carried by an ICE material's flow; accepted: an ICE material")
     if not (out.scalars or out.sources or out.tracers or others):
         raise node.error("<Models> without a <Model type=...>; accepted for ICE: " + ", ".join(ICE_MODELS))
     names = [s.name for s in out.scalars]

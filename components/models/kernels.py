@@ -32,7 +32,8 @@ def bin_particles(px, pmass, pvel, anchor, dx, cc_low, shape, cell, mass_c, mom_
 @njit(cache=True, inline="always")
 def _node_masses(gmass, node_low, gi, gj, gk, dims, n_lo, n_hi):
     """Max, min and the gradient sums (plus - minus) of the reactant's node masses around a
-    cell, a domain-boundary node counted twice per boundary (Uintah's NC_CCweight)."""
+    cell, a node on a symmetry face of the domain counted twice per face (Uintah's NC_CCweight;
+    n_lo / n_hi: those faces' node indices, out of reach where a face is not a symmetry plane)."""
     mx = 1e-100
     mn = 1e100
     g0 = 0.0
@@ -308,6 +309,142 @@ def steady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, num
                 if mb + min_mass > have:
                     mb = max(have - min_mass, 0.0)
                 burned[i, j, k] = mb
+
+
+@njit(cache=True)
+def unsteady_cells_from_particles(px, pbeta, pts, anchor, dx, cc_low, lo, hi, init_beta, beta_c, ts_c):
+    """Unsteady_Burn's memory: each cell starts from its particles' last (beta, Ts), the
+    particle with the largest beta below init_beta (cells with none keep 0)."""
+    for p in range(px.shape[0]):
+        i = int(np.floor((px[p, 0] - anchor[0]) / dx[0])) - cc_low[0]
+        j = int(np.floor((px[p, 1] - anchor[1]) / dx[1])) - cc_low[1]
+        k = int(np.floor((px[p, 2] - anchor[2]) / dx[2])) - cc_low[2]
+        if lo[0] <= i < hi[0] and lo[1] <= j < hi[1] and lo[2] <= k < hi[2]:
+            if pbeta[p] < init_beta and pbeta[p] > beta_c[i, j, k]:
+                beta_c[i, j, k] = pbeta[p]
+                ts_c[i, j, k] = pts[p]
+
+
+@njit(cache=True)
+def unsteady_particles_from_cells(px, anchor, dx, cc_low, lo, hi, burning, beta_c, ts_c, init_beta, init_ts,
+                                  pbeta, pts):
+    """The particles of a burning cell keep its (beta, Ts); the others are reset to the initial pair."""
+    for p in range(px.shape[0]):
+        i = int(np.floor((px[p, 0] - anchor[0]) / dx[0])) - cc_low[0]
+        j = int(np.floor((px[p, 1] - anchor[1]) / dx[1])) - cc_low[1]
+        k = int(np.floor((px[p, 2] - anchor[2]) / dx[2])) - cc_low[2]
+        pbeta[p] = init_beta
+        pts[p] = init_ts
+        if lo[0] <= i < hi[0] and lo[1] <= j < hi[1] and lo[2] <= k < hi[2] and burning[i, j, k] > 0.0:
+            pbeta[p] = beta_c[i, j, k]
+            pts[p] = ts_c[i, j, k]
+
+
+@njit(cache=True)
+def unsteady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, numppc, temps, vfs, press, v_solid,
+                        mass_c, react, prod, BP, T_ign, p_thresh, CC, UC, Ec, R, eps, min_mass, dt, old_burning,
+                        old_ts, old_beta, init_ts, init_beta, burned, burning, ts_c, beta_c):
+    """Unsteady_Burn (Uintah's; the WSB steady burn relaxed in time): the surface cells and
+    ignition of steady_burn_cells. A cell that did not burn last step takes (beta, Ts) of the
+    neighbour that has burned longest (else the initial pair). With the steady (Ts*, m*) and
+    beta* = (Ts* - T0) m* Cp/Kc, beta and Ts relax towards them over n = Nc Kc/(Cp v dt m*^2)
+    and Ng n steps, and the unsteady flux is m = 2c / (sqrt(b^2 - 4c) + b), b = 2 Kc beta / Qc,
+    c = 2 Ac R Kc Ts^2 exp(-Ec/(R Ts)) / (Ec Qc v), scaled m* (m/m*)^Bm. UC: Cp/Kc, Kc/Cp,
+    2 Kc/Qc, 2 Ac R Kc/(Ec Qc), Nc, Ng, Bm. Returns the number of cells where b^2 < 4c
+    (Uintah: the timestep is too large), whose burn is left 0."""
+    s1, s2 = burned.shape[1], burned.shape[2]
+    vol = dx[0] * dx[1] * dx[2]
+    nm = len(temps)
+    r0 = 1 if dims[0] else 0
+    r1 = 1 if dims[1] else 0
+    r2 = 1 if dims[2] else 0
+    bad = 0
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                if numppc[i, j, k] <= 0.0:
+                    continue
+                mx, mn, g0, g1, g2 = _node_masses(gmass, node_low, i + cc_low[0], j + cc_low[1], k + cc_low[2],
+                                                  dims, n_lo, n_hi)
+                if not mn / mx < 0.7:
+                    continue
+                vf_r = -1.0
+                vf_p = -1.0
+                T0 = 0.0
+                P = 0.0
+                lit = False
+                for a in range(i - r0, i + r0 + 1):
+                    for b in range(j - r1, j + r1 + 1):
+                        for c in range(k - r2, k + r2 + 1):
+                            if vfs[react][a, b, c] > vf_r:
+                                vf_r = vfs[react][a, b, c]
+                                T0 = temps[react][a, b, c]
+                            if vfs[prod][a, b, c] > vf_p:
+                                vf_p = vfs[prod][a, b, c]
+                                P = press[a, b, c]
+                            if not lit and numppc[a, b, c] <= BP:
+                                for m in range(nm):
+                                    if vfs[m][a, b, c] > 0.2 and temps[m][a, b, c] > T_ign:
+                                        lit = True
+                                        break
+                if not (lit and P >= p_thresh):
+                    continue
+                gx, gy, gz = g0 / dx[0], g1 / dx[1], g2 / dx[2]
+                gn = np.sqrt(gx * gx + gy * gy + gz * gz) + 1e-100
+                nx, ny, nz = abs(gx) / gn, abs(gy) / gn, abs(gz) / gn
+                A = 0.0
+                if nx + ny + nz > 0.0:
+                    coeff = (1.0 / max(nx, max(ny, nz))) ** (1.0 / 3.0)
+                    A = vol / ((dx[0] * nx + dx[1] * ny + dx[2] * nz) * coeff)
+                if beta_c[i, j, k] == 0.0 or ts_c[i, j, k] == 0.0:     # newly lit: the longest-burning neighbour's
+                    most = old_burning[i, j, k]
+                    bi, bj, bk = i, j, k
+                    for a in range(i - r0, i + r0 + 1):
+                        for b in range(j - r1, j + r1 + 1):
+                            for c in range(k - r2, k + r2 + 1):
+                                if old_burning[a, b, c] > most:
+                                    most = old_burning[a, b, c]
+                                    bi, bj, bk = a, b, c
+                    if most > 0.0:
+                        beta_c[i, j, k] = old_beta[bi, bj, bk]
+                        ts_c[i, j, k] = old_ts[bi, bj, bk]
+                    else:
+                        beta_c[i, j, k] = init_beta
+                        ts_c[i, j, k] = init_ts
+                beta = beta_c[i, j, k]
+                Ts = ts_c[i, j, k]
+                v = v_solid[i, j, k]
+                C1, C2, C3, C4, C5 = _ts_constants(T0, P, v, CC[0], CC[1], CC[2], CC[3], CC[4])
+                Ts_s = wsb_surface_temperature(Ts, C1, C2, C3, C4, C5, Ec, R, eps)
+                m_s = wsb_mass_flux(Ts_s, C1, C2, Ec, R)
+                beta_s = (Ts_s - T0) * m_s * UC[0]
+                if beta < init_beta and Ts > init_ts:
+                    n_coef = UC[4] * UC[1] / v / (dt * m_s * m_s)
+                    m_coef = UC[5] * n_coef
+                    beta = (n_coef - 1.0) / n_coef * beta + beta_s / n_coef if n_coef > 1.0 else beta_s
+                    Ts = (m_coef - 1.0) / m_coef * Ts + Ts_s / m_coef if m_coef > 1.0 else Ts_s
+                    bb = UC[2] * beta
+                    cc = UC[3] / v * Ts * Ts * np.exp(-Ec / (R * Ts))
+                    para = bb * bb - 4.0 * cc
+                    if para < 0.0:
+                        bad += 1
+                        continue
+                    m_burn = 2.0 * cc / (np.sqrt(para) + bb)
+                    if UC[6] != 1.0:
+                        m_burn = m_s * (m_burn / m_s) ** UC[6]
+                else:
+                    beta = beta_s
+                    Ts = Ts_s
+                    m_burn = m_s
+                beta_c[i, j, k] = beta
+                ts_c[i, j, k] = Ts
+                burning[i, j, k] = old_burning[i, j, k] + 1.0
+                mb = dt * A * m_burn
+                have = mass_c[(i * s1 + j) * s2 + k]
+                if mb + min_mass > have:
+                    mb = max(have - min_mass, 0.0)
+                burned[i, j, k] = mb
+    return bad
 
 
 @njit(cache=True)

@@ -1,4 +1,4 @@
-"""Labels of the models (Uintah's ICELabel modelMass_src ..., Simple_Burn's and MassMomEng_src's own)."""
+"""Labels of the models (Uintah's ICELabel modelMass_src ..., the burn models' and MassMomEng_src's own)."""
 from framework import labels as L
 from framework.variables import VarType
 
@@ -18,3 +18,13 @@ surfTemp = L.create("SteadyBurn.SurfTemp", CC)          # reactant: burning-surf
 totalMass_src = L.create("TotalMass_src", R, reduction="sum")          # MassMomEng_src: this step's sums over
 totalMom_src = L.create("TotalMom_src", R, (3,), reduction="sum")      # the source cells (kg, kg m/s, J)
 totalEng_src = L.create("TotalEng_src", R, reduction="sum")
+ubBurningCell = L.create("UnsteadyBurn.BurningCell", CC)  # reactant: steps a cell has burned in a row
+ubSurfTemp = L.create("UnsteadyBurn.SurfTemp", CC)        # reactant: burning-surface temperature Ts (K)
+ubSurfTempGrad = L.create("UnsteadyBurn.SurfTempGrad", CC)  # reactant: solid's surface gradient beta (K/m)
+# the same two carried on the reactant's particles (and their pre-relocation twins)
+ubPartSurfTemp = L.create("UnsteadyBurn.PartSurfTemp", P)
+ubPartSurfTempPre = L.create("UnsteadyBurn.PartSurfTemp+", P)
+ubPartSurfTempGrad = L.create("UnsteadyBurn.PartSurfTempGrad", P)
+ubPartSurfTempGradPre = L.create("UnsteadyBurn.PartSurfTempGrad+", P)
+jwlF = L.create("F", CC)                                  # JWLpp: the reactant's reacted fraction
+jwlDelF = L.create("delF", CC)                            # JWLpp: its growth this step

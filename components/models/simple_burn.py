@@ -16,7 +16,9 @@ Tasks, each added right after the MPMICE task named (models/__init__.py):
         the reductions totalMassBurned and totalHeatReleased (this step; <save> them)
   ICE::computeDelPressAndUpdatePressCC -> Simple_Burn::addPressureSource
         p += (V_created - m_burned v_reactant) / (V sum_m theta_m kappa_m) (001 eq. 9,
-        Uintah's delP_MassX, sum_m m_src,m v_m)
+        Uintah's delP_MassX, sum_m m_src,m v_m); with semi-implicit ICE instead eq. P's
+        right-hand side takes Uintah's massExchTerm m_burned (v_product - v_reactant) / V
+        (mass_exchange_term)
   ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
         the product's m^L, (m u)^L, (m e)^L += sources (eqs. 7-8)
   ICE::computeLagrangianSpecificVolume -> Simple_Burn::addVolumeSource
@@ -93,6 +95,7 @@ class SimpleBurn:
     name = "Simple_Burn"
     volume_of_solid = False     # the product's new volume: at (p, T_product); True: burned * v_solid
     cell_ghost = ()             # Steady_Burn reads the cell state of the 26 neighbours too
+    solid_temp_dw = NEW         # the solids' temp_CC: this step's (Unsteady_Burn: last step's, OLD)
 
     def _sources_task(self):
         c, r, g, gh = self.comp, [self.react], [self.prod], self.cell_ghost
@@ -100,10 +103,13 @@ class SimpleBurn:
             .requires(OLD, FL.delT).requires(OLD, M.pX, matls=r).requires(OLD, M.pMass, matls=r) \
             .requires(OLD, M.pVelocity, matls=r).requires(NEW, M.gMass, Ghost.AROUND_CELLS, 1, matls=r) \
             .requires(NEW, I.press_equil_CC, *gh, matls=[0]).requires(NEW, I.vol_frac_CC, *gh, matls=c.all_matls) \
-            .requires(NEW, I.temp_CC, *gh, matls=c.mpm_matls).requires(OLD, I.temp_CC, *gh, matls=c.ice.ice_matls) \
             .computes(ML.pBurnFraction, matls=r) \
             .computes(ML.modelMass_src, matls=g).computes(ML.modelMom_src, matls=g) \
             .computes(ML.modelEng_src, matls=g).computes(ML.modelVol_src, matls=g).computes(ML.totalMassBurned).computes(ML.totalHeatReleased)
+        if self.solid_temp_dw is OLD:
+            t.requires(OLD, I.temp_CC, *gh, matls=c.all_matls)
+        else:
+            t.requires(NEW, I.temp_CC, *gh, matls=c.mpm_matls).requires(OLD, I.temp_CC, *gh, matls=c.ice.ice_matls)
         return self._own_labels(t)
 
     def _own_labels(self, t):
@@ -127,6 +133,27 @@ class SimpleBurn:
         return Task(f"{self.name}::burnParticles", self.burn_particles, [self.react]) \
             .requires(NEW, ML.pBurnFraction).modifies(M.pMassPre).modifies(M.pVolumePre).modifies(M.pXpre)
 
+    def volume_sources_requires(self, t):
+        t.requires(NEW, ML.modelMass_src, matls=[self.prod]).requires(NEW, ML.modelVol_src, matls=[self.prod])
+
+    def volume_sources(self, patch, new_dw):
+        """{material: the volume it gains this step}: the product its V_created, the reactant
+        loses the burned mass at its specific volume (Uintah's modelVol_src of both)."""
+        ms = new_dw.get(ML.modelMass_src, self.prod, patch)
+        return {self.prod: new_dw.get(ML.modelVol_src, self.prod, patch),
+                self.react: -ms * new_dw.get(I.sp_vol_CC, self.react, patch)}
+
+    def mass_exchange_requires(self, t, dw):
+        """What mass_exchange_term reads (semi-implicit ICE's eq. P)."""
+        t.requires(dw, ML.modelMass_src, matls=[self.prod]).requires(dw, I.sp_vol_CC, matls=[self.react, self.prod])
+
+    def mass_exchange_term(self, patch, dw):
+        """Uintah's implicit massExchTerm per cell, sum_m m_src,m v_m / V: the burned mass leaves the
+        reactant at its specific volume and joins the product at the product's."""
+        ms = dw.get(ML.modelMass_src, self.prod, patch)
+        return ms * (dw.get(I.sp_vol_CC, self.prod, patch) - dw.get(I.sp_vol_CC, self.react, patch)) \
+            / self.comp.ice.boxes(patch).vol
+
     # -- task bodies -----------------------------------------------------------------------------
     def compute_sources(self, patch, matls, old_dw, new_dw):
         c, lv = self.comp, patch.level
@@ -141,8 +168,8 @@ class SimpleBurn:
         cell = np.empty(n, np.int64)
         mass_c, mom_c = np.zeros(ncell), np.zeros((ncell, 3))
         K.bin_particles(px, pm, pv, lv.anchor, lv.dx, cc_low, np.array(shape, np.int64), cell, mass_c, mom_c)
-        temps = tuple(new_dw.get(I.temp_CC, m, patch) if m in c.mpm_matls else old_dw.get(I.temp_CC, m, patch)
-                      for m in c.all_matls)
+        solid_dw = new_dw if self.solid_temp_dw is NEW else old_dw
+        temps = tuple((solid_dw if m in c.mpm_matls else old_dw).get(I.temp_CC, m, patch) for m in c.all_matls)
         vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in c.all_matls)
         burned = np.zeros(shape)
         self.burned_mass(patch, old_dw, new_dw, temps, vfs, mass_c, dt, burned)
@@ -173,6 +200,7 @@ class SimpleBurn:
         """001 eqs. 5-6: the reactant mass each surface cell burns this step (into `burned`)."""
         c, r = self.comp, self.react
         b, cc_low, node_low, _, n_lo, n_hi = c._geom(patch)
+        n_lo, n_hi = symmetry_nodes(c, n_lo, n_hi)
         area = new_dw.allocate(ML.burnArea, r, patch)
         K.burn_cells(new_dw.get(M.gMass, r, patch), node_low, cc_low, b.lo, b.hi, c.dims_i, patch.level.dx, n_lo,
                      n_hi, temps, vfs, new_dw.get(I.press_equil_CC, 0, patch), mass_c,
@@ -208,6 +236,13 @@ class SimpleBurn:
                              new_dw.get_modifiable(M.pVolumePre, m, patch), new_dw.get_modifiable(M.pXpre, m, patch))
 
 
+def symmetry_nodes(comp, n_lo, n_hi):
+    """The first / last domain node per direction where that face is a symmetry plane (of
+    material 0, as Uintah's NC_CCweight), else an index no node has."""
+    sym_lo, sym_hi = comp._sym(0)
+    return np.where(sym_lo, n_lo, -(1 << 40)), np.where(sym_hi, n_hi, 1 << 40)
+
+
 def _material(node, tag, names):
     """A material named by its name attribute (as Uintah) or by its global index."""
     raw = node.get(tag, "str")
@@ -216,3 +251,14 @@ def _material(node, tag, names):
     if raw.isdigit() and int(raw) < len(names):
         return int(raw)
     raise node.child(tag).error(f"<{tag}> '{raw}' is not a material; accepted: {', '.join(names)}")
+
+
+def copy_to_symmetry_extra_cells(a, b, sym_lo, sym_hi):
+    """The interior layer next to a symmetry face copied into the patch's extra cells there."""
+    for d in range(3):
+        for on, out, src in ((sym_lo[d], slice(b.olo[d], b.lo[d]), slice(b.lo[d], b.lo[d] + 1)),
+                             (sym_hi[d], slice(b.hi[d], b.ohi[d]), slice(b.hi[d] - 1, b.hi[d]))):
+            if on and out.start < out.stop:
+                dst, s = [slice(None)] * 3, [slice(None)] * 3
+                dst[d], s[d] = out, src
+                a[tuple(dst)] = a[tuple(s)]

@@ -40,7 +40,7 @@ from framework.variables import Ghost, VarType
 
 from . import kernels as K
 from . import labels as ML
-from .simple_burn import SimpleBurn, _material
+from .simple_burn import SimpleBurn, _material, symmetry_nodes
 
 CC = VarType.CC
 TABLE = {
@@ -68,9 +68,11 @@ class SteadyBurn(SimpleBurn):
     volume_of_solid = True
     cell_ghost = (Ghost.AROUND_CELLS, 1)
 
+    table = TABLE
+
     def __init__(self, node, comp, root):
         self.comp = comp
-        sb = node.child("Steady_Burn", required=True)
+        sb = node.child(self.name, required=True)
         names = comp.material_names()
         self.react = _material(sb, "fromMaterial", names)
         self.prod = _material(sb, "toMaterial", names)
@@ -78,7 +80,7 @@ class SteadyBurn(SimpleBurn):
             raise sb.child("fromMaterial").error("<fromMaterial> must be an MPM material (the solid reactant)")
         if self.prod in comp.mpm_matls:
             raise sb.child("toMaterial").error("<toMaterial> must be an ICE material (the product gas)")
-        p = sb.read(TABLE)
+        p = self.params = sb.read(self.table)
         R, Ec, Cp, W = p["IdealGasConst"], p["ActEnergyCondPh"], p["SpecificHeatBoth"], p["MoleWeightGasPh"]
         Qc, Qg = p["CondPhaseHeat"], p["GasPhaseHeat"]
         self.R, self.Ec, self.cv_react = R, Ec, Cp
@@ -123,6 +125,7 @@ class SteadyBurn(SimpleBurn):
         """The WSB burn of every burning surface cell (module docstring) into `burned`."""
         c, r = self.comp, self.react
         b, cc_low, node_low, _, n_lo, n_hi = c._geom(patch)
+        n_lo, n_hi = symmetry_nodes(c, n_lo, n_hi)
         burning = new_dw.allocate(ML.burningCell, r, patch)
         ts = new_dw.allocate(ML.surfTemp, r, patch)
         burning[...] = 0.0

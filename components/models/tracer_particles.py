@@ -6,7 +6,8 @@
       <cloneVariables> <CCVarLabel label="press_CC"/> ... </cloneVariables>
       <scalar name="p.age">                                      (optional, any number)
         <initialValue> 1 </initialValue>
-        <exponentialDecay> <c1/> <c2 type="constant"><value/></c2> <c3/> </exponentialDecay>   (optional)
+        <exponentialDecay> <c1/> <c2 type="constant"><value/></c2> <c3/> </exponentialDecay>   (optional;
+                           or <c2 type="variable"><filename> x,y,z,c2 table </filename></c2>)
       </scalar>
       <tracer name="f">
         <initialization>
@@ -35,8 +36,10 @@ it last added some (a reduction carried in the warehouse, so a restart continues
 particles start with zero displacement and velocity and the cell values of the clones.
 A <scalar name="s"> is a particle variable s that starts at <initialValue> (on every new
 particle too) and, with <exponentialDecay>, decays each step as s *= exp(-(c1 c2 + c3) dt) while
-s_totalDecay accumulates c2 dt (Uintah's); c2 read from a table (type="variable") is not
-available.
+s_totalDecay accumulates c2 dt (Uintah's); c2 read from a table (<c2 type="variable"><filename>,
+PassiveScalar's x,y,z,c2 table) is the value of the particle's cell, and s_expDecayCoef is c2
+per cell (for output). Under MPMICE the tracers ride on an ICE material and relocate in the same
+relocation task as the MPM particles (each set over its own materials).
 """
 from __future__ import annotations
 
@@ -48,6 +51,7 @@ from framework.task import OLD, Task
 from framework.variables import VarType
 
 from . import kernels as K
+from .passive_scalar import _read_c2_table
 from .simple_burn import _material
 
 CC, P, R = VarType.CC, VarType.PARTICLE, VarType.REDUCTION
@@ -80,7 +84,7 @@ class Scalar:
     """One <scalar name="s">: its particle labels (s, and s_totalDecay with a decay), initial value
     and decay rate c1 c2 + c3."""
 
-    def __init__(self, node):
+    def __init__(self, node, level):
         name = node.attr("name")
         if not name:
             raise node.error('the scalar needs a name: <scalar name="p.age">')
@@ -90,12 +94,14 @@ class Scalar:
         ed = node.child("exponentialDecay")
         if ed is not None:
             c2 = ed.child("c2", required=True)
+            self.c1, self.c3 = ed.get("c1", "float"), ed.get("c3", "float", 0.0)
             if c2.attr("type", default="constant", choices=("constant", "variable")) == "variable":
-                raise c2.error('a c2 read from a table (type="variable") is not available; accepted: '
-                               'type="constant" with <value>')
-            self.c1, self.c2 = ed.get("c1", "float"), c2.get("value", "float")
-            self.decay = self.c1 * self.c2 + ed.get("c3", "float", 0.0)
+                self.c2 = _read_c2_table(c2.child("filename", required=True), level)   # per interior cell
+            else:
+                self.c2 = c2.get("value", "float")
+            self.decay = self.c1 * self.c2 + self.c3
             self.total, self.total_pre = _pair(name + "_totalDecay")
+            self.coef = L.create(name + "_expDecayCoef", CC)      # c2 per cell (Uintah's, for output)
 
     def pairs(self):
         """(final, pre-relocation, value of a new particle) of each of its particle variables."""
@@ -112,13 +118,14 @@ class TracerParticles:
         self.ice = ice
         self.t0 = t0            # the initial time (<Time><initTime>)
         tp = node.child("TracerParticles", required=True)
-        self.matl = _material(tp, "material", ice.material_names())
+        solids = [m.name for m in getattr(ice, "_mpm_materials", ())]      # MPMICE: the global index space
+        self.matl = _material(tp, "material", solids + ice.material_names())
         self.start = tp.get("timeStart", "float", 0.0)
         self.stop = tp.get("timeStop", "float", 9e99)
         if tp.get("reinitializeDomain", "bool", False):
             raise tp.child("reinitializeDomain").error("<reinitializeDomain> (restarts) is not available; "
                                                        "accepted: false")
-        self.scalars = [Scalar(sn) for sn in tp.children("scalar")]
+        self.scalars = [Scalar(sn, geo.level) for sn in tp.children("scalar")]
         tracers = tp.children("tracer")
         if len(tracers) != 1:
             raise tp.error(f"{len(tracers)} <tracer> blocks; accepted: one per TracerParticles model (as Uintah)")
@@ -177,6 +184,15 @@ class TracerParticles:
                 t.requires(OLD, final).computes(pre)
         sched.add_task(t)
 
+    def schedule_diagnostics(self, sched):
+        """s_expDecayCoef, c2 per cell, of each decaying scalar (only when saved)."""
+        coefs = [sc for sc in self.scalars if sc.decay is not None]
+        if coefs:
+            t = Task(f"TracerParticles::expDecayCoef_({self.name})", self.decay_coefficients, [self.matl])
+            for sc in coefs:
+                t.computes(sc.coef)
+            sched.add_task(t)
+
     def schedule_relocation(self, sched):
         pairs = [(f, p) for sc in self.scalars for f, p, _ in sc.pairs()]
         pre = [pDispPre, pVelocityPre, pIDPre] + [c[3] for c in self.clones] + [p for _, p in pairs]
@@ -203,6 +219,17 @@ class TracerParticles:
                 new_dw.put(final, m, patch, np.full(n, value))
         new_dw.put_reduction(self.elapsed, np.zeros(self.elapsed.shape))
 
+    def decay_coefficients(self, patch, matls, old_dw, new_dw):
+        """c2 in the interior cells (the table's or the constant), 0 in the extra cells."""
+        lo, hi = patch.interior(CC)
+        inner = tuple(slice(l, h) for l, h in zip(lo, hi))
+        g0 = np.array(patch.low_index(CC)) + np.array(lo)
+        cells = tuple(slice(a, a + h - l) for a, l, h in zip(g0, lo, hi))
+        for sc in self.scalars:
+            if sc.decay is not None:
+                out = new_dw.allocate(sc.coef, self.matl, patch)
+                out[inner] = sc.c2[cells] if np.ndim(sc.c2) else sc.c2
+
     def move_task(self, patch, matls, old_dw, new_dw):
         """Clone the cell values, move the particles with vel_CC, delete those that left the
         domain, then add the interior sources' particles (Uintah's setParticleVars,
@@ -227,7 +254,11 @@ class TracerParticles:
             if sc.decay is None:
                 scalar_values.append(s)
                 continue
-            scalar_values += [s * np.exp(-sc.decay * dt), old_dw.get(sc.total, m, patch) + sc.c2 * dt]
+            c2, decay = sc.c2, sc.decay
+            if np.ndim(c2):                 # the table's value in each particle's cell
+                at = tuple(np.clip(cells + cc_low, 0, np.array(c2.shape) - 1).T)
+                c2, decay = c2[at], decay[at]
+            scalar_values += [s * np.exp(-decay * dt), old_dw.get(sc.total, m, patch) + c2 * dt]
         count = new_dw.allocate(nPPC, m, patch, fill=None)
         count[...] = old_dw.get(nPPC, m, patch)
         elapsed = np.array(old_dw.get_reduction(self.elapsed), dtype=np.float64).reshape(self.elapsed.shape)

@@ -5,7 +5,8 @@ computeStressTensor: a particle in compression (tr D < 0) gets the bulk viscous 
 
     q = rho (A1 |c_bulk tr D dx| + A2 (tr D dx)^2),   c_bulk = sqrt(K/rho),  rho = rho_0/J,
 
-with dx the mean cell size (dx + dy + dz)/3, A1 = <artificial_viscosity_coeff1> (0.2) and
+with dx the mean cell size (dx + dy + dz)/3 (visco_scram: K = 2G(1 + nu)/(3(1 - 2nu)), its
+parameters not randomized), A1 = <artificial_viscosity_coeff1> (0.2) and
 A2 = <artificial_viscosity_coeff2> (2.0); q = 0 in expansion. p.q is carried to the next
 step, whose internal force uses sigma - q I (computeInternalForce; g.stressFS keeps sigma).
 With <artificial_viscosity_heating> (on with the viscosity unless the deck says false)
@@ -27,7 +28,7 @@ from .constitutive._common import det3
 # the models Uintah's artificial viscosity reaches, and the bulk modulus of c_bulk
 BULK = {"elastic_plastic_hp": lambda p: p.bulk_modulus, "hypo_elastic": lambda p: p.K,
         "comp_neo_hook": lambda p: p.bulk_modulus, "comp_neo_hook_plastic": lambda p: p.bulk_modulus,
-        "UCNH": lambda p: p.bulk_modulus, "rigid": None}
+        "UCNH": lambda p: p.bulk_modulus, "visco_scram": lambda p: p.bulk_modulus, "rigid": None}
 HEATING = ("elastic_plastic_hp",)
 
 

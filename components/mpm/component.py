@@ -119,6 +119,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     artificial_viscosity_refused = None
     # why <is_force_transmitting_material>true is refused in this component (None: it is supported)
     ftm_refused = None
+    # (final, pre-relocation) particle labels a coupled model computes and relocation carries
+    carry_models = ()
 
     def problem_setup(self, root, level):
         self.level = level
@@ -500,9 +502,13 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         if self.saves_acc_energy:
             t.computes(L.StepStrainEnergy)
         hot = [m for m, mt in enumerate(self.materials) if mt.needs_temperature]
+        warm = [m for m, mt in enumerate(self.materials) if mt.uses_temperature and not mt.needs_temperature]
         if hot:                         # elastic_plastic_hp: p.temperature+ += p.dTdt dt
-            t.requires(OLD, L.pTemperature, matls=hot).modifies(L.pTemperaturePre, matls=hot)
+            t.requires(OLD, L.pTemperature, matls=hot + (warm if self.thermal else [])) \
+                .modifies(L.pTemperaturePre, matls=hot)
             t.computes(L.pdTdt, matls=hot)
+        elif warm and self.thermal:     # visco_scram reads the particles' temperature
+            t.requires(OLD, L.pTemperature, matls=warm)
         if self.pressure_bcs:
             t.requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles).computes(L.PressureBCParticles)
             if not self.musl:
@@ -515,7 +521,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         schedule_acc_strain_energy(self, sched)
         if self.analysis.active:
             self.analysis.schedule(sched)
-        carry = self.carry + self.carry_thermal
+        carry = self.carry + self.carry_thermal + list(self.carry_models)
         sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in carry], L.pX,
                                            [final for final, _ in carry], ms, id_label=L.pID,
                                            mass_pre=L.pMassPre, on_leaving=self.flags["particles_leaving_domain"])

@@ -46,6 +46,7 @@ STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEne
          "visco_scram": ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious"),
          "comp_neo_hook_plastic": ("p.plasticStrain", "p.bElBar"), "UCNH": ("p.plasticStrain", "p.bElBar")}
 
+
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
     "thermal_conductivity": Param("float", 0.0, doc="W/(m K) (thermal.py)", at_least=0.0),

@@ -40,6 +40,11 @@ names them. Validation: inputs/MPMICE/ slab_rest, piston, pressurized_cylinder (
 sec. 4.1, scripts/accuracy_cost.py cylinder), piston_validation (sec. 4.2, implicit,
 scripts/piston_validation.py), wedge_mach3 (sec. 4.3, scripts/wedge_shock_angle.py);
 Uintah's symAnnulus.ups and pistonValidation.ups run unchanged.
+
+<exchange_properties><Model type="slip">: Uintah's slip exchange (slip.py schedules its surface
+normals, mean free path and face coefficients before step 3; ICE's exchange tasks read them).
+ICE's TracerParticles model rides on a fluid; its particles relocate with the MPM particles in
+the step's one relocation task.
 """
 from __future__ import annotations
 
@@ -59,6 +64,7 @@ from framework.variables import Ghost
 from . import labels as MI
 from .rigid import RigidSolid, activate_master_contact, describe
 from .setup import ICEinMPMICE, MPMinMPMICE
+from .slip import SlipTasks
 from .tasks import MPMICETasks, _Capture
 
 G = Ghost.AROUND_CELLS
@@ -122,10 +128,15 @@ class MPMICE(MPMICETasks, Component):
                         "the heat exchange and the gas's EOS in mixed cells); accepted: a number > 0")
         for mat in self.mpm.materials:          # visco_scram's own solid EOS options
             flag = mat.params.eos_flag() if hasattr(mat.params, "eos_flag") else None
-            if flag:
-                raise mat.node.child("constitutive_model").child(flag).error(
+            cm = mat.node.child("constitutive_model")
+            if flag == "useJWLEOS":             # Uintah's ViscoScram JWL (ice/eos.py SOLID_JWL)
+                missing = [t for t in ("A", "B", "R1", "R2", "om", "Cv") if not cm.has(t)]
+                if missing:
+                    raise cm.error(f"<useJWLEOS> true needs <{'>, <'.join(missing)}> (the solid's JWL EOS)")
+            elif flag:
+                raise cm.child(flag).error(
                     f"<{flag}> true is not implemented in MPMICE (the solid's EOS is the bulk modulus "
-                    "with the low-pressure threshold); accepted: false")
+                    "with the low-pressure threshold, or <useJWLEOS>'s JWL); accepted: false")
         self.mpm_matls = list(range(nm))
         bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]
@@ -140,8 +151,11 @@ class MPMICE(MPMICETasks, Component):
         self.materials = self.ice.materials
         self.dims_i = np.array(self.ice.dims, dtype=np.int64)
         self.models = read_models(root, self)        # <Models> (components/models), else None
+        if self.models is not None and self.ice.implicit:
+            self.ice.mass_exchange = self.models     # the burned mass in eq. P (ice/implicit.py)
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
+        self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
 
     def material_names(self):
         return self.ice.material_names()
@@ -156,8 +170,10 @@ class MPMICE(MPMICETasks, Component):
         for lab in [M.pX, M.pMass, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
             t.requires(NEW, lab, Ghost.AROUND_NODES, ng, matls=self.mpm_matls)
         sched.add_task(t)
-        for model in self.ice.scalars:          # ICE's PassiveScalar models (components/models)
+        for model in self.ice.scalars + self.ice.tracers:      # ICE's PassiveScalar, TracerParticles models
             model.schedule_initialize(sched)
+        if self.models is not None:             # the reaction models' own state (Unsteady_Burn)
+            self.models.schedule_initialize(sched)
 
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
@@ -204,6 +220,8 @@ class MPMICE(MPMICETasks, Component):
             .computes(I.speedSound_CC)
         self._start_state(t, (I.rho_CC, I.temp_CC, I.sp_vol_CC), 0)
         sched.add_task(t)
+        if self.slip is not None:
+            self.slip.schedule_pre_exchange(sched)
 
         t = Task("ICE::computeVel_FC", self.vel_fc, alls) \
             .requires(OLD, FL.delT).requires(NEW, I.sp_vol_CC, G, 1).requires(NEW, I.press_equil_CC, G, 1, matls=m0)
@@ -219,6 +237,8 @@ class MPMICE(MPMICETasks, Component):
                 .requires(OLD, FL.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1)
             for d in dirs:
                 t.requires(NEW, I.FC_VEL[d], G, 1).computes(I.FC_VEL_ME[d])
+            if self.slip is not None:
+                self.slip.face_requires(t)
             sched.add_task(t)
 
             t = Task("ICE::computeDelPressAndUpdatePressCC", ice.delp_press, alls) \
@@ -234,7 +254,7 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.computes(I.PRESS_FC[d], matls=m0)
         sched.add_task(t)
-        if not ice.implicit:
+        if not ice.implicit or self.models is not None:
             sched.add_task(Task("ICE::computeDelP_MassX", ice.delp_mass_exchange, m0)     # only when saved
                            .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.press_equil_CC, matls=m0)
                            .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.delP_MassX, matls=m0))
@@ -292,14 +312,21 @@ class MPMICE(MPMICETasks, Component):
         if self.add_heat is not None:
             t.requires(OLD, FL.simTime)
         sched.add_task(t)
-        for model in ice.scalars:              # the passive scalars: source, then m f
+        for model in ice.scalars + ice.tracers:     # the passive scalars: source, then m f; tracers move
             model.schedule_sources(sched)
+        for model in ice.tracers:       # their relocation joins the MPM particles' (one relocation task)
+            model.schedule_relocation(sched)
+            model.schedule_diagnostics(sched)
         ice.schedule_transported(sched, fl)
 
-        sched.add_task(Task("ICE::addExchangeToMomentumAndEnergy", self.exchange, alls)
-                       .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC)
-                       .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC)
-                       .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC))
+        t = Task("ICE::addExchangeToMomentumAndEnergy", self.exchange, alls) \
+            .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC) \
+            .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC) \
+            .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+        if self.slip is not None:
+            self.slip.cell_requires(t)
+            self.slip.schedule_diagnostics(sched)
+        sched.add_task(t)
 
         t = Task("ICE::computeLagrangianSpecificVolume", self.lagrangian_sp_vol, alls) \
             .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.sp_vol_CC) \

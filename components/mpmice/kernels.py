@@ -6,7 +6,8 @@ the fluid slivers in solid cells.
 Index conventions as in the ICE and MPM kernels: arrays are a patch's stored arrays,
 `cc_low` / `node_low` the global index of their entry [0, 0, 0]. A cell (i, j, k)
 has the nodes (i..i+1, j..j+1, k..k+1) in the directions that exist (`dims`); a
-collapsed direction has one node layer (index 0) and one cell layer.
+collapsed direction has one node layer (index 0) and one cell layer. A solid's EOS in the
+cell-centred state is ICE's code for it (mpmice/setup.py: Murnaghan n = 1, or SOLID_JWL).
 """
 from __future__ import annotations
 

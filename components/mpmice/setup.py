@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from components.ice.component import ICE
-from components.ice.eos import MAX_PARAMS, MURNAGHAN
+from components.ice.eos import MAX_PARAMS, MURNAGHAN, SOLID_JWL
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
@@ -38,8 +38,9 @@ class ContactWithICE(Contact):
         self.materials = tuple(m for m in self.materials if m < nmat)
         many = len(self.materials) > 1
         self.active = self.active and many
-        if hasattr(self, "interpolated"):
-            self.interpolated = self.interpolated and many
+        for flag in ("interpolated", "needs_normals", "needs_lr", "needs_color", "needs_time"):
+            if hasattr(self, flag):         # one solid left (TBurner_2dRT's approach on [0]): no contact
+                setattr(self, flag, getattr(self, flag) and many)
 
 
 class GridBCsWithICE(GridBCs):
@@ -79,7 +80,7 @@ class MPMinMPMICE(MPM):
     coupled_reads_grid_volume = True
     axisymmetric_refused = "with MPMICE (ICE's fluxes and the MPM-ICE pressure force are planar)"
     xpic_refused = "in MPMICE (Uintah's MPMICE does not schedule its passes either)"
-    artificial_viscosity_refused = "in MPMICE"
+    artificial_viscosity_refused = None
     ftm_refused = "in MPMICE (Uintah's MPMICE does not schedule its task either)"
 
     def __init__(self, n_all):
@@ -118,9 +119,14 @@ class ICEinMPMICE(ICE):
         rows, codes, cvs, gammas = [], [], [], []
         for mat, K in zip(self._mpm_materials, self._solid_bulk):
             row = np.zeros(MAX_PARAMS)
-            row[:4] = (1.0 / K, 1.0, mat.density, p_ref)       # Murnaghan: compressibility, n, rho0, P0
+            if getattr(mat.params, "useJWLEOS", False):        # visco_scram's JWL (Uintah's ViscoScram)
+                q = mat.params
+                row[:8] = (q.A, q.B, q.R1, q.R2, q.om, q.Cv, mat.density, p_ref if q.useModifiedEOS else 0.0)
+                codes.append(SOLID_JWL)
+            else:
+                row[:4] = (1.0 / K, 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
+                codes.append(MURNAGHAN)
             rows.append(row)
-            codes.append(MURNAGHAN)
         cvs = list(self._solid_cv)
         gammas = [1.0] * nm
         self.params = np.vstack(rows + [self.params])

@@ -41,14 +41,16 @@ class RelocationSpec:
     on_leaving: str = "warn"         # particles leaving the domain: "warn" or "error"
 
 
-def relocation_task(spec: RelocationSpec) -> Task:
-    t = Task("relocateParticles", None, spec.matls)
-    t.relocation = spec
-    for lp in [spec.pos_pre] + spec.labels_pre:
-        t.requires(NEW, lp)
-    for lf in [spec.pos] + spec.labels:
-        t.computes(lf)
-    if spec.mass_pre is not None:
+def relocation_task(specs: list[RelocationSpec]) -> Task:
+    """The step's one relocation task over every particle set (each its own materials)."""
+    t = Task("relocateParticles", None, sorted({m for spec in specs for m in spec.matls}))
+    t.relocation = list(specs)
+    for spec in specs:
+        for lp in [spec.pos_pre] + spec.labels_pre:
+            t.requires(NEW, lp, matls=list(spec.matls))
+        for lf in [spec.pos] + spec.labels:
+            t.computes(lf, matls=list(spec.matls))
+    if any(spec.mass_pre is not None for spec in specs):
         t.computes(L.LostParticleMass)
     return t
 

@@ -28,7 +28,7 @@ class Scheduler:
         self.lb = lb
         self.comm = comm or Comm(None)
         self.tasks: list[Task] = []
-        self.relocation: RelocationSpec | None = None
+        self.relocation: list[RelocationSpec] = []     # one per particle set (disjoint materials)
         self.position_label = None
         self.particle_id_label = None
         self.timing: dict = defaultdict(float)
@@ -50,11 +50,20 @@ class Scheduler:
     def schedule_particle_relocation(self, pos_pre, labels_pre, pos, labels, matls, id_label=None,
                                      mass_pre=None, on_leaving="warn"):
         """Move particles to their new patch at the end of the step (Uintah's relocation);
-        particles leaving the domain are deleted and reported (their mass, with mass_pre)."""
+        particles leaving the domain are deleted and reported (their mass, with mass_pre).
+        Each call adds a particle set over its own materials (MPM's particles and a model's
+        tracers); they relocate together in the step's one relocation task, and share the
+        position and ID labels (p.x, p.particleID), as in Uintah."""
         if len(labels_pre) != len(labels):
             raise ValueError("relocation needs one final label per pre-relocation label")
-        self.relocation = RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label,
-                                         mass_pre, on_leaving)
+        for other in self.relocation:
+            if set(other.matls) & set(matls) or other.pos.name != pos.name or \
+                    (other.id_label is None) != (id_label is None) or \
+                    (id_label is not None and other.id_label.name != id_label.name):
+                raise ValueError(f"a second particle relocation over materials {tuple(matls)} needs materials of "
+                                 f"its own (have {other.matls}) and the same position and ID labels")
+        self.relocation.append(RelocationSpec(pos_pre, list(labels_pre), pos, list(labels), tuple(matls), id_label,
+                                              mass_pre, on_leaving))
         self.register_particle_labels(pos, id_label)
 
     def request_recompute(self, reason: str):
@@ -75,13 +84,13 @@ class Scheduler:
     def begin_graph(self, name: str):
         self.graph_name = name
         self.tasks = []
-        self.relocation = None
+        self.relocation = []
 
     def compile(self, needed, old_available, protect=None, build_patch_graph=True) -> CompiledGraph:
         tasks = list(self.tasks)
         for t in tasks:
             self._add_implicit_particle_requires(t)
-        if self.relocation is not None:
+        if self.relocation:
             tasks.append(relocation_task(self.relocation))
         for t in tasks:
             if isinstance(t, Loop):
@@ -141,7 +150,8 @@ class Scheduler:
             t0 = time.perf_counter()
             ghost0 = self._ghost_wall
             if hasattr(task, "relocation"):
-                relocate(self, task.relocation, new_dw)
+                for spec in task.relocation:
+                    relocate(self, spec, new_dw)
                 self.overhead["relocation"] += time.perf_counter() - t0
             elif isinstance(task, Loop):
                 run_loop(self, task, old_dw, new_dw)     # its body's tasks have their own rows

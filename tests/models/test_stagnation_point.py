@@ -86,7 +86,7 @@ def test_tracers_as_uintah(runs):
      "mass source"),
     ('<CCVarLabel label="press_CC"/>', '<CCVarLabel label="vel_CC"/>', "cell-centred scalar"),
     ('<c2 type="constant"> <value> 10 </value> </c2>', '<c2 type="variable"> <filename>c2.csv</filename> </c2>',
-     "read from a table"),
+     "no file c2.csv"),
 ])
 def test_bad_model_input(tmp_path, old, new, words):
     """What the models do not accept is refused at start-up with the tag and what is accepted."""

@@ -176,3 +176,30 @@ def test_material_from_include_files(tmp_path):
     np.testing.assert_allclose(p["p.mass"], 1840.0 * 1e-6, rtol=1e-12)
     s = p["p.stress"][0]
     np.testing.assert_allclose([s[0, 0], s[1, 1], s[2, 2]], SUS[0, 4:7], rtol=1e-8)
+
+
+# sus on const_test_vs.ups with <artificial_viscosity>true, <stress_update>usl (Uintah's update),
+# 6 steps written, p.q saved: (time, sigma_xx, sigma_zz, p.q) of the visco_scram particle
+SUS_AV = [(3e-07, -1242.4886531119769, -2665.167693776045, 6468.910991923605),
+          (6e-07, -2467.0746523412136, -5105.430753892405, 6141.425961528908),
+          (9e-07, -3686.400805167277, -7395.529089368024, 5939.586965786039),
+          (1.2e-06, -4877.084675999099, -9562.99280332234, 5713.587437527953),
+          (1.5e-06, -6023.383178176364, -11623.893515855007, 5468.226277928837),
+          (1.8e-06, -7113.657532533728, -13587.356830355502, 5205.089690382204)]
+
+
+def test_artificial_viscosity_as_sus(tmp_path):
+    """visco_scram's bulk viscosity q (K from G and PR) and its effect on the next steps'
+    stress equal sus's to round-off (measured 4e-16)."""
+    text = open(DECK).read().replace("<time_integrator>explicit</time_integrator>",
+                                     "<time_integrator>explicit</time_integrator><artificial_viscosity>true"
+                                     "</artificial_viscosity><stress_update>usl</stress_update>") \
+        .replace("<outputInterval>.0005</outputInterval>", "<outputTimestepInterval>1</outputTimestepInterval>") \
+        .replace('<save label = "p.stress"/>', '<save label = "p.stress"/><save label = "p.q"/>') \
+        .replace("<maxTime>.001</maxTime>", "<maxTime>1.8e-6</maxTime>")
+    _, da = run(text, tmp_path)
+    for i, (t, sxx, szz, q) in enumerate(SUS_AV, start=1):
+        p = da.particles(1, i)
+        assert da.times[i] == pytest.approx(t, rel=1e-12)
+        np.testing.assert_allclose([p["p.stress"][0, 0, 0], p["p.stress"][0, 2, 2], p["p.q"][0]], [sxx, szz, q],
+                                   rtol=1e-13)

@@ -1,6 +1,7 @@
 """MPMICE decks on 2 and 3 ranks give bitwise the one-rank answer (4 patches in every run).
 
-The slab at rest, the gas-driven piston and Uintah's symAnnulus.ups (shortened) run under
+The slab at rest, the gas-driven piston, Uintah's TBurner_2dRT (its 3-step test copy: Unsteady_Burn,
+semi-implicit pressure) and Uintah's symAnnulus.ups (shortened) run under
 `mpiexec -n 1, 2, 3`: cell-centred fields of every material and the particles (sorted by
 particle ID) are compared with np.array_equal. The arithmetic does not depend on the rank
 count: each patch computes its own cells and nodes from its own data plus ghosts, particle
@@ -24,13 +25,16 @@ CASES = {
                [("<patches> [1,1,1] </patches>", "<patches> [4,1,1] </patches>"),
                 ("<maxTime> 5.0e-4 </maxTime>", "<maxTime> 2.0e-4 </maxTime>"),
                 ('<save label="p.x"/>', '<save label="p.x"/>' + PID)]),
+    # Unsteady_Burn's cell and particle memory, the semi-implicit pressure with its circular outlet
+    "TBurner_2dRT": (ROOT / "tests" / "mpmice" / "uintah_reference" / "TBurner_2dRT.ups", []),
     "symAnnulus": (UINTAH_INPUTS / "MPMICE" / "symAnnulus.ups",
                    [("<maxTime>            0.006", "<maxTime> 2.0e-5"),
                     ("<outputInterval> 1.0e-4", "<outputInterval> 1.0e-5"),
                     ('<save label = "p.x"/>', '<save label = "p.x"/>' + PID)]),
 }
 CC = ("press_CC", "vel_CC", "rho_CC", "vol_frac_CC", "temp_CC", "sp_vol_CC", "eng_L_ME_CC", "mom_L_ME_CC")
-PARTS = ("p.x", "p.velocity", "p.stress", "p.volume", "p.pressure")
+PARTS = ("p.x", "p.velocity", "p.stress", "p.volume", "p.pressure", "UnsteadyBurn.PartSurfTemp",
+         "UnsteadyBurn.PartSurfTempGrad")
 
 
 @pytest.mark.parametrize("case", sorted(CASES))

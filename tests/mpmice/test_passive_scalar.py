@@ -69,7 +69,7 @@ def test_scalars_as_uintah(runs):
 
 @pytest.mark.parametrize("old, new, message", [
     ("<material>atmosphere</material>", "<material>0</material>", "carried by an ICE material"),
-    ('<Model type="PassiveScalar">', '<Model type="TracerParticles">', "available for ICE alone"),
+    ('<Model type="PassiveScalar">', '<Model type="mass_momentum_energy_src">', "available for ICE alone"),
 ])
 def test_refused_under_mpmice(tmp_path, old, new, message):
     text = DECK.read_text(encoding="iso-8859-1").replace(old, new, 1)

@@ -36,9 +36,9 @@ def _face_coef(vf, sp, one, a0, a1, a2, b0, b1, b2):
 def add_material(A, vf, sp, cs, one, dims, lo, hi, s, keep, atb):
     """Adds one material to the stencil: kap += theta v / c^2, a_f += s_d theta_f v_f.
 
-    s[d] = dt^2 / dx_d^2 (eq. P below); keep[2d+side] = 0 drops this material's face
-    term on a domain-boundary face (fixed face velocity, or zero-gradient pressure);
-    atb[2d+side] says the patch touches that domain boundary.
+    s[d] = dt^2 / dx_d^2 (eq. P below); keep (CC, the domain's extra cells) = 0 drops this
+    material's face term on the boundary face next to that extra cell (fixed face velocity, or
+    zero-gradient pressure); atb[2d+side] says the patch touches that domain boundary.
     Eq. P: kap dP - dt^2 div(sum_m theta_m v_m grad dP) = -(kap P + dt sum_m div(theta_m u_m)).
     """
     for i in range(lo[0], hi[0]):
@@ -53,9 +53,9 @@ def add_material(A, vf, sp, cs, one, dims, lo, hi, s, keep, atb):
                     cl = s[d] * _face_coef(vf, sp, one, i - di, j - dj, k - dk, i, j, k)
                     ch = s[d] * _face_coef(vf, sp, one, i, j, k, i + di, j + dj, k + dk)
                     e = (i, j, k)[d]
-                    if e == lo[d] and atb[2 * d] and not keep[2 * d]:
+                    if e == lo[d] and atb[2 * d] and not keep[i - di, j - dj, k - dk]:
                         cl = 0.0
-                    if e == hi[d] - 1 and atb[2 * d + 1] and not keep[2 * d + 1]:
+                    if e == hi[d] - 1 and atb[2 * d + 1] and not keep[i + di, j + dj, k + dk]:
                         ch = 0.0
                     A[i, j, k, 1 + 2 * d] += cl
                     A[i, j, k, 2 + 2 * d] += ch

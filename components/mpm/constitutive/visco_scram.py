@@ -27,8 +27,9 @@ temperature one step back, for alpha dT/dt; it stays constant without heat condu
 1 microsecond (MAX_DELT, Uintah's: larger steps make the model unstable).
 
 Not implemented (refused): ``randomize_parameters`` (Uintah draws drand48), ``useObjectiveRate``;
-the EOS options (``useJWLEOS``, ``useJWLCEOS``, ``useMurnahanEOS``, ``useBirchMurnaghanEOS``)
-change only MPMICE's solid EOS and are refused there (components/mpmice). The internal heating
+the EOS options change only MPMICE's solid EOS: ``useJWLEOS`` is its JWL there
+(components/ice/eos.py SOLID_JWL), ``useJWLCEOS``, ``useMurnahanEOS``, ``useBirchMurnaghanEOS``
+are refused (components/mpmice). The internal heating
 Uintah derives from the model (p.dTdt) is not added to the particle temperature. ``Beta``,
 ``Gamma``, ``DCp_DTemperature`` and the reaction tags the PBX decks carry (``Chi``, ``delH``,
 ``Z``, ``EoverR``, ``dynamic_coeff_friction``, ``volfracHE``, ``rho0``) are read and not used
@@ -143,7 +144,7 @@ class Params:
         return 2.0 * G * (1.0 + self.PR) / (3.0 * (1.0 - 2.0 * self.PR))
 
     def eos_flag(self):
-        """The first EOS option set (MPMICE refuses them), or None."""
+        """The first EOS option set (MPMICE runs useJWLEOS, refuses the others), or None."""
         return next((k for k in EOS_FLAGS if getattr(self, k)), None)
 
 
