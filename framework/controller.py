@@ -74,6 +74,7 @@ def read_archiver(root):
         name = s.attr("label")
         s.attr("material", default=None)
         s.attr("matl", default=None)
+        s.attr("levels", "int", default=None, choices=(-1, 0))    # pysus's one level: the finest, level 0
         spec["save"].append(name)
         spec["save_nodes"][name] = s
     spec["checkpoint_interval"] = 0.0

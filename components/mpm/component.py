@@ -476,6 +476,10 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
              .requires(OLD, FL.delT).requires(OLD, L.pVelocity))
         if self.av_matls:
             t.requires(NEW, L.AVScale)
+        if any(mt.damage is not None for mt in self.materials):     # the erosion's time of localization
+            t.requires(OLD, FL.simTime)
+            if not self.musl and any(getattr(mt.damage, "erodes_F", False) for mt in self.materials):
+                t.modifies(L.pFPre)                 # F of localized particles (damage.py)
         if self.has_membrane:
             t.requires(NEW, L.pTangentNbr)
         if any(getattr(mt.params, "density_from_grid", False) for mt in self.materials):

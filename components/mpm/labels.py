@@ -57,7 +57,12 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.plasticStrainRate": (pPlasticStrainRate, pPlasticStrainRatePre),
          "p.energy": (pEnergy, pEnergyPre),
          "p.strainRate": (pStrainRate, pStrainRatePre),
-         "p.bElBar": (pBElBar, pBElBarPre)}                              # comp_neo_hook_plastic, UCNH
+         "p.bElBar": (pBElBar, pBElBarPre),                              # comp_neo_hook_plastic, UCNH
+         "p.epsf": _pair("p.epsf"),                      # damage.py: Brittle's energy threshold, ThresholdVar's
+                                                         # failure stress or strain
+         "p.damage": _pair("p.damage"),                  # damage.py: Brittle's damage
+         "p.localizedMPM": _pair("p.localizedMPM"),      # damage.py: 1 once ThresholdVar localized it
+         "p.timeofloc": _pair("p.timeofloc")}            # damage.py: when it localized (erosion)
 # elastic_plastic_hp with <deviatoric_stress_model type="hypoViscoElastic">: the deviatoric
 # stress of Maxwell element j (Uintah's names sigmaDevj, sigmaDevj+)
 MAX_MAXWELL_ELEMENTS = 8

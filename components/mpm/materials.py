@@ -19,6 +19,8 @@ from mpi4py import MPI
 from framework.geometry import GeometryReader, Null, SmoothCylinder
 from framework.problemspec import Param
 
+from .constitutive import damage
+
 # deck name -> module under components.mpm.constitutive
 MODELS = {
     "comp_neo_hook": "comp_neo_hook",
@@ -32,10 +34,11 @@ MODELS = {
     "visco_scram": "visco_scram",
     "comp_neo_hook_plastic": "comp_neo_hook_plastic",
     "UCNH": "ucnh",
+    "UCNHVar": "ucnh_var",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
-NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH")
+NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH", "UCNHVar")
 
 # models with state per particle: the carried particle label holding it (one name), or the
 # labels (a tuple: the model's update gets tuples of old and new arrays in that order)
@@ -43,7 +46,6 @@ STATE = {"elastic_plastic": "p.plasticStrain", "ideal_gas_fluid": "p.internalEne
          "visco_scram": ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious"),
          "comp_neo_hook_plastic": ("p.plasticStrain", "p.bElBar"), "UCNH": ("p.plasticStrain", "p.bElBar")}
 
-EROSION_ALGORITHMS = ("none", "AllowNoTension", "ZeroStress", "AllowNoShear", "PreserveStress")
 
 MATERIAL = {
     "density": Param("float", doc="reference mass density (kg/m^3)", above=0.0),
@@ -81,6 +83,7 @@ class Material:
     def __init__(self, node, index, geom_reader, with_color):
         self.index = index
         self.node = node
+        self.damage = None                    # damage.py: <damage_model> beside the constitutive model
         self.name = node.attr("name", default=f"mpm{index}")
         props = node.read(MATERIAL)
         self.density = props["density"]
@@ -101,8 +104,14 @@ class Material:
             kind = "elastic_plastic_hp"
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
-        if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp)
-            self._finish(node, props, self.model.read_params(cm, node, props), kind, with_color, geom_reader)
+        if getattr(self.model, "USES_COLOR", False) and not with_color:
+            raise cm.error(f'constitutive_model type="{kind}" reads p.color: it needs <MPM><withColor>true'
+                           '</withColor>')
+        if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp, UCNHVar)
+            params = self.model.read_params(cm, node, props)
+            if kind in damage.MODELS:
+                self._read_damage(node, cm, kind)
+            self._finish(node, props, params, kind, with_color, geom_reader)
             return
         fields = dataclasses.fields(self.model.Params)
         accepted = [f.name for f in fields]
@@ -124,11 +133,22 @@ class Material:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
-        elif node.has("erosion"):
-            # Uintah's ErosionModel acts only on failed (localized) particles; a model without
-            # failure never has any, so <erosion> is read and has no effect (TBurner_2dRT)
-            node.child("erosion").attr("algorithm", choices=EROSION_ALGORITHMS)
+        else:
+            self._read_damage(node, cm, kind)
         self._finish(node, props, self.params, kind, with_color, geom_reader)
+
+    def _read_damage(self, node, cm, kind):
+        """Uintah's damage model beside the constitutive model, and its erosion (damage.py); an
+        <erosion> without a damage model does nothing, as in Uintah (no particle localizes)."""
+        if not node.has("damage_model"):
+            if node.has("erosion"):
+                damage.read_erosion(node.child("erosion"))
+            return
+        if kind not in damage.MODELS:
+            raise node.child("damage_model").error(
+                f"a <damage_model> of a {kind} material is not implemented; accepted with the "
+                f"constitutive models {', '.join(damage.MODELS)}")
+        self.damage = damage.read(node, cm)
 
     def _finish(self, node, props, params, kind, with_color, geom_reader):
         """The model's params, its flags and the geometry objects."""
@@ -143,6 +163,11 @@ class Material:
             st = None                         # UCNH without plasticity: comp_neo_hook, no state
         self.state = st                       # the model's state label name(s), or None
         self.state_names = (st,) if isinstance(st, str) else tuple(st or ())
+        if self.damage is not None:           # the damage model's state follows the model's
+            self.model = damage.Damaged(self.model, len(self.state_names), self.damage,
+                                        kind in damage.NO_ENERGY_WHEN_LOCALIZED)
+            self.state_names += self.damage.STATE
+            self.state = self.state_names
         self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
         self.needs_temperature = getattr(self.model, "NEEDS_TEMPERATURE", False)   # p.temperature / p.dTdt in the state
         self.max_delT = getattr(self.model, "MAX_DELT", np.inf)
@@ -195,6 +220,8 @@ class Material:
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
         (unit tangent, thickness) from the chain; the models with an initial_state
         (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple."""
+        if self.damage is not None:
+            return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"])
         if self.state_names and hasattr(self.model, "initial_state"):
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":

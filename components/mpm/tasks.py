@@ -96,10 +96,18 @@ class MPMTasks:
         return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [L.pSize, L.pF])
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
-                      old=None, new=None, scale=None, temperature=None):
+                      old=None, new=None, scale=None, temperature=None, color=None, time=0.0):
         """Call the material's model; `old`/`new` are its state arrays (plastic strain; a tuple
         for a model with several); membrane: (tangent, thickness, volume) before and after (the
-        model sets the volume); `temperature`: p.temperature for the models that read it."""
+        model sets the volume); `temperature`: p.temperature for the models that read it;
+        `color`: p.color for those that read it (UCNHVar); `time`: the step's start, for the
+        erosion of a damage model (damage.py)."""
+        if mat.damage is not None:
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new, time=time, color=color)
+        if getattr(mat.model, "USES_COLOR", False):
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new, color=color)
         if mat.is_membrane:
             (t_old, h_old, v_old), (t_new, h_new, v_new) = old, new
             return mat.model.update(mat.params, Lg, F_old, F_new, v_old, mass, vel, dt, s_old, s_new,
@@ -142,7 +150,7 @@ class MPMTasks:
                 old, new = state + (d["temp"],), state + (np.zeros(n),)
             ws = np.maximum(ws, self._constitutive(mat, np.zeros((n, 3, 3)), F, F, d["vol"], d["mass"],
                                                    d["vel"], 0.0, stress, stress, energy, old, new,
-                                                   temperature=d["temp"]))
+                                                   temperature=d["temp"], color=d["color"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
                    L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3)),
@@ -631,7 +639,7 @@ class MPMTasks:
             n = len(F_old)
             s_new = new_dw.allocate(L.pStressPre, m, patch, None)
             energy = np.empty(n)
-            fused = self.musl and mat.model_name in transfer.FUSED      # stress in the grad pass
+            fused = self.musl and mat.model_name in transfer.FUSED and mat.damage is None   # stress in the grad pass
             if self.musl:
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
@@ -642,6 +650,9 @@ class MPMTasks:
                 Lg = new_dw.get(L.pVelGrad, m, patch)
                 F_new = new_dw.get(L.pFPre, m, patch)
                 vol_new = new_dw.get(L.pVolumePre, m, patch)
+                if getattr(mat.damage, "erodes_F", False):     # the erosion sets F of localized particles
+                    F_new = F_new.copy()
+                    new_dw.replace(L.pFPre, m, patch, F_new)
             if getattr(mat.params, "density_from_grid", False):    # fluid points (ideal_gas_fluid)
                 lv = self.level
                 gvol = {k: new_dw.get(L.gVolume, k, patch) for k in matls     # membranes: no area
@@ -690,7 +701,11 @@ class MPMTasks:
                 ws = np.maximum(ws, self._constitutive(mat, Lg, F_old, F_new, vol_new, pm,
                                                        old_dw.get(L.pVelocity, m, patch), dt,
                                                        old_dw.get(L.pStress, m, patch), s_new, energy, old,
-                                                       new, scale, temp))
+                                                       new, scale, temp,
+                                                       old_dw.get(L.pColor, m, patch) if self.flags["withColor"]
+                                                       else None,
+                                                       old_dw.get_reduction(FL.simTime) if mat.damage is not None
+                                                       else 0.0))
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
                 q = self.av.q(m, mat, Lg, F_new)
                 new_dw.put(L.pQPre, m, patch, q)
