@@ -1,0 +1,101 @@
+"""Uintah's statistics and planeAverage <DataAnalysis> modules (framework/analysis.py) against sus.
+
+Deck: uintah_reference/impVortices_statistics.ups (the explicit Smagorinsky vortices deck, whose
+flow is sus's to round-off, 6 steps, with statistics from 5e-5 s: in its window from step 4,
+higher-order statistics and computeReynoldsStress on vel_CC; planeAverage on XZ planes every
+step, weighting nCells and none). data/sus_vortices_statistics.npz is sus's output on that deck
+(one rank; the deck with the pysus-only advection attributes limiter and dissipationHeating
+removed, which are sus's defaults), read with framework.uintah_uda.UintahArchive: the times,
+each saved statistics label along the row j = 5, k = 0 after steps 4 and 6, and its
+planeAverage files of step 6 (press_CC, vel_CC: the rows; temp_CC, weighting none: the text).
+
+Measured: the sums and means to 1e-14 of their largest values; variance, skewness and kurtosis
+are differences of nearly equal moments (p^4 ~ 1e20 for kurtosis), so they agree to round-off
+of those moments; the plane averages to 1e-14; temp_CC's file is byte for byte sus's.
+"""
+import pathlib
+
+import numpy as np
+import pytest
+
+from framework.problemspec import InputError
+
+HERE = pathlib.Path(__file__).parent
+DECK = HERE / "uintah_reference" / "impVortices_statistics.ups"
+ORDER = {"sum_": 1, "mean_": 1, "sum2_": 2, "variance_": 2, "sum3_": 3, "skewness_": 3, "sum4_": 4, "kurtosis_": 4}
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    c = Controller(str(DECK), quiet=True, filebase=str(tmp_path_factory.mktemp("stats") / "run.uda"))
+    c.run()
+    return DataArchive(c.archiver.dir), np.load(HERE / "data" / "sus_vortices_statistics.npz")
+
+
+def rows(text):
+    return np.array([[float(x) for x in line.split()] for line in text.splitlines() if not line.startswith("#")])
+
+
+def test_statistics_as_uintah(runs):
+    da, sus = runs
+    assert np.allclose(da.times[1:], sus["times"], rtol=1e-13, atol=0)
+    for q in ("press_CC", "vel_CC"):
+        for step in (4, 6):
+            # the scale of an order-n moment: the largest |Q|^n along the row
+            value = np.abs(sus[f"{q}@{step}"]).max()
+            for prefix, n in ORDER.items():
+                got = da.read(prefix + q, 0, step)[0][:, 5, 0]
+                ref = sus[f"{prefix}{q}@{step}"]
+                scale = value ** n * (step - 3 if prefix.startswith("sum") else 1)
+                assert np.abs(got - ref).max() <= 1e-14 * scale, (prefix + q, step, np.abs(got - ref).max() / scale)
+        # before the window: the statistics are 0 and the sums stay 0
+        assert not np.any(da.read("mean_" + q, 0, 3)[0]) and not np.any(da.read("sum4_" + q, 0, 3)[0])
+    vmax = np.abs(sus["vel_CC@6"]).max()
+    for label in ("sum_uv_vw_wu", "mean_uv_vw_wu", "uv_vw_wu_prime"):
+        got = da.read(label, 0, 6)[0][:, 5, 0]
+        assert np.abs(got - sus[f"{label}@6"]).max() <= 1e-14 * 3 * vmax ** 2, label
+    # uv_vw_wu_prime after one sample: mean(u v) - mean(u) mean(v) = 0 up to round-off
+    assert np.abs(da.read("uv_vw_wu_prime", 0, 4)[0]).max() <= 1e-14 * vmax ** 2
+
+
+def test_plane_average_as_uintah(runs):
+    da, sus = runs
+    folder = pathlib.Path(da.path) / "planeAverage"
+    assert sorted(p.name for p in folder.iterdir()) == [f"t{n:05d}" for n in range(1, 7)]
+    press = (folder / "t00006/L-0/press_CC_0").read_text()
+    assert press.startswith(str(sus["plane_press_header"]))
+    got, ref = rows(press), sus["plane_press@6"]
+    assert got.shape == ref.shape == (25, 5) and np.all(got[:, 4] == 50)           # nCells per plane
+    assert np.array_equal(got[:, :3], ref[:, :3])
+    assert np.allclose(got[:, 3], ref[:, 3], rtol=1e-14, atol=0)
+    for step in (1, 6):
+        got, ref = rows((folder / f"t{step:05d}/L-0/vel_CC_0").read_text()), sus[f"plane_vel@{step}"]
+        assert got.shape == ref.shape == (25, 7)
+        assert np.allclose(got[:, 3:6], ref[:, 3:6], rtol=0, atol=1e-14 * np.abs(ref[:, 3:6]).max())
+    assert (folder / "t00006/L-0/temp_CC_0").read_text() == str(sus["plane_temp_text@6"])
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ('<analyze label="press_CC" matl="0"/>', '<analyze label="press_XX" matl="0"/>',
+     r'impVortices_statistics.ups:\d+: .*label="press_XX" is not a cell- or face-centred double or Vector'),
+    ('<analyze label="vel_CC"   computeReynoldsStress="true"/>',
+     '<analyze label="press_CC" matl="0" computeReynoldsStress="true"/>', "computeReynoldsStress on press_CC"),
+    ("<timeStart>         5e-5", "<timeStart>         500", "timeStop is before timeStart"),
+    ("<planeOrientation>  XZ", "<planeOrientation>  XX", "planeOrientation"),
+    ('<analyze label="press_CC" matl="0" weighting="nCells"/>', '<analyze label="press_CC" weighting="nCells"/>',
+     'press_CC needs matl="0"'),
+    ('<analyze label="vel_CC"            weighting="nCells"/>', '<analyze label="vel_CC" weighting="mass"/>',
+     r'weighting="mass" of vel_CC needs <weight label'),
+    ('<analyze label="temp_CC"/>', '<analyze label="temp_CC" weighting="volume"/>',
+     r'attribute weighting="volume" is not accepted; accepted: nCells, mass'),
+])
+def test_bad_input_is_refused(tmp_path, old, new, message):
+    from framework.controller import Controller
+    text = DECK.read_text(encoding="iso-8859-1")
+    assert old in text
+    deck = tmp_path / "impVortices_statistics.ups"
+    deck.write_text(text.replace(old, new, 1), encoding="iso-8859-1")
+    with pytest.raises(InputError, match=message):
+        Controller(str(deck), quiet=True, filebase=str(tmp_path / "r.uda"))
