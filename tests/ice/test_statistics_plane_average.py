@@ -10,7 +10,7 @@ each saved statistics label along the row j = 5, k = 0 after steps 4 and 6, and 
 planeAverage files of step 6 (press_CC, vel_CC: the rows; temp_CC, weighting none: the text).
 
 Measured (vel_CC itself is sus's to 9e-15 of its largest value): every order-n label (sums,
-means, variance, skewness, kurtosis, the Reynolds stress products) to 1.5e-14 of the row's
+means, variance, skewness, kurtosis, the Reynolds stress products) to 4e-14 (about n times that) of the row's
 largest |Q|^n; variance, skewness and kurtosis are differences of nearly equal moments (p^4 ~
 1e20 for kurtosis), so relative to themselves only to 5e-7 (skewness of press_CC); the plane
 averages to 1e-14; temp_CC's file (weighting none) is byte for byte sus's.
@@ -51,13 +51,13 @@ def test_statistics_as_uintah(runs):
                 got = da.read(prefix + q, 0, step)[0][:, 5, 0]
                 ref = sus[f"{prefix}{q}@{step}"]
                 scale = value ** n * (step - 3 if prefix.startswith("sum") else 1)
-                assert np.abs(got - ref).max() <= 3e-14 * scale, (prefix + q, step, np.abs(got - ref).max() / scale)
+                assert np.abs(got - ref).max() <= 1e-13 * scale, (prefix + q, step, np.abs(got - ref).max() / scale)
         # before the window: the statistics are 0 and the sums stay 0
         assert not np.any(da.read("mean_" + q, 0, 3)[0]) and not np.any(da.read("sum4_" + q, 0, 3)[0])
     vmax = np.abs(sus["vel_CC@6"]).max()
     for label in ("sum_uv_vw_wu", "mean_uv_vw_wu", "uv_vw_wu_prime"):
         got = da.read(label, 0, 6)[0][:, 5, 0]
-        assert np.abs(got - sus[f"{label}@6"]).max() <= 3e-14 * 3 * vmax ** 2, label
+        assert np.abs(got - sus[f"{label}@6"]).max() <= 1e-13 * 3 * vmax ** 2, label
     # uv_vw_wu_prime after one sample: mean(u v) - mean(u) mean(v) = 0 up to round-off
     assert np.abs(da.read("uv_vw_wu_prime", 0, 4)[0]).max() <= 1e-14 * vmax ** 2
 
