@@ -12,7 +12,9 @@ in boxes and the mass fluxes through their faces (ControlVolFluxes); `SGS_Reynol
 CC tensor of ICE's face stresses tau_X_FC, ... (each row the mean of its two faces);
 `turbulentFluxes` running means, variances and covariances with the velocity (TurbulentFluxes);
 `firstLawThermo` the fluids' and solids' internal energy and the fluids' energy flux through the
-domain's faces (FirstLawThermo).
+domain's faces (FirstLawThermo); `statistics` running means, variances and higher moments of CC and
+FC variables (Statistics); `planeAverage` plane averages written per sampled step (PlaneAverage,
+whose PlaneSums planeAvgTurbFluxes shares).
 """
 from __future__ import annotations
 

@@ -101,3 +101,24 @@ def test_bad_input_is_refused(tmp_path, old, new, message):
     deck.write_text(text.replace(old, new, 1), encoding="iso-8859-1")
     with pytest.raises(InputError, match=message):
         Controller(str(deck), quiet=True, filebase=str(tmp_path / "r.uda"))
+
+
+def test_statistics_restart_continues_the_sums(tmp_path):
+    """The sums and the step count are carried in checkpoints: restarting from the step-5
+    checkpoint (two steps into the window) gives step 6's statistics bit for bit."""
+    from framework.archiver import DataArchive
+    from tests.conftest import pysus
+    text = DECK.read_text(encoding="iso-8859-1").replace(
+        '      <save label="vel_CC"/>', '      <checkpoint timestepInterval="5" cycle="2"/>\n      <save label="vel_CC"/>', 1)
+    deck = tmp_path / "d.ups"
+    deck.write_text(text, encoding="iso-8859-1")
+    r = pysus(deck, "--filebase", tmp_path / "a.uda")
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = pysus("-restart", tmp_path / "a.uda", "-t", "0", "--filebase", tmp_path / "b.uda")
+    assert r.returncode == 0, r.stderr[-2000:]
+    a, b = DataArchive(tmp_path / "a.uda"), DataArchive(tmp_path / "b.uda")
+    assert a.times[-1] == b.times[-1] and len(b.times) < len(a.times)        # b starts at step 5
+    for label in ("mean_press_CC", "kurtosis_vel_CC", "uv_vw_wu_prime", "sum4_press_CC"):
+        assert np.array_equal(a.read(label, 0, -1)[0], b.read(label, 0, -1)[0]), label
+    assert (tmp_path / "b.uda" / "planeAverage" / "t00006" / "L-0" / "temp_CC_0").read_text() == \
+        (tmp_path / "a.uda" / "planeAverage" / "t00006" / "L-0" / "temp_CC_0").read_text()
