@@ -3,11 +3,12 @@
 Deck: uintah_reference/impVortices_statistics.ups (the explicit Smagorinsky vortices deck, whose
 flow is sus's to round-off, 6 steps, with statistics from 5e-5 s: in its window from step 4,
 higher-order statistics and computeReynoldsStress on vel_CC; planeAverage on XZ planes every
-step, weighting nCells and none). data/sus_vortices_statistics.npz is sus's output on that deck
-(one rank; the deck with the pysus-only advection attributes limiter and dissipationHeating
-removed, which are sus's defaults), read with framework.uintah_uda.UintahArchive: the times,
-each saved statistics label along the row j = 5, k = 0 after steps 4 and 6, and its
-planeAverage files of step 6 (press_CC, vel_CC: the rows; temp_CC, weighting none: the text).
+step, weighting nCells, mass (the weight rho_CC) and none). data/sus_vortices_statistics.npz is
+sus's output on that deck (one rank; the deck with the pysus-only advection attributes limiter
+and dissipationHeating removed, which are sus's defaults), read with
+framework.uintah_uda.UintahArchive: the times, each saved statistics label along the row j = 5,
+k = 0 after steps 4 and 6, and its planeAverage files of step 6 (press_CC weighted by rho_CC,
+vel_CC by nCells: the rows; temp_CC, weighting none: the text).
 
 Measured (vel_CC itself is sus's to 9e-15 of its largest value): every order-n label (sums,
 means, variance, skewness, kurtosis, the Reynolds stress products) to 4e-14 (about n times that) of the row's
@@ -68,10 +69,10 @@ def test_plane_average_as_uintah(runs):
     assert sorted(p.name for p in folder.iterdir()) == [f"t{n:05d}" for n in range(1, 7)]
     press = (folder / "t00006/L-0/press_CC_0").read_text()
     assert press.startswith(str(sus["plane_press_header"]))
-    got, ref = rows(press), sus["plane_press@6"]
-    assert got.shape == ref.shape == (25, 5) and np.all(got[:, 4] == 50)           # nCells per plane
+    got, ref = rows(press), sus["plane_press@6"]                 # weighting="mass": sum p / sum rho
+    assert got.shape == ref.shape == (25, 5)
     assert np.array_equal(got[:, :3], ref[:, :3])
-    assert np.allclose(got[:, 3], ref[:, 3], rtol=1e-14, atol=0)
+    assert np.allclose(got[:, 3:], ref[:, 3:], rtol=1e-14, atol=0)
     for step in (1, 6):
         got, ref = rows((folder / f"t{step:05d}/L-0/vel_CC_0").read_text()), sus[f"plane_vel@{step}"]
         assert got.shape == ref.shape == (25, 7)
@@ -86,10 +87,10 @@ def test_plane_average_as_uintah(runs):
      '<analyze label="press_CC" matl="0" computeReynoldsStress="true"/>', "computeReynoldsStress on press_CC"),
     ("<timeStart>         5e-5", "<timeStart>         500", "timeStop is before timeStart"),
     ("<planeOrientation>  XZ", "<planeOrientation>  XX", "planeOrientation"),
-    ('<analyze label="press_CC" matl="0" weighting="nCells"/>', '<analyze label="press_CC" weighting="nCells"/>',
+    ('<analyze label="press_CC" matl="0" weighting="mass"/>', '<analyze label="press_CC" weighting="mass"/>',
      'press_CC needs matl="0"'),
-    ('<analyze label="vel_CC"            weighting="nCells"/>', '<analyze label="vel_CC" weighting="mass"/>',
-     r'weighting="mass" of vel_CC needs <weight label'),
+    ('<weight label="rho_CC"/>', '<weight label="mass_adv"/>',
+     r'weighting="mass" of press_CC needs <weight label="..."> naming a cell-centred double .*given: mass_adv'),
     ('<analyze label="temp_CC"/>', '<analyze label="temp_CC" weighting="volume"/>',
      r'attribute weighting="volume" is not accepted; accepted: nCells, mass'),
 ])
