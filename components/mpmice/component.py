@@ -131,6 +131,7 @@ class MPMICE(MPMICETasks, Component):
         cv = [_specific_heat(m) for m in self.mpm.materials]
         self.ice = ICEinMPMICE(self.mpm.materials, cv, bulk)
         self.ice.problem_setup(root, level)
+        self.ice.coupling = self          # the fluids' advection next to the solids (tasks.open_faces)
         if self.ice.implicit:
             self.may_recompute = self.ice.may_recompute      # iters_before_timestep_restart
         if self.ice.conserve_energy:
@@ -343,7 +344,7 @@ class MPMICE(MPMICETasks, Component):
         t = Task("ICE::advectAndAdvanceInTime", ice.advect_and_advance, fl) \
             .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
             .requires(NEW, I.int_eng_L_ME_CC, G, gadv).requires(NEW, I.sp_vol_L_CC, G, gadv) \
-            .requires(NEW, I.vol_frac_CC) \
+            .requires(NEW, I.vol_frac_CC, G, gadv, matls=self.all_matls) \
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d], G, 1)

@@ -420,3 +420,72 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
                 for m in range(n):
                     if solid[m]:
                         out[m][i, j, k] = rhos[m][i, j, k] * scale
+
+
+@njit(cache=True)
+def open_fraction(solid_vf, fluid_vf, lo, hi, out):
+    """The part of each cell [lo, hi) open to the fluids: the sum of their volume fractions,
+    exactly 1 where the solids hold less than 1e-9 of the cell (pure fluid stays bitwise ICE's).
+    solid_vf, fluid_vf: tuples of the materials' vol_frac_CC."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                s = 0.0
+                for a in solid_vf:
+                    s += a[i, j, k]
+                if s < 1e-9:
+                    out[i, j, k] = 1.0
+                    continue
+                f = 0.0
+                for a in fluid_vf:
+                    f += a[i, j, k]
+                out[i, j, k] = f
+
+
+
+
+@njit(cache=True)
+def open_face_transfers(u, opn, mass, sh, d, flo, fhi, dt_dx, e, total):
+    """Step 12 next to the solids: per face [flo, fhi) along d (R cell = face + sh, L = R - e_d),
+    e = (o_n / o_d - 1) |u| dt/dx, signed as u, where the fluid leaves its donor cell (open
+    part o_d = opn) for a more open neighbour (o_n > o_d): the fluid in a cell a solid partly
+    fills lies on the open neighbour's side and crosses the face as though the face were as
+    open as that neighbour, u o_n dt/dx of the cell's volume, where ICE's flux carries
+    u o_d dt/dx. total: each donor cell's sum of e over its faces (for cap_open_transfers)."""
+    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                uu = u[i, j, k]
+                e[i, j, k] = 0.0
+                if uu == 0.0:
+                    continue
+                r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
+                l0, l1, l2 = r0 - e0, r1 - e1, r2 - e2
+                if uu > 0.0:
+                    a0, a1, a2, od, on, md, mn = l0, l1, l2, opn[l0, l1, l2], opn[r0, r1, r2], mass[l0, l1, l2], mass[r0, r1, r2]
+                else:
+                    a0, a1, a2, od, on, md, mn = r0, r1, r2, opn[r0, r1, r2], opn[l0, l1, l2], mass[r0, r1, r2], mass[l0, l1, l2]
+                if on > od and md * on > mn * od:
+                    x = min((on / od - 1.0) * abs(uu) * dt_dx, (md * on - mn * od) / (md * (od + on)))
+                    total[a0, a1, a2] += x
+                    e[i, j, k] = x if uu > 0.0 else -x
+
+
+@njit(cache=True)
+def cap_open_transfers(e, sh, d, flo, fhi, total, cap):
+    """Scale the transfers out of each donor cell whose sum exceeds cap down to cap (at most
+    that fraction of a cell's fluid moves besides ICE's fluxes in one step)."""
+    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                x = e[i, j, k]
+                if x == 0.0:
+                    continue
+                r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
+                if x > 0.0:
+                    r0, r1, r2 = r0 - e0, r1 - e1, r2 - e2
+                t = total[r0, r1, r2]
+                if t > cap:
+                    e[i, j, k] = x * (cap / t)

@@ -250,6 +250,38 @@ class MPMICETasks:
         """Eq. 40 for every material (the solids' result is unused: their volume is the particles')."""
         self.ice.lagrangian_sp_vol(patch, matls, StartOfStep(old_dw, new_dw, self.mpm_matls), new_dw)
 
+    # -- step 12: the fluids' advection next to the solids -----------------------------------------
+    def open_faces(self, patch, m, new_dw, dt):
+        """What ICE's advection of fluid m moves across the faces (ice.advection_faces): its face
+        velocities, and where the fluid leaves a cell for a more open neighbour (the open part
+        of a cell: the sum of the fluids' volume fractions) the further fraction of the cell's
+        fluid that a face as open as that neighbour lets through (kernels.open_face_transfers,
+        at most OPEN_CAP of a cell a step). A solid entering a cell fills it from the side away
+        from the open neighbour, so the fluid there leaves at its own density, as fast as the
+        solid displaces it; ICE's flux alone (the cell's mean density) leaves some of it behind
+        in cells the solid then fills. Nothing changes where no solid is (all cells open)."""
+        ice = self.ice
+        uf = ice._faces(new_dw, I.FC_VEL_ME, m, patch)
+        shape = patch.alloc_shape(CC)
+        vf = lambda ms: tuple(new_dw.get(I.vol_frac_CC, k, patch) for k in ms)
+        opn = np.empty(shape)
+        K.open_fraction(vf(self.mpm_matls), vf(ice.ice_matls), np.zeros(3, np.int64), np.array(shape, np.int64), opn)
+        b = ice.boxes(patch)
+        total = np.zeros(shape)
+        ef = [np.zeros((1, 1, 1))] * 3
+        for d in range(3):
+            if ice.dims[d]:
+                ef[d] = np.empty(uf[d].shape)
+                K.open_face_transfers(uf[d], opn, new_dw.get(I.mass_L_CC, m, patch), b.sh[d], d, b.flo[d], b.fhi[d], dt / patch.level.dx[d], ef[d], total)
+        if not total.any():
+            return uf, [np.zeros((1, 1, 1))] * 3
+        for d in range(3):
+            if ice.dims[d]:
+                K.cap_open_transfers(ef[d], b.sh[d], d, b.flo[d], b.fhi[d], total, self.OPEN_CAP)
+        return uf, ef
+
+    OPEN_CAP = 0.2        # at most this fraction of a cell's fluid moves besides ICE's fluxes in one step
+
     # -- step 7: the equilibration pressure acting on the solid ------------------------------------
     def pressure_internal_force(self, patch, matls, old_dw, new_dw):
         """interpolatePressCCToPressNC + interpolatePAndGradP: p - p_ref at the particles and its
