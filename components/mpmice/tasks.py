@@ -280,7 +280,9 @@ class MPMICETasks:
                 K.cap_open_transfers(ef[d], b.sh[d], d, b.flo[d], b.fhi[d], total, self.OPEN_CAP)
         return uf, ef
 
-    OPEN_CAP = 0.2        # at most this fraction of a cell's fluid moves besides ICE's fluxes in one step
+    # at most this fraction of a cell's fluid moves besides ICE's fluxes in a step: ICE's second-order
+    # flux of m v may itself take up to about 4 |u| dt/dx of a cell next to steep neighbours
+    OPEN_CAP = 0.2
 
     # -- step 7: the equilibration pressure acting on the solid ------------------------------------
     def pressure_internal_force(self, patch, matls, old_dw, new_dw):
