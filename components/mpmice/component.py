@@ -347,7 +347,7 @@ class MPMICE(MPMICETasks, Component):
             .requires(NEW, I.vol_frac_CC, G, gadv, matls=self.all_matls) \
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
         for d in dirs:
-            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+            t.requires(NEW, I.FC_VEL_ME[d], G, 1, matls=self.all_matls)
         ice.advect_scalars(t, gadv)
         sched.add_task(t)
         for model in ice.scalars:

@@ -253,28 +253,32 @@ class MPMICETasks:
     # -- step 12: the fluids' advection next to the solids -----------------------------------------
     def open_faces(self, patch, m, new_dw, dt):
         """What ICE's advection of fluid m moves across the faces (ice.advection_faces): its face
-        velocities, and where the fluid leaves a cell for a more open neighbour (the open part
-        of a cell: the sum of the fluids' volume fractions) the further fraction of the cell's
-        fluid that a face as open as that neighbour lets through (kernels.open_face_transfers,
-        at most OPEN_CAP of a cell a step). A solid entering a cell fills it from the side away
-        from the open neighbour, so the fluid there leaves at its own density, as fast as the
-        solid displaces it; ICE's flux alone (the cell's mean density) leaves some of it behind
-        in cells the solid then fills. Nothing changes where no solid is (all cells open)."""
+        velocities, and where a solid advances from a cell toward a more open neighbour (the
+        open part of a cell: the sum of the fluids' volume fractions) the further fraction of
+        the cell's fluid that the solid displaces through the face (kernels.open_face_transfers,
+        at most OPEN_CAP of a cell a step). ICE's flux alone carries the fluid at the cell's mean
+        density and leaves some of it in the cells a piston fills. Nothing changes where no
+        solid moves into a cell that holds fluid."""
         ice = self.ice
         uf = ice._faces(new_dw, I.FC_VEL_ME, m, patch)
+        none = [np.zeros((1, 1, 1))] * 3
         shape = patch.alloc_shape(CC)
         vf = lambda ms: tuple(new_dw.get(I.vol_frac_CC, k, patch) for k in ms)
+        solid_vf = vf(self.mpm_matls)
         opn = np.empty(shape)
-        K.open_fraction(vf(self.mpm_matls), vf(ice.ice_matls), np.zeros(3, np.int64), np.array(shape, np.int64), opn)
+        K.open_fraction(solid_vf, vf(ice.ice_matls), np.zeros(3, np.int64), np.array(shape, np.int64), opn)
         b = ice.boxes(patch)
+        mass = new_dw.get(I.mass_L_CC, m, patch)
         total = np.zeros(shape)
-        ef = [np.zeros((1, 1, 1))] * 3
+        ef = list(none)
         for d in range(3):
             if ice.dims[d]:
+                solid_u = tuple(new_dw.get(I.FC_VEL_ME[d], s, patch) for s in self.mpm_matls)
                 ef[d] = np.empty(uf[d].shape)
-                K.open_face_transfers(uf[d], opn, new_dw.get(I.mass_L_CC, m, patch), b.sh[d], d, b.flo[d], b.fhi[d], dt / patch.level.dx[d], ef[d], total)
+                K.open_face_transfers(solid_u, solid_vf, opn, mass, b.sh[d], d, b.flo[d], b.fhi[d],
+                                      dt / patch.level.dx[d], ef[d], total)
         if not total.any():
-            return uf, [np.zeros((1, 1, 1))] * 3
+            return uf, none
         for d in range(3):
             if ice.dims[d]:
                 K.cap_open_transfers(ef[d], b.sh[d], d, b.flo[d], b.fhi[d], total, self.OPEN_CAP)
