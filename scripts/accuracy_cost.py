@@ -140,7 +140,8 @@ def _piston_scene():
     return {"deck": deck, "error": error, "key": "max",
             "what": "MPMICE adiabatic piston (paper 000 sec. 4.2, rmpmice + implicit ICE): bottom pressure vs "
                     "P1 (V1/V2)^gamma (eq. 44); end = relative error at the highest compression (V1/V2 = ratio), "
-                    "max / mean = |error| while the piston moves, end_gas with the trapped gas's own volume ratio"}
+                    "max / mean = |error| while the piston moves, late = max |error| from V1/V2 = 2 to the stop, "
+                    "end_gas with the trapped gas's own volume ratio"}
 
 
 SCENES["piston"] = _piston_scene
