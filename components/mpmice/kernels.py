@@ -445,7 +445,7 @@ def open_fraction(solid_vf, fluid_vf, lo, hi, out):
 
 
 @njit(cache=True)
-def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, e, total):
+def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e):
     """Step 12 next to a moving solid, per face [flo, fhi) along d (R cell = face + sh, L = R - e_d):
     u_s = the solids' face velocities weighted by their volume fractions in the two cells. Where
     the solid advances from its upwind cell (the donor, open part o_d = opn, fluid mass m_d)
@@ -454,8 +454,10 @@ def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, e,
     the two densities per open volume equal), signed as u_s. The solid fills the donor from the
     side away from the neighbour and displaces the fluid in its open part, which lies against
     the face, as though the face were as open as the neighbour: u_s o_n dt/dx of the cell's
-    volume, where ICE's flux at the fluid's mean density carries about u o_d dt/dx. total: each
-    donor cell's sum of e over its faces (cap_open_transfers)."""
+    volume, where ICE's flux at the fluid's mean density carries about u o_d dt/dx. |e| <= cap
+    on each face (a face's own bound, the same on the patches either side of it). Returns
+    whether any face moves fluid so."""
+    moved = False
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     for i in range(flo[0], fhi[0]):
         for j in range(flo[1], fhi[1]):
@@ -473,31 +475,11 @@ def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, e,
                     continue
                 us = uw / w
                 if us > 0.0:
-                    a0, a1, a2 = l0, l1, l2
                     od, on, md, mn = opn[l0, l1, l2], opn[r0, r1, r2], mass[l0, l1, l2], mass[r0, r1, r2]
                 else:
-                    a0, a1, a2 = r0, r1, r2
                     od, on, md, mn = opn[r0, r1, r2], opn[l0, l1, l2], mass[r0, r1, r2], mass[l0, l1, l2]
                 if on > od and md * on > mn * od:
-                    x = min((on / od - 1.0) * abs(us) * dt_dx, (md * on - mn * od) / (md * (od + on)))
-                    total[a0, a1, a2] += x
+                    x = min((on / od - 1.0) * abs(us) * dt_dx, (md * on - mn * od) / (md * (od + on)), cap)
                     e[i, j, k] = x if us > 0.0 else -x
-
-
-@njit(cache=True)
-def cap_open_transfers(e, sh, d, flo, fhi, total, cap):
-    """Scale the transfers out of each donor cell whose sum exceeds cap down to cap (at most
-    that fraction of a cell's fluid moves besides ICE's fluxes in one step)."""
-    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
-    for i in range(flo[0], fhi[0]):
-        for j in range(flo[1], fhi[1]):
-            for k in range(flo[2], fhi[2]):
-                x = e[i, j, k]
-                if x == 0.0:
-                    continue
-                r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
-                if x > 0.0:
-                    r0, r1, r2 = r0 - e0, r1 - e1, r2 - e2
-                t = total[r0, r1, r2]
-                if t > cap:
-                    e[i, j, k] = x * (cap / t)
+                    moved = True
+    return moved

@@ -269,24 +269,20 @@ class MPMICETasks:
         K.open_fraction(solid_vf, vf(ice.ice_matls), np.zeros(3, np.int64), np.array(shape, np.int64), opn)
         b = ice.boxes(patch)
         mass = new_dw.get(I.mass_L_CC, m, patch)
-        total = np.zeros(shape)
+        cap = self.OPEN_CAP / (2 * int(np.count_nonzero(ice.dims)))        # per face: a cell's faces together
         ef = list(none)
+        moved = False
         for d in range(3):
             if ice.dims[d]:
                 solid_u = tuple(new_dw.get(I.FC_VEL_ME[d], s, patch) for s in self.mpm_matls)
                 ef[d] = np.empty(uf[d].shape)
-                K.open_face_transfers(solid_u, solid_vf, opn, mass, b.sh[d], d, b.flo[d], b.fhi[d],
-                                      dt / patch.level.dx[d], ef[d], total)
-        if not total.any():
-            return uf, none
-        for d in range(3):
-            if ice.dims[d]:
-                K.cap_open_transfers(ef[d], b.sh[d], d, b.flo[d], b.fhi[d], total, self.OPEN_CAP)
-        return uf, ef
+                moved |= K.open_face_transfers(solid_u, solid_vf, opn, mass, b.sh[d], d, b.flo[d], b.fhi[d],
+                                               dt / patch.level.dx[d], cap, ef[d])
+        return uf, (ef if moved else none)
 
-    # at most this fraction of a cell's fluid moves besides ICE's fluxes in a step: ICE's second-order
-    # flux of m v may itself take up to about 4 |u| dt/dx of a cell next to steep neighbours
-    OPEN_CAP = 0.2
+    # at most this fraction of a cell's fluid moves besides ICE's fluxes in a step (through all its
+    # faces): ICE's second-order flux of m v may itself take up to about 4 |u| dt/dx of a cell
+    OPEN_CAP = 0.3
 
     # -- step 7: the equilibration pressure acting on the solid ------------------------------------
     def pressure_internal_force(self, patch, matls, old_dw, new_dw):
