@@ -449,8 +449,8 @@ def _open_transfers(q, ex, ey, ez, shs, flo, fhi, lo, hi, dims, acc):
     """MPMICE's open-face transfers (components/mpmice/kernels.open_face_transfers): across
     each face with e != 0 the fraction |e| of the donor's Lagrangian totals (q: m and the
     specific values) moves to the other cell, L -> R where e > 0: a first-order flux on
-    top of the face velocity's, for a fluid that leaves a cell a solid is filling through
-    a face more open than the cell. Nothing where e is a 1-element dummy (ICE alone)."""
+    top of the face velocity's, for the fluid a solid advancing through its cell displaces
+    into a more open neighbour. Nothing where e is a 1-element dummy (ICE alone)."""
     if ex.size == 1 and ey.size == 1 and ez.size == 1:
         return
     nq = q.shape[0]
@@ -498,7 +498,7 @@ def advect(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey,
     All arrays are views with the collapsed axes first (a 2D run has a unit first axis),
     `comp` maps view axes to velocity components; shs, flo, fhi: (3, 3) per view axis.
     q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6, plus ns; buf: (nq, row length).
-    ex, ey, ez: MPMICE's open-face transfers (_open_transfer), or 1-element dummies.
+    ex, ey, ez: MPMICE's open-face transfers (_open_transfers), or 1-element dummies.
     """
     _start(mass, mom, eng, volm, tot, scal, with_e, heating, q, acc, lo, hi)
     for d in range(3):                  # d a run-time value: one compiled _sweep, not one per axis

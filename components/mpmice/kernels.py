@@ -442,8 +442,6 @@ def open_fraction(solid_vf, fluid_vf, lo, hi, out):
                 out[i, j, k] = f
 
 
-
-
 @njit(cache=True)
 def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e):
     """Step 12 next to a moving solid, per face [flo, fhi) along d (R cell = face + sh, L = R - e_d):
