@@ -127,13 +127,14 @@ def _piston_scene():
 
     state = {"gamma": P.GAMMA}
 
-    def deck(n, heat=None, stop=None, gamma=None, speed=None, ratio=None):
+    def deck(n, heat=None, stop=None, gamma=None, speed=None, ratio=None, open=None):
         """n cells along the 2.5 mm column (dy = 2.5e-3 / n; the deck's 200 cells: n = 200);
         heat: the heat-exchange coefficient (the deck's 1); stop: the piston's stop_time;
         gamma: the gases' gamma (1.4); speed: the piston's speed in m/s (1e-3); ratio: V1/V2
-        where the piston stops (5.9)."""
+        where the piston stops (5.9); open: false for Uintah's advection next to the piston
+        (openFaceTransfers, docs/MPMICE.md)."""
         state["gamma"] = P.GAMMA if gamma is None else float(gamma)
-        return P.deck(n, heat=heat, stop=stop, gamma=gamma, speed=speed, ratio=ratio)
+        return P.deck(n, heat=heat, stop=stop, gamma=gamma, speed=speed, ratio=ratio, open_faces=open)
 
     def error(da):
         return P.errors(da, state["gamma"])

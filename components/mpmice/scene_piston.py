@@ -32,11 +32,13 @@ RES = 2                     # particles per cell along y (deck)
 Y0, SPEED = 1.0e-3, 1.0e-3  # the piston's bottom at t = 0 and its speed (deck; it stops at V1/V2 = 5.9)
 
 
-def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, gamma=None, speed=None, ratio=None):
+def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, gamma=None, speed=None, ratio=None,
+         open_faces=None):
     """The validation deck with n cells; t_end: maxTime; stop: the piston's stop_time;
     heat: the heat-exchange coefficients (one number for all pairs); output: outputInterval;
     gamma: both gases' gamma; speed: the piston's speed (m/s; maxTime, stop_time, delt_max and
-    outputInterval scale with 1/speed unless given); ratio: V1/V2 at the stop (sets stop_time)."""
+    outputInterval scale with 1/speed unless given); ratio: V1/V2 at the stop (sets stop_time);
+    open_faces: "false" for Uintah's advection next to the piston (docs/MPMICE.md, step 12)."""
     text = open(DECK, encoding="iso-8859-1").read()
     reps = [("<resolution>    [1,200,1]               </resolution>", f"<resolution> [1,{int(n)},1] </resolution>"),
             ("<patches>       [1,2,1]                 </patches>", f"<patches> [{patches}] </patches>")]
@@ -56,6 +58,9 @@ def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, 
         old = "<gamma>                      1.4             </gamma>"
         assert text.count(old) == 2, old
         text = text.replace(old, f"<gamma> {float(gamma)!r} </gamma>")
+    if open_faces is not None:
+        reps.append(('<advection type = "SecondOrder"/>',
+                     f'<advection type = "SecondOrder" openFaceTransfers = "{str(open_faces).lower()}"/>'))
     if t_end is not None:
         reps.append(("<maxTime>            0.9      </maxTime>", f"<maxTime> {float(t_end)!r} </maxTime>"))
     if stop is not None:

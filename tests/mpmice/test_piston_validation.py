@@ -59,6 +59,18 @@ def test_no_gas_left_in_the_pistons_cells(fine):
     assert gas[solid > 0.99].sum() < 0.002 * gas.sum()      # was 0.015
 
 
+def test_uintahs_advection_leaves_gas_in_the_pistons_cells(tmp_path):
+    """openFaceTransfers="false" (Uintah's advection, the face velocities' fluxes alone): the
+    gas the piston's cells keep is what the default removes; 100 cells to t = 0.6 s."""
+    gas_left = []
+    for flag in ("false", "true"):
+        da = DataArchive(run_deck(S.deck(100, t_end=0.6, output=0.6, open_faces=flag), tmp_path, f"o{flag}").archiver.dir)
+        solid = da.read("vol_frac_CC", 0, -1)[0].reshape(-1)
+        gas = da.read("rho_CC", 1, -1)[0].reshape(-1)
+        gas_left.append(gas[solid > 0.99].sum() / gas.sum())
+    assert gas_left[0] > 0.005 and gas_left[1] < 0.3 * gas_left[0], gas_left
+
+
 def test_piston_moves_as_prescribed_and_each_step_converges(run):
     ctl, da = run
     h = S.history(da)
