@@ -30,7 +30,6 @@ from .materials import SETTINGS, SOLVER, read_material, read_walls
 from .tasks import EfemTasks
 
 G = Ghost.AROUND_CELLS
-MASS_FRACTION_MIN = 1e-6
 GADV = 2           # MUSCL reads two elements upwind of a face
 
 
@@ -74,8 +73,6 @@ class EFEM(EfemTasks, Component):
         self.wave_speed = max(m.wave_speed() for m in self.materials)
         self.matls = list(range(len(self.materials)))
         self.vol = float(np.prod(level.dx))
-        # nodes lighter than this share of a full element's quarter are held at rest
-        self.mass_min = MASS_FRACTION_MIN * 0.25 * float(self.densities.max()) * self.vol
         self.dims = np.array([1, 1, 0], dtype=np.int64)
         precond = solver["preconditioner"]
         if precond == "mg" and not PCG.mg_possible(level):
@@ -112,7 +109,8 @@ class EFEM(EfemTasks, Component):
         sched.add_task(t)
         sched.add_task(Task("EFEM::computeVelocityStar", self.velocity_star, m0)
                        .requires(OLD, L.delT).requires(OLD, E.gVelocity, G, 1).requires(NEW, E.sigma_CC, G, 1)
-                       .requires(NEW, E.rho_CC, G, 1).computes(E.gVelocityStar).computes(E.gMass))
+                       .requires(NEW, E.rho_CC, G, 1).requires(NEW, E.fill_CC, G, 1)
+                       .computes(E.gVelocityStar).computes(E.gMass))
         t = Task("EFEM::setupPressureSystem", self.pressure_system, m0) \
             .requires(OLD, L.delT).requires(NEW, E.gVelocityStar, G, 1).requires(NEW, E.rho_CC, G, 1) \
             .requires(NEW, E.fill_CC, G, 1).computes(E.press_A).computes(E.press_rhs)
@@ -133,6 +131,8 @@ class EFEM(EfemTasks, Component):
         # Eulerian step
         t = Task("EFEM::advectAndRemap", self.remap, self.matls) \
             .requires(OLD, L.delT).requires(NEW, E.gVelocityL, G, GADV + 1, matls=m0) \
+            .requires(NEW, E.gVelocityStar, G, GADV + 1, matls=m0).requires(NEW, E.press_CC, G, GADV, matls=m0) \
+            .requires(NEW, E.rho_CC, G, GADV, matls=m0).requires(NEW, E.fill_CC, G, GADV, matls=m0) \
             .requires(OLD, E.vol_frac_CC, G, GADV) \
             .computes(E.vol_frac_CC).computes(E.dvel_CC, matls=m0).computes(E.mass_CC, matls=m0)
         if solids:
@@ -144,4 +144,4 @@ class EFEM(EfemTasks, Component):
         sched.add_task(Task("EFEM::sumConservedQuantities", self.conserved, self.matls)
                        .requires(NEW, E.vol_frac_CC).requires(NEW, E.gVelocity, matls=m0)
                        .requires(NEW, E.gMass, matls=m0)
-                       .computes(E.TotalVolume, matls=self.matls).computes(E.TotalMass).computes(E.KineticEnergy))
+                       .computes(E.TotalMass).computes(E.KineticEnergy))

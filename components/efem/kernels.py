@@ -34,20 +34,27 @@ def strain_rate(vel, n0, c0, lo, hi, dx, D):
 
 
 @njit(cache=True)
-def solid_stress(D, sig_old, vf, sig_new, mean, lam, mu, dt, c0, lo, hi):
-    """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m."""
+def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_min, c0, lo, hi):
+    """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m.
+
+    With `slide`, an element that holds fluid (fluid fraction above 1e-6) takes only the
+    solid's mean normal stress, its shear dropped (eq. 24, the paper's slide condition).
+    Traces below phi_min (left by the remap) carry no stress."""
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
             i, j = I - c0[0], J - c0[1]
             exx, eyy, gxy = D[i, j, 0, 0], D[i, j, 0, 1], D[i, j, 0, 2]
             phi = vf[i, j, 0]
-            if phi <= 0.0:
+            if phi < phi_min:
                 sig_new[i, j, 0, 0] = sig_new[i, j, 0, 1] = sig_new[i, j, 0, 2] = 0.0
                 continue
             sxx = sig_old[i, j, 0, 0] + dt * ((lam + 2.0 * mu) * exx + lam * eyy)
             syy = sig_old[i, j, 0, 1] + dt * (lam * exx + (lam + 2.0 * mu) * eyy)
             sxy = sig_old[i, j, 0, 2] + dt * mu * gxy
             sig_new[i, j, 0, 0], sig_new[i, j, 0, 1], sig_new[i, j, 0, 2] = sxx, syy, sxy
+            if slide and fluid[i, j, 0] > 1e-6:
+                sxx = syy = 0.5 * (sxx + syy)
+                sxy = 0.0
             mean[i, j, 0, 0] += phi * sxx
             mean[i, j, 0, 1] += phi * syy
             mean[i, j, 0, 2] += phi * sxy
@@ -91,15 +98,15 @@ def apply_walls(vel, n0, lo, hi, N, walls, normal_only):
 
 
 @njit(cache=True)
-def velocity_star(vel, sigma, rho, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, grav, hourglass, damping, walls,
-                  m_min):
+def velocity_star(vel, sigma, rho, fill, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, grav, hourglass, damping,
+                  walls, fill_min):
     """Eqs. (6), (14): lumped nodal mass, internal force -V B^T sigma, gravity, v* = v + dt f / m.
 
     `hourglass` removes that fraction of each element's hourglass velocity per step
     (one Gauss point leaves the mode without stiffness); `damping` is a mass-proportional
-    damping rate (1/s), zero unless a deck asks for it. A node lighter than m_min (the
-    traces that the remap leaves in void elements) is held at rest rather than left to fall
-    freely. Walls take the normal component only here; no-slip is imposed after the projection.
+    damping rate (1/s), zero unless a deck asks for it. A node whose elements are all void
+    for the pressure equation (fill < fill_min: traces the remap leaves behind) has no mass
+    and stays at rest. Walls take the normal component only; no-slip follows the projection.
     """
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
@@ -107,6 +114,7 @@ def velocity_star(vel, sigma, rho, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, 
             m = 0.0
             fx = 0.0
             fy = 0.0
+            active = False
             for ci in range(I - 1, I + 1):
                 if ci < 0 or ci >= N[0]:
                     continue
@@ -114,6 +122,7 @@ def velocity_star(vel, sigma, rho, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, 
                     if cj < 0 or cj >= N[1]:
                         continue
                     i, j = ci - c0[0], cj - c0[1]
+                    active = active or fill[i, j, 0] >= fill_min
                     mc = rho[i, j, 0] * vol
                     if mc <= 0.0:
                         continue
@@ -132,7 +141,7 @@ def velocity_star(vel, sigma, rho, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, 
                         gam = sx * sy
                         fx -= hourglass * 0.25 * mc * hx * gam / dt
                         fy -= hourglass * 0.25 * mc * hy * gam / dt
-            if m < m_min:
+            if not active:
                 m = 0.0
             mass[a, b, 0] = m
             if m > TINY_MASS:
@@ -154,14 +163,22 @@ def _divergence_volume(v, a, b, dx, vol):
 
 
 @njit(cache=True)
+def _surface_distance(fill):
+    """Distance theta (in cells) from an element's centre to the p = 0 point of a ghost-fluid
+    Dirichlet face towards a void neighbour: theta = f / (1 + f) puts the hydrostatic
+    pressure of a layer of depth f dy at the element, so the nodes on top of a partly filled
+    element carry their weight at rest (f = 1: the surface on the node line, theta = 1/2)."""
+    return fill / (1.0 + fill)
+
+
+@njit(cache=True)
 def pressure_system(vstar, rho, fill, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, open_faces, fill_min):
     """Eq. (16) on the elements: -div(dt / rho grad p) V = -V div v*, a 5-point stencil.
 
     A[.., 0] = kap, then W, E, S, N faces: (A p)_c = kap p_c + sum_f a_f (p_c - p_nb)
     (components.ice.solver's layout). Elements with sum_m phi_m < fill_min are void: p = 0.
-    A void neighbour is a Dirichlet face at the estimated free surface, theta cells away
-    (theta = fill_c - 1/2 + fill_nb, kept in [0.1, 1]); so a flat surface on a node line is
-    hydrostatic exactly. Domain faces are walls (no flux) unless open (p = 0 on the face).
+    A void neighbour is a Dirichlet face (p = 0) at the free surface, _surface_distance
+    cells away. Domain faces are walls (no flux) unless open (p = 0 on the face).
     """
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
@@ -188,8 +205,7 @@ def pressure_system(vstar, rho, fill, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, ope
                     k, l = ni - c0[0], nj - c0[1]
                     fn = fill[k, l, 0]
                     if fn < fill_min:
-                        theta = min(1.0, max(0.1, fc - 0.5 + fn))
-                        kap += dt / rc * area_over_h / theta
+                        kap += dt / rc * area_over_h / _surface_distance(fc)
                     else:
                         A[i, j, 0, 1 + 2 * d + s] = 2.0 * dt / (rc + rho[k, l, 0]) * area_over_h
             A[i, j, 0, 0] = kap
@@ -246,12 +262,36 @@ def _van_leer(dm, dp):
 
 
 @njit(cache=True)
-def remap_sweep(d, phi, sig, solid_of, rho_m, u, vel, n0, c0, lo, hi, N, dx, dt, vol,
+def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min):
+    """Normal velocity of the face between elements E-1 and E along d (T across): the mean of
+    v* at the face's two nodes, corrected by the pressure jump across it exactly as the
+    5-point operator of eq. (16) assumes, so that it has no divergence in any element the
+    pressure equation holds (the volume fractions stay bounded by one)."""
+    if d == 0:
+        a, b = E - n0[0], T - n0[1]
+        u = 0.5 * (vstar[a, b, 0, 0] + vstar[a, b + 1, 0, 0])
+        il, jl, ih, jh = E - 1 - c0[0], T - c0[1], E - c0[0], T - c0[1]
+    else:
+        a, b = T - n0[0], E - n0[1]
+        u = 0.5 * (vstar[a, b, 0, 1] + vstar[a + 1, b, 0, 1])
+        il, jl, ih, jh = T - c0[0], E - 1 - c0[1], T - c0[0], E - c0[1]
+    fl, fh = fill[il, jl, 0], fill[ih, jh, 0]
+    if fl < fill_min and fh < fill_min:
+        return u
+    if fl < fill_min:
+        return u + dt * press[ih, jh, 0] / (rho[ih, jh, 0] * _surface_distance(fh) * dx[d])
+    if fh < fill_min:
+        return u - dt * press[il, jl, 0] / (rho[il, jl, 0] * _surface_distance(fl) * dx[d])
+    return u - 2.0 * dt / (rho[il, jl, 0] + rho[ih, jh, 0]) * (press[ih, jh, 0] - press[il, jl, 0]) / dx[d]
+
+
+@njit(cache=True)
+def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_min, n0, c0, lo, hi, N, dx, dt,
                 phi_out, sig_out, u_out):
     """One directional sweep of the Eulerian step (eq. 4) along mesh lines d over cells [lo, hi).
 
     phi (nm, X, Y): volume fractions, advected by van Leer's MUSCL (ref. 17) with the
-    face velocity of the moved mesh (mean of the face's two nodes); the donor's content
+    face velocities of the moved mesh (face_velocity); the donor's content
     bounds each flux. sig (ns, X, Y, 3): solid stresses, carried as phi_m sigma_m with the
     material's volume flux (upwind stress). u (X, Y, 2): element velocities, carried as
     momentum sum_m rho_m phi_m u (upwind u). Domain faces carry nothing (walls).
@@ -270,12 +310,7 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vel, n0, c0, lo, hi, N, dx, dt,
             Pm[f, 0] = Pm[f, 1] = 0.0
             if E <= 0 or E >= N[d]:
                 continue
-            if d == 0:
-                a, b = E - n0[0], T - n0[1]
-                uf = 0.5 * (vel[a, b, 0, 0] + vel[a, b + 1, 0, 0])
-            else:
-                a, b = T - n0[0], E - n0[1]
-                uf = 0.5 * (vel[a, b, 0, 1] + vel[a + 1, b, 0, 1])
+            uf = face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min)
             c = uf * dt / h
             if c == 0.0:
                 continue

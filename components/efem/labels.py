@@ -4,7 +4,7 @@ State carried from step to step: vol_frac_CC (per material), stress_CC (per soli
 material: [sxx, syy, sxy] of its Cauchy stress, Pa) and g.velocity (the one nodal
 velocity of the mixture, material 0). Computed each step and saveable: press_CC (the
 projection pressure), rho_CC (mixture density), mean_stress_CC (eq. 23 minus press_CC),
-g.mass, and the reductions TotalVolume (per material), TotalMass, KineticEnergy.
+g.mass, and the reductions TotalMass and KineticEnergy.
 """
 from framework import labels as L
 from framework.variables import VarType
@@ -37,7 +37,6 @@ mass_CC = L.create("efem.mass_CC", CC)                    # element mass after t
 mom_CC = L.create("efem.mom_CC", CC, (3,))                # element momentum at t = 0 (material 0)
 
 # reductions
-TotalVolume = L.create("TotalVolume", R, reduction="sum")     # per material: sum phi_m V
 TotalMass = L.create("TotalMass", R, reduction="sum")
 KineticEnergy = L.create("KineticEnergy", R, reduction="sum")
 maxSpeed = L.create("efem.maxSpeed", R, reduction="max")

@@ -86,14 +86,19 @@ class EfemTasks:
         sigma = new_dw.allocate(E.sigma_CC, 0, patch)
         rho = new_dw.allocate(E.rho_CC, 0, patch)
         fill = new_dw.allocate(E.fill_CC, 0, patch)
+        fluid = np.zeros(patch.alloc_shape(CC))
         for m, mat in enumerate(self.materials):
             vf = old_dw.get(E.vol_frac_CC, m, patch)
             rho += mat.density * vf
             fill += vf
+            if not mat.solid:
+                fluid += vf
+        for m, mat in enumerate(self.materials):
+            vf = old_dw.get(E.vol_frac_CC, m, patch)
             if mat.solid:
                 sig = new_dw.allocate(E.stress_L_CC, m, patch)
-                K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, sig, sigma, mat.lam, mat.mu, dt,
-                               f.c0, f.clo, f.chi)
+                K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, fluid, sig, sigma, mat.lam, mat.mu, dt,
+                               self.settings["slide_condition"], self.settings["fill_min"], f.c0, f.clo, f.chi)
             elif mat.viscosity > 0.0:
                 K.fluid_stress(D, vf, sigma, mat.viscosity, f.c0, f.clo, f.chi)
 
@@ -104,9 +109,9 @@ class EfemTasks:
         vstar = new_dw.allocate(E.gVelocityStar, 0, patch)
         mass = new_dw.allocate(E.gMass, 0, patch)
         K.velocity_star(old_dw.get(E.gVelocity, 0, patch), new_dw.get(E.sigma_CC, 0, patch),
-                        new_dw.get(E.rho_CC, 0, patch), vstar, mass, f.n0, f.c0, f.nlo, f.nhi, f.N, f.dx, f.vol,
-                        dt, self.gravity, self.settings["hourglass_damping"], self.settings["damping"], self.walls,
-                        self.mass_min)
+                        new_dw.get(E.rho_CC, 0, patch), new_dw.get(E.fill_CC, 0, patch), vstar, mass, f.n0, f.c0,
+                        f.nlo, f.nhi, f.N, f.dx, f.vol, dt, self.gravity, self.settings["hourglass_damping"],
+                        self.settings["damping"], self.walls, self.settings["fill_min"])
 
     def pressure_system(self, patch, matls, old_dw, new_dw):
         """The stencil and right-hand side of the pressure Poisson equation (eq. 16)."""
@@ -152,11 +157,12 @@ class EfemTasks:
         xlo = np.array([f.clo[0], glo[1]], dtype=np.int64)
         xhi = np.array([f.chi[0], ghi[1]], dtype=np.int64)
         phi1, sig1, u1 = phi.copy(), sig.copy(), u0.copy()
-        K.remap_sweep(0, phi, sig, self.solid_of, self.densities, u0, velL, f.n0, f.c0, xlo, xhi, f.N, f.dx, dt,
-                      f.vol, phi1, sig1, u1)
+        faces = (new_dw.get(E.gVelocityStar, 0, patch), new_dw.get(E.press_CC, 0, patch),
+                 new_dw.get(E.rho_CC, 0, patch), new_dw.get(E.fill_CC, 0, patch), self.settings["fill_min"], f.n0, f.c0)
+        K.remap_sweep(0, phi, sig, self.solid_of, self.densities, u0, *faces, xlo, xhi, f.N, f.dx, dt, phi1, sig1, u1)
         phi2, sig2, u2 = phi1.copy(), sig1.copy(), u1.copy()
-        K.remap_sweep(1, phi1, sig1, self.solid_of, self.densities, u1, velL, f.n0, f.c0, f.clo, f.chi, f.N, f.dx,
-                      dt, f.vol, phi2, sig2, u2)
+        K.remap_sweep(1, phi1, sig1, self.solid_of, self.densities, u1, *faces, f.clo, f.chi, f.N, f.dx, dt,
+                      phi2, sig2, u2)
         for m in range(nm):
             new_dw.put(E.vol_frac_CC, m, patch, np.ascontiguousarray(phi2[m][..., None]))
         for s, m in enumerate(self.solids):
@@ -176,14 +182,12 @@ class EfemTasks:
 
     # -- diagnostics and the time step ----------------------------------------------------
     def conserved(self, patch, matls, old_dw, new_dw):
-        """TotalVolume per material, TotalMass and KineticEnergy (nodal masses of the step)."""
+        """TotalMass (sum_m rho_m phi_m V) and KineticEnergy (nodal masses of the step)."""
         f = self.frame(patch)
         sl = (slice(f.clo[0] - f.c0[0], f.chi[0] - f.c0[0]), slice(f.clo[1] - f.c0[1], f.chi[1] - f.c0[1]))
         total = 0.0
         for m, mat in enumerate(self.materials):
-            v = float(new_dw.get(E.vol_frac_CC, m, patch)[sl].sum()) * f.vol
-            new_dw.put_reduction(E.TotalVolume, v, m)
-            total += mat.density * v
+            total += mat.density * float(new_dw.get(E.vol_frac_CC, m, patch)[sl].sum()) * f.vol
         new_dw.put_reduction(E.TotalMass, total)
         ke, _ = K.kinetic_energy_max_speed(new_dw.get(E.gVelocity, 0, patch), new_dw.get(E.gMass, 0, patch),
                                            f.n0, f.nlo, f.nhi)
