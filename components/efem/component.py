@@ -101,8 +101,10 @@ class EFEM(EfemTasks, Component):
     def schedule_time_advance(self, level, sched):
         m0, solids = [0], self.solids
         # Lagrangian step
+        # the slide condition's interface normal: the gradient of the solid's volume fraction
+        g = (G, 1) if self.settings["slide_condition"] and solids else ()
         t = Task("EFEM::computeStressTensor", self.compute_stress, self.matls) \
-            .requires(OLD, L.delT).requires(OLD, E.gVelocity, G, 1, matls=m0).requires(OLD, E.vol_frac_CC) \
+            .requires(OLD, L.delT).requires(OLD, E.gVelocity, G, 1, matls=m0).requires(OLD, E.vol_frac_CC, *g) \
             .computes(E.sigma_CC, matls=m0).computes(E.rho_CC, matls=m0).computes(E.fill_CC, matls=m0)
         if solids:
             t.requires(OLD, E.stress_CC, matls=solids).computes(E.stress_L_CC, matls=solids)

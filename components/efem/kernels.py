@@ -34,11 +34,12 @@ def strain_rate(vel, n0, c0, lo, hi, dx, D):
 
 
 @njit(cache=True)
-def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_min, c0, lo, hi):
+def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_min, c0, lo, hi, N):
     """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m.
 
-    With `slide`, an element that holds fluid (fluid fraction above 1e-6) takes only the
-    solid's mean normal stress, its shear dropped (eq. 24, the paper's slide condition).
+    With `slide` (the paper's slide condition, eq. 24), an element that also holds fluid
+    drops the solid's shear traction on the interface, whose normal n is the gradient of
+    phi_m: sigma -= tau (n t + t n), tau = t . sigma . n; its normal stresses stay.
     Traces below phi_min (left by the remap) carry no stress."""
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
@@ -51,10 +52,18 @@ def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_m
             sxx = sig_old[i, j, 0, 0] + dt * ((lam + 2.0 * mu) * exx + lam * eyy)
             syy = sig_old[i, j, 0, 1] + dt * (lam * exx + (lam + 2.0 * mu) * eyy)
             sxy = sig_old[i, j, 0, 2] + dt * mu * gxy
+            if slide and fluid[i, j, 0] > phi_min:
+                gx = (vf[i + 1, j, 0] if I + 1 < N[0] else phi) - (vf[i - 1, j, 0] if I > 0 else phi)
+                gy = (vf[i, j + 1, 0] if J + 1 < N[1] else phi) - (vf[i, j - 1, 0] if J > 0 else phi)
+                g = np.sqrt(gx * gx + gy * gy)
+                if g > 0.0:
+                    nx, ny = gx / g, gy / g
+                    tx, ty = ny, -nx
+                    tau = tx * (sxx * nx + sxy * ny) + ty * (sxy * nx + syy * ny)
+                    sxx -= 2.0 * tau * tx * nx
+                    syy -= 2.0 * tau * ty * ny
+                    sxy -= tau * (tx * ny + nx * ty)
             sig_new[i, j, 0, 0], sig_new[i, j, 0, 1], sig_new[i, j, 0, 2] = sxx, syy, sxy
-            if slide and fluid[i, j, 0] > 1e-6:
-                sxx = syy = 0.5 * (sxx + syy)
-                sxy = 0.0
             mean[i, j, 0, 0] += phi * sxx
             mean[i, j, 0, 1] += phi * syy
             mean[i, j, 0, 2] += phi * sxy

@@ -32,8 +32,9 @@ SETTINGS = {
     "cfl": Param("float", 0.25, above=0.0),
     "hourglass_damping": Param("float", 0.05, at_least=0.0),
     "damping": Param("float", 0.0, at_least=0.0),
-    "fill_min": Param("float", 1e-3, above=0.0),
+    "fill_min": Param("float", 0.05, above=0.0),
     "slide_condition": Param("bool", False),
+    "solid_min": Param("float", 0.1, at_least=0.0),
 }
 SOLVER = {
     "tolerance": Param("float", 1e-10, above=0.0),

@@ -98,7 +98,7 @@ class EfemTasks:
             if mat.solid:
                 sig = new_dw.allocate(E.stress_L_CC, m, patch)
                 K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, fluid, sig, sigma, mat.lam, mat.mu, dt,
-                               self.settings["slide_condition"], self.settings["fill_min"], f.c0, f.clo, f.chi)
+                               self.settings["slide_condition"], self.settings["solid_min"], f.c0, f.clo, f.chi, f.N)
             elif mat.viscosity > 0.0:
                 K.fluid_stress(D, vf, sigma, mat.viscosity, f.c0, f.clo, f.chi)
 

@@ -12,7 +12,7 @@ RHO, G, H = 1000.0, 9.81, 0.6
 
 
 def _run(tmp_path, walls, steps=40):
-    ctl = run_deck(deck(res=(20, 20), steps=steps, walls=walls, every=steps), tmp_path)
+    ctl = run_deck(deck(res=(20, 20), steps=steps, walls=walls, every=steps, saves=("g.velocity", "press_CC")), tmp_path)
     return DataArchive(ctl.archiver.dir)
 
 
