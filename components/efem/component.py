@@ -10,9 +10,10 @@ cell in z). Each step (the paper's flowchart, sec. 2):
                    the velocity correction (eq. 17);
   Eulerian step    remap to the fixed mesh: volume fractions (van Leer's MUSCL), solid
                    stresses and momentum along mesh lines, x then y (sec. 6).
-The pressure equation is a 5-point element Laplacian with the harmonic-free face density
-(an approximate projection of the Q1-P0 C^T M^-1 C of eq. 20; it needs no stabilisation S).
-Deck tags: materials.py; the method: docs/EFEM.md.
+The pressure equation is a 5-point element Laplacian with the mean density of the two
+elements on each face, an approximate projection in place of the Q1-P0 C^T M^-1 C + S of
+eq. 20 (no checkerboard mode, no stabilisation S). Deck tags: materials.py; the method
+and what differs from the paper: docs/EFEM.md.
 """
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ from framework.task import NEW, OLD, Task
 from framework.variables import Ghost
 
 from . import labels as E
-from .materials import SETTINGS, SOLVER, read_material, read_walls
+from .materials import SETTINGS, SOLVER, read_boundaries, read_material
 from .tasks import EfemTasks
 
 G = Ghost.AROUND_CELLS
@@ -54,8 +55,6 @@ class EFEM(EfemTasks, Component):
         self.settings = efem.read(SETTINGS) if efem is not None else {k: p.default for k, p in SETTINGS.items()}
         sn = efem.child("pressure_solver") if efem is not None else None
         solver = sn.read(SOLVER) if sn is not None else {k: p.default for k, p in SOLVER.items()}
-        self.walls = read_walls(efem)
-        self.open_faces = np.zeros(6, dtype=np.int64)
         pc = root.child("PhysicalConstants")
         g = pc.get("gravity", "vector", (0.0, 0.0, 0.0)) if pc is not None else (0.0, 0.0, 0.0)
         self.gravity = np.array(g, dtype=np.float64)
@@ -70,6 +69,8 @@ class EFEM(EfemTasks, Component):
         for s, m in enumerate(self.solids):
             self.solid_of[m] = s
         self.densities = np.array([m.density for m in self.materials])
+        bcs = read_boundaries(efem, self.materials)
+        self.walls, self.wall_vel, self.inflow_matl, self.open_faces = bcs.walls, bcs.velocity, bcs.material, bcs.open
         self.wave_speed = max(m.wave_speed() for m in self.materials)
         self.matls = list(range(len(self.materials)))
         self.vol = float(np.prod(level.dx))

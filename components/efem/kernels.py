@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-WALL_NONE, WALL_SLIP, WALL_NOSLIP = 0, 1, 2
+WALL_NONE, WALL_SLIP, WALL_NOSLIP, INFLOW = 0, 1, 2, 3     # per domain face; WALL_NONE: outflow
 TINY_MASS = 1e-300
 
 
@@ -83,16 +83,22 @@ def fluid_stress(D, vf, mean, mu, c0, lo, hi):
 
 
 @njit(cache=True)
-def _apply_walls(vel, a, b, I, J, N, walls, normal_only):
-    """Wall conditions on one node: slip faces zero the normal component, no-slip both
-    (normal_only: every wall zeroes the normal component alone)."""
+def _apply_walls(vel, a, b, I, J, N, walls, wall_vel, normal_only):
+    """Boundary conditions on one node: slip faces zero the normal component, no-slip both
+    (normal_only: the normal one alone), inflow faces set the face's velocity wall_vel;
+    outflow faces (WALL_NONE) leave it free."""
     for d in range(2):
         e = I if d == 0 else J
         for s in range(2):
             if (s == 0 and e != 0) or (s == 1 and e != N[d]):
                 continue
-            w = walls[2 * d + s]
+            f = 2 * d + s
+            w = walls[f]
             if w == WALL_NONE:
+                continue
+            if w == INFLOW:
+                vel[a, b, 0, 0] = wall_vel[f, 0]
+                vel[a, b, 0, 1] = wall_vel[f, 1]
                 continue
             vel[a, b, 0, d] = 0.0
             if w == WALL_NOSLIP and not normal_only:
@@ -100,15 +106,15 @@ def _apply_walls(vel, a, b, I, J, N, walls, normal_only):
 
 
 @njit(cache=True)
-def apply_walls(vel, n0, lo, hi, N, walls, normal_only):
+def apply_walls(vel, n0, lo, hi, N, walls, wall_vel, normal_only):
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
-            _apply_walls(vel, I - n0[0], J - n0[1], I, J, N, walls, normal_only)
+            _apply_walls(vel, I - n0[0], J - n0[1], I, J, N, walls, wall_vel, normal_only)
 
 
 @njit(cache=True)
 def velocity_star(vel, sigma, rho, fill, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, grav, hourglass, damping,
-                  walls, fill_min):
+                  walls, wall_vel, fill_min):
     """Eqs. (6), (14): lumped nodal mass, internal force -V B^T sigma, gravity, v* = v + dt f / m.
 
     `hourglass` removes that fraction of each element's hourglass velocity per step
@@ -160,7 +166,7 @@ def velocity_star(vel, sigma, rho, fill, vstar, mass, n0, c0, lo, hi, N, dx, vol
                 vstar[a, b, 0, 0] = 0.0
                 vstar[a, b, 0, 1] = 0.0
             vstar[a, b, 0, 2] = 0.0
-            _apply_walls(vstar, a, b, I, J, N, walls, True)
+            _apply_walls(vstar, a, b, I, J, N, walls, wall_vel, True)
 
 
 @njit(cache=True)
@@ -222,7 +228,7 @@ def pressure_system(vstar, rho, fill, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, ope
 
 
 @njit(cache=True)
-def project(vstar, press, mass, vel, n0, c0, lo, hi, N, dx, vol, dt, walls):
+def project(vstar, press, mass, vel, n0, c0, lo, hi, N, dx, vol, dt, walls, wall_vel):
     """Eq. (17): v = v* - dt / m grad p, the nodal gradient of the element pressures
     (the force sum_e p_e V grad N_a of a one-point element); then the full wall conditions."""
     for I in range(lo[0], hi[0]):
@@ -247,7 +253,7 @@ def project(vstar, press, mass, vel, n0, c0, lo, hi, N, dx, vol, dt, walls):
             if m > TINY_MASS:
                 vel[a, b, 0, 0] += dt * fx / m
                 vel[a, b, 0, 1] += dt * fy / m
-            _apply_walls(vel, a, b, I, J, N, walls, False)
+            _apply_walls(vel, a, b, I, J, N, walls, wall_vel, False)
 
 
 @njit(cache=True)
@@ -271,7 +277,7 @@ def _van_leer(dm, dp):
 
 
 @njit(cache=True)
-def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min):
+def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min, open_face):
     """Normal velocity of the face between elements E-1 and E along d (T across): the mean of
     v* at the face's two nodes, corrected by the pressure jump across it exactly as the
     5-point operator of eq. (16) assumes, so that it has no divergence in any element the
@@ -284,6 +290,13 @@ def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min)
         a, b = T - n0[0], E - n0[1]
         u = 0.5 * (vstar[a, b, 0, 1] + vstar[a + 1, b, 0, 1])
         il, jl, ih, jh = T - c0[0], E - 1 - c0[1], T - c0[0], E - c0[1]
+    if E == 0 or E == N[d]:
+        # a domain face: an outflow face is a Dirichlet face p = 0 half an element out
+        if not open_face:
+            return u
+        if E == 0:
+            return u - 2.0 * dt * press[ih, jh, 0] / (rho[ih, jh, 0] * dx[d]) if fill[ih, jh, 0] >= fill_min else u
+        return u + 2.0 * dt * press[il, jl, 0] / (rho[il, jl, 0] * dx[d]) if fill[il, jl, 0] >= fill_min else u
     fl, fh = fill[il, jl, 0], fill[ih, jh, 0]
     if fl < fill_min and fh < fill_min:
         return u
@@ -296,14 +309,16 @@ def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min)
 
 @njit(cache=True)
 def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_min, n0, c0, lo, hi, N, dx, dt,
-                phi_out, sig_out, u_out):
+                walls, wall_vel, inflow_matl, phi_out, sig_out, u_out):
     """One directional sweep of the Eulerian step (eq. 4) along mesh lines d over cells [lo, hi).
 
     phi (nm, X, Y): volume fractions, advected by van Leer's MUSCL (ref. 17) with the
     face velocities of the moved mesh (face_velocity); the donor's content
     bounds each flux. sig (ns, X, Y, 3): solid stresses, carried as phi_m sigma_m with the
     material's volume flux (upwind stress). u (X, Y, 2): element velocities, carried as
-    momentum sum_m rho_m phi_m u (upwind u). Domain faces carry nothing (walls).
+    momentum sum_m rho_m phi_m u (upwind u). Walls carry nothing; an inflow face brings its
+    material (volume fraction 1) at its velocity, an outflow face takes the element's
+    content (first order at both).
     """
     nm = phi.shape[0]
     t = 1 - d
@@ -317,11 +332,34 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
             for m in range(nm):
                 F[m, f] = 0.0
             Pm[f, 0] = Pm[f, 1] = 0.0
-            if E <= 0 or E >= N[d]:
+            boundary = E <= 0 or E >= N[d]
+            face = 2 * d + (0 if E <= 0 else 1)
+            if boundary and walls[face] != INFLOW and walls[face] != WALL_NONE:
                 continue
-            uf = face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min)
+            uf = face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min,
+                               boundary and walls[face] == WALL_NONE)
             c = uf * dt / h
             if c == 0.0:
+                continue
+            if boundary:
+                inward = (E <= 0) == (c > 0.0)
+                ac = abs(c)
+                if inward and walls[face] == INFLOW:
+                    m = inflow_matl[face]
+                    flux = ac
+                    F[m, f] = flux if c > 0.0 else -flux
+                    for q in range(2):
+                        Pm[f, q] = (rho_m[m] * flux if c > 0.0 else -rho_m[m] * flux) * wall_vel[face, q]
+                elif not inward:
+                    ie = E - 1 if E >= N[d] else E
+                    iu, ju = (ie - c0[0], T - c0[1]) if d == 0 else (T - c0[0], ie - c0[1])
+                    mom = 0.0
+                    for m in range(nm):
+                        flux = ac * phi[m, iu, ju]
+                        F[m, f] = flux if c > 0.0 else -flux
+                        mom += rho_m[m] * flux
+                    for q in range(2):
+                        Pm[f, q] = (mom if c > 0.0 else -mom) * u[iu, ju, q]
                 continue
             up = E - 1 if c > 0.0 else E
             dn = E if c > 0.0 else E - 1
@@ -376,7 +414,7 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
 
 
 @njit(cache=True)
-def nodal_remap(velL, gmass, dvel, mass_new, vel, n0, c0, lo, hi, N, walls):
+def nodal_remap(velL, gmass, dvel, mass_new, vel, n0, c0, lo, hi, N, walls, wall_vel):
     """The remapped element velocities back to the nodes (paper sec. 6, refs. 15, 16): a node
     that had mass adds the mass-weighted mean of its elements' velocity changes, a node that
     had none takes their new velocity; a node without mass in its elements is at rest."""
@@ -418,11 +456,11 @@ def nodal_remap(velL, gmass, dvel, mass_new, vel, n0, c0, lo, hi, N, walls):
             else:
                 vel[a, b, 0, 0] = sx / w
                 vel[a, b, 0, 1] = sy / w
-            _apply_walls(vel, a, b, I, J, N, walls, False)
+            _apply_walls(vel, a, b, I, J, N, walls, wall_vel, False)
 
 
 @njit(cache=True)
-def nodal_from_momentum(mass, mom, vel, n0, c0, lo, hi, N, walls):
+def nodal_from_momentum(mass, mom, vel, n0, c0, lo, hi, N, walls, wall_vel):
     """Initial nodal velocity: sum of the adjacent elements' momenta over their mass."""
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
@@ -443,7 +481,7 @@ def nodal_from_momentum(mass, mom, vel, n0, c0, lo, hi, N, walls):
             vel[a, b, 0, 0] = px / w if w > TINY_MASS else 0.0
             vel[a, b, 0, 1] = py / w if w > TINY_MASS else 0.0
             vel[a, b, 0, 2] = 0.0
-            _apply_walls(vel, a, b, I, J, N, walls, False)
+            _apply_walls(vel, a, b, I, J, N, walls, wall_vel, False)
 
 
 @njit(cache=True)

@@ -8,7 +8,8 @@ fraction) and <velocity>. Materials fill the cells in deck order: a later materi
 at most what the earlier ones left free, so a body listed before the fluid sits in it.
 
 `<EFEM>` holds the scheme's settings and `<BoundaryConditions>`: one `<Face side="x-"
-type="wall|slip"/>` per domain face (default: wall = no-slip on every face).
+type="wall|slip|inflow|outflow"/>` per domain face (default: wall = no-slip on every
+face); an inflow names its fluid, `material="water"`, and its `<velocity>`.
 """
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ import numpy as np
 
 from framework.problemspec import Param
 
-from .kernels import WALL_NOSLIP, WALL_SLIP
+from .kernels import INFLOW, WALL_NONE, WALL_NOSLIP, WALL_SLIP
 
 MATERIAL = {
     "density": Param("float", above=0.0),
@@ -41,7 +42,7 @@ SOLVER = {
     "max_iterations": Param("int", 1000, at_least=1),
     "preconditioner": Param("str", "mg", choices=("mg", "jacobi", "none")),
 }
-WALLS = {"wall": WALL_NOSLIP, "slip": WALL_SLIP}
+WALLS = {"wall": WALL_NOSLIP, "slip": WALL_SLIP, "inflow": INFLOW, "outflow": WALL_NONE}
 SIDES = ("x-", "x+", "y-", "y+")
 
 
@@ -94,17 +95,42 @@ def read_material(node, geo, index):
     return Material(name, props, objects, node)
 
 
-def read_walls(efem):
-    """[x-, x+, y-, y+, z-, z+] wall codes from <EFEM><BoundaryConditions> (wall by default)."""
-    walls = np.full(6, WALL_NOSLIP, dtype=np.int64)
+class Boundaries:
+    """Per domain face [x-, x+, y-, y+, z-, z+]: the kind (kernels.WALL_*, INFLOW), an inflow's
+    velocity and material, and whether the pressure is 0 on it (outflow)."""
+
+    def __init__(self):
+        self.walls = np.full(6, WALL_NOSLIP, dtype=np.int64)
+        self.velocity = np.zeros((6, 2))
+        self.material = np.zeros(6, dtype=np.int64)
+        self.open = np.zeros(6, dtype=np.int64)
+
+
+def read_boundaries(efem, materials):
+    """<EFEM><BoundaryConditions>: one <Face side="x-" type="wall|slip|inflow|outflow"> per side
+    (wall by default); an inflow names its fluid (material="...") and <velocity>."""
+    b = Boundaries()
     bcs = efem.child("BoundaryConditions") if efem is not None else None
     if bcs is None:
-        return walls
+        return b
     seen = {}
+    names = [m.name for m in materials]
     for face in bcs.children("Face"):
         side = face.attr("side", choices=SIDES)
         if side in seen:
             raise face.error(f'<Face side="{side}"> given twice (first at line {seen[side]}); accepted: one per side')
         seen[side] = face.line
-        walls[SIDES.index(side)] = WALLS[face.attr("type", choices=tuple(WALLS))]
-    return walls
+        f = SIDES.index(side)
+        kind = face.attr("type", choices=tuple(WALLS))
+        b.walls[f] = WALLS[kind]
+        b.open[f] = int(kind == "outflow")
+        if kind != "inflow":
+            continue
+        name = face.attr("material", choices=tuple(names))
+        m = names.index(name)
+        if materials[m].solid:
+            raise face.error(f'an inflow brings a fluid; material "{name}" is a solid')
+        v = face.get("velocity", "vector")
+        b.velocity[f] = v[:2]
+        b.material[f] = m
+    return b

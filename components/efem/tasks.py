@@ -72,7 +72,7 @@ class EfemTasks:
         f = self.frame(patch)
         vel = new_dw.allocate(E.gVelocity, 0, patch)
         K.nodal_from_momentum(new_dw.get(E.mass_CC, 0, patch), new_dw.get(E.mom_CC, 0, patch), vel,
-                              f.n0, f.c0, f.nlo, f.nhi, f.N, self.walls)
+                              f.n0, f.c0, f.nlo, f.nhi, f.N, self.walls, self.wall_vel)
 
     # -- the Lagrangian step --------------------------------------------------------------
     def compute_stress(self, patch, matls, old_dw, new_dw):
@@ -111,7 +111,7 @@ class EfemTasks:
         K.velocity_star(old_dw.get(E.gVelocity, 0, patch), new_dw.get(E.sigma_CC, 0, patch),
                         new_dw.get(E.rho_CC, 0, patch), new_dw.get(E.fill_CC, 0, patch), vstar, mass, f.n0, f.c0,
                         f.nlo, f.nhi, f.N, f.dx, f.vol, dt, self.gravity, self.settings["hourglass_damping"],
-                        self.settings["damping"], self.walls, self.settings["fill_min"])
+                        self.settings["damping"], self.walls, self.wall_vel, self.settings["fill_min"])
 
     def pressure_system(self, patch, matls, old_dw, new_dw):
         """The stencil and right-hand side of the pressure Poisson equation (eq. 16)."""
@@ -136,7 +136,7 @@ class EfemTasks:
         vel = new_dw.allocate(E.gVelocityL, 0, patch)
         K.project(new_dw.get(E.gVelocityStar, 0, patch), new_dw.get(E.press_CC, 0, patch),
                   new_dw.get(E.gMass, 0, patch), vel, f.n0, f.c0, f.nlo, f.nhi, f.N, f.dx, f.vol,
-                  old_dw.get_reduction(L.delT), self.walls)
+                  old_dw.get_reduction(L.delT), self.walls, self.wall_vel)
 
     # -- the Eulerian step ----------------------------------------------------------------
     def remap(self, patch, matls, old_dw, new_dw):
@@ -159,9 +159,11 @@ class EfemTasks:
         phi1, sig1, u1 = phi.copy(), sig.copy(), u0.copy()
         faces = (new_dw.get(E.gVelocityStar, 0, patch), new_dw.get(E.press_CC, 0, patch),
                  new_dw.get(E.rho_CC, 0, patch), new_dw.get(E.fill_CC, 0, patch), self.settings["fill_min"], f.n0, f.c0)
-        K.remap_sweep(0, phi, sig, self.solid_of, self.densities, u0, *faces, xlo, xhi, f.N, f.dx, dt, phi1, sig1, u1)
+        bcs = (self.walls, self.wall_vel, self.inflow_matl)
+        K.remap_sweep(0, phi, sig, self.solid_of, self.densities, u0, *faces, xlo, xhi, f.N, f.dx, dt, *bcs,
+                      phi1, sig1, u1)
         phi2, sig2, u2 = phi1.copy(), sig1.copy(), u1.copy()
-        K.remap_sweep(1, phi1, sig1, self.solid_of, self.densities, u1, *faces, f.clo, f.chi, f.N, f.dx, dt,
+        K.remap_sweep(1, phi1, sig1, self.solid_of, self.densities, u1, *faces, f.clo, f.chi, f.N, f.dx, dt, *bcs,
                       phi2, sig2, u2)
         for m in range(nm):
             new_dw.put(E.vol_frac_CC, m, patch, np.ascontiguousarray(phi2[m][..., None]))
@@ -178,7 +180,7 @@ class EfemTasks:
         vel = new_dw.allocate(E.gVelocity, 0, patch)
         K.nodal_remap(new_dw.get(E.gVelocityL, 0, patch), new_dw.get(E.gMass, 0, patch),
                       new_dw.get(E.dvel_CC, 0, patch), new_dw.get(E.mass_CC, 0, patch), vel, f.n0, f.c0, f.nlo,
-                      f.nhi, f.N, self.walls)
+                      f.nhi, f.N, self.walls, self.wall_vel)
 
     # -- diagnostics and the time step ----------------------------------------------------
     def conserved(self, patch, matls, old_dw, new_dw):
