@@ -106,13 +106,6 @@ def _apply_walls(vel, a, b, I, J, N, walls, wall_vel, normal_only):
 
 
 @njit(cache=True)
-def apply_walls(vel, n0, lo, hi, N, walls, wall_vel, normal_only):
-    for I in range(lo[0], hi[0]):
-        for J in range(lo[1], hi[1]):
-            _apply_walls(vel, I - n0[0], J - n0[1], I, J, N, walls, wall_vel, normal_only)
-
-
-@njit(cache=True)
 def velocity_star(vel, sigma, rho, fill, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, grav, hourglass, damping,
                   walls, wall_vel, fill_min):
     """Eqs. (6), (14): lumped nodal mass, internal force -V B^T sigma, gravity, v* = v + dt f / m.

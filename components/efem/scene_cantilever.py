@@ -18,12 +18,12 @@ L, H, RHO, E, NU, G = 0.8, 0.1, 1000.0, 1.5e7, 0.0, 9.81
 MU = E / (2.0 * (1.0 + NU))
 
 
-def deck_text(nx=50, ny=20, max_time=None, filebase=None):
+def deck_text(nx=40, ny=16, max_time=None, filebase=None):
     with open(DECK) as f:
         text = f.read()
-    text = text.replace("<resolution> [50, 20, 1] </resolution>", f"<resolution> [{nx}, {ny}, 1] </resolution>")
+    text = text.replace("<resolution> [40, 16, 1] </resolution>", f"<resolution> [{nx}, {ny}, 1] </resolution>")
     if max_time is not None:
-        text = text.replace("<maxTime> 0.5 </maxTime>", f"<maxTime> {max_time} </maxTime>")
+        text = text.replace("<maxTime> 0.3 </maxTime>", f"<maxTime> {max_time} </maxTime>")
     if filebase is not None:
         text = text.replace("<filebase>cantilever.uda</filebase>", f"<filebase>{filebase}</filebase>")
     return text
