@@ -4,8 +4,8 @@ times, solids in red, fluids in blue (void white), one panel per time, as the pa
 Figs. 6-8.
 
     pysus inputs/EFEM/ring_falling.ups
-    .venv/bin/python scripts/efem_snapshots.py ring_falling.uda --times 0 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9
-    .venv/bin/python scripts/efem_snapshots.py pontoon_falling.uda --times 0 0.6 1.2 1.8 --png pontoon.png
+    .venv/bin/python scripts/efem_snapshots.py ring_falling.uda 0 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9
+    .venv/bin/python scripts/efem_snapshots.py pontoon_falling.uda 0 0.6 1.2 1.8 --png pontoon.png
 
 Each time is drawn from the nearest output.
 """
@@ -40,7 +40,7 @@ def image(da, k, solids):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("uda")
-    ap.add_argument("--times", type=float, nargs="+", required=True)
+    ap.add_argument("times", type=float, nargs="+", help="times (s) to draw")
     ap.add_argument("--png", default=None, help="output file (default: <uda>.png next to the uda)")
     ap.add_argument("--solids", type=int, nargs="*", default=None,
                     help="material indices drawn as solids (default: every material but the last)")
