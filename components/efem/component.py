@@ -90,7 +90,7 @@ class EFEM(EfemTasks, Component):
         t = Task("EFEM::initialize", self.initialize, self.matls) \
             .computes(E.vol_frac_CC).computes(E.mass_CC, matls=[0]).computes(E.mom_CC, matls=[0])
         if self.solids:
-            t.computes(E.stress_CC, matls=self.solids)
+            t.computes(E.stress_CC, matls=self.solids).computes(E.hourglass_CC, matls=self.solids)
         sched.add_task(t)
         sched.add_task(Task("EFEM::initializeVelocity", self.initialize_velocity, [0])
                        .requires(NEW, E.mass_CC, G, 1).requires(NEW, E.mom_CC, G, 1).computes(E.gVelocity))
@@ -106,12 +106,15 @@ class EFEM(EfemTasks, Component):
         g = (G, 1) if self.settings["slide_condition"] and solids else ()
         t = Task("EFEM::computeStressTensor", self.compute_stress, self.matls) \
             .requires(OLD, L.delT).requires(OLD, E.gVelocity, G, 1, matls=m0).requires(OLD, E.vol_frac_CC, *g) \
-            .computes(E.sigma_CC, matls=m0).computes(E.rho_CC, matls=m0).computes(E.fill_CC, matls=m0)
+            .computes(E.sigma_CC, matls=m0).computes(E.rho_CC, matls=m0).computes(E.fill_CC, matls=m0) \
+            .computes(E.hgForce_CC, matls=m0)
         if solids:
-            t.requires(OLD, E.stress_CC, matls=solids).computes(E.stress_L_CC, matls=solids)
+            t.requires(OLD, E.stress_CC, matls=solids).computes(E.stress_L_CC, matls=solids) \
+                .requires(OLD, E.hourglass_CC, matls=solids).computes(E.hourglass_L_CC, matls=solids)
         sched.add_task(t)
         sched.add_task(Task("EFEM::computeVelocityStar", self.velocity_star, m0)
                        .requires(OLD, L.delT).requires(OLD, E.gVelocity, G, 1).requires(NEW, E.sigma_CC, G, 1)
+                       .requires(NEW, E.hgForce_CC, G, 1)
                        .requires(NEW, E.rho_CC, G, 1).requires(NEW, E.fill_CC, G, 1)
                        .computes(E.gVelocityStar).computes(E.gMass))
         t = Task("EFEM::setupPressureSystem", self.pressure_system, m0) \
@@ -139,7 +142,8 @@ class EFEM(EfemTasks, Component):
             .requires(OLD, E.vol_frac_CC, G, GADV) \
             .computes(E.vol_frac_CC).computes(E.dvel_CC, matls=m0).computes(E.mass_CC, matls=m0)
         if solids:
-            t.requires(NEW, E.stress_L_CC, G, GADV, matls=solids).computes(E.stress_CC, matls=solids)
+            t.requires(NEW, E.stress_L_CC, G, GADV, matls=solids).computes(E.stress_CC, matls=solids) \
+                .requires(NEW, E.hourglass_L_CC, G, GADV, matls=solids).computes(E.hourglass_CC, matls=solids)
         sched.add_task(t)
         sched.add_task(Task("EFEM::remapNodalVelocity", self.remap_velocity, m0)
                        .requires(NEW, E.gVelocityL, G, 1).requires(NEW, E.gMass).requires(NEW, E.dvel_CC, G, 1)

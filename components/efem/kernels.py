@@ -19,7 +19,8 @@ TINY_MASS = 1e-300
 
 @njit(cache=True)
 def strain_rate(vel, n0, c0, lo, hi, dx, D):
-    """Eq. (18): D = B v at each element's centre, [exx, eyy, gamma_xy]."""
+    """Eq. (18): D = B v at each element's centre, [exx, eyy, gamma_xy]; then the hourglass
+    rates Gamma . v / 4 of v_x and v_y (the motion one Gauss point does not see)."""
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
             a, b = I - n0[0], J - n0[1]
@@ -31,6 +32,8 @@ def strain_rate(vel, n0, c0, lo, hi, dx, D):
             D[i, j, 0, 0] = (vx1 + vx2 - vx0 - vx3) / (2.0 * dx[0])
             D[i, j, 0, 1] = (vy2 + vy3 - vy0 - vy1) / (2.0 * dx[1])
             D[i, j, 0, 2] = (vx2 + vx3 - vx0 - vx1) / (2.0 * dx[1]) + (vy1 + vy2 - vy0 - vy3) / (2.0 * dx[0])
+            D[i, j, 0, 3] = 0.25 * (vx0 - vx1 + vx2 - vx3)
+            D[i, j, 0, 4] = 0.25 * (vy0 - vy1 + vy2 - vy3)
 
 
 @njit(cache=True)
@@ -70,6 +73,26 @@ def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_m
 
 
 @njit(cache=True)
+def solid_hourglass(D, hg_old, vf, hg_new, hg_force, kx, ky, dt, phi_min, c0, lo, hi):
+    """Hourglass stiffness of a solid: generalised forces Q += dt k (Gamma . v / 4), with k the
+    bending stiffness of the bilinear element's hourglass mode (normal strain only, no
+    parasitic shear: exact for a rectangle in pure bending); weighted by phi_m into the
+    element's hourglass force, which acts on node a as -Q Gamma_a / 4."""
+    for I in range(lo[0], hi[0]):
+        for J in range(lo[1], hi[1]):
+            i, j = I - c0[0], J - c0[1]
+            phi = vf[i, j, 0]
+            if phi < phi_min:
+                hg_new[i, j, 0, 0] = hg_new[i, j, 0, 1] = 0.0
+                continue
+            qx = hg_old[i, j, 0, 0] + dt * kx * D[i, j, 0, 3]
+            qy = hg_old[i, j, 0, 1] + dt * ky * D[i, j, 0, 4]
+            hg_new[i, j, 0, 0], hg_new[i, j, 0, 1] = qx, qy
+            hg_force[i, j, 0, 0] += phi * qx
+            hg_force[i, j, 0, 1] += phi * qy
+
+
+@njit(cache=True)
 def fluid_stress(D, vf, mean, mu, c0, lo, hi):
     """Eqs. (18), (19), (23): Newtonian shear stress mu [exx - eyy, eyy - exx, gxy], weighted by phi_m."""
     for I in range(lo[0], hi[0]):
@@ -106,9 +129,10 @@ def _apply_walls(vel, a, b, I, J, N, walls, wall_vel, normal_only):
 
 
 @njit(cache=True)
-def velocity_star(vel, sigma, rho, fill, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, grav, hourglass, damping,
-                  walls, wall_vel, fill_min):
-    """Eqs. (6), (14): lumped nodal mass, internal force -V B^T sigma, gravity, v* = v + dt f / m.
+def velocity_star(vel, sigma, hg_force, rho, fill, vstar, mass, n0, c0, lo, hi, N, dx, vol, dt, grav, hourglass,
+                  damping, walls, wall_vel, fill_min):
+    """Eqs. (6), (14): lumped nodal mass, internal force -V B^T sigma and the solids' hourglass
+    forces, gravity, v* = v + dt f / m.
 
     `hourglass` removes that fraction of each element's hourglass velocity per step
     (one Gauss point leaves the mode without stiffness); `damping` is a mass-proportional
@@ -140,6 +164,8 @@ def velocity_star(vel, sigma, rho, fill, vstar, mass, n0, c0, lo, hi, N, dx, vol
                     nx, ny = sx / (2.0 * dx[0]), sy / (2.0 * dx[1])
                     fx -= vol * (sigma[i, j, 0, 0] * nx + sigma[i, j, 0, 2] * ny)
                     fy -= vol * (sigma[i, j, 0, 2] * nx + sigma[i, j, 0, 1] * ny)
+                    fx -= 0.25 * sx * sy * hg_force[i, j, 0, 0]
+                    fy -= 0.25 * sx * sy * hg_force[i, j, 0, 1]
                     if hourglass > 0.0:
                         aa, bb = ci - n0[0], cj - n0[1]
                         hx = 0.25 * (vel[aa, bb, 0, 0] - vel[aa + 1, bb, 0, 0] + vel[aa + 1, bb + 1, 0, 0]
@@ -307,7 +333,7 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
 
     phi (nm, X, Y): volume fractions, advected by van Leer's MUSCL (ref. 17) with the
     face velocities of the moved mesh (face_velocity); the donor's content
-    bounds each flux. sig (ns, X, Y, 3): solid stresses, carried as phi_m sigma_m with the
+    bounds each flux. sig (ns, X, Y, q): solid state (stress, hourglass forces), carried as phi_m sigma_m with the
     material's volume flux (upwind stress). u (X, Y, 2): element velocities, carried as
     momentum sum_m rho_m phi_m u (upwind u). Walls carry nothing; an inflow face brings its
     material (volume fraction 1) at its velocity, an outflow face takes the element's
@@ -388,7 +414,7 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
                 if s < 0:
                     continue
                 # fluxes of phi_m sigma_m: the volume flux times the upwind element's stress
-                for q in range(3):
+                for q in range(sig.shape[3]):
                     qin = 0.0
                     if F[m, k] > 0.0:
                         qin = F[m, k] * (sig[s, i - 1, j, q] if d == 0 else sig[s, i, j - 1, q])

@@ -32,6 +32,7 @@ GEOM = {
 SETTINGS = {
     "cfl": Param("float", 0.25, above=0.0),
     "hourglass_damping": Param("float", 0.05, at_least=0.0),
+    "hourglass_stiffness": Param("float", 1.0, at_least=0.0),
     "damping": Param("float", 0.0, at_least=0.0),
     "fill_min": Param("float", 0.05, above=0.0),
     "slide_condition": Param("bool", False),

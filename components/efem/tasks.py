@@ -66,6 +66,7 @@ class EfemTasks:
                 mom[sl] += (mat.density * f * self.vol)[..., None] * np.asarray(g["velocity"])
             if mat.solid:
                 new_dw.allocate(E.stress_CC, m, patch)
+                new_dw.allocate(E.hourglass_CC, m, patch)
 
     def initialize_velocity(self, patch, matls, old_dw, new_dw):
         """Nodal velocity: the mass-weighted mean of the elements' initial velocities."""
@@ -81,11 +82,12 @@ class EfemTasks:
         f = self.frame(patch)
         dt = old_dw.get_reduction(L.delT)
         vel = old_dw.get(E.gVelocity, 0, patch)
-        D = np.zeros(patch.alloc_shape(CC) + (3,))
+        D = np.zeros(patch.alloc_shape(CC) + (5,))
         K.strain_rate(vel, f.n0, f.c0, f.clo, f.chi, f.dx, D)
         sigma = new_dw.allocate(E.sigma_CC, 0, patch)
         rho = new_dw.allocate(E.rho_CC, 0, patch)
         fill = new_dw.allocate(E.fill_CC, 0, patch)
+        hg_force = new_dw.allocate(E.hgForce_CC, 0, patch)
         fluid = np.zeros(patch.alloc_shape(CC))
         for m, mat in enumerate(self.materials):
             vf = old_dw.get(E.vol_frac_CC, m, patch)
@@ -99,8 +101,18 @@ class EfemTasks:
                 sig = new_dw.allocate(E.stress_L_CC, m, patch)
                 K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, fluid, sig, sigma, mat.lam, mat.mu, dt,
                                self.settings["slide_condition"], self.settings["solid_min"], f.c0, f.clo, f.chi, f.N)
+                hg = new_dw.allocate(E.hourglass_L_CC, m, patch)
+                kx, ky = self.hourglass_stiffness(mat, f)
+                K.solid_hourglass(D, old_dw.get(E.hourglass_CC, m, patch), vf, hg, hg_force, kx, ky, dt,
+                                  self.settings["solid_min"], f.c0, f.clo, f.chi)
             elif mat.viscosity > 0.0:
                 K.fluid_stress(D, vf, sigma, mat.viscosity, f.c0, f.clo, f.chi)
+
+    def hourglass_stiffness(self, mat, f):
+        """(k_x, k_y) of the hourglass mode: (4 V / 3) E' / dx^2 with the plane-strain modulus
+        E' = 4 mu of the incompressible solid, times <hourglass_stiffness>."""
+        c = self.settings["hourglass_stiffness"] * 4.0 * f.vol / 3.0 * 4.0 * mat.mu
+        return c / f.dx[0] ** 2, c / f.dx[1] ** 2
 
     def velocity_star(self, patch, matls, old_dw, new_dw):
         """Nodal masses, internal forces and gravity; v* of eq. (14)."""
@@ -109,7 +121,7 @@ class EfemTasks:
         vstar = new_dw.allocate(E.gVelocityStar, 0, patch)
         mass = new_dw.allocate(E.gMass, 0, patch)
         K.velocity_star(old_dw.get(E.gVelocity, 0, patch), new_dw.get(E.sigma_CC, 0, patch),
-                        new_dw.get(E.rho_CC, 0, patch), new_dw.get(E.fill_CC, 0, patch), vstar, mass, f.n0, f.c0,
+                        new_dw.get(E.hgForce_CC, 0, patch), new_dw.get(E.rho_CC, 0, patch), new_dw.get(E.fill_CC, 0, patch), vstar, mass, f.n0, f.c0,
                         f.nlo, f.nhi, f.N, f.dx, f.vol, dt, self.gravity, self.settings["hourglass_damping"],
                         self.settings["damping"], self.walls, self.wall_vel, self.settings["fill_min"])
 
@@ -147,8 +159,10 @@ class EfemTasks:
         velL = new_dw.get(E.gVelocityL, 0, patch)
         nm = len(self.materials)
         phi = np.stack([old_dw.get(E.vol_frac_CC, m, patch)[..., 0] for m in range(nm)])
-        sig = np.stack([new_dw.get(E.stress_L_CC, m, patch)[..., 0, :] for m in self.solids]) if self.solids \
-            else np.zeros((1,) + phi.shape[1:] + (3,))
+        # each solid's state moved with it: [sxx, syy, sxy, Qx, Qy]
+        sig = np.stack([np.concatenate((new_dw.get(E.stress_L_CC, m, patch)[..., 0, :],
+                                        new_dw.get(E.hourglass_L_CC, m, patch)[..., 0, :]), axis=-1)
+                        for m in self.solids]) if self.solids else np.zeros((1,) + phi.shape[1:] + (5,))
         u0 = np.zeros(phi.shape[1:] + (2,))
         glo = np.maximum(f.clo - 2, 0)
         ghi = np.minimum(f.chi + 2, f.N)
@@ -168,7 +182,8 @@ class EfemTasks:
         for m in range(nm):
             new_dw.put(E.vol_frac_CC, m, patch, np.ascontiguousarray(phi2[m][..., None]))
         for s, m in enumerate(self.solids):
-            new_dw.put(E.stress_CC, m, patch, np.ascontiguousarray(sig2[s][:, :, None, :]))
+            new_dw.put(E.stress_CC, m, patch, np.ascontiguousarray(sig2[s][:, :, None, :3]))
+            new_dw.put(E.hourglass_CC, m, patch, np.ascontiguousarray(sig2[s][:, :, None, 3:]))
         dvel = new_dw.allocate(E.dvel_CC, 0, patch)
         dvel[..., 0, :2] = u2 - u0
         mass = new_dw.allocate(E.mass_CC, 0, patch)

@@ -13,6 +13,6 @@ def test_cantilever_sags_towards_beam_theory(tmp_path):
     da = DataArchive(ctl.archiver.dir)
     x, w = S.deflection(da, -1)
     tip = w[-1] / S.beam(x[-1])
-    assert 0.5 < tip < 1.5, tip                 # on its way down: measured 0.84
+    assert 0.5 < tip < 1.5, tip                 # on its way down: measured 0.80
     assert abs(w[0]) < 0.1 * abs(w[-1])         # the root column barely moves
     assert all(w[3:] > w[2:-1])                 # the deflection grows along the bar
