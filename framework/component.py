@@ -18,6 +18,7 @@ KNOWN = {
     "mpm": "components.mpm.component",
     "mpmice": "components.mpmice.component",
     "rmpmice": "components.mpmice.component",
+    "efem": "components.efem.component",
 }
 
 _registry: dict = {}

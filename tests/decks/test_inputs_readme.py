@@ -13,6 +13,6 @@ def test_inputs_readme_is_current():
 
 
 def test_every_deck_is_in_a_tested_folder():
-    tested = {"ICE", "MPM", "MPMICE", "examples"}
+    tested = {"EFEM", "ICE", "MPM", "MPMICE", "examples"}
     stray = [p for p in (ROOT / "inputs").rglob("*.ups") if p.relative_to(ROOT / "inputs").parts[0] not in tested]
     assert not stray, f"decks outside {sorted(tested)}: add a tests/decks/ file for them: {stray}"
