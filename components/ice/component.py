@@ -307,22 +307,24 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         geometry objects all lie outside the domain. With other materials present it is
         accepted, and the material starts as Uintah's initializeCells leaves it in cells no
         object covers: volume fraction 0 plus the trace tiny_rho, temperature and velocity
-        from its first object. An object outside the domain is refused where it is likely a
-        mistake: the problem's only material, or a material with another object inside."""
+        from its first object. An object outside beside one inside contributes nothing but
+        those first-object values (Uintah's MPMICE decks DDT, BurnRate, ... use it): accepted
+        with a note. Refused: the problem's only material with all its objects outside."""
         if geo.level is None:
             return
         out = [geo.outside(piece) for piece, _ in objects]
         if not any(out):
             return
-        n_all = getattr(self, "n_all", 1)
         k = out.index(True)
-        if all(out) and n_all > 1:
-            return
-        hint = (" (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
-                "product, only where other materials fill the domain)" if n_all == 1 else
-                " (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
-                "product; this one has another object inside the domain)")
-        geo.check_overlap(objects[k][0], gos[k], hint)
+        if all(out):
+            if getattr(self, "n_all", 1) > 1:
+                return
+            geo.check_overlap(objects[k][0], gos[k], " (a material whose objects all lie outside starts absent, "
+                              "Uintah's idiom for a reaction's product, only where other materials fill the domain)")
+        go = gos[k]
+        print(f"pysus: note: {go.filename}:{go.line}: this geometry object lies wholly outside the domain and "
+              f"puts no material anywhere (as in Uintah){' (its values fill the cells no object covers)' if k == 0 else ''}",
+              file=sys.stderr)
 
     def _read_viscosity_models(self, node, props):
         """<dynamicViscosityModels>: Uintah's Sutherland (a, b) and SpongeLayer (maxDynamicViscosity
