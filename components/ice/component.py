@@ -299,6 +299,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self._check_absent(node, geo, objects, gos)
         mat = Material(name, eos, props, objects)
         mat.viscosity_models = models
+        mat.object_nodes = gos
         mat.cv_model = cv_model
         return mat
 
