@@ -156,7 +156,9 @@ class MPMICETasks:
             fr = [np.where(tot > 0, f, 1.0 if k == 0 else 0.0) for k, f in enumerate(fr)]
             tot = np.where(tot > 0, tot, 1.0)
         press = pw / tot
-        if empty.any() and len(ice_mats) == 1:     # a lone fluid: its first object's state (Uintah's)
+        if empty.any() and len(ice_mats) == 1 and ice_mats[0].first_object_outside:
+            # Uintah's idiom (DDT.ups): a first object outside the domain gives the state of the
+            # cells no object covers, here those the solid fills
             press[empty] = self._object_pressure(ice.ice_matls[0], ice_mats[0], 0)
         free = np.clip(1.0 - ths[sl], 0.0, 1.0)
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
