@@ -187,12 +187,12 @@ class MPMICETasks:
 
     def _object_pressure(self, m, mat, k):
         """The pressure ICE material m's object k starts at: its <pressure>, unless its <density>
-        and <temperature> give by the EOS a pressure that differs by more than 1e-6 (relative);
+        and <temperature> give by the EOS a pressure that differs by more than 0.1 %;
         then that one, as Uintah's initialization, which takes the density and lets the EOS set the
         pressure (Uintah's DDT.ups: JWL products at 1500 kg/m^3 and 3000 K, 7e9 Pa, <pressure> 1 atm)."""
         g = mat.objects[k][1]
         p_eos = float(_press_array(np.array([g["density"]]), np.array([g["temperature"]]), *self.ice._eos(m))[0])
-        if abs(p_eos - g["pressure"]) <= 1e-6 * max(abs(p_eos), abs(g["pressure"])):
+        if abs(p_eos - g["pressure"]) <= 1e-3 * max(abs(p_eos), abs(g["pressure"])):
             return g["pressure"]
         seen = self.__dict__.setdefault("_noted_objects", set())
         if (m, k) not in seen:
