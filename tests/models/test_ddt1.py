@@ -5,6 +5,10 @@ with cracks, JWL products, the product's "outOfDomain" object) on 20 cells with 
 at 200 kg/m^3 and 3000 K (1.6e8 Pa) so the reactant's first cell burns conductively from the
 first step. sus values: Uintah's sus on that deck (12 steps, output every step): its
 totalMassBurned.dat, BurningCriteria and surfaceTemp.
+
+tests/models/uintah_reference/burnrate.ups: Uintah's MPMICE/BurnRate.ups (semi-implicit ICE) for
+8 steps with <Solver type="CGSolver"/> (sus's hypre is not built), output every step; sus values
+from its totalMassBurned.dat.
 """
 import os
 
@@ -19,6 +23,8 @@ DECK = os.path.join(HERE, "uintah_reference", "ddt1_burn.ups")
 Q = 4.0e5 + 3.018e6                  # CondPhaseHeat + GasPhaseHeat (J/kg)
 SUS_BURNED_STEP1 = 3.0511829245648247e-13       # kg, sus totalMassBurned.dat, t = 1e-9 s
 SUS_TS_STEP1 = 1069.252542223914                # K, sus surfaceTemp of cell 2 after step 1
+SUS_BURNRATE = [4.3445973512350147e-15, 6.5169003289784257e-15, 9.7753653303593389e-15, 1.4663075642654024e-14,
+                2.1994661343210976e-14, 3.2992058001627119e-14, 4.9488094371733386e-14, 7.4231642450690382e-14]
 
 
 @pytest.fixture(scope="module")
@@ -105,3 +111,15 @@ def test_refusals(tmp_path, old, new, match):
     from framework.controller import Controller
     with pytest.raises(InputError, match=match):
         Controller(_deck_with(tmp_path, old, new), quiet=True, filebase=str(tmp_path / "x.uda"))
+
+
+def test_burnrate_deck_against_sus(tmp_path):
+    """Uintah's BurnRate.ups: the burned mass of its first 8 steps (delT from delt_init, the
+    same in both) is sus's to 1e-4 (measured 3.2e-5)."""
+    from framework.controller import Controller
+    deck = os.path.join(HERE, "uintah_reference", "burnrate.ups")
+    c = Controller(deck, quiet=True, filebase=str(tmp_path / "burnrate.uda"))
+    c.run()
+    burned = np.loadtxt(os.path.join(c.archiver.dir, "totalMassBurned.dat"))
+    assert len(burned) == 8
+    assert np.allclose(burned[:, 1], SUS_BURNRATE, rtol=1e-4, atol=0)
