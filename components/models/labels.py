@@ -36,3 +36,5 @@ ddtDetLocalTo = L.create("detLocalTo", CC)                # 1 next to a cell abo
 ddtSurfTemp = L.create("surfaceTemp", CC)                 # WSB surface temperature of a burning cell (K)
 ddtOnSurface = L.create("onSurface", CC)                  # burning-surface area of a conductive cell (m^2)
 ddtCracked = L.create("crackedEnough", CC)                # 1 where a particle's crack is wide enough to burn in
+ddtInductionTime = L.create("inductionTime", CC)          # DDT1: a warming cell's ignition delay (s)
+ddtCountTime = L.create("countTime", CC)                  # DDT1: how long it has warmed (s)

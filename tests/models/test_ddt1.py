@@ -81,7 +81,7 @@ def test_detonation_cell():
                  np.full(3, 2, np.int64), np.ones(3, np.int64), np.full(3, 1e-3), np.full(3, -9), np.full(3, 99),
                  5 * one, 0 * one, False, temps, vfs, p * one, rho_r * one, rho_p * one, one / 1832, 0, 1,
                  np.array([G, b, E0, 5.3e9, rho0]), np.array([3, 550, 5e4, Q]), np.ones(5), 1.76e5, 8.314,
-                 1e-6, 1e-12 * V, dt, *out)
+                 1e-6, 1e-12 * V, dt, *out, np.zeros(6), *(np.zeros(n) for _ in range(5)))
     burned, heat, crit, det, _, F, dF = out[:7]
     f = rho_p / (rho_r + rho_p)
     d = dt * G * p ** b * (1 - f)
@@ -101,7 +101,7 @@ def _deck_with(tmp_path, old, new):
 @pytest.mark.parametrize("old,new,match", [
     ("<useCrackModel>      true  </useCrackModel>",
      "<useCrackModel> true </useCrackModel><useInductionTime> true </useInductionTime>",
-     "useInductionTime.*not implemented; accepted: false"),
+     "IgnitionConst"),
     ("<toMaterial>   product   </toMaterial>",
      "<toMaterial>   product   </toMaterial><burnMaterial> PBX9501 </burnMaterial>",
      "burnMaterial.*not implemented"),
@@ -123,3 +123,30 @@ def test_burnrate_deck_against_sus(tmp_path):
     burned = np.loadtxt(os.path.join(c.archiver.dir, "totalMassBurned.dat"))
     assert len(burned) == 8
     assert np.allclose(burned[:, 1], SUS_BURNRATE, rtol=1e-4, atol=0)
+
+
+SUS_INDUCTION_STEP1 = 2.1454985145538663e-07    # s, sus inductionTime of cell 20 after steps 1 and 51
+
+
+def test_induction_propagation_against_sus(tmp_path):
+    """Uintah's InductionPropagation.ups (100 steps): the reactant's first cell (20) warms
+    (BurningCriteria 1) from step 1 as sus's, its countTime the elapsed time (sus's at steps 1 and
+    51), its inductionTime within 2 % of sus's (measured 1.1 %: the product pressure of the border
+    cell, as above); it ignites (2) at the first step whose time reaches its induction time, and
+    its neighbour 21 starts warming the step after (its burning neighbour is last step's), as in sus (which ignites it at t = 2.2e-7 .. 2.5e-7 s)."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    deck = os.path.join(HERE, "uintah_reference", "induction_propagation.ups")
+    c = Controller(deck, quiet=True, filebase=str(tmp_path / "ip.uda"))
+    c.run()
+    a = DataArchive(c.archiver.dir)
+    crit = [a.read("BurningCriteria", 0, k)[0].ravel() for k in range(1, len(a.timesteps))]
+    ind = [a.read("inductionTime", 0, k)[0].ravel()[20] for k in range(1, len(a.timesteps))]
+    count = [a.read("countTime", 0, k)[0].ravel()[20] for k in range(1, len(a.timesteps))]
+    times = a.times[1:]
+    assert crit[0][20] == D.WARMINGUP and np.count_nonzero(crit[0]) == 1
+    assert abs(ind[0] / SUS_INDUCTION_STEP1 - 1) < 2e-2
+    assert np.isclose(count[49], times[49], rtol=1e-12)
+    lit = next(k for k, cr in enumerate(crit) if cr[20] == D.CONDUCTIVE)
+    assert times[lit - 1] < ind[lit] <= times[lit] and 2.2e-7 < times[lit] < 2.6e-7
+    assert crit[lit][21] == 0 and crit[lit + 1][21] == D.WARMINGUP and np.count_nonzero(crit[lit + 1]) == 2
