@@ -32,7 +32,8 @@ Per interior cell holding reactant (volume fraction > 1e-10), with p the cell's 
 The burned mass leaves the reactant's particles and enters the product with their momentum,
 the energy cv_reactant T_reactant per kg plus the heat released, and the solid's volume
 (Simple_Burn's tasks, simple_burn.py). Outputs (reactant cells): burning, BurningCriteria,
-detonating, detLocalTo, F, delF, surfaceTemp, onSurface, crackedEnough, SteadyBurn.numPPC;
+detonating, detLocalTo, F, delF, surfaceTemp, onSurface, crackedEnough, SteadyBurn.numPPC,
+inductionTime and countTime (with the ignition delay);
 the reductions totalMassBurned and totalHeatReleased.
 """
 from __future__ import annotations
