@@ -12,7 +12,9 @@ in boxes and the mass fluxes through their faces (ControlVolFluxes); `SGS_Reynol
 CC tensor of ICE's face stresses tau_X_FC, ... (each row the mean of its two faces);
 `turbulentFluxes` running means, variances and covariances with the velocity (TurbulentFluxes);
 `firstLawThermo` the fluids' and solids' internal energy and the fluids' energy flux through the
-domain's faces (FirstLawThermo).
+domain's faces (FirstLawThermo); `statistics` running means, variances and higher moments of CC and
+FC variables (Statistics); `planeAverage` plane averages written per sampled step (PlaneAverage,
+whose PlaneSums planeAvgTurbFluxes shares).
 """
 from __future__ import annotations
 
@@ -328,6 +330,68 @@ def plane_sums(q, out, lo, hi, normal, inner, outer, g0):
             out[p + g0, c] = total
 
 
+class PlaneSums:
+    """The plane sums of Uintah's planeAverage, shared by the planeAverage and planeAvgTurbFluxes
+    modules: planes normal to y for XZ (z for XY, x for YZ), each one's sum of a CC variable over
+    the level's interior cells as a sum reduction (n_planes, components), and the files of plane
+    averages in Uintah's format, one row per plane at the cell centre of the level's middle."""
+
+    ORIENT = {"XY": (2, 0, 1), "XZ": (1, 0, 2), "YZ": (0, 1, 2)}       # normal, inner, outer axis
+    DESC = {(): "ave", (3,): "ave.x__________________ave.y______________ave.z"}
+
+    def __init__(self, node, level):
+        self.level = level
+        orient = node.get("planeOrientation", "str", choices=tuple(self.ORIENT))
+        self.normal, self.inner, self.outer = self.ORIENT[orient]
+        ncells = [n for d, n in enumerate(level.ncells) if d != self.normal]
+        self.n_planes = level.ncells[self.normal]
+        self.n_cells = int(ncells[0] * ncells[1])
+
+    def reduction(self, name, lab):
+        """A sum reduction holding the plane sums of the CC double or Vector lab."""
+        return L.create(name, VarType.REDUCTION, (self.n_planes, 3 if lab.shape == (3,) else 1), reduction="sum")
+
+    def bounds(self, patch):
+        """The patch's interior cells (local lo, hi) and the global index of its local plane 0."""
+        lo, hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
+        return lo, hi, int(patch.low_index(VarType.CC)[self.normal])
+
+    def patch_sums(self, q, patch):
+        """This patch's share of the plane sums of the CC array q (every plane, zero elsewhere)."""
+        lo, hi, g0 = self.bounds(patch)
+        q = q.reshape(q.shape[:3] + (-1,))
+        out = np.zeros((self.n_planes, q.shape[3]))
+        plane_sums(q, out, lo, hi, self.normal, self.inner, self.outer, g0)
+        return out
+
+    def write(self, path, t, desc, values, last, last_format):
+        """One file of plane rows: the cell position, the values (n_planes, components), and the
+        column `last` (per plane; None: none), in Uintah's planarVar printAverage format."""
+        lv = self.level
+        mid = [int(np.floor(n / 2.0 + 0.5)) for n in lv.ncells]        # Uintah's roundNearest(n / 2)
+        sep = " " if values.shape[1] == 3 else "  "
+        with open(path, "a") as f:
+            f.write(self.header(t, desc, {"%i": "nCells", "%15.14E": "weight"}.get(last_format)))
+            for p in range(self.n_planes):
+                c = list(mid)
+                c[self.normal] = p
+                pos = lv.anchor + lv.dx * np.array(c) + lv.dx * 0.5     # Uintah's getCellPosition
+                f.write("%15.14E  %15.14E  %15.14E " % tuple(pos))
+                row = sep.join("%15.14E" % v for v in values[p])
+                if last is not None:
+                    row += sep + last_format % last[p]
+                f.write(row + "\n")
+
+    def header(self, t, desc, trailer):
+        lv = self.level
+        text = ("# Level: 0 nCells per plane: %i\n" % self.n_cells + "# Level spatial range:\n"
+                + "# %15.14E  %15.14E  %15.14E \n" % tuple(lv.anchor + 0.0) + "# %15.14E  %15.14E  %15.14E \n" % tuple(lv.upper)
+                + "# Level interior CC index range:  " + "# [0 0 0] [%i %i %i] \n" % tuple(lv.ncells)
+                + "# Simulation time: %16.15E \n" % t + "# Plane location (x,y,z)           Average\n"
+                + "# ________CC_loc.x__________CC_loc.y______________CC_loc.z______________%s" % desc)
+        return text + ("______________%s\n" % trailer if trailer else "")
+
+
 @njit(cache=True)
 def plane_fluctuation(q, mean, out, lo, hi, normal, g0):
     """Q' = Q - Q_bar(plane) in the interior cells lo..hi (Uintah's calc_Q_prime)."""
@@ -363,17 +427,14 @@ class PlaneAvgTurbFluxes:
     averages go to files in the uda (planarAveTurbFluxes/AvgQ and /TurbFluxes, t<step>/L-0/
     <label>_<matl>) in Uintah's format. Outside the sampling times the CC labels are 0."""
 
-    ORIENT = {"XY": (2, 0, 1), "XZ": (1, 0, 2), "YZ": (0, 1, 2)}       # normal, inner, outer axis
-    VEC_DESC = "ave.x__________________ave.y______________ave.z"
-
     def __init__(self, node, component, level):
         matl = _material(node, component)
         self.level = level
         self.freq = node.get("samplingFrequency", "float", above=0.0)
         self.start = node.get("timeStart", "float")
         self.stop = node.get("timeStop", "float")
-        orient = node.get("planeOrientation", "str", choices=tuple(self.ORIENT))
-        self.normal, self.inner, self.outer = self.ORIENT[orient]
+        self.planes = PlaneSums(node, level)
+        self.normal = self.planes.normal
         for tag in ("monitorCell", "weight"):          # debugging print; the weight of weighting="mass"
             if node.child(tag) is not None:
                 node.child(tag).mark_used()
@@ -408,11 +469,8 @@ class PlaneAvgTurbFluxes:
         self.vel_prime = L.create(self.vel.name + "_prime", VarType.CC, (3,))
         self.normal_strss = L.create("normalTurbStrss", VarType.CC, (3,))
         self.shear_strss = L.create("shearTurbStrss", VarType.CC, (3,))
-        ncells = [n for d, n in enumerate(level.ncells) if d != self.normal]
-        self.n_planes = level.ncells[self.normal]
-        self.n_cells = int(ncells[0] * ncells[1])
-        mk = lambda lab, m, stage: L.create(f"planeAvgTurbFluxes_sum{stage}_{lab.name}_{m}", VarType.REDUCTION,
-                                            (self.n_planes, 3 if lab.shape == (3,) else 1), reduction="sum")
+        self.n_cells = self.planes.n_cells
+        mk = lambda lab, m, stage: self.planes.reduction(f"planeAvgTurbFluxes_sum{stage}_{lab.name}_{m}", lab)
         self.sums1 = [(lab, m, mk(lab, m, 1)) for lab, m in self.avg]
         stage2 = [(self.normal_strss, matl), (self.shear_strss, matl)] + [(f, m) for _, m, _, f in self.scalars]
         self.sums2 = [(lab, m, mk(lab, m, 2)) for lab, m in stage2]
@@ -456,11 +514,6 @@ class PlaneAvgTurbFluxes:
             t.requires(NEW, lab, matls=[m]).computes(r)
         sched.add_task(t)
 
-    def _bounds(self, patch):
-        lo, hi = (np.array(x, dtype=np.int64) for x in patch.interior(VarType.CC))
-        g0 = int(patch.low_index(VarType.CC)[self.normal])
-        return lo, hi, g0
-
     def _sums(self, sums):
         first = sums is self.sums1
 
@@ -468,18 +521,15 @@ class PlaneAvgTurbFluxes:
             now, active = self._is_it_time(old_dw)
             if first:
                 new_dw.put_reduction(self.last, now if active else old_dw.get_reduction(self.last))
-            lo, hi, g0 = self._bounds(patch)
             for lab, m, r in sums:
-                out = np.zeros(r.shape)
-                if active and m in matls:
-                    q = new_dw.get(lab, m, patch)
-                    plane_sums(q.reshape(q.shape[:3] + (-1,)), out, lo, hi, self.normal, self.inner, self.outer, g0)
-                new_dw.put_reduction(r, out)
+                active_here = active and m in matls
+                new_dw.put_reduction(r, self.planes.patch_sums(new_dw.get(lab, m, patch), patch)
+                                     if active_here else np.zeros(r.shape))
         return task
 
     def fluctuations(self, patch, matls, old_dw, new_dw):
         _, active = self._is_it_time(old_dw)
-        lo, hi, g0 = self._bounds(patch)
+        lo, hi, g0 = self.planes.bounds(patch)
         outs = {lab: new_dw.allocate(lab, self.matl, patch)
                 for lab in (self.vel_prime, self.normal_strss, self.shear_strss)}
         primes = [new_dw.allocate(prime, m, patch) for _, m, prime, _ in self.scalars]
@@ -503,42 +553,283 @@ class PlaneAvgTurbFluxes:
     def after_step(self, dw, timestep, t, uda):
         if uda is None or dw.get_reduction(self.last) != t:
             return
-        lv = self.level
-        mid = [int(np.floor(n / 2.0 + 0.5)) for n in lv.ncells]        # Uintah's roundNearest(n / 2)
         desc2 = {self.normal_strss.name: "u'u'__________________v'v'______________w'w'",
                  self.shear_strss.name: "u'v'__________________v'w'______________w'u'"}
+        ncells = np.full(self.planes.n_planes, self.n_cells)
         for folder, sums in (("AvgQ", self.sums1), ("TurbFluxes", self.sums2)):
             path = os.path.join(uda, "planarAveTurbFluxes", folder, f"t{timestep:05d}", "L-0")
             os.makedirs(path, exist_ok=True)
             for lab, m, r in sums:
-                avg = dw.get_reduction(r) / float(self.n_cells)
-                vector = lab.shape == (3,)
                 if folder == "TurbFluxes":
                     desc = desc2.get(lab.name, "u'Q'_________________v'Q'__________________w'Q'")
                 else:
-                    desc = self.VEC_DESC if vector else "ave"
-                with open(os.path.join(path, f"{lab.name}_{m}"), "a") as f:
-                    f.write(self._header(t, desc))
-                    for p in range(self.n_planes):
-                        c = list(mid)
-                        c[self.normal] = p
-                        pos = lv.anchor + lv.dx * np.array(c) + lv.dx * 0.5     # Uintah's getCellPosition
-                        f.write("%15.14E  %15.14E  %15.14E " % tuple(pos))
-                        if vector:
-                            f.write("%15.14E %15.14E %15.14E %i\n" % (avg[p, 0], avg[p, 1], avg[p, 2], self.n_cells))
-                        else:
-                            f.write("%15.14E  %i\n" % (avg[p, 0], self.n_cells))
+                    desc = PlaneSums.DESC[lab.shape]
+                self.planes.write(os.path.join(path, f"{lab.name}_{m}"), t, desc,
+                                  dw.get_reduction(r) / float(self.n_cells), ncells, "%i")
 
-    def _header(self, t, desc):
-        lv = self.level
-        lo, hi = lv.anchor, lv.upper
-        n = lv.ncells
-        return ("# Level: 0 nCells per plane: %i\n" % self.n_cells + "# Level spatial range:\n"
-                + "# %15.14E  %15.14E  %15.14E \n" % tuple(lo) + "# %15.14E  %15.14E  %15.14E \n" % tuple(hi)
-                + "# Level interior CC index range:  " + "# [0 0 0] [%i %i %i] \n" % tuple(n)
-                + "# Simulation time: %16.15E \n" % t + "# Plane location (x,y,z)           Average\n"
-                + "# ________CC_loc.x__________CC_loc.y______________CC_loc.z______________%s" % desc
-                + "______________nCells\n")
+
+class PlaneAverage:
+    """Uintah's planeAverage module: at its sampling times within [timeStart, timeStop] (the
+    time at the step's end), the average over each plane (planeOrientation XY, XZ or YZ) of
+    every analysed CC double or Vector: the plane's sum over its cells divided by its number of
+    cells (weighting="nCells") or by the plane's sum of the <weight label> (weighting="mass"),
+    or the sum itself (no weighting), written to <uda>/planeAverage/t<step>/L-0/<label>_<matl>
+    in Uintah's format."""
+
+    WEIGHTINGS = ("nCells", "mass")
+
+    def __init__(self, node, component, level):
+        matl = _material(node, component)
+        self.level = level
+        self.freq = node.get("samplingFrequency", "float", above=0.0)
+        self.start = node.get("timeStart", "float")
+        self.stop = node.get("timeStop", "float")
+        self.planes = PlaneSums(node, level)
+        wn = node.child("weight")
+        weight_name = None
+        if wn is not None:
+            wn.mark_used()
+            weight_name = wn.attr("label")
+        self.vars = []          # (label, matl, weighting, sum reduction, weight-sum reduction or None)
+        for a in node.child("Variables", required=True).children("analyze"):
+            name = a.attr("label")
+            label = L.find(name)
+            if label is None or label.vartype is not VarType.CC or label.shape not in ((), (3,)):
+                raise a.error(f'label="{name}" is not a cell-centred double or Vector of this deck; '
+                              "accepted: a CC variable the component computes")
+            if name == "press_CC" and a.attr("matl", default=None) is None:
+                raise a.error('press_CC needs matl="0" (as Uintah\'s planeAverage)')
+            m = a.attr("matl", "int", matl, at_least=0)
+            weighting = a.attr("weighting", default=None, choices=self.WEIGHTINGS)
+            wsum = None
+            if weighting == "mass":
+                weight = L.find(weight_name) if weight_name is not None else None
+                if weight is None or weight.vartype is not VarType.CC or weight.shape != ():
+                    where = wn if wn is not None else node
+                    raise where.error(f'weighting="mass" of {name} needs <weight label="..."> naming a cell-centred '
+                                      f"double of this deck (given: {weight_name}); accepted: weighting=\"nCells\" "
+                                      "or a weight the component computes")
+                wsum = (weight, self.planes.reduction(f"planeAverage_weight_{name}_{m}", weight))
+            self.vars.append((label, m, weighting, self.planes.reduction(f"planeAverage_sum_{name}_{m}", label), wsum))
+        self.last = L.create("lastCompTime_planeAvg", VarType.REDUCTION, reduction="max")
+        self.needed = {self.last.name} | {v[3].name for v in self.vars} | {v[4][1].name for v in self.vars if v[4]}
+
+    def schedule_initialize(self, sched):
+        sched.add_task(Task("planeAverage::initialize", self.initialize, [self.vars[0][1] if self.vars else 0])
+                       .computes(self.last))
+
+    def initialize(self, patch, matls, old_dw, new_dw):
+        new_dw.put_reduction(self.last, self.start - 1.0 / self.freq)
+
+    def schedule(self, sched):
+        t = Task("planeAverage::computePlanarSums", self.sums, sorted({v[1] for v in self.vars}) or [0]) \
+            .requires(OLD, L.simTime).requires(OLD, L.delT).requires(OLD, self.last).computes(self.last)
+        for lab, m, _, r, wsum in self.vars:
+            t.requires(NEW, lab, matls=[m]).computes(r)
+            if wsum is not None:
+                t.requires(NEW, wsum[0], matls=[m]).computes(wsum[1])
+        sched.add_task(t)
+
+    def sums(self, patch, matls, old_dw, new_dw):
+        """This patch's plane sums of each variable (and of its weight) at the sampling times."""
+        now = old_dw.get_reduction(L.simTime) + old_dw.get_reduction(L.delT)
+        prev = old_dw.get_reduction(self.last)
+        active = not (now < self.start or now > self.stop or now < prev + 1.0 / self.freq)
+        new_dw.put_reduction(self.last, now if active else prev)
+        for lab, m, _, r, wsum in self.vars:
+            here = active and m in matls
+            new_dw.put_reduction(r, self.planes.patch_sums(new_dw.get(lab, m, patch), patch) if here
+                                 else np.zeros(r.shape))
+            if wsum is not None:
+                new_dw.put_reduction(wsum[1], self.planes.patch_sums(new_dw.get(wsum[0], m, patch), patch) if here
+                                     else np.zeros(wsum[1].shape))
+
+    def after_step(self, dw, timestep, t, uda):
+        if uda is None or dw.get_reduction(self.last) != t:
+            return
+        path = os.path.join(uda, "planeAverage", f"t{timestep:05d}", "L-0")
+        os.makedirs(path, exist_ok=True)
+        ncells = np.full(self.planes.n_planes, self.planes.n_cells)
+        for lab, m, weighting, r, wsum in self.vars:
+            total = dw.get_reduction(r)
+            if weighting == "nCells":
+                values, last, fmt = total / ncells[:, None].astype(np.float64), ncells, "%i"
+            elif weighting == "mass":
+                weight = dw.get_reduction(wsum[1])[:, 0]
+                values, last, fmt = total / weight[:, None], weight, "%15.14E"
+            else:
+                values, last, fmt = total, None, None
+            self.planes.write(os.path.join(path, f"{lab.name}_{m}"), t, PlaneSums.DESC[lab.shape], values, last, fmt)
+
+
+@njit(cache=True)
+def running_moments(q, old1, old2, s1, s2, m1, m2, var, n, lo, hi):
+    """Uintah's statistics, first and second order, over the cells lo..hi: the sums of Q and
+    Q Q gain this step's value, mean = sum / n, variance = mean(Q Q) - mean(Q)^2."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for c in range(q.shape[3]):
+                    me = q[i, j, k, c]
+                    s1[i, j, k, c] = me + old1[i, j, k, c]
+                    m1[i, j, k, c] = s1[i, j, k, c] / n
+                    s2[i, j, k, c] = me * me + old2[i, j, k, c]
+                    m2[i, j, k, c] = s2[i, j, k, c] / n
+                    var[i, j, k, c] = m2[i, j, k, c] - m1[i, j, k, c] * m1[i, j, k, c]
+
+
+@njit(cache=True)
+def higher_moments(q, m1, var, old3, old4, s3, s4, m3, m4, skew, kurt, n, lo, hi):
+    """Uintah's statistics, third and fourth order (computeHigherOrderStats): the sums of Q^3
+    and Q^4, their means, skewness = mean(Q^3) - Qbar^3 - 3 var Qbar and kurtosis = mean(Q^4)
+    - Qbar^4 - 6 var Qbar^2 - 4 skewness Qbar (central moments, not normalised, as Uintah)."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for c in range(q.shape[3]):
+                    me = q[i, j, k, c]
+                    me2 = me * me
+                    qbar = m1[i, j, k, c]
+                    qbar2 = qbar * qbar
+                    s3[i, j, k, c] = me * me2 + old3[i, j, k, c]
+                    m3[i, j, k, c] = s3[i, j, k, c] / n
+                    skew[i, j, k, c] = m3[i, j, k, c] - qbar * qbar2 - 3.0 * var[i, j, k, c] * qbar
+                    s4[i, j, k, c] = me2 * me2 + old4[i, j, k, c]
+                    m4[i, j, k, c] = s4[i, j, k, c] / n
+                    kurt[i, j, k, c] = (m4[i, j, k, c] - qbar2 * qbar2 - 6.0 * var[i, j, k, c] * qbar2
+                                        - 4.0 * skew[i, j, k, c] * qbar)
+
+
+@njit(cache=True)
+def reynolds_products(vel, vel_mean, old, s, mean, prime, n, lo, hi):
+    """Uintah's statistics computeReynoldsStress: the sum and mean of (u v, v w, w u) and
+    uv_vw_wu_prime = mean(u v) - mean(u) mean(v), ... over the cells lo..hi."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                for c in range(3):
+                    d = (c + 1) % 3
+                    s[i, j, k, c] = vel[i, j, k, c] * vel[i, j, k, d] + old[i, j, k, c]
+                    mean[i, j, k, c] = s[i, j, k, c] / n
+                    prime[i, j, k, c] = mean[i, j, k, c] - vel_mean[i, j, k, c] * vel_mean[i, j, k, d]
+
+
+class Statistics:
+    """Uintah's statistics module: for each analysed CC or FC double or Vector Q, over the steps
+    that start within [timeStart, timeStop], the running sums sum_Q, sum2_Q and the means mean_Q,
+    mean2_Q and variance_Q; with <computeHigherOrderStats> also sum3_, sum4_, mean3_, mean4_,
+    skewness_ and kurtosis_; an analysed Vector with computeReynoldsStress="true" adds
+    sum_uv_vw_wu, mean_uv_vw_wu and uv_vw_wu_prime. Every cell of the patch (extra cells
+    included). The sums and the step count are carried from step to step (in checkpoints too);
+    outside the window the sums keep their values and the statistics are 0."""
+
+    LOW = ("s1", "s2", "m1", "m2", "var")
+    HIGH = ("s3", "s4", "m3", "m4", "skew", "kurt")
+    NAMES = {"s1": "sum_", "s2": "sum2_", "m1": "mean_", "m2": "mean2_", "var": "variance_", "s3": "sum3_",
+             "s4": "sum4_", "m3": "mean3_", "m4": "mean4_", "skew": "skewness_", "kurt": "kurtosis_"}
+    SUMS = ("s1", "s2", "s3", "s4")
+
+    def __init__(self, node, component, level):
+        matl = _material(node, component)
+        self.start = node.get("timeStart", "float")
+        self.stop = node.get("timeStop", "float")
+        if self.start > self.stop:
+            raise node.child("timeStop").error("timeStop is before timeStart; accepted: timeStart <= timeStop")
+        for tag in ("monitorCell", "samplingFrequency"):        # a debugging print; not read by Uintah's module
+            if node.child(tag) is not None:
+                node.child(tag).mark_used()
+        self.higher = node.get("computeHigherOrderStats", "bool", False)
+        self.keys = self.LOW + (self.HIGH if self.higher else ())
+        self.vars, self.rs = [], None
+        for a in node.child("Variables", required=True).children("analyze"):
+            name = a.attr("label")
+            label = L.find(name)
+            if label is None or label.vartype not in (VarType.CC,) + FACE_TYPES or label.shape not in ((), (3,)):
+                raise a.error(f'label="{name}" is not a cell- or face-centred double or Vector of this deck; '
+                              "accepted: a CC or FC variable the component computes")
+            q = {"label": label, "matl": a.attr("matl", "int", matl, at_least=0)}
+            for k in self.keys:
+                q[k] = L.create(self.NAMES[k] + name, label.vartype, label.shape)
+            if a.attr("computeReynoldsStress", "bool", False):
+                if label.shape != (3,) or label.vartype is not VarType.CC:
+                    raise a.error(f'computeReynoldsStress on {name}; accepted: a cell-centred Vector (the velocity)')
+                if self.rs is not None:
+                    raise a.error("computeReynoldsStress given twice; accepted: on one variable")
+                self.rs = q
+                q.update({k: L.create(n, VarType.CC, (3,)) for k, n in
+                          (("rs_sum", "sum_uv_vw_wu"), ("rs_mean", "mean_uv_vw_wu"), ("rs_prime", "uv_vw_wu_prime"))})
+            self.vars.append(q)
+        self.count = L.create("statistics_nTimesteps", VarType.REDUCTION, reduction="max")
+        self.needed = {q[k].name for q in self.vars for k in self.keys if k in self.SUMS} | {self.count.name}
+        if self.rs is not None:
+            self.needed.add(self.rs["rs_sum"].name)
+
+    def _sums(self, q):
+        return [k for k in self.keys if k in self.SUMS] + (["rs_sum"] if q is self.rs else [])
+
+    def _matls(self):
+        return sorted({q["matl"] for q in self.vars}) or [0]
+
+    def schedule_initialize(self, sched):
+        t = Task("statistics::initialize", self.initialize, self._matls()).computes(self.count)
+        for q in self.vars:
+            for k in self._sums(q):
+                t.computes(q[k], matls=[q["matl"]])
+        sched.add_task(t)
+
+    def initialize(self, patch, matls, old_dw, new_dw):
+        for q in self.vars:
+            if q["matl"] in matls:
+                for k in self._sums(q):
+                    new_dw.allocate(q[k], q["matl"], patch)[...] = 0.0
+        new_dw.put_reduction(self.count, 0.0)
+
+    def schedule(self, sched):
+        t = Task("statistics::doAnalysis", self.analyse, self._matls()) \
+            .requires(OLD, L.simTime).requires(OLD, self.count).computes(self.count)
+        for q in self.vars:
+            m = [q["matl"]]
+            t.requires(NEW, q["label"], matls=m)
+            for k in self._sums(q):
+                t.requires(OLD, q[k], matls=m)
+            for k in self.keys + (("rs_sum", "rs_mean", "rs_prime") if q is self.rs else ()):
+                t.computes(q[k], matls=m)
+        sched.add_task(t)
+
+    def analyse(self, patch, matls, old_dw, new_dw):
+        now = old_dw.get_reduction(L.simTime)
+        active = self.start <= now <= self.stop
+        n = old_dw.get_reduction(self.count) + (1.0 if active else 0.0)
+        new_dw.put_reduction(self.count, n)
+        for q in self.vars:
+            m = q["matl"]
+            if m not in matls:
+                continue
+            if not active:
+                for k in self.keys + (("rs_sum", "rs_mean", "rs_prime") if q is self.rs else ()):
+                    if k in self._sums(q):
+                        new_dw.put(q[k], m, patch, old_dw.get(q[k], m, patch).copy())
+                    else:
+                        new_dw.allocate(q[k], m, patch)[...] = 0.0
+                continue
+            v = lambda a: a.reshape(a.shape[:3] + (-1,))
+            vt = q["label"].vartype
+            lo, hi = (np.array(x, dtype=np.int64) for x in patch.owned_local(vt))
+            new = {k: new_dw.allocate(q[k], m, patch) for k in self.keys}
+            old = {k: old_dw.get(q[k], m, patch) for k in self._sums(q)}
+            val = new_dw.get(q["label"], m, patch)
+            running_moments(v(val), v(old["s1"]), v(old["s2"]), v(new["s1"]), v(new["s2"]), v(new["m1"]),
+                            v(new["m2"]), v(new["var"]), n, lo, hi)
+            if self.higher:
+                higher_moments(v(val), v(new["m1"]), v(new["var"]), v(old["s3"]), v(old["s4"]), v(new["s3"]),
+                               v(new["s4"]), v(new["m3"]), v(new["m4"]), v(new["skew"]), v(new["kurt"]), n, lo, hi)
+            if q is self.rs:
+                rs = {k: new_dw.allocate(q[k], m, patch) for k in ("rs_sum", "rs_mean", "rs_prime")}
+                reynolds_products(val, new["m1"], old["rs_sum"], rs["rs_sum"], rs["rs_mean"], rs["rs_prime"], n,
+                                  lo, hi)
+
+    def after_step(self, dw, timestep, t, uda):
+        pass
 
 
 class MinMax:
@@ -1080,7 +1371,7 @@ class FirstLawThermo:
 MODULES = {"vorticity": Vorticity, "minMax": MinMax, "lineExtract": LineExtract,
            "controlVolFluxes": ControlVolFluxes, "SGS_ReynoldsStress": SGS_ReynoldsStress,
            "turbulentFluxes": TurbulentFluxes, "planeAvgTurbFluxes": PlaneAvgTurbFluxes,
-           "firstLawThermo": FirstLawThermo}
+           "firstLawThermo": FirstLawThermo, "planeAverage": PlaneAverage, "statistics": Statistics}
 
 
 def read_analysis(root, component, level) -> list:

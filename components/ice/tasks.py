@@ -23,6 +23,7 @@ from . import slip_exchange as SL
 FC_TYPES = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)
 UNIT = np.eye(3, dtype=np.int64)
 DELT_START = 1000.0     # s: the value Uintah's actuallyComputeStableTimestep starts its minimum from
+_NO_TRANSFERS = (np.zeros((1, 1, 1)),) * 3      # advection_faces: ICE alone moves nothing besides the fluxes
 
 
 class Boxes:
@@ -696,7 +697,7 @@ class IceTasks:
                 tot, tot_o = new_dw.get(I.tot_eng_L_ME_CC, m, patch), np.empty_like(mass)
             else:
                 tot = tot_o = mass                              # unused
-            uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
+            uf, ef = self.advection_faces(patch, m, new_dw, dt)
             v = b.view
             shape = v(mass).shape
             # the models' scalars of this material (m f), advected with the others
@@ -706,6 +707,7 @@ class IceTasks:
                 scal[s] = v(new_dw.get(model.f_L, m, patch))
             nq = (A.NQ if with_e else A.NQ - 1) + len(mine)
             common = (v(mass), v(mom), v(eng), v(volm), v(tot), scal, with_e, heating, *(v(uf[p]) for p in b.perm),
+                      *(v(ef[p]) if ef[p].size > 1 else ef[p] for p in b.perm),
                       b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm])
             scratch = (self._scratch("q", (nq,) + shape), self._scratch("acc", (nq,) + shape),
                        self._scratch("buf", (nq, shape[2] + 1)))
@@ -730,6 +732,12 @@ class IceTasks:
                 f = new_dw.allocate(model.f, m, patch)
                 v(f)[inner] = scal_o[s][inner]
                 self.bcs.scalar(patch, f, model.name, m, b)
+
+    def advection_faces(self, patch, m, new_dw, dt):
+        """The face velocities that advect material m and, per direction, the fractions of a
+        donor cell's totals moved across each face besides (1-element dummies: none; MPMICE's
+        next to its solids, advection._open_transfers)."""
+        return self._faces(new_dw, I.FC_VEL_ME, m, patch), _NO_TRANSFERS
 
     # -- diagnostics ----------------------------------------------------------------------------
     def conserved_sums(self, patch, matls, old_dw, new_dw):

@@ -7,6 +7,7 @@
         <constants> <diffusivity/> <rateOfChange0/> <rateOfChange1/> </constants>
         <exponentialDecay> <c1/> <c2 type="constant"><value/></c2> <c3/> </exponentialDecay>
                            or <c2 type="variable"><filename> x,y,z,c2 table </filename></c2>
+                           (the per-cell c2 is the label scalar-f_expDecayCoef)
         <initialization> <geom_object> pieces <scalar/> [a profile flag] </geom_object> ...
         <interiorSources> <geom_object> pieces <scalar/> <maxScalar/> </geom_object> ...
       </scalar>
@@ -148,10 +149,11 @@ class PassiveScalar:
             c2 = ed.child("c2", required=True)
             c1, c3 = ed.get("c1", "float"), ed.get("c3", "float", 0.0)
             if c2.attr("type", default="constant", choices=("constant", "variable")) == "variable":
-                c2_cells = _read_c2_table(c2.child("filename", required=True), geo.level)
-                self.decay = c1 * c2_cells + c3               # per interior cell of the level
+                self.c2 = _read_c2_table(c2.child("filename", required=True), geo.level)    # per interior cell
             else:
-                self.decay = c1 * c2.get("value", "float") + c3
+                self.c2 = c2.get("value", "float")
+            self.decay = c1 * self.c2 + c3
+            self.decay_coef = L.create(self.name + "_expDecayCoef", CC)
         init = sc.child("initialization", required=True)
         self.regions = [Region(go, geo) for go in init.children("geom_object")]
         if not self.regions:
@@ -164,8 +166,17 @@ class PassiveScalar:
     def schedule_initialize(self, sched):
         sched.add_task(Task(f"PassiveScalar::initialize_({self.name})", self.initialize, [self.matl])
                        .computes(self.f))
+        self.schedule_decay_coef(sched)
+
+    def schedule_decay_coef(self, sched):
+        """scalar-f_expDecayCoef, the exponential decay's c2 per cell: a task the graph keeps only
+        where a deck saves it (Uintah carries it from step to step; it never changes)."""
+        if self.decay is not None:
+            sched.add_task(Task(f"PassiveScalar::expDecayCoef_({self.name})", self.decay_coef_task, [self.matl])
+                           .computes(self.decay_coef))
 
     def schedule_sources(self, sched):
+        self.schedule_decay_coef(sched)
         t = Task(f"PassiveScalar::computeModelSources_({self.name})", self.sources_task, [self.matl]) \
             .requires(OLD, L.delT).computes(self.src)
         if self.diffusivity != 0.0:
@@ -221,6 +232,19 @@ class PassiveScalar:
             si[over] = region.clamp - fi[over]
         negative = fi + si < 0.0
         si[negative] = -fi[negative]
+
+    def decay_coef_task(self, patch, matls, old_dw, new_dw):
+        """c2 in every cell (a constant), or the table's value in the interior cells and 0 in the
+        extra cells (Uintah's PassiveScalar::initialize and readTable)."""
+        out = new_dw.allocate(self.decay_coef, self.matl, patch)
+        if np.ndim(self.c2) == 0:
+            out[...] = self.c2
+            return
+        out[...] = 0.0
+        b = self.ice.boxes(patch)
+        lo = np.array(patch.low_index(VarType.CC)) + b.lo
+        hi = np.array(patch.low_index(VarType.CC)) + b.hi
+        out[tuple(slice(l, h) for l, h in zip(b.lo, b.hi))] = self.c2[tuple(slice(l, h) for l, h in zip(lo, hi))]
 
     def conservation_task(self, patch, matls, old_dw, new_dw):
         """totalSum_scalar-f: sum m f over the interior plus delT times its upper-face fluxes."""

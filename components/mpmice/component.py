@@ -22,7 +22,9 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
      interpolateCCToNC_T carry its dT/dt back to the nodes and particles (tasks.py).
      Fluids with thermal_conductivity > 0 conduct (ICE::computeHeatFlux).
   13 MPM grid BCs, interpolateToParticlesAndUpdate, computeStressTensor, relocation
-  12 ICE::advectAndAdvanceInTime (fluids)
+  12 ICE::advectAndAdvanceInTime (fluids; where a solid advances through a cell toward a more
+     open neighbour, the fluid it displaces crosses the face as open as that neighbour:
+     tasks.open_faces, docs/MPMICE.md)
 The ICE and MPM tasks are those components' own task bodies; this module only
 declares them over the right material sets and interleaves the coupling tasks.
 With <CFD><ICE><ImplicitSolver> steps 3-5 are ICE's semi-implicit pressure solve
@@ -142,6 +144,7 @@ class MPMICE(MPMICETasks, Component):
         cv = [_specific_heat(m) for m in self.mpm.materials]
         self.ice = ICEinMPMICE(self.mpm.materials, cv, bulk)
         self.ice.problem_setup(root, level)
+        self.ice.coupling = self          # the fluids' advection next to the solids (tasks.open_faces)
         if self.ice.implicit:
             self.may_recompute = self.ice.may_recompute      # iters_before_timestep_restart
         if self.ice.conserve_energy:
@@ -370,10 +373,10 @@ class MPMICE(MPMICETasks, Component):
         t = Task("ICE::advectAndAdvanceInTime", ice.advect_and_advance, fl) \
             .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
             .requires(NEW, I.int_eng_L_ME_CC, G, gadv).requires(NEW, I.sp_vol_L_CC, G, gadv) \
-            .requires(NEW, I.vol_frac_CC) \
+            .requires(NEW, I.vol_frac_CC, G, gadv, matls=self.all_matls) \
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
         for d in dirs:
-            t.requires(NEW, I.FC_VEL_ME[d], G, 1)
+            t.requires(NEW, I.FC_VEL_ME[d], G, 1, matls=self.all_matls)
         ice.advect_scalars(t, gadv)
         sched.add_task(t)
         for model in ice.scalars:

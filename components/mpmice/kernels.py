@@ -421,3 +421,64 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
                 for m in range(n):
                     if solid[m]:
                         out[m][i, j, k] = rhos[m][i, j, k] * scale
+
+
+@njit(cache=True)
+def open_fraction(solid_vf, fluid_vf, lo, hi, out):
+    """The part of each cell [lo, hi) open to the fluids: the sum of their volume fractions,
+    exactly 1 where the solids hold less than 1e-9 of the cell (pure fluid stays bitwise ICE's).
+    solid_vf, fluid_vf: tuples of the materials' vol_frac_CC."""
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                s = 0.0
+                for a in solid_vf:
+                    s += a[i, j, k]
+                if s < 1e-9:
+                    out[i, j, k] = 1.0
+                    continue
+                f = 0.0
+                for a in fluid_vf:
+                    f += a[i, j, k]
+                out[i, j, k] = f
+
+
+@njit(cache=True)
+def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e):
+    """Step 12 next to a moving solid, per face [flo, fhi) along d (R cell = face + sh, L = R - e_d):
+    u_s = the solids' face velocities weighted by their volume fractions in the two cells. Where
+    the solid advances from its upwind cell (the donor, open part o_d = opn, fluid mass m_d)
+    toward a more open neighbour (o_n > o_d) in which the fluid is less dense per open volume
+    (m_n / o_n < m_d / o_d), e = min((o_n / o_d - 1) |u_s| dt/dx, the fraction of m_d that makes
+    the two densities per open volume equal), signed as u_s. The solid fills the donor from the
+    side away from the neighbour and displaces the fluid in its open part, which lies against
+    the face, as though the face were as open as the neighbour: u_s o_n dt/dx of the cell's
+    volume, where ICE's flux at the fluid's mean density carries about u o_d dt/dx. |e| <= cap
+    on each face (a face's own bound, the same on the patches either side of it). Returns
+    whether any face moves fluid so."""
+    moved = False
+    e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
+    for i in range(flo[0], fhi[0]):
+        for j in range(flo[1], fhi[1]):
+            for k in range(flo[2], fhi[2]):
+                e[i, j, k] = 0.0
+                r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
+                l0, l1, l2 = r0 - e0, r1 - e1, r2 - e2
+                w = 0.0
+                uw = 0.0
+                for s in range(len(solid_u)):
+                    ws = solid_vf[s][l0, l1, l2] + solid_vf[s][r0, r1, r2]
+                    w += ws
+                    uw += ws * solid_u[s][i, j, k]
+                if w < 1e-9 or uw == 0.0:
+                    continue
+                us = uw / w
+                if us > 0.0:
+                    od, on, md, mn = opn[l0, l1, l2], opn[r0, r1, r2], mass[l0, l1, l2], mass[r0, r1, r2]
+                else:
+                    od, on, md, mn = opn[r0, r1, r2], opn[l0, l1, l2], mass[r0, r1, r2], mass[l0, l1, l2]
+                if on > od and md * on > mn * od:
+                    x = min((on / od - 1.0) * abs(us) * dt_dx, (md * on - mn * od) / (md * (od + on)), cap)
+                    e[i, j, k] = x if us > 0.0 else -x
+                    moved = True
+    return moved

@@ -139,3 +139,10 @@ class ICEinMPMICE(ICE):
 
     def material_names(self):
         return [m.name for m in self.materials]
+
+    def advection_faces(self, patch, m, new_dw, dt):
+        """A fluid's advection next to the solids: MPMICE's open_faces (tasks.py), unless the
+        deck asks for Uintah's (`<advection openFaceTransfers="false">`)."""
+        if not self.open_faces:
+            return super().advection_faces(patch, m, new_dw, dt)
+        return self.coupling.open_faces(patch, m, new_dw, dt)

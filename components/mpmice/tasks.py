@@ -279,6 +279,40 @@ class MPMICETasks:
         """Eq. 40 for every material (the solids' result is unused: their volume is the particles')."""
         self.ice.lagrangian_sp_vol(patch, matls, StartOfStep(old_dw, new_dw, self.mpm_matls), new_dw)
 
+    # -- step 12: the fluids' advection next to the solids -----------------------------------------
+    def open_faces(self, patch, m, new_dw, dt):
+        """What ICE's advection of fluid m moves across the faces (ice.advection_faces): its face
+        velocities, and where a solid advances from a cell toward a more open neighbour (the
+        open part of a cell: the sum of the fluids' volume fractions) the further fraction of
+        the cell's fluid that the solid displaces through the face (kernels.open_face_transfers,
+        at most OPEN_CAP of a cell a step). ICE's flux alone carries the fluid at the cell's mean
+        density and leaves some of it in the cells a piston fills. Nothing changes where no
+        solid moves into a cell that holds fluid."""
+        ice = self.ice
+        uf = ice._faces(new_dw, I.FC_VEL_ME, m, patch)
+        none = [np.zeros((1, 1, 1))] * 3
+        shape = patch.alloc_shape(CC)
+        vf = lambda ms: tuple(new_dw.get(I.vol_frac_CC, k, patch) for k in ms)
+        solid_vf = vf(self.mpm_matls)
+        opn = np.empty(shape)
+        K.open_fraction(solid_vf, vf(ice.ice_matls), np.zeros(3, np.int64), np.array(shape, np.int64), opn)
+        b = ice.boxes(patch)
+        mass = new_dw.get(I.mass_L_CC, m, patch)
+        cap = self.OPEN_CAP / (2 * int(np.count_nonzero(ice.dims)))        # per face: a cell's faces together
+        ef = list(none)
+        moved = False
+        for d in range(3):
+            if ice.dims[d]:
+                solid_u = tuple(new_dw.get(I.FC_VEL_ME[d], s, patch) for s in self.mpm_matls)
+                ef[d] = np.empty(uf[d].shape)
+                moved |= K.open_face_transfers(solid_u, solid_vf, opn, mass, b.sh[d], d, b.flo[d], b.fhi[d],
+                                               dt / patch.level.dx[d], cap, ef[d])
+        return uf, (ef if moved else none)
+
+    # at most this fraction of a cell's fluid moves besides ICE's fluxes in a step (through all its
+    # faces): ICE's second-order flux of m v may itself take up to about 4 |u| dt/dx of a cell
+    OPEN_CAP = 0.3
+
     # -- step 7: the equilibration pressure acting on the solid ------------------------------------
     def pressure_internal_force(self, patch, matls, old_dw, new_dw):
         """interpolatePressCCToPressNC + interpolatePAndGradP: p - p_ref at the particles and its

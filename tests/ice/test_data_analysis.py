@@ -98,8 +98,8 @@ def test_modules_a_component_reads_itself_are_left_to_it():
 
     root = ProblemSpec.from_string('<a><DataAnalysis><Module name="particleExtract"/></DataAnalysis></a>', "d.ups")
     assert read_analysis(root, Component(), None) == []
-    root = ProblemSpec.from_string('<a><DataAnalysis><Module name="planeAverage"/></DataAnalysis></a>', "d.ups")
-    with pytest.raises(InputError, match="d.ups:1: .*planeAverage"):
+    root = ProblemSpec.from_string('<a><DataAnalysis><Module name="flatPlat_heatFlux"/></DataAnalysis></a>', "d.ups")
+    with pytest.raises(InputError, match="d.ups:1: .*flatPlat_heatFlux"):
         read_analysis(root, Component(), None)
 
 

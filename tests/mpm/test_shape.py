@@ -48,6 +48,7 @@ def weights(kind, act, px, lp, anchor, dx, node_low):
     na, nb, nc = (2 if kind == "linear" else 3,) * 3
     nn = (na if act & 1 else 1) * (nb if act & 2 else 1) * (nc if act & 4 else 1)
     ni, S, dS = np.empty((len(px), nn, 3), np.int64), np.empty((len(px), nn)), np.empty((len(px), nn, 3))
+    lp = np.require(lp, requirements="W")       # one numba type for _weights (a read-only size: a second)
     _weights(LINEAR if kind == "linear" else GIMP, act, px, lp, anchor, dx, node_low, ni, S, dS)
     return ni, S, dS
 
