@@ -45,7 +45,7 @@ class UintahArchive:
 
     def read(self, label, matl=0, timestep=-1):
         """(values over the interior cells, (x, y, z) cell centres) of one CC variable (double,
-        Vector or Matrix3)."""
+        Vector or Matrix3; an int variable, such as DDT1's BurningCriteria, read as float)."""
         step = self.steps[timestep]
         ts = etree.parse(os.path.join(step, "timestep.xml"))
         meta = ts.find("Meta")
@@ -70,7 +70,7 @@ class UintahArchive:
                 start, end = int(var.findtext("start")), int(var.findtext("end"))
                 with open(os.path.join(step, os.path.dirname(href), var.findtext("filename").strip()), "rb") as f:
                     f.seek(start)
-                    raw = np.frombuffer(f.read(end - start), dtype="<f8")
+                    raw = np.frombuffer(f.read(end - start), dtype="<i4" if "<int>" in var.get("type") else "<f8")
                 n = ehi - elo
                 a = raw.reshape(n[2], n[1], n[0], ncomp).transpose(2, 1, 0, 3)      # x fastest on disk
                 a = a[tuple(slice(l - e, h - e) for l, h, e in zip(ilo, ihi, elo))]

@@ -300,9 +300,11 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             self._check_initial_state(go, objects[-1][1], eos, props, cv_model)
         if not objects:
             raise node.error("material has no <geom_object> (initial condition)")
-        self._check_absent(node, geo, objects, gos)
+        outside = self._check_absent(node, geo, objects, gos)
         mat = Material(name, eos, props, objects)
         mat.viscosity_models = models
+        mat.object_nodes = gos
+        mat.first_object_outside = bool(outside and outside[0])
         mat.cv_model = cv_model
         return mat
 
@@ -311,22 +313,26 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         geometry objects all lie outside the domain. With other materials present it is
         accepted, and the material starts as Uintah's initializeCells leaves it in cells no
         object covers: volume fraction 0 plus the trace tiny_rho, temperature and velocity
-        from its first object. An object outside the domain is refused where it is likely a
-        mistake: the problem's only material, or a material with another object inside."""
+        from its first object. An object outside beside one inside contributes nothing but
+        those first-object values (Uintah's MPMICE decks DDT, BurnRate, ... use it): accepted
+        with a note. Refused: the problem's only material with all its objects outside.
+        Returns which objects lie outside (None without a level)."""
         if geo.level is None:
-            return
+            return None
         out = [geo.outside(piece) for piece, _ in objects]
         if not any(out):
-            return
-        n_all = getattr(self, "n_all", 1)
+            return out
         k = out.index(True)
-        if all(out) and n_all > 1:
-            return
-        hint = (" (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
-                "product, only where other materials fill the domain)" if n_all == 1 else
-                " (a material whose objects all lie outside starts absent, Uintah's idiom for a reaction's "
-                "product; this one has another object inside the domain)")
-        geo.check_overlap(objects[k][0], gos[k], hint)
+        if all(out):
+            if getattr(self, "n_all", 1) > 1:
+                return out
+            geo.check_overlap(objects[k][0], gos[k], " (a material whose objects all lie outside starts absent, "
+                              "Uintah's idiom for a reaction's product, only where other materials fill the domain)")
+        go = gos[k]
+        print(f"pysus: note: {go.filename}:{go.line}: this geometry object lies wholly outside the domain and "
+              f"puts no material anywhere (as in Uintah){' (its values fill the cells no object covers)' if k == 0 else ''}",
+              file=sys.stderr)
+        return out
 
     def _read_viscosity_models(self, node, props):
         """<dynamicViscosityModels>: Uintah's Sutherland (a, b) and SpongeLayer (maxDynamicViscosity

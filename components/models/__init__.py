@@ -12,7 +12,8 @@
 
 Steady_Burn (steady_burn.py) shares Simple_Burn's tasks with the WSB burn rate, Unsteady_Burn
 (unsteady_burn.py) Steady_Burn's with the burn rate relaxed in time; JWLpp (jwlpp.py) turns an
-ICE explosive into ICE products. A PassiveScalar and a TracerParticles model (passive_scalar.py,
+ICE explosive into ICE products; DDT1 (ddt1.py) burns a solid into a product by
+Steady_Burn's deflagration, in cracks, and JWL++'s detonation. A PassiveScalar and a TracerParticles model (passive_scalar.py,
 tracer_particles.py) are ICE's: the ICE component reads them and MPMICE schedules them.
 `read_models(root, mpmice)` reads the block (None without it); `Models.hook(sched)` wraps
 the scheduler so that each model's tasks are added right after the MPMICE tasks they
@@ -29,9 +30,11 @@ from .simple_burn import SimpleBurn
 from .jwlpp import JWLpp
 from .steady_burn import SteadyBurn
 from .unsteady_burn import UnsteadyBurn
+from .ddt1 import DDT1
 
 SOURCES_AFTER = "MPMICE::computeEquilibrationPressure"      # where every reaction model computes its sources
-MODELS = {"Simple_Burn": SimpleBurn, "Steady_Burn": SteadyBurn, "Unsteady_Burn": UnsteadyBurn, "JWLpp": JWLpp}
+MODELS = {"Simple_Burn": SimpleBurn, "Steady_Burn": SteadyBurn, "Unsteady_Burn": UnsteadyBurn, "JWLpp": JWLpp,
+          "DDT1": DDT1}
 
 
 def read_models(root, component):

@@ -28,3 +28,13 @@ ubPartSurfTempGrad = L.create("UnsteadyBurn.PartSurfTempGrad", P)
 ubPartSurfTempGradPre = L.create("UnsteadyBurn.PartSurfTempGrad+", P)
 jwlF = L.create("F", CC)                                  # JWLpp: the reactant's reacted fraction
 jwlDelF = L.create("delF", CC)                            # JWLpp: its growth this step
+# DDT1 (Uintah's names): per reactant cell
+ddtBurning = L.create("burning", CC)                      # 2 conductive, 3 convective burn this step (else 0)
+ddtCriteria = L.create("BurningCriteria", CC)             # the burn logic's verdict (same codes)
+ddtDetonating = L.create("detonating", CC)                # 1 where the JWL++ detonation burns
+ddtDetLocalTo = L.create("detLocalTo", CC)                # 1 next to a cell above ThresholdPressureJWL
+ddtSurfTemp = L.create("surfaceTemp", CC)                 # WSB surface temperature of a burning cell (K)
+ddtOnSurface = L.create("onSurface", CC)                  # burning-surface area of a conductive cell (m^2)
+ddtCracked = L.create("crackedEnough", CC)                # 1 where a particle's crack is wide enough to burn in
+ddtInductionTime = L.create("inductionTime", CC)          # DDT1: a warming cell's ignition delay (s)
+ddtCountTime = L.create("countTime", CC)                  # DDT1: how long it has warmed (s)

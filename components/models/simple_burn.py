@@ -179,13 +179,14 @@ class SimpleBurn:
         K.particle_fractions(cell, pm, pv, burned.reshape(-1), mass_c, tiny, frac, gm, gmom)
         new_dw.put(ML.pBurnFraction, r, patch, frac)
         burned_total = float(gm.sum())
-        new_dw.put_reduction(ML.totalMassBurned, burned_total)
-        new_dw.put_reduction(ML.totalHeatReleased, burned_total * self.heat_of_reaction)
         ms = new_dw.allocate(ML.modelMass_src, g, patch)
         ms[...] = gm.reshape(shape)
+        heat = self.released_heat(patch)
+        new_dw.put_reduction(ML.totalMassBurned, burned_total)
+        new_dw.put_reduction(ML.totalHeatReleased, burned_total * heat if np.isscalar(heat) else float((ms * heat).sum()))
         new_dw.allocate(ML.modelMom_src, g, patch)[...] = gmom.reshape(shape + (3,))
         e = new_dw.allocate(ML.modelEng_src, g, patch)
-        e[...] = ms * (self.cv_react * temps[r] + self.heat_of_reaction)
+        e[...] = ms * (self.cv_react * temps[r] + heat)
         vs = new_dw.allocate(ML.modelVol_src, g, patch)
         on = ms > 0
         if self.volume_of_solid:       # the volume the burned solid held (Uintah's)
@@ -195,6 +196,10 @@ class SimpleBurn:
             t_prod = e[on] / (ms[on] * cv)
             rho = _rho_micro_array(new_dw.get(I.press_equil_CC, 0, patch)[on], t_prod, 1.0, code, params, cv, gamma)
             vs[on] = ms[on] / rho
+
+    def released_heat(self, patch):
+        """J/kg the burned mass releases (a number, or per cell: DDT1's)."""
+        return self.heat_of_reaction
 
     def burned_mass(self, patch, old_dw, new_dw, temps, vfs, mass_c, dt, burned):
         """001 eqs. 5-6: the reactant mass each surface cell burns this step (into `burned`)."""

@@ -15,11 +15,13 @@ exchanged) and from there to the particles with their conduction rate.
 """
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from components.ice import labels as I
 from components.ice.bc import NEUMANN, SYMMETRY, bc_vector
-from components.ice.tasks import _rho_micro_array, _speed_sound
+from components.ice.tasks import _press_array, _rho_micro_array, _speed_sound
 from components.mpm import labels as M
 from framework import labels as FL
 from framework.geometry import cell_fractions
@@ -141,9 +143,10 @@ class MPMICETasks:
             self._nc_to_cc(patch, m, gm, gv, np.zeros(gm.shape + (3,)), cm, spv, np.zeros(ths.shape + (3,)), _NO1)
             ths += cm * spv / b.vol
         ice_mats = [ice.materials[m] for m in ice.ice_matls]
-        fr = [sum(cell_fractions(piece, lv, own, g["res"]) for piece, g in mat.objects) for mat in ice_mats]
-        pw = sum(cell_fractions(piece, lv, own, g["res"]) * g["pressure"] for mat in ice_mats
-                 for piece, g in mat.objects)
+        obj_fr = [[cell_fractions(piece, lv, own, g["res"]) for piece, g in mat.objects] for mat in ice_mats]
+        fr = [sum(fs) for fs in obj_fr]
+        pw = sum(f * self._object_pressure(m, mat, k) for m, mat, fs in zip(ice.ice_matls, ice_mats, obj_fr)
+                 for k, f in enumerate(fs))
         tot = sum(fr)
         empty = tot <= 0.0
         if empty.any():           # cells the solid's geometry fills: take the neighbours' fluid
@@ -153,13 +156,20 @@ class MPMICETasks:
             fr = [np.where(tot > 0, f, 1.0 if k == 0 else 0.0) for k, f in enumerate(fr)]
             tot = np.where(tot > 0, tot, 1.0)
         press = pw / tot
+        if empty.any() and len(ice_mats) == 1 and ice_mats[0].first_object_outside:
+            # Uintah's idiom (DDT.ups): a first object outside the domain gives the state of the
+            # cells no object covers, here those the solid fills
+            press[empty] = self._object_pressure(ice.ice_matls[0], ice_mats[0], 0)
         free = np.clip(1.0 - ths[sl], 0.0, 1.0)
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
         p_arr[sl] = press
-        for m, mat, f in zip(ice.ice_matls, ice_mats, fr):
+        for m, mat, f, fs in zip(ice.ice_matls, ice_mats, fr, obj_fr):
             g0 = mat.objects[0][1]
             temp = np.full(press.shape, g0["temperature"])
-            vel = np.broadcast_to(np.array(g0["velocity"], float), press.shape + (3,))
+            vel = np.broadcast_to(np.array(g0["velocity"], float), press.shape + (3,)).copy()
+            for (_, g), fk in zip(mat.objects, fs):        # the last object covering a cell sets T, v (Uintah's)
+                hit = fk > 0.0
+                temp[hit], vel[hit] = g["temperature"], g["velocity"]
             rho_micro = _rho_micro_array(press, temp, g0["density"], *ice._eos(m))
             theta = free * f / tot
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
@@ -174,6 +184,25 @@ class MPMICETasks:
             ice.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
             _speed_sound(arrs[3], arrs[2], arrs[4], *ice._eos(m))
         ice.bcs.scalar(patch, p_arr, "Pressure", 0, b)
+
+    def _object_pressure(self, m, mat, k):
+        """The pressure ICE material m's object k starts at: its <pressure>, unless its <density>
+        and <temperature> give by the EOS a pressure that differs by more than 0.1 %;
+        then that one, as Uintah's initialization, which takes the density and lets the EOS set the
+        pressure (Uintah's DDT.ups: JWL products at 1500 kg/m^3 and 3000 K, 7e9 Pa, <pressure> 1 atm)."""
+        g = mat.objects[k][1]
+        p_eos = float(_press_array(np.array([g["density"]]), np.array([g["temperature"]]), *self.ice._eos(m))[0])
+        if abs(p_eos - g["pressure"]) <= 1e-3 * max(abs(p_eos), abs(g["pressure"])):
+            return g["pressure"]
+        seen = self.__dict__.setdefault("_noted_objects", set())
+        if (m, k) not in seen:
+            seen.add((m, k))
+            node = mat.object_nodes[k]
+            where = f"{node.filename}:{node.line}: "
+            print(f"pysus: note: {where}ICE material {mat.name!r}, geometry object {k + 1}: its <density> and "
+                  f"<temperature> give {p_eos:.6g} Pa by its EOS, not its <pressure> {g['pressure']:.6g}; it starts at "
+                  "the EOS pressure (Uintah's initialization takes the density)", file=sys.stderr)
+        return p_eos
 
     def _particle_nodes(self, patch, m, dw):
         """Node mass and volume of material m from its particles (owned + ghost) in `dw`."""

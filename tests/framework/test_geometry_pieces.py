@@ -270,18 +270,32 @@ def test_ice_material_outside_starts_absent(tmp_path):
 
 
 def test_outside_object_refused_where_likely_a_mistake(tmp_path):
-    """The only material, a material with another object inside, and an MPM object: refused."""
+    """The only material with its object outside, and an MPM object outside: refused."""
     from framework.controller import Controller
     deck = tmp_path / "alone.ups"
     deck.write_text(ICE_DECK.format(uda=tmp_path / "alone.uda", materials=PRODUCT, exchange=""))
     with pytest.raises(InputError, match="wholly outside the domain.*only where other materials"):
         Controller(str(deck), quiet=True, filebase=str(tmp_path / "alone.uda"))
-    air_object = AIR[AIR.index("<geom_object>"):AIR.index("</material>")]
-    two = PRODUCT.replace("</material>", air_object + "</material>")
-    deck.write_text(ICE_DECK.format(uda=tmp_path / "two.uda", materials=two + AIR, exchange=EXCHANGE))
-    with pytest.raises(InputError, match="another object inside"):
-        Controller(str(deck), quiet=True, filebase=str(tmp_path / "two.uda"))
     lv = Level((0, 0, 0), (1, 1, 1), (4, 4, 4))
     with pytest.raises(InputError, match="wholly outside"):
         GeometryReader(lv).read_object(ProblemSpec.from_string(
             "<geom_object><box><min>[99,99,99]</min><max>[100,100,100]</max></box></geom_object>"))
+
+
+def test_outside_object_beside_one_inside_accepted(tmp_path, capfd):
+    """A material with one object outside the domain and another inside: Uintah's own MPMICE
+    decks (DDT.ups, BurnRate.ups, InductionTime.ups: the product's "outOfDomain" box) use it,
+    and sus runs them; the outside object puts nothing anywhere, a note says so, and the
+    material's cells hold the inside object's values."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    air_object = AIR[AIR.index("<geom_object>"):AIR.index("</material>")]
+    two = PRODUCT.replace("</material>", air_object + "</material>")
+    deck = tmp_path / "two.ups"
+    deck.write_text(ICE_DECK.format(uda=tmp_path / "two.uda", materials=two, exchange=""))
+    c = Controller(str(deck), quiet=True, filebase=str(tmp_path / "two.uda"))
+    assert "wholly outside the domain and puts no material anywhere" in capfd.readouterr().err
+    c.run()
+    a = DataArchive(c.archiver.dir)
+    assert np.allclose(a.read("rho_CC", 0, 0)[0], 50.0 * (1 + 1e-12), rtol=1e-9)
+    assert np.allclose(a.read("temp_CC", 0, 0)[0], 6.96864111498)
