@@ -109,7 +109,9 @@ def main(argv=None):
         print("pysus: error: give a deck (or -restart UDA)", file=sys.stderr)
         return 2
     if args.cache_dir:
-        os.environ["NUMBA_CACHE_DIR"] = os.path.abspath(os.path.expanduser(args.cache_dir))  # before numba loads
+        os.environ["NUMBA_CACHE_DIR"] = os.path.abspath(os.path.expanduser(args.cache_dir))
+        if "numba" in sys.modules:          # importing framework loaded numba's config: read it again
+            sys.modules["numba"].config.reload_config()
     if args.warm:
         return warm(args)
     comm = make_comm()
