@@ -156,6 +156,10 @@ class MPMICE(MPMICETasks, Component):
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
         self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
+        node = root.child("MPMICE")
+        self.gas_start = "particles" if self.rigid else "geometry"
+        if node is not None and node.has("gas_start"):      # pysus's own start (docs/MPMICE.md)
+            self.gas_start = node.get("gas_start", "str", choices=("geometry", "particles"))
 
     def material_names(self):
         return self.ice.material_names()

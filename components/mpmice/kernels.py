@@ -393,7 +393,8 @@ def lagrangian_solid(cmass, vstar, temp, vf, px, py, pz, shx, shy, shz, dims, ma
 
 
 @njit(cache=True)
-def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params, cvs, gammas, out, lo, hi):
+def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params, cvs, gammas, fluids_too,
+                           out, lo, hi):
     """The solids' densities the equilibration starts from (Uintah's computeEquilibrationPressure,
     its Docs/MPMICE.txt): a solid's volume in a cell is its EOS volume at the old pressure,
     rho_m / rho_micro_m(p_old), not the particles' mass mapped to the cell over their mapped
@@ -402,8 +403,10 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
     mass): in a cell a stiff solid fills, mapping noise of its cell mass then no longer resets
     the pressure every step (which pumped p dV work into the trace gas: a compression by
     delP_Dilatate, then an isothermal re-expansion in the next equilibration, 1e5 K after
-    0.4 ms in symAnnulus.ups); a solid's sliver in a gas cell stays a sliver. out[m] is
-    written for solids only."""
+    0.4 ms in symAnnulus.ups); a solid's sliver in a gas cell stays a sliver. With fluids_too
+    (the gas started from its geometry, as Uintah) the fluids of a cell holding a solid are
+    scaled as well, so that the geometric gas and the particles' smeared solid start by filling
+    the cell at the old pressure. out[m] is written for the materials scaled."""
     n = len(rhos)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -419,5 +422,5 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
                         fluid += r * sp_vols[m][i, j, k]
                 scale = 1.0 / (fluid + solid_vol) if solid_vol > 0.0 else 1.0
                 for m in range(n):
-                    if solid[m]:
+                    if solid[m] or fluids_too:
                         out[m][i, j, k] = rhos[m][i, j, k] * scale
