@@ -91,7 +91,7 @@ class MPMICE(MPMICETasks, Component):
     """Fluid-structure interaction: explicit MPM solids in explicit multi-material ICE."""
 
     analysis_modules = ("particleExtract",)    # <DataAnalysis> modules this component reads itself
-    tiny = 1e-12        # solid density floor, relative to its reference density (empty cells)
+    tiny = 1e-12        # solid density added in every cell, kg/m^3 (Uintah's d_TINY_RHO)
 
     def problem_setup(self, root, level):
         self.level = level

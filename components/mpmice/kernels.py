@@ -309,7 +309,7 @@ def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, 
              tiny_mass, rho0, vol, cmass, spv, vel, rho):
     """Step 1 (interpolateNCToCC_0): solid mass, specific volume, velocity, density per cell.
 
-    cmass = sum_w m_i (+ tiny_mass where no solid), v = (sum_w V_i + tiny/rho0) / cmass,
+    cmass = tiny_mass + sum_w m_i (Uintah's floor in every cell), v = (sum_w V_i + tiny/rho0) / cmass,
     u = sum_w m_i u_i / cmass, rho = cmass / V, with w the node weights of _node_weight
     (looked up from node_weights: no per-node branches in the cell loop).
     `rho` may be a dummy (size 1) when not wanted, as may `spv`.
@@ -347,9 +347,8 @@ def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, 
                             p0 += mw * gvel[x, y, z, 0]
                             p1 += mw * gvel[x, y, z, 1]
                             p2 += mw * gvel[x, y, z, 2]
-                if m < tiny_mass:
-                    v += (tiny_mass - m) / rho0
-                    m = tiny_mass
+                v += tiny_mass / rho0
+                m += tiny_mass
                 cmass[i, j, k] = m
                 vel[i, j, k, 0] = p0 / m
                 vel[i, j, k, 1] = p1 / m

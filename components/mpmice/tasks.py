@@ -107,14 +107,14 @@ class MPMICETasks:
         sym_lo, sym_hi = self._sym(m)
         mat = self.mpm.materials[m]
         K.nc_to_cc(gmass, gvol, gvel, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
-                   self.tiny * mat.density * b.vol, mat.density, b.vol, cmass, spv, vel, rho)
+                   self.tiny * b.vol, mat.density, b.vol, cmass, spv, vel, rho)
 
     def _scalar_to_cc(self, patch, m, gmass, gq, out):
         """Mass-weighted cell mean of a nodal scalar of solid m (cells without solid keep `out`)."""
         b, cc_low, node_low, dims, n_lo, n_hi = self._geom(patch)
         sym_lo, sym_hi = self._sym(m)
         K.nc_to_cc_scalar(gmass, gq, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
-                          self.tiny * self.mpm.materials[m].density * b.vol, self.solid_temp[m], out)
+                          self.tiny * b.vol, self.solid_temp[m], out)
 
     def _extra_vector(self, patch, q, m, b):
         """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere."""
