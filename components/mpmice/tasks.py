@@ -123,7 +123,7 @@ class MPMICETasks:
             kind = SYMMETRY if self.ice.bcs.table[name]["Velocity"][m][0] == SYMMETRY else NEUMANN
             bc_vector(q, i // 2, i % 2, kind, np.zeros(3), 0.0, b.lo, b.hi, b.olo, b.ohi)
 
-    # -- initialization: fluids fill what the particles leave ---------------------------------
+    # -- initialization: the fluids from their geometry (or what the particles leave) -------
     def initialize_fluids(self, patch, matls, old_dw, new_dw):
         """ICE state of the fluids. gas_start geometry (Uintah's ICEMaterial::initializeCells): each
         fluid's volume fraction is its geometry's fraction of the cell (sampled at its <res>), plus
