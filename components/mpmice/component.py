@@ -93,7 +93,7 @@ class MPMICE(MPMICETasks, Component):
     """Fluid-structure interaction: explicit MPM solids in explicit multi-material ICE."""
 
     analysis_modules = ("particleExtract",)    # <DataAnalysis> modules this component reads itself
-    tiny = 1e-12        # solid density floor, relative to its reference density (empty cells)
+    tiny = 1e-12        # solid density added in every cell, kg/m^3 (Uintah's d_TINY_RHO)
 
     def problem_setup(self, root, level):
         self.level = level
@@ -159,6 +159,10 @@ class MPMICE(MPMICETasks, Component):
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
         self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
+        node = root.child("MPMICE")
+        self.gas_start = "particles" if self.rigid else "geometry"
+        if node is not None and node.has("gas_start"):      # pysus's own start (docs/MPMICE.md)
+            self.gas_start = node.get("gas_start", "str", choices=("geometry", "particles"))
 
     def material_names(self):
         return self.ice.material_names()

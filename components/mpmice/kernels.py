@@ -309,7 +309,7 @@ def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, 
              tiny_mass, rho0, vol, cmass, spv, vel, rho):
     """Step 1 (interpolateNCToCC_0): solid mass, specific volume, velocity, density per cell.
 
-    cmass = sum_w m_i (+ tiny_mass where no solid), v = (sum_w V_i + tiny/rho0) / cmass,
+    cmass = tiny_mass + sum_w m_i (Uintah's floor in every cell), v = (sum_w V_i + tiny/rho0) / cmass,
     u = sum_w m_i u_i / cmass, rho = cmass / V, with w the node weights of _node_weight
     (looked up from node_weights: no per-node branches in the cell loop).
     `rho` may be a dummy (size 1) when not wanted, as may `spv`.
@@ -347,9 +347,8 @@ def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, 
                             p0 += mw * gvel[x, y, z, 0]
                             p1 += mw * gvel[x, y, z, 1]
                             p2 += mw * gvel[x, y, z, 2]
-                if m < tiny_mass:
-                    v += (tiny_mass - m) / rho0
-                    m = tiny_mass
+                v += tiny_mass / rho0
+                m += tiny_mass
                 cmass[i, j, k] = m
                 vel[i, j, k, 0] = p0 / m
                 vel[i, j, k, 1] = p1 / m
@@ -393,7 +392,8 @@ def lagrangian_solid(cmass, vstar, temp, vf, px, py, pz, shx, shy, shz, dims, ma
 
 
 @njit(cache=True)
-def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params, cvs, gammas, out, lo, hi):
+def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params, cvs, gammas, fluids_too,
+                           out, lo, hi):
     """The solids' densities the equilibration starts from (Uintah's computeEquilibrationPressure,
     its Docs/MPMICE.txt): a solid's volume in a cell is its EOS volume at the old pressure,
     rho_m / rho_micro_m(p_old), not the particles' mass mapped to the cell over their mapped
@@ -402,8 +402,10 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
     mass): in a cell a stiff solid fills, mapping noise of its cell mass then no longer resets
     the pressure every step (which pumped p dV work into the trace gas: a compression by
     delP_Dilatate, then an isothermal re-expansion in the next equilibration, 1e5 K after
-    0.4 ms in symAnnulus.ups); a solid's sliver in a gas cell stays a sliver. out[m] is
-    written for solids only."""
+    0.4 ms in symAnnulus.ups); a solid's sliver in a gas cell stays a sliver. With fluids_too
+    (the gas started from its geometry, as Uintah) the fluids of a cell holding a solid are
+    scaled as well, so that the geometric gas and the particles' smeared solid start by filling
+    the cell at the old pressure. out[m] is written for the materials scaled."""
     n = len(rhos)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -419,7 +421,7 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
                         fluid += r * sp_vols[m][i, j, k]
                 scale = 1.0 / (fluid + solid_vol) if solid_vol > 0.0 else 1.0
                 for m in range(n):
-                    if solid[m]:
+                    if solid[m] or fluids_too:
                         out[m][i, j, k] = rhos[m][i, j, k] * scale
 
 

@@ -109,14 +109,14 @@ class MPMICETasks:
         sym_lo, sym_hi = self._sym(m)
         mat = self.mpm.materials[m]
         K.nc_to_cc(gmass, gvol, gvel, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
-                   self.tiny * mat.density * b.vol, mat.density, b.vol, cmass, spv, vel, rho)
+                   self.tiny * b.vol, mat.density, b.vol, cmass, spv, vel, rho)
 
     def _scalar_to_cc(self, patch, m, gmass, gq, out):
         """Mass-weighted cell mean of a nodal scalar of solid m (cells without solid keep `out`)."""
         b, cc_low, node_low, dims, n_lo, n_hi = self._geom(patch)
         sym_lo, sym_hi = self._sym(m)
         K.nc_to_cc_scalar(gmass, gq, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
-                          self.tiny * self.mpm.materials[m].density * b.vol, self.solid_temp[m], out)
+                          self.tiny * b.vol, self.solid_temp[m], out)
 
     def _extra_vector(self, patch, q, m, b):
         """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere."""
@@ -125,12 +125,14 @@ class MPMICETasks:
             kind = SYMMETRY if self.ice.bcs.table[name]["Velocity"][m][0] == SYMMETRY else NEUMANN
             bc_vector(q, i // 2, i % 2, kind, np.zeros(3), 0.0, b.lo, b.hi, b.olo, b.ohi)
 
-    # -- initialization: fluids fill what the particles leave ---------------------------------
+    # -- initialization: the fluids from their geometry (or what the particles leave) -------
     def initialize_fluids(self, patch, matls, old_dw, new_dw):
-        """ICE state where the ICE materials' volume fractions are 1 - theta_solid, split in
-        proportion to their geometry fractions, theta_solid from the particles through the
-        nodes (step 1), so the first equilibration sees sum theta = 1 and a body at rest in
-        gas at the same pressure stays at rest."""
+        """ICE state of the fluids. gas_start geometry (Uintah's ICEMaterial::initializeCells): each
+        fluid's volume fraction is its geometry's fraction of the cell (sampled at its <res>), plus
+        Uintah's 1e-12 trace; the first equilibration scales it with the solid's (the TMV of
+        kernels.solids_at_old_pressure). gas_start particles: the fluids' fractions are
+        1 - theta_solid, split in proportion to their geometry fractions, theta_solid from the
+        particles through the nodes (step 1), so the first equilibration sees sum theta = 1."""
         ice, lv = self.ice, patch.level
         b = ice.boxes(patch)
         own = patch.owned(CC)
@@ -145,6 +147,7 @@ class MPMICETasks:
         ice_mats = [ice.materials[m] for m in ice.ice_matls]
         obj_fr = [[cell_fractions(piece, lv, own, g["res"]) for piece, g in mat.objects] for mat in ice_mats]
         fr = [sum(fs) for fs in obj_fr]
+        geometric = [np.minimum(f, 1.0) for f in fr]
         pw = sum(f * self._object_pressure(m, mat, k) for m, mat, fs in zip(ice.ice_matls, ice_mats, obj_fr)
                  for k, f in enumerate(fs))
         tot = sum(fr)
@@ -163,7 +166,7 @@ class MPMICETasks:
         free = np.clip(1.0 - ths[sl], 0.0, 1.0)
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
         p_arr[sl] = press
-        for m, mat, f, fs in zip(ice.ice_matls, ice_mats, fr, obj_fr):
+        for m, mat, f, fs, f_geom in zip(ice.ice_matls, ice_mats, fr, obj_fr, geometric):
             g0 = mat.objects[0][1]
             temp = np.full(press.shape, g0["temperature"])
             vel = np.broadcast_to(np.array(g0["velocity"], float), press.shape + (3,)).copy()
@@ -171,10 +174,12 @@ class MPMICETasks:
                 hit = fk > 0.0
                 temp[hit], vel[hit] = g["temperature"], g["velocity"]
             rho_micro = _rho_micro_array(press, temp, g0["density"], *ice._eos(m))
-            theta = free * f / tot
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
                                                                 I.speedSound_CC)]
-            arrs[0][sl] = np.maximum(rho_micro * theta, 1e-12 * rho_micro)
+            if self.gas_start == "geometry":
+                arrs[0][sl] = rho_micro * f_geom + 1e-12 * rho_micro
+            else:
+                arrs[0][sl] = np.maximum(rho_micro * free * f / tot, 1e-12 * rho_micro)
             arrs[1][sl] = vel
             arrs[2][sl] = temp
             arrs[3][sl] = 1.0 / rho_micro
@@ -182,6 +187,11 @@ class MPMICETasks:
             ice.bcs.scalar(patch, arrs[2], "Temperature", m, b)
             ice.bcs.velocity(patch, arrs[1], m, b, initial=True)
             ice.bcs.scalar(patch, arrs[3], "Temperature", m, b, copy=True)
+            if self.gas_start == "geometry":     # Uintah: 1 / rho_micro, rho_micro under the Density BC
+                rho_micro_bc = np.zeros(arrs[3].shape)
+                rho_micro_bc[sl] = rho_micro
+                ice.bcs.scalar(patch, rho_micro_bc, "Density", m, b)
+                np.divide(1.0, rho_micro_bc, out=arrs[3], where=rho_micro_bc > 0.0)
             _speed_sound(arrs[3], arrs[2], arrs[4], *ice._eos(m))
         ice.bcs.scalar(patch, p_arr, "Pressure", 0, b)
 
@@ -259,9 +269,10 @@ class MPMICETasks:
         scaled = rhos
         if not self.rigid:
             solid = np.array([m in self.mpm_matls for m in matls])
-            scaled = tuple(r.copy() if s else r for r, s in zip(rhos, solid))
+            fluids_too = self.gas_start == "geometry"
+            scaled = tuple(r.copy() if s or fluids_too else r for r, s in zip(rhos, solid))
             K.solids_at_old_pressure(rhos, temps, sp_old, p_old, solid, ice.codes, ice.params, ice.cvs, ice.gammas,
-                                     scaled, b.v_olo, b.v_ohi)
+                                     fluids_too, scaled, b.v_olo, b.v_ohi)
         E.equilibrate(scaled, temps, sp_old, p_old,
                       spv, vfs, css, b.view(peq), ice.codes, ice.params, ice.cvs, ice.gammas, b.v_olo, b.v_ohi,
                       1e-11, ice.max_iter)

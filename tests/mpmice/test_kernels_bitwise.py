@@ -175,8 +175,7 @@ def test_nc_to_cc_is_the_weighted_node_sum():
                     m += mw
                     v += w * gv[x - node_low[0], y - node_low[1], 0]
                     p += mw * gu[x - node_low[0], y - node_low[1], 0]
-            if m < tiny:
-                v += (tiny - m) / rho0
-                m = tiny
+            v += tiny / rho0           # Uintah's floor, added in every cell
+            m += tiny
             assert cm[i, j, 0] == m and spv[i, j, 0] == v / m and rho[i, j, 0] == m / vol
             assert np.array_equal(vel[i, j, 0], p / m)
