@@ -253,14 +253,15 @@ def targeted_mutations(name, tree):
 
 def geometry_mutations(name, tree):
     """The first geom_object of each material moved wholly outside the domain: refused, but
-    for Uintah's idiom of an ICE material that starts absent (its only object outside, other
-    materials present), which runs unless the moved object held a piece another refers to by
-    label (then refused): either, as one clean line."""
+    for an ICE material with other materials or other objects of its own in the domain (Uintah's
+    idioms: a material that starts absent, DDT.ups's first object outside), which runs with a
+    note unless the moved object held a piece another refers to by label (then refused):
+    either, as one clean line."""
     n_materials = len(tree.xpath("//MaterialProperties/*/material"))
     for i, go in enumerate(tree.xpath("//MaterialProperties/*/material/geom_object[1]")):
         material = go.getparent()
-        absent_ice = (material.getparent().tag == "ICE" and n_materials > 1
-                      and len(material.findall("geom_object")) == 1)
+        absent_ice = (material.getparent().tag == "ICE"
+                      and (n_materials > 1 or len(material.findall("geom_object")) > 1))
         def far(el, _t):
             for c in list(el):
                 if isinstance(c.tag, str) and c.tag in ("box", "sphere", "cylinder", "union", "difference",
