@@ -22,9 +22,9 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
      interpolateCCToNC_T carry its dT/dt back to the nodes and particles (tasks.py).
      Fluids with thermal_conductivity > 0 conduct (ICE::computeHeatFlux).
   13 MPM grid BCs, interpolateToParticlesAndUpdate, computeStressTensor, relocation
-  12 ICE::advectAndAdvanceInTime (fluids; where a solid advances through a cell toward a more
-     open neighbour, the fluid it displaces crosses the face as open as that neighbour:
-     tasks.open_faces, docs/MPMICE.md)
+  12 ICE::advectAndAdvanceInTime (fluids; with <advection openFaceTransfers="true">, where a
+     solid advances through a cell toward a more open neighbour, the fluid it displaces crosses
+     the face as open as that neighbour: tasks.open_faces, docs/MPMICE.md)
 The ICE and MPM tasks are those components' own task bodies; this module only
 declares them over the right material sets and interleaves the coupling tasks.
 With <CFD><ICE><ImplicitSolver> steps 3-5 are ICE's semi-implicit pressure solve

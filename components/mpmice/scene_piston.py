@@ -38,7 +38,8 @@ def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, 
     heat: the heat-exchange coefficients (one number for all pairs); output: outputInterval;
     gamma: both gases' gamma; speed: the piston's speed (m/s; maxTime, stop_time, delt_max and
     outputInterval scale with 1/speed unless given); ratio: V1/V2 at the stop (sets stop_time);
-    open_faces: "false" for Uintah's advection next to the piston (docs/MPMICE.md, step 12)."""
+    open_faces: "false" for Uintah's advection next to the piston (the deck's "true": docs/MPMICE.md,
+    step 12)."""
     text = open(DECK, encoding="iso-8859-1").read()
     reps = [("<resolution>    [1,200,1]               </resolution>", f"<resolution> [1,{int(n)},1] </resolution>"),
             ("<patches>       [1,2,1]                 </patches>", f"<patches> [{patches}] </patches>")]
@@ -59,7 +60,7 @@ def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, 
         assert text.count(old) == 2, old
         text = text.replace(old, f"<gamma> {float(gamma)!r} </gamma>")
     if open_faces is not None:
-        reps.append(('<advection type = "SecondOrder"/>',
+        reps.append(('<advection type = "SecondOrder" openFaceTransfers = "true"/>',
                      f'<advection type = "SecondOrder" openFaceTransfers = "{str(open_faces).lower()}"/>'))
     if t_end is not None:
         reps.append(("<maxTime>            0.9      </maxTime>", f"<maxTime> {float(t_end)!r} </maxTime>"))
