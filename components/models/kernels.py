@@ -247,6 +247,33 @@ def wsb_surface_temperature(Ts, C1, C2, C3, C4, C5, Ec, R, eps):
     return Ts
 
 
+@njit(cache=True, inline="always")
+def _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react, prod, BP, T_ign):
+    """Steady and Unsteady_Burn's look at a cell's neighbours: is one with at most BP particles
+    holding a material (volume fraction > 0.2) hotter than T_ign; the reactant temperature of
+    the neighbour richest in reactant (T0) and the pressure of the one richest in product."""
+    vf_r = -1.0
+    vf_p = -1.0
+    T0 = 0.0
+    P = 0.0
+    lit = False
+    for a in range(i - r0, i + r0 + 1):
+        for b in range(j - r1, j + r1 + 1):
+            for c in range(k - r2, k + r2 + 1):
+                if vfs[react][a, b, c] > vf_r:
+                    vf_r = vfs[react][a, b, c]
+                    T0 = temps[react][a, b, c]
+                if vfs[prod][a, b, c] > vf_p:
+                    vf_p = vfs[prod][a, b, c]
+                    P = press[a, b, c]
+                if not lit and numppc[a, b, c] <= BP:
+                    for m in range(len(temps)):
+                        if vfs[m][a, b, c] > 0.2 and temps[m][a, b, c] > T_ign:
+                            lit = True
+                            break
+    return lit, T0, P
+
+
 @njit(cache=True)
 def steady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, numppc, temps, vfs, press, v_solid,
                       mass_c, react, prod, BP, T_ign, p_thresh, CC, Ec, R, eps, min_mass, dt, burned, burning, Ts_out):
@@ -259,7 +286,6 @@ def steady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, num
     the unit gradient of the node masses; at most the cell's particle mass less min_mass."""
     s1, s2 = burned.shape[1], burned.shape[2]
     vol = dx[0] * dx[1] * dx[2]
-    nm = len(temps)
     r0 = 1 if dims[0] else 0
     r1 = 1 if dims[1] else 0
     r2 = 1 if dims[2] else 0
@@ -272,25 +298,8 @@ def steady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, num
                                                   dims, n_lo, n_hi)
                 if not mn / mx < 0.7:
                     continue
-                vf_r = -1.0
-                vf_p = -1.0
-                T0 = 0.0
-                P = 0.0
-                lit = False
-                for a in range(i - r0, i + r0 + 1):
-                    for b in range(j - r1, j + r1 + 1):
-                        for c in range(k - r2, k + r2 + 1):
-                            if vfs[react][a, b, c] > vf_r:
-                                vf_r = vfs[react][a, b, c]
-                                T0 = temps[react][a, b, c]
-                            if vfs[prod][a, b, c] > vf_p:
-                                vf_p = vfs[prod][a, b, c]
-                                P = press[a, b, c]
-                            if not lit and numppc[a, b, c] <= BP:
-                                for m in range(nm):
-                                    if vfs[m][a, b, c] > 0.2 and temps[m][a, b, c] > T_ign:
-                                        lit = True
-                                        break
+                lit, T0, P = _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react, prod,
+                                                     BP, T_ign)
                 if not (lit and P >= p_thresh):
                     continue
                 burning[i, j, k] = 1.0
@@ -354,7 +363,6 @@ def unsteady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, n
     (Uintah: the timestep is too large), whose burn is left 0."""
     s1, s2 = burned.shape[1], burned.shape[2]
     vol = dx[0] * dx[1] * dx[2]
-    nm = len(temps)
     r0 = 1 if dims[0] else 0
     r1 = 1 if dims[1] else 0
     r2 = 1 if dims[2] else 0
@@ -368,25 +376,8 @@ def unsteady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, n
                                                   dims, n_lo, n_hi)
                 if not mn / mx < 0.7:
                     continue
-                vf_r = -1.0
-                vf_p = -1.0
-                T0 = 0.0
-                P = 0.0
-                lit = False
-                for a in range(i - r0, i + r0 + 1):
-                    for b in range(j - r1, j + r1 + 1):
-                        for c in range(k - r2, k + r2 + 1):
-                            if vfs[react][a, b, c] > vf_r:
-                                vf_r = vfs[react][a, b, c]
-                                T0 = temps[react][a, b, c]
-                            if vfs[prod][a, b, c] > vf_p:
-                                vf_p = vfs[prod][a, b, c]
-                                P = press[a, b, c]
-                            if not lit and numppc[a, b, c] <= BP:
-                                for m in range(nm):
-                                    if vfs[m][a, b, c] > 0.2 and temps[m][a, b, c] > T_ign:
-                                        lit = True
-                                        break
+                lit, T0, P = _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react, prod,
+                                                     BP, T_ign)
                 if not (lit and P >= p_thresh):
                     continue
                 gx, gy, gz = g0 / dx[0], g1 / dx[1], g2 / dx[2]
