@@ -58,27 +58,26 @@ def gibbs_rt(mech, k, t):
     return (g[0] * tlog) - (g[1] * t) - (g[2] * tsqr) - (g[3] * tcube) - (g[4] * tquad) + (g[5] / t) - g[6]
 
 
-@njit(cache=True)
-def energy_molar(mech, k, t):
-    """u_k = h_k - Ru T, J/mol."""
-    h = mech.h_coef[_range(t, mech.t_mid), k]
+@njit(cache=True, inline="always")
+def _h_over_r(h, t):
+    """h_k / R_k (K) of the NASA-7 enthalpy coefficients h = a0, a1/2, .., a4/5, a5."""
     tsqr = t * t
     tcube = tsqr * t
     tquad = tcube * t
     tpent = tquad * t
-    return RU * ((h[0] * t) + (h[1] * tsqr) + (h[2] * tcube) + (h[3] * tquad) + (h[4] * tpent) + h[5] - t)
+    return (h[0] * t) + (h[1] * tsqr) + (h[2] * tcube) + (h[3] * tquad) + (h[4] * tpent) + h[5]
+
+
+@njit(cache=True)
+def energy_molar(mech, k, t):
+    """u_k = h_k - Ru T, J/mol."""
+    return RU * (_h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - t)
 
 
 @njit(cache=True)
 def sensible_enthalpy(mech, k, t):
     """h_s,k = h_k(T) - h_k(T_REF), J/kg."""
-    h = mech.h_coef[_range(t, mech.t_mid), k]
-    tsqr = t * t
-    tcube = tsqr * t
-    tquad = tcube * t
-    tpent = tquad * t
-    return mech.r_gas[k] * (h[0] * t + h[1] * tsqr + h[2] * tcube + h[3] * tquad + h[4] * tpent + h[5]) \
-        - mech.h_ref[k]
+    return mech.r_gas[k] * _h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - mech.h_ref[k]
 
 
 @njit(cache=True)
@@ -217,6 +216,14 @@ def chem_rhs(mech, t, y, rho, cell_vol, conc, g, q, u, sdot, rhs_mass):
     return qdot / (rho * cv), qdot * cell_vol
 
 
+@njit(cache=True, inline="always")
+def _cell_y(y_tr, i, j, k, yt, y, closure):
+    """Cell (i, j, k)'s mass fractions of all species into y (yt: scratch for the tracked ones)."""
+    for s in range(yt.shape[0]):
+        yt[s] = y_tr[s, i, j, k]
+    _fill_y(y, yt, closure)
+
+
 @njit(cache=True)
 def _fill_y(y, y_tracked, closure):
     """All species' mass fractions from the tracked ones, the closure species 1 - their sum."""
@@ -261,9 +268,7 @@ def chemistry_cells(mech, y_old, temp, rho, y_src, eng_src, dt_chem, limiter, hr
                     if t < t_hard[0] or t > t_hard[1]:
                         return HARD_T, i, jj, kk, t, warned
                     warned += 1
-                for s in range(nt):
-                    yt[s] = y_old[s, i, jj, kk]
-                _fill_y(y, yt, cl)
+                _cell_y(y_old, i, jj, kk, yt, y, cl)
                 ysum = 0.0
                 for k in range(n):
                     if y[k] < -1e-15:
@@ -368,9 +373,7 @@ def thermo_cells(mech, y_tr, temp, cv, gamma, lo, hi):
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                for s in range(n - 1):
-                    yt[s] = y_tr[s, i, j, k]
-                _fill_y(y, yt, mech.closure)
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
                 cp, r = cv_cp_r(mech, temp[i, j, k], y)
                 c = cp - r
                 if c < 0.0:
@@ -391,9 +394,7 @@ def transport_cells(mech, y_tr, temp, rho, mu, lam, diff, lo, hi):
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                for s in range(n - 1):
-                    yt[s] = y_tr[s, i, j, k]
-                _fill_y(y, yt, mech.closure)
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
                 t = temp[i, j, k]
                 inv_mw = 0.0
                 for s in range(n):
@@ -440,9 +441,7 @@ def energy_cells(mech, y_tr, temp, es, lo, hi):
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                for s in range(n - 1):
-                    yt[s] = y_tr[s, i, j, k]
-                _fill_y(y, yt, mech.closure)
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
                 es[i, j, k] = sensible_energy(mech, temp[i, j, k], y)
 
 
@@ -455,9 +454,7 @@ def temperature_cells(mech, y_tr, es, temp, lo, hi, t_low, t_high):
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                for s in range(n - 1):
-                    yt[s] = y_tr[s, i, j, k]
-                _fill_y(y, yt, mech.closure)
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
                 e = es[i, j, k]
                 t, ok = temperature_from_energy(mech, e, y, T_REF + e / 1000.0, t_low, t_high)
                 if not ok:
@@ -483,9 +480,7 @@ def diffusion_sources(mech, y_tr, temp, rho, y_src, eng_src, dims, lo, hi, dx, d
     for i in range(sh[0]):
         for j in range(sh[1]):
             for k in range(sh[2]):
-                for s in range(n - 1):
-                    yt[s] = y_tr[s, i, j, k]
-                _fill_y(yc, yt, mech.closure)
+                _cell_y(y_tr, i, j, k, yt, yc, mech.closure)
                 m = 0.0
                 for s in range(n):
                     m += yc[s] / mech.mw[s]
