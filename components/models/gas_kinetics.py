@@ -32,12 +32,12 @@ def kinetics(mech) -> Kinetics:
                     mech.closure, mech.visc_fit, mech.cond_fit, mech.diff_fit, ratio, phi)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _range(t, t_mid):
     return 1 if t > t_mid else 0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def cp_over_r(mech, k, t):
     """cp_k / R_k, the NASA-7 polynomial."""
     a = mech.nasa[_range(t, mech.t_mid), k]
@@ -47,18 +47,17 @@ def cp_over_r(mech, k, t):
     return a[0] + a[1] * t + a[2] * tsqr + a[3] * tcube + a[4] * tquad
 
 
-@njit(cache=True)
-def gibbs_rt(mech, k, t):
-    """g_k / (Ru T)."""
+@njit(cache=True, inline="always", error_model="numpy")
+def gibbs_rt(mech, k, t, tlog):
+    """g_k / (Ru T); tlog = 1 - ln T (one logarithm for all species)."""
     g = mech.g_coef[_range(t, mech.t_mid), k]
-    tlog = 1.0 - np.log(t)
     tsqr = t * t
     tcube = tsqr * t
     tquad = tcube * t
     return (g[0] * tlog) - (g[1] * t) - (g[2] * tsqr) - (g[3] * tcube) - (g[4] * tquad) + (g[5] / t) - g[6]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _h_over_r(h, t):
     """h_k / R_k (K) of the NASA-7 enthalpy coefficients h = a0, a1/2, .., a4/5, a5."""
     tsqr = t * t
@@ -68,19 +67,19 @@ def _h_over_r(h, t):
     return (h[0] * t) + (h[1] * tsqr) + (h[2] * tcube) + (h[3] * tquad) + (h[4] * tpent) + h[5]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def energy_molar(mech, k, t):
     """u_k = h_k - Ru T, J/mol."""
     return RU * (_h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - t)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def sensible_enthalpy(mech, k, t):
     """h_s,k = h_k(T) - h_k(T_REF), J/kg."""
     return mech.r_gas[k] * _h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - mech.h_ref[k]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def sensible_energy(mech, t, y):
     """e_s(T, Y) = sum_k Y_k (h_s,k(T) - R_k (T - T_REF)), J/kg: the energy ICE carries for the gas."""
     e = 0.0
@@ -89,7 +88,7 @@ def sensible_energy(mech, t, y):
     return e
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
 def cv_cp_r(mech, t, y):
     """The mixture's cp, R = sum Y_k R_k (J/(kg K))."""
     cp = 0.0
@@ -100,7 +99,7 @@ def cv_cp_r(mech, t, y):
     return cp, r
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def temperature_from_energy(mech, e_s, y, t_guess, t_low, t_high):
     """T with e_s(T, Y) = e_s: Newton from the guess clamped to the polynomials' range; (T, ok)."""
     t = min(max(t_guess, t_low), t_high)
@@ -116,24 +115,33 @@ def temperature_from_energy(mech, e_s, y, t_guess, t_low, t_high):
     return t, False
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
+def _arrhenius(a, b, ea, t, rt):
+    """A T^b exp(-Ea / (Ru T)), skipping the powers and exponentials that are exactly 1 (the
+    same result as evaluating them)."""
+    k = a * t ** b if b != 0.0 else a * 1.0
+    return k * np.exp(-ea / rt) if ea != 0.0 else k * 1.0
+
+
+@njit(cache=True, error_model="numpy")
 def rates_of_progress(mech, t, conc, g, q):
     """Net rate of each reaction (mol/(cm^3 s)): Arrhenius forward rates (Troe falloff), third
     bodies, the reverse rate from the equilibrium constant Kc = Kp (1e-6 P_ATM / (Ru T))^dn."""
     rt = RU * t
     n = conc.shape[0]
+    tlog = 1.0 - np.log(t)
     for k in range(n):
-        g[k] = gibbs_rt(mech, k, t)
+        g[k] = gibbs_rt(mech, k, t, tlog)
     for r in range(mech.rxn_type.shape[0]):
         a = mech.arrhenius[r]
-        kf = a[0] * t ** a[1] * np.exp(-a[2] / rt)
+        kf = _arrhenius(a[0], a[1], a[2], t, rt)
         m = 1.0
         if mech.rxn_type[r] != ELEMENTARY:
             m = 0.0
             for k in range(n):
                 m += mech.efficiencies[r, k] * conc[k]
         if mech.rxn_type[r] == FALLOFF:
-            k0 = a[3] * t ** a[4] * np.exp(-a[5] / rt)
+            k0 = _arrhenius(a[3], a[4], a[5], t, rt)
             kinf = kf
             pr = max(k0 * m / kinf, 1e-300)
             log10_pr = np.log10(pr)
@@ -162,7 +170,11 @@ def rates_of_progress(mech, t, conc, g, q):
                 n_p += 1
         kc = np.exp(sum_g)
         dn = n_p - n_r
-        if dn != 0:
+        if dn == 1:             # pow(x, 1) and pow(x, -1) are x and 1 / x exactly
+            kc *= 1e-6 * P_ATM / rt
+        elif dn == -1:
+            kc *= 1.0 / (1e-6 * P_ATM / rt)
+        elif dn != 0:
             kc *= (1e-6 * P_ATM / rt) ** float(dn)
         kr = kf / kc
         fwd = kf
@@ -174,7 +186,7 @@ def rates_of_progress(mech, t, conc, g, q):
         q[r] = m * (fwd - rev)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def chem_rhs(mech, t, y, rho, cell_vol, conc, g, q, u, sdot, rhs_mass):
     """Uintah's chemStep: dY_j/dt (rhs_mass, tracked order) and returns (dT/dt, q_dot V): the
     constant-volume reactor's right-hand side at (T, Y, rho)."""
@@ -216,7 +228,7 @@ def chem_rhs(mech, t, y, rho, cell_vol, conc, g, q, u, sdot, rhs_mass):
     return qdot / (rho * cv), qdot * cell_vol
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _cell_y(y_tr, i, j, k, yt, y, closure):
     """Cell (i, j, k)'s mass fractions of all species into y (yt: scratch for the tracked ones)."""
     for s in range(yt.shape[0]):
@@ -224,7 +236,7 @@ def _cell_y(y_tr, i, j, k, yt, y, closure):
     _fill_y(y, yt, closure)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _fill_y(y, y_tracked, closure):
     """All species' mass fractions from the tracked ones, the closure species 1 - their sum."""
     s = 0.0
@@ -238,7 +250,7 @@ def _fill_y(y, y_tracked, closure):
     y[closure] = 1.0 - s
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def chemistry_cells(mech, y_old, temp, rho, y_src, eng_src, dt_chem, limiter, hrr, lo, hi, dt, cell_vol,
                     rtol, atol_y, atol_t, safety, max_grow, max_shrink, t_warn, t_hard, do_chemistry):
     """Uintah's gasCombustion::computeModelSources over the cells [lo, hi): each cell's reactor
@@ -364,7 +376,7 @@ def chemistry_cells(mech, y_old, temp, rho, y_src, eng_src, dt_chem, limiter, hr
     return OK, 0, 0, 0, 0.0, warned
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def thermo_cells(mech, y_tr, temp, cv, gamma, lo, hi):
     """cv and gamma of the mixture at (T, Y) over [lo, hi) (Uintah's modifyThermoTransportProperties);
     returns the first cell with cv <= 0 as (i, j, k), or (-1, 0, 0)."""
@@ -383,7 +395,7 @@ def thermo_cells(mech, y_tr, temp, cv, gamma, lo, hi):
     return -1, 0, 0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def transport_cells(mech, y_tr, temp, rho, mu, lam, diff, lo, hi):
     """The mixture's viscosity (Wilke's rule), thermal conductivity (the mean of the mole-fraction
     weighted arithmetic and harmonic means) and mixture-averaged diffusion coefficients
@@ -433,7 +445,7 @@ def transport_cells(mech, y_tr, temp, rho, mu, lam, diff, lo, hi):
                     diff[s, i, j, k] = dk[s]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def energy_cells(mech, y_tr, temp, es, lo, hi):
     """e_s(T, Y) over [lo, hi): the specific energy ICE carries for the gas."""
     n = mech.mw.shape[0]
@@ -445,7 +457,7 @@ def energy_cells(mech, y_tr, temp, es, lo, hi):
                 es[i, j, k] = sensible_energy(mech, temp[i, j, k], y)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def temperature_cells(mech, y_tr, es, temp, lo, hi, t_low, t_high):
     """T from e_s and Y over [lo, hi) (Uintah's computeTempFromSensibleEnergy, its guess
     T_REF + e_s / 1000); returns the first cell whose Newton iteration fails, or (-1, 0, 0)."""
@@ -463,7 +475,7 @@ def temperature_cells(mech, y_tr, es, temp, lo, hi, t_low, t_high):
     return -1, 0, 0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def diffusion_sources(mech, y_tr, temp, rho, y_src, eng_src, dims, lo, hi, dx, dt):
     """The species' molecular diffusion added to y_src and eng_src over the cells [lo, hi)
     (Uintah's gasCombustion, doDiffusion): on each face the mixture-averaged fluxes
@@ -547,7 +559,7 @@ def diffusion_sources(mech, y_tr, temp, rho, y_src, eng_src, dims, lo, hi, dx, d
                 eng_src[i, j, k] -= dphi * dt
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _mixture_diffusion(mech, t, rho, y, x, dbin, dk):
     """Mixture-averaged diffusion coefficients D_k (m^2/s) of a state (T, rho, Y) into dk
     (Uintah's ReactionMech::mixtureAvgDiffCoeffs)."""
