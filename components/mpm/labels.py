@@ -68,6 +68,9 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
 MAX_MAXWELL_ELEMENTS = 8
 for _j in range(MAX_MAXWELL_ELEMENTS):
     STATE[f"sigmaDev{_j}"] = _pair(f"sigmaDev{_j}", (3, 3))
+# <UseGradientEnhancedVelocityProjection>: L_p of the particle's last step (Uintah's carried
+# p.velGrad; here p.velGrad is this step's L_p, not carried)
+pVelGradLast, pVelGradLastPre = _pair("p.velGradLast", (3, 3))
 pdTdt = L.create("p.dTdt", P)                      # elastic_plastic_hp: the model's temperature rate (not carried)
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)

@@ -221,7 +221,10 @@ class Material:
         (unit tangent, thickness) from the chain; the models with an initial_state
         (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple."""
         if self.damage is not None:
-            return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"])
+            draw = None
+            if getattr(self.damage, "random", False):
+                draw = (d["vol"], self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
+            return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"], draw=draw)
         if self.state_names and hasattr(self.model, "initial_state"):
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":
@@ -295,7 +298,24 @@ class Material:
         order = np.argsort(data["id"], kind="stable")
         data = {key: np.ascontiguousarray(v[order]) for key, v in data.items()}
         data["mass"] = self.density * data["vol"]
+        data["patch"], data["obj_base"] = patch, obj_base
         return data
+
+    def uintah_creation_order(self, d):
+        """The indices of a patch's particles (create's dict d, sorted by ID) in the order
+        Uintah's ParticleCreator makes them: object by object, the cells x fastest, then each
+        cell's particles with the z lattice index fastest (its loops ix, iy, iz)."""
+        lv = d["patch"].level
+        ids = d["id"]
+        k = (ids >> 40) - d["obj_base"]
+        lattice = ids & ((1 << 40) - 1)
+        res = np.array([[1 if lv.collapsed[a] else o.get("res", (1, 1, 1))[a] for a in range(3)]
+                        for o in self.objects], np.int64)[k]
+        nsub = np.array(lv.ncells, np.int64) * res
+        sub = np.stack([lattice % nsub[:, 0], (lattice // nsub[:, 0]) % nsub[:, 1],
+                        lattice // (nsub[:, 0] * nsub[:, 1])], axis=1)
+        cell, ip = sub // res, sub % res
+        return np.lexsort((ip[:, 2], ip[:, 1], ip[:, 0], cell[:, 0], cell[:, 1], cell[:, 2], k)).astype(np.int64)
 
 
 # -- membrane strings (004 sec. 3.2) ------------------------------------------------------
@@ -304,6 +324,14 @@ MEMBRANE = {
     "thickness": Param("float", doc="membrane thickness h (m): point volume = spacing * h * depth", above=0.0),
     "closed": Param("bool", True, doc="the last vertex joins the first"),
 }
+
+
+def uintah_patch_id(patch):
+    """The ID Uintah gives this patch of a one-level grid: its Grid loops over the layout with z
+    fastest, where pysus numbers x fastest."""
+    i, j, k = patch.index
+    _, ny, nz = patch.level.layout
+    return (i * ny + j) * nz + k
 
 
 def read_membrane_object(g, with_color):

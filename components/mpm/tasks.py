@@ -157,6 +157,8 @@ class MPMTasks:
                    L.pQ: np.zeros(n)}
             if self.saves_scale:
                 put[L.pScaleFactor] = scale_factor(F, d["size"])
+            if self.projection:
+                put[L.pVelGradLast] = np.zeros((n, 3, 3))
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for lab, _ in self.carry:           # the carried model states: this material's, else zeros
                 if lab.name in L.STATE:
@@ -215,8 +217,12 @@ class MPMTasks:
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
             gv = new_dw.allocate(L.gVelocity, m, patch, 0.0)     # momentum, then velocity
             gvol = new_dw.allocate(L.gVolume, m, patch, 0.0) if self.grid_volume else _NOS
+            grads = _split(old_dw, L.pVelGradLast, m, patch)[:2] if self.projection else ()
+            if self.projection and not self.grid_volume:
+                gvol = np.zeros_like(gm)      # the projected p2g computes the volume anyway
             self.p2g_runs(own, ghost, runs, has_f, self.grid_volume, lv.anchor, lv.dx, low, gm, gv, gvol,
-                          new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0))
+                          new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0),
+                          *grads)
             kernels.divide_by_mass(gm, gv, gv)
             self.bcs.apply_symmetric(patch, m, gv)             # as Uintah (bc.py)
 
@@ -706,6 +712,11 @@ class MPMTasks:
                                                        else None,
                                                        old_dw.get_reduction(FL.simTime) if mat.damage is not None
                                                        else 0.0))
+            if self.projection:         # L_p for the next step's projection, eroded as Uintah's
+                if getattr(mat.damage, "erodes_F", False):
+                    Lg = mat.damage.erode_kinematics(old_dw.get(L.STATE["p.localizedMPM"][0], m, patch), F_old,
+                                                     F_new.copy(), Lg)
+                new_dw.put(L.pVelGradLastPre, m, patch, Lg)
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
                 q = self.av.q(m, mat, Lg, F_new)
                 new_dw.put(L.pQPre, m, patch, q)

@@ -1,0 +1,198 @@
+"""Random failure thresholds of the Threshold damage models (components/mpm/constitutive/damage.py,
+uintah_random.py) and the gradient-enhanced velocity projection (transfer.py), against Uintah's sus.
+
+Uintah's disk_UCNHVar.ups (tests/mpm/uintah_reference/) draws each particle's p.epsf from a
+Gaussian (ThresholdVar, <failure_distrib>gauss) and projects the particle velocities to the grid
+with their velocity gradients (<UseGradientEnhancedVelocityProjection>). sus wrote
+tests/mpm/data/sus_disk_UCNHVar_gauss.npz from three runs of the deck, each read from its uda
+(p.x, p.particleID, p.epsf, p.stress, p.localizedMPM, p.timeofloc, StrainEnergy.dat), sus given
+<outputInitTimestep/> so that it writes the steps pysus writes:
+
+  x0, epsf_2x2    every particle's position and p.epsf at t = 0 (in the order of the positions),
+                  the deck's 2x2 patches (run A below)
+  epsf_1x1        the same on one patch (the deck with <patches>[1,1,1]</patches>, 1 step)
+  run A           disk_with_projection(): the edits of test_ucnh_var.py (GIMP, both objects at
+                  10 m/s, so that the disk hits the x+ wall within 300 steps), the projection and
+                  the gauss draws kept, 300 steps written every 10: p.stress at steps 200, 250,
+                  300 of every tenth particle (x0_sel: their positions at t = 0), the number of
+                  localized particles every 10 steps from step 150, the localized particles at
+                  step 300 (x0_localized) and their p.timeofloc, StrainEnergy every step
+  run B           run A without the projection: stress_noge, count_noge (what the projection
+                  changes, for scale)
+"""
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+from components.mpm.constitutive import damage, uintah_random as ur
+from framework.problemspec import InputError
+
+from .helpers import run
+
+HERE = pathlib.Path(__file__).parent
+DISK = HERE / "uintah_reference" / "disk_UCNHVar.ups"
+SUS = HERE / "data" / "sus_disk_UCNHVar_gauss.npz"
+PROJECTION = "<UseGradientEnhancedVelocityProjection>true\n                         </UseGradientEnhancedVelocityProjection>"
+
+
+def edit(text, *pairs):
+    for old, new in pairs:
+        assert old in text, old
+        text = text.replace(old, new)
+    return text
+
+
+def first_values(seed, n):
+    st = np.zeros(ur.STATE_SIZE, np.int64)
+    ur.musil_start(seed, st)
+    return [ur.musil_next(st) for _ in range(n)]
+
+
+def test_musil_generator():
+    """Uintah's MusilRNG: seed 0's first value (thrown away by the constructor) is 0.770611, as
+    Uintah's comment says; values are multiples of 16^-12 in [0, 1); the seed's 32 bits are
+    all read (seeds 1 << 31 and 1 differ) and a seed beyond 32 bits is taken modulo 2^32."""
+    st = np.zeros(ur.STATE_SIZE, np.int64)      # seed 0's state before the constructor's draw
+    st[36] = 4
+    assert ur.musil_next(st) == pytest.approx(0.770611, abs=5e-7)
+    v = np.array(first_values(12345, 1000))
+    assert v.min() >= 0.0 and v.max() < 1.0 and np.all(v * 16 ** 12 == np.round(v * 16 ** 12))
+    assert abs(v.mean() - 0.5) < 0.03
+    assert first_values(1 << 31, 5) != first_values(1, 5)
+    assert first_values((1 << 32) + 7, 5) == first_values(7, 5)
+
+
+def test_patch_seed():
+    """(seed + id // 32 + 1) << (id % 32), 32 bits, as Uintah's damage models and UCNH."""
+    assert [ur.patch_seed(0, i) for i in range(4)] == [1, 2, 4, 8]
+    assert ur.patch_seed(3, 33) == (3 + 1 + 1) << 1
+    assert ur.patch_seed(0, 31) == 1 << 31 and ur.patch_seed(1, 31) == 0
+
+
+def test_draw_formulas():
+    """ThresholdVar gauss: |mean + std sqrt(-2 ln x) cos(2 pi y)| from a generator seeded with
+    the patch's seed + the particle's number, in Uintah's order; weibull: the same y for every
+    particle of a patch; uniform and Threshold's gauss: one stream for the patch; a volume
+    scale (ref/V)^(1/exponent)."""
+    C, M, S = np.array([0.0, 1.0]), np.array([10.0, 20.0]), np.array([1.0, 2.0])
+    color = np.array([0.0, 1.0, 0.5])
+    vol = np.array([1.0, 2.0, 4.0])
+    order = np.array([2, 0, 1])
+    out = np.empty(3)
+    damage.draw_thresholds(1, True, 8, C, M, S, 1.0, 0.0, order, color, vol, out)
+    for num, p in enumerate(order):
+        x, y = first_values(8 + num, 2)
+        m, s = np.interp(color[p], C, M), np.interp(color[p], C, S)
+        assert out[p] == pytest.approx(abs(m + s * math.sqrt(-2 * math.log(x)) * math.cos(2 * math.pi * y)),
+                                       rel=1e-15)
+    damage.draw_thresholds(2, True, 8, C, M, S, 2.0, 0.5, order, color, vol, out)
+    y = first_values(8, 1)[0]
+    for p in range(3):
+        m, k = np.interp(color[p], C, M), np.interp(color[p], C, S)
+        expect = (2.0 / vol[p]) ** 0.5 * m / math.gamma(1 + 1 / k) * (-math.log(y)) ** (1 / k)
+        assert out[p] == pytest.approx(expect, rel=1e-14)
+    damage.draw_thresholds(3, True, 8, C, M, S, 1.0, 0.0, order, color, vol, out)
+    ys = first_values(8, 3)
+    for num, p in enumerate(order):
+        assert out[p] == pytest.approx(np.interp(color[p], C, M) + (2 * ys[num] - 1) * np.interp(color[p], C, S),
+                                       rel=1e-15)
+    damage.draw_thresholds(1, False, 8, C[:1], M[:1], S[:1], 1.0, 0.0, order, color, vol, out)
+    xs = first_values(8, 6)
+    for num, p in enumerate(order):
+        x, y = xs[2 * num], xs[2 * num + 1]
+        assert out[p] == pytest.approx(abs(10 + math.sqrt(-2 * math.log(x)) * math.cos(2 * math.pi * y)), rel=1e-15)
+
+
+def threshold_deck(patches="[2,2,1]"):
+    """The deck unchanged but for one step written and its patch layout."""
+    return edit(open(DISK).read(),
+                ("<maxTime>0.30</maxTime>", "<maxTime>0.30</maxTime><max_Timesteps>1</max_Timesteps>"),
+                ("<outputInterval>.01</outputInterval>", "<outputTimestepInterval>1</outputTimestepInterval>"),
+                ("<patches>[2,2,1]</patches>", f"<patches>{patches}</patches>"))
+
+
+@pytest.mark.parametrize("patches,key", [("[2,2,1]", "epsf_2x2"), ("[1,1,1]", "epsf_1x1")])
+def test_gauss_thresholds_are_sus(tmp_path, patches, key):
+    """The unchanged deck (MUSL, fast CPDI): every particle's p.epsf at t = 0 is bitwise sus's on
+    the same patch layout (measured: 0 difference); the draw depends on the layout (the two
+    layouts give other numbers to 85 % of the particles)."""
+    _, da = run(threshold_deck(patches), tmp_path)
+    sus = np.load(SUS)
+    p = da.particles(0, 0)
+    o = np.lexsort(np.round(p["p.x"], 9).T[::-1])
+    assert np.abs(p["p.x"][o] - sus["x0"]).max() < 1e-14
+    assert np.array_equal(p["p.epsf"][o], sus[key])
+    assert np.mean(sus["epsf_2x2"] != sus["epsf_1x1"]) > 0.8
+    assert 5e3 < sus[key].min() and sus[key].max() < 1e5 and sus[key].std() > 1e3
+
+
+def disk_with_projection(steps=300, every=10):
+    """disk_UCNHVar.ups with GIMP, both objects at 10 m/s and sus's USL stress update (test
+    module docstring, run A)."""
+    text = edit(open(DISK).read(),
+                ("fast_cpdi", "gimp"),
+                ("<time_integrator>explicit  </time_integrator>",
+                 "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>"),
+                ("<maxTime>0.30</maxTime>", f"<maxTime>0.30</maxTime><max_Timesteps>{steps}</max_Timesteps>"),
+                ("<outputInterval>.01</outputInterval>", f"<outputTimestepInterval>{every}</outputTimestepInterval>"),
+                ('<save label = "p.localizedMPM"/>', '<save label = "p.localizedMPM"/><save label = "p.timeofloc"/>'))
+    return text.replace("<velocity>[1.0,0.0,0]</velocity>", "<velocity>[10.0,0.0,0]</velocity>")
+
+
+def test_disk_with_projection_and_gauss_draws_as_sus(tmp_path):
+    """Run A (module docstring), 300 steps: sus's times; the localized-particle count every 10
+    steps (0 to 23 from step 200), the particles localized at step 300 and when; p.stress of
+    every tenth particle at steps 200, 250, 300 (measured: 1e-6 to 3e-6 of the largest, where
+    the projection itself changes it by 8 to 87 %); StrainEnergy every step (9e-9); the times
+    (5e-10)."""
+    _, da = run(disk_with_projection(), tmp_path)
+    sus = np.load(SUS)
+    steps = list(da.timesteps)
+    p0 = da.particles(0, 0)
+    order = np.lexsort(np.round(p0["p.x"], 9).T[::-1])
+    assert np.abs(p0["p.x"][order] - sus["x0"]).max() < 1e-14
+    x0_of = dict(zip(p0["p.particleID"], p0["p.x"]))
+    count = [int(da.particles(0, steps.index(s))["p.localizedMPM"].sum()) for s in sus["count_step"]]
+    assert count == list(sus["count"])
+    assert list(sus["count"]) != list(sus["count_noge"])
+    ids = p0["p.particleID"][order][::10]
+    for k, step in enumerate(sus["timestep"]):
+        p = da.particles(0, steps.index(step))
+        assert da.times[steps.index(step)] == pytest.approx(sus["time"][k], rel=1e-9)
+        at = {v: i for i, v in enumerate(p["p.particleID"])}
+        s = p["p.stress"][[at[v] for v in ids]]
+        scale = np.abs(sus["stress"][k]).max()
+        assert np.abs(s - sus["stress"][k]).max() < TOL_S * scale
+        assert np.abs(sus["stress_noge"][k] - sus["stress"][k]).max() > 0.05 * scale
+    loc = p["p.localizedMPM"] != 0
+    x_loc = np.array([x0_of[v] for v in p["p.particleID"][loc]])
+    o1, o2 = np.lexsort(np.round(x_loc, 9).T[::-1]), np.lexsort(np.round(sus["x0_localized"], 9).T[::-1])
+    assert np.abs(x_loc[o1] - sus["x0_localized"][o2]).max() < 1e-14
+    assert np.allclose(p["p.timeofloc"][loc][o1], sus["timeofloc"][o2], rtol=1e-9)
+    t, se = da.reduction("StrainEnergy")
+    assert np.allclose(t[1:], sus["se_time"], rtol=1e-9)
+    assert np.allclose(se[1:], sus["StrainEnergy"], rtol=TOL_SE, atol=TOL_SE * np.max(sus["StrainEnergy"]))
+
+
+TOL_S = 1e-5           # measured 1.0e-6, 2.9e-6, 2.0e-6 at steps 200, 250, 300
+TOL_SE = 3e-8          # measured 8.7e-9 of the largest
+
+
+@pytest.mark.parametrize("old,new,words", [
+    ("<failure_distrib>gauss     </failure_distrib>", "<failure_distrib>lognormal</failure_distrib>",
+     ("failure_distrib", "gauss", "weibull")),
+    ("<failure_distrib>gauss     </failure_distrib>", "<failure_distrib>weibull</failure_distrib><scaling>kayenta"
+     "</scaling><reference_volume>1e-6</reference_volume>", ("exponent",)),
+    ("<DoExplicitHeatConduction>false</DoExplicitHeatConduction>",
+     "<DoExplicitHeatConduction>true</DoExplicitHeatConduction>", ("UseGradientEnhancedVelocityProjection",
+                                                                   "temperature")),
+])
+def test_bad_input_is_one_line(tmp_path, old, new, words):
+    with pytest.raises(InputError) as e:
+        run(edit(threshold_deck(), (old, new)), tmp_path)
+    msg = str(e.value)
+    assert "\n" not in msg and ".ups:" in msg
+    for w in words:
+        assert w in msg, msg
