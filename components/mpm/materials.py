@@ -223,7 +223,7 @@ class Material:
         if self.damage is not None:
             draw = None
             if getattr(self.damage, "random", False):
-                draw = (d["vol"], self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
+                draw = (self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
             return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"], draw=draw)
         if self.state_names and hasattr(self.model, "initial_state"):
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])

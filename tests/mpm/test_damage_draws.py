@@ -11,6 +11,8 @@ tests/mpm/data/sus_disk_UCNHVar_gauss.npz from three runs of the deck, each read
   x0, epsf_2x2    every particle's position and p.epsf at t = 0 (in the order of the positions),
                   the deck's 2x2 patches (run A below)
   epsf_1x1        the same on one patch (the deck with <patches>[1,1,1]</patches>, 1 step)
+  epsf_threshold_gauss, epsf_var_weibull
+                  the same with the damage models of variant() (1 step)
   run A           disk_with_projection(): the edits of test_ucnh_var.py (GIMP, both objects at
                   10 m/s, so that the disk hits the x+ wall within 300 steps), the projection and
                   the gauss draws kept, 300 steps written every 10: p.stress at steps 200, 250,
@@ -22,6 +24,7 @@ tests/mpm/data/sus_disk_UCNHVar_gauss.npz from three runs of the deck, each read
 """
 import math
 import pathlib
+import re
 
 import numpy as np
 import pytest
@@ -74,35 +77,31 @@ def test_patch_seed():
 def test_draw_formulas():
     """ThresholdVar gauss: |mean + std sqrt(-2 ln x) cos(2 pi y)| from a generator seeded with
     the patch's seed + the particle's number, in Uintah's order; weibull: the same y for every
-    particle of a patch; uniform and Threshold's gauss: one stream for the patch; a volume
-    scale (ref/V)^(1/exponent)."""
+    particle of a patch; Threshold: one stream for the patch."""
     C, M, S = np.array([0.0, 1.0]), np.array([10.0, 20.0]), np.array([1.0, 2.0])
     color = np.array([0.0, 1.0, 0.5])
-    vol = np.array([1.0, 2.0, 4.0])
     order = np.array([2, 0, 1])
     out = np.empty(3)
-    damage.draw_thresholds(1, True, 8, C, M, S, 1.0, 0.0, order, color, vol, out)
+    damage.draw_thresholds(1, True, 8, C, M, S, order, color, out)
     for num, p in enumerate(order):
         x, y = first_values(8 + num, 2)
         m, s = np.interp(color[p], C, M), np.interp(color[p], C, S)
         assert out[p] == pytest.approx(abs(m + s * math.sqrt(-2 * math.log(x)) * math.cos(2 * math.pi * y)),
                                        rel=1e-15)
-    damage.draw_thresholds(2, True, 8, C, M, S, 2.0, 0.5, order, color, vol, out)
+    damage.draw_thresholds(2, True, 8, C, M, S, order, color, out)
     y = first_values(8, 1)[0]
     for p in range(3):
         m, k = np.interp(color[p], C, M), np.interp(color[p], C, S)
-        expect = (2.0 / vol[p]) ** 0.5 * m / math.gamma(1 + 1 / k) * (-math.log(y)) ** (1 / k)
-        assert out[p] == pytest.approx(expect, rel=1e-14)
-    damage.draw_thresholds(3, True, 8, C, M, S, 1.0, 0.0, order, color, vol, out)
-    ys = first_values(8, 3)
-    for num, p in enumerate(order):
-        assert out[p] == pytest.approx(np.interp(color[p], C, M) + (2 * ys[num] - 1) * np.interp(color[p], C, S),
-                                       rel=1e-15)
-    damage.draw_thresholds(1, False, 8, C[:1], M[:1], S[:1], 1.0, 0.0, order, color, vol, out)
+        assert out[p] == pytest.approx(m / math.gamma(1 + 1 / k) * (-math.log(y)) ** (1 / k), rel=1e-14)
+    damage.draw_thresholds(1, False, 8, C[:1], M[:1], S[:1], order, color, out)
     xs = first_values(8, 6)
     for num, p in enumerate(order):
         x, y = xs[2 * num], xs[2 * num + 1]
         assert out[p] == pytest.approx(abs(10 + math.sqrt(-2 * math.log(x)) * math.cos(2 * math.pi * y)), rel=1e-15)
+    damage.draw_thresholds(2, False, 8, C[:1], M[:1], S[:1], order, color, out)
+    ys = first_values(8, 3)
+    for num, p in enumerate(order):
+        assert out[p] == pytest.approx(10 / math.gamma(2.0) * (-math.log(ys[num])), rel=1e-14)
 
 
 def threshold_deck(patches="[2,2,1]"):
@@ -126,6 +125,36 @@ def test_gauss_thresholds_are_sus(tmp_path, patches, key):
     assert np.array_equal(p["p.epsf"][o], sus[key])
     assert np.mean(sus["epsf_2x2"] != sus["epsf_1x1"]) > 0.8
     assert 5e3 < sus[key].min() and sus[key].max() < 1e5 and sus[key].std() > 1e3
+
+
+THRESHOLD_GAUSS = ('<damage_model type="Threshold"><failure_criteria>MaximumPrincipalStress</failure_criteria>'
+                   '<failure_mean>7.0e4</failure_mean><failure_std>7.0e3</failure_std>'
+                   '<failure_distrib>gauss</failure_distrib><failure_seed>3</failure_seed></damage_model>')
+
+
+def variant(name):
+    """threshold_deck() with type="Threshold" and its gauss draws (failure_seed 3), or with
+    ThresholdVar's weibull draws (Weibull moduli 4 and 8)."""
+    text = threshold_deck()
+    dm = re.search(r'<damage_model type="ThresholdVar">.*?</damage_model>', text, flags=re.S).group(0)
+    if name == "threshold_gauss":
+        return text.replace(dm, THRESHOLD_GAUSS)
+    return text.replace(dm, edit(dm, ("<std>7.0e3</std>", "<std>4.0</std>"), ("<std>7.0e2</std>", "<std>8.0</std>"),
+                                 ("gauss     ", "weibull")))
+
+
+@pytest.mark.parametrize("name", ["threshold_gauss", "var_weibull"])
+def test_other_draws_are_sus(tmp_path, name):
+    """type="Threshold" draws from one generator per patch (all different); ThresholdVar's
+    weibull gives every particle of a patch the same uniform number (8 values on the 4 patches
+    of the two colors): p.epsf at t = 0 bitwise sus's (sus run on the same deck, 1 step)."""
+    _, da = run(variant(name), tmp_path)
+    sus = np.load(SUS)
+    p = da.particles(0, 0)
+    o = np.lexsort(np.round(p["p.x"], 9).T[::-1])
+    assert np.abs(p["p.x"][o] - sus["x0"]).max() < 1e-14
+    assert np.array_equal(p["p.epsf"][o], sus[f"epsf_{name}"])
+    assert len(np.unique(sus[f"epsf_{name}"])) == (1612 if name == "threshold_gauss" else 8)
 
 
 def disk_with_projection(steps=300, every=10):
@@ -183,8 +212,13 @@ TOL_SE = 3e-8          # measured 8.7e-9 of the largest
 @pytest.mark.parametrize("old,new,words", [
     ("<failure_distrib>gauss     </failure_distrib>", "<failure_distrib>lognormal</failure_distrib>",
      ("failure_distrib", "gauss", "weibull")),
-    ("<failure_distrib>gauss     </failure_distrib>", "<failure_distrib>weibull</failure_distrib><scaling>kayenta"
-     "</scaling><reference_volume>1e-6</reference_volume>", ("exponent",)),
+    ("<failure_distrib>gauss     </failure_distrib>", "<failure_distrib>uniform</failure_distrib>",
+     ("uniform", "specification")),
+    ("<failure_distrib>gauss     </failure_distrib>", "<failure_distrib>gauss</failure_distrib><scaling>kayenta"
+     "</scaling><reference_volume>1e-6</reference_volume>", ("scaling", "specification")),
+    ("<std>7.0e2</std>\n                  </entry>\n                </variable_properties>\n"
+     "                  <failure_distrib>gauss     </failure_distrib>",
+     "<std>0</std></entry></variable_properties><failure_distrib>weibull</failure_distrib>", ("Weibull modulus",)),
     ("<DoExplicitHeatConduction>false</DoExplicitHeatConduction>",
      "<DoExplicitHeatConduction>true</DoExplicitHeatConduction>", ("UseGradientEnhancedVelocityProjection",
                                                                    "temperature")),

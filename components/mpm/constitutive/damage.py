@@ -36,17 +36,15 @@ p.color (interpolated as UCNHVar's moduli); Threshold (ThresholdDamage): the one
 Uintah ID; the particles drawn for in the order Uintah creates them on the patch,
 materials.uintah_creation_order), so that p.epsf is sus's on the same patch layout:
 
-    gauss    |c (mean + std sqrt(-2 ln x) cos(2 pi y))|, two values x, y; ThresholdVar: a new
+    gauss    |mean + std sqrt(-2 ln x) cos(2 pi y)|, two values x, y; ThresholdVar: a new
              generator for each particle, seeded with the patch's seed + the particle's number
              on the patch; Threshold: one generator per patch
-    weibull  c eta (-ln y)^(1/std), eta = mean / Gamma(1 + 1/std) (std is the Weibull
-             modulus); ThresholdVar: a new generator with the patch's seed for each particle
-             (so the same y for all of a patch's particles, as Uintah's); Threshold: one
-    uniform  c (mean + (2 y - 1) std), one generator per patch
+    weibull  eta (-ln y)^(1/std), eta = mean / Gamma(1 + 1/std) (std is the Weibull modulus);
+             ThresholdVar: a new generator with the patch's seed for each particle (so the
+             same y for all of a patch's particles, as Uintah's); Threshold: one per patch
 
-with c = (reference_volume / V_p)^(1/exponent) under ``<scaling>`` other than "none" (then
-``reference_volume`` and ``exponent`` are read; a Weibull draw's exponent defaults to its
-modulus in Threshold), else 1.  ``failure_criteria`` MaximumPrincipalStress (the largest eigenvalue of p.stress+ above
+(Uintah's models also have a "uniform" draw and a volume ``<scaling>``, which its input
+specification refuses, and so does pysus).  ``failure_criteria`` MaximumPrincipalStress (the largest eigenvalue of p.stress+ above
 p.epsf) or MaximumPrincipalStrain (of the Almansi strain (I - (F F^T)^-1)/2),
 ``LocalizeParticles`` (true).  A particle that meets it is localized (p.localizedMPM = 1, for good).  The erosion
 then acts on the localized particles (Uintah's ErosionModel), with p.timeofloc the step-start
@@ -70,12 +68,12 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .uintah_random import STATE_SIZE, gauss, musil_start, musil_next, patch_seed, weibull
+from .uintah_random import STATE_SIZE, gauss, musil_start, patch_seed, weibull
 
 TYPES = ("Brittle", "Threshold", "ThresholdVar")
 EROSION = {"none": 0, "AllowNoTension": 1, "ZeroStress": 2, "AllowNoShear": 3, "PreserveStress": 4}
 CRITERIA = {"MaximumPrincipalStress": 0, "MaximumPrincipalStrain": 1}
-DISTRIBUTIONS = {"constant": 0, "gauss": 1, "weibull": 2, "uniform": 3}
+DISTRIBUTIONS = {"constant": 0, "gauss": 1, "weibull": 2}
 
 
 @dataclass(frozen=True)
@@ -110,12 +108,10 @@ class ThresholdVar:
     localize: bool                 # <LocalizeParticles>
     erosion: int                   # EROSION code
     char_time: float
-    stds: tuple = (0.0,)           # the std (gauss, uniform) or Weibull modulus at each color
+    stds: tuple = (0.0,)           # the std (gauss) or Weibull modulus at each color
     distribution: int = 0          # DISTRIBUTIONS code
     seed: int = 0                  # <failure_seed>
     by_color: bool = True          # ThresholdVar (draws per particle), else Threshold (per patch)
-    reference_volume: float = 1.0
-    inv_exponent: float = 0.0      # 1/<exponent> of the volume scaling (0: none)
 
     STATE = ("p.epsf", "p.localizedMPM", "p.timeofloc")
 
@@ -130,15 +126,14 @@ class ThresholdVar:
         return self.erosion in (1, 2, 3)
 
     def initial_state(self, n, color, draw=None):
-        """p.epsf = the mean at the particle's color, or drawn (draw = (p.volume, the particles'
-        order of creation in Uintah, the patch's Uintah ID)); not localized, p.timeofloc = -1e99."""
+        """p.epsf = the mean at the particle's color, or drawn (draw = (the particles' order of
+        creation in Uintah, the patch's Uintah ID)); not localized, p.timeofloc = -1e99."""
         eps = np.empty(n)
         C, M = np.array(self.colors, float), np.array(self.means, float)
         if self.random:
-            vol, order, patch_id = draw
+            order, patch_id = draw
             draw_thresholds(self.distribution, self.by_color, patch_seed(self.seed, patch_id), C, M,
-                            np.array(self.stds, float), self.reference_volume, self.inv_exponent, order, color, vol,
-                            eps)
+                            np.array(self.stds, float), order, color, eps)
         else:
             threshold_at(C, M, color, eps)
         return eps, np.zeros(n), np.full(n, -1.0e99)
@@ -193,26 +188,23 @@ def mean_std_at(C, M, S, c):
 
 
 @njit(cache=True)
-def draw_thresholds(dist, by_color, seed, C, M, S, ref_vol, inv_exponent, order, color, vol, out):
+def draw_thresholds(dist, by_color, seed, C, M, S, order, color, out):
     """p.epsf of a patch's particles drawn as Uintah's initializeLabels (module docstring), in
     Uintah's order of creation `order`; `seed` is the patch's."""
     st = np.zeros(STATE_SIZE, np.int64)
-    if dist == 3 or not by_color:               # one generator for the patch
+    if not by_color:                            # one generator for the patch
         musil_start(seed, st)
     for num in range(order.shape[0]):
         p = order[num]
         mean, std = mean_std_at(C, M, S, color[p])
-        scale = (ref_vol / vol[p]) ** inv_exponent
         if dist == 1:
             if by_color:
                 musil_start(seed + num, st)
-            out[p] = abs(gauss(st, mean, std, scale))
-        elif dist == 2:
+            out[p] = abs(gauss(st, mean, std, 1.0))
+        else:
             if by_color:
                 musil_start(seed, st)
-            out[p] = weibull(st, mean, std, scale)
-        else:
-            out[p] = scale * (mean + (2.0 * musil_next(st) - 1.0) * std)
+            out[p] = weibull(st, mean, std, 1.0)
 
 
 @njit(cache=True)
@@ -339,7 +331,13 @@ def read_threshold_var(dm, erosion, char_time, by_color):
     if crit == "MohrCoulomb":
         raise dm.child("failure_criteria").error("MohrCoulomb is not implemented; accepted: "
                                                  + ", ".join(CRITERIA))
-    dist = dm.get("failure_distrib", "str", "constant", choices=tuple(DISTRIBUTIONS))
+    dist = dm.get("failure_distrib", "str", "constant", choices=tuple(DISTRIBUTIONS) + ("uniform",))
+    for tag, what in (("failure_distrib", "uniform"), ("scaling", None), ("reference_volume", None),
+                      ("exponent", None)):
+        c = dm.child(tag)
+        if c is not None and (what is None or c.text().strip() == what):
+            raise c.error(f"<{tag}>{c.text().strip()} is refused by Uintah's input specification (sus does not run "
+                          "it); accepted: <failure_distrib> constant, gauss, weibull, without volume scaling")
     seed = dm.get("failure_seed", "int", 0)
     if by_color:
         vp = dm.child("variable_properties", required=True)
@@ -354,19 +352,9 @@ def read_threshold_var(dm, erosion, char_time, by_color):
     if dist == "weibull" and min(r[2] for r in rows) <= 0.0:
         raise (dm.child("variable_properties") or dm.child("failure_std") or dm).error(
             "a weibull draw needs a positive Weibull modulus (<std>, <failure_std>)")
-    ref_vol, inv_exp = 1.0, 0.0
-    if dm.get("scaling", "str", "none") != "none":         # a constant threshold is not scaled
-        ref_vol = dm.get("reference_volume", above=0.0)
-        if dist == "weibull" and not by_color:
-            exponent = dm.get("exponent", "float", rows[0][2])
-        else:
-            exponent = dm.get("exponent")
-        if exponent == 0.0:
-            raise dm.child("exponent").error("<exponent> must not be 0")
-        inv_exp = 1.0 / exponent if dist != "constant" else 0.0
     return ThresholdVar(tuple(r[0] for r in rows), tuple(r[1] for r in rows), CRITERIA[crit],
                         dm.get("LocalizeParticles", "bool", True), erosion, char_time, tuple(r[2] for r in rows),
-                        DISTRIBUTIONS[dist], seed, by_color, ref_vol, inv_exp)
+                        DISTRIBUTIONS[dist], seed, by_color)
 
 
 @njit(cache=True, inline="always")

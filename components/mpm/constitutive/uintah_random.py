@@ -1,5 +1,5 @@
 """Uintah's random numbers for per-particle material properties: its MusilRNG generator and the
-Gaussian, Weibull and uniform draws its damage models make with it.
+Gaussian and Weibull draws its damage models make with it.
 
 MusilRNG is a table-driven generator of twelve 4-bit digits: a 32-bit seed fills the last eight
 digits' first state (highest nibble first), the first value is thrown away, and each value is
@@ -56,7 +56,8 @@ def musil_next(st):
 
 @njit(cache=True, inline="always")
 def gauss(st, mean, std, scale):
-    """Uintah's Gaussian::rand: Box-Muller with two values, times the volume scale."""
+    """Uintah's Gaussian::rand: Box-Muller with two values, times the volume scale (1 without
+    Uintah's volume scaling)."""
     x = musil_next(st)
     y = musil_next(st)
     return scale * (np.sqrt(-2.0 * np.log(x)) * np.cos(2.0 * np.pi * y) * std + mean)
