@@ -30,7 +30,9 @@ import numpy as np
 import pytest
 
 from components.mpm.constitutive import damage, uintah_random as ur
+from framework.archiver import DataArchive
 from framework.problemspec import InputError
+from tests.conftest import pysus
 
 from .helpers import run
 
@@ -230,3 +232,21 @@ def test_bad_input_is_one_line(tmp_path, old, new, words):
     assert "\n" not in msg and ".ups:" in msg
     for w in words:
         assert w in msg, msg
+
+
+def test_projection_and_draws_on_two_ranks(tmp_path):
+    """The carried velocity gradient reaches the ghost particles, and the draws are made per
+    patch: run A on 1 and 2 MPI ranks (4 patches), 250 steps (13 localized), gives bitwise the
+    same p.epsf, p.stress, p.localizedMPM per particle."""
+    path = tmp_path / "disk.ups"
+    path.write_text(disk_with_projection(steps=250, every=250))
+    out = {}
+    for n in (1, 2):
+        r = pysus(path, "--filebase", tmp_path / f"disk_{n}.uda", np_=n, timeout=300)
+        assert r.returncode == 0, r.stderr[-2000:]
+        p = DataArchive(tmp_path / f"disk_{n}.uda").particles(0, -1)
+        o = np.argsort(p["p.particleID"])
+        out[n] = {k: p[k][o] for k in ("p.particleID", "p.epsf", "p.stress", "p.localizedMPM")}
+    assert out[1]["p.localizedMPM"].sum() == 13
+    for k in out[1]:
+        assert np.array_equal(out[1][k], out[2][k]), k
