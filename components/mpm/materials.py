@@ -37,6 +37,13 @@ MODELS = {
     "UCNHVar": "ucnh_var",
 }
 
+# Uintah models its regression decks use that pysus refuses with what they are
+NOT_IMPLEMENTED = {
+    "jwlpp_mpm": "Uintah's JWLppMPM: a reacting explosive whose burn fraction p.progressF grows at "
+                 "G (1 - f) p^b above the ignition pressure, the pressure mixing a Murnaghan reactant and "
+                 "JWL products, integrated by sub-steps with Newton iterations",
+}
+
 # models whose stress needs only F (their velocity gradient need not be stored)
 NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH", "UCNHVar")
 
@@ -97,11 +104,25 @@ class Material:
             raise node.error("<thermal_conductivity> and <specific_heat> must not be negative")
         cm = node.child("constitutive_model", required=True)
         kind = cm.attr("type")
+        if kind in NOT_IMPLEMENTED:
+            raise cm.error(f'constitutive_model type="{kind}" ({NOT_IMPLEMENTED[kind]}) is not implemented; '
+                           f"accepted: {', '.join(MODELS)}")
         if kind not in MODELS:
             raise cm.error(f'constitutive_model type="{kind}" is not supported; accepted: '
                            f"{', '.join(MODELS)}")
         if kind == "elastic_plastic" and cm.has("flow_model"):     # Uintah's: elastic_plastic_hp
             kind = "elastic_plastic_hp"
+        if kind == "comp_neo_hook" and cm.get("usePlasticity", "bool", False):    # Uintah builds both as UCNH
+            kind = "UCNH"
+        if kind in ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH") and cm.get("useInitialStress", "bool", False):
+            raise cm.child("useInitialStress").error("<useInitialStress> true (UCNH's initial pressure from "
+                                                     "<initial_pressure>) is not implemented; accepted: false")
+        if kind in ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH") and cm.has("yield_distrib"):
+            dist = cm.get("yield_distrib", "str", choices=("constant", "uniform"))
+            if dist != "constant":
+                raise cm.child("yield_distrib").error(
+                    f"yield_distrib {dist} (UCNH's per-particle yield stress drawn from Uintah's random numbers) "
+                    "is not implemented; accepted: constant")
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
         if getattr(self.model, "USES_COLOR", False) and not with_color:

@@ -250,3 +250,20 @@ def test_projection_and_draws_on_two_ranks(tmp_path):
     assert out[1]["p.localizedMPM"].sum() == 13
     for k in out[1]:
         assert np.array_equal(out[1][k], out[2][k]), k
+
+
+def test_half_space_deck_is_refused_naming_what_is_missing(tmp_path):
+    """Uintah's halfSpaceUCNH_EP_JWLMPM.ups is refused in one line at each piece pysus lacks, in
+    deck order: UCNH's per-particle yield stress (yield_distrib uniform; its comp_neo_hook with
+    <usePlasticity>true is Uintah's UCNH), then the JWL++ explosive (jwlpp_mpm)."""
+    text = open(HERE / "uintah_reference" / "halfSpaceUCNH_EP_JWLMPM.ups").read()
+    for words, old, new in ((("yield_distrib", "uniform"), "<yield_distrib>uniform</yield_distrib>", ""),
+                            (("jwlpp_mpm", "JWLppMPM", "not implemented"), None, None)):
+        with pytest.raises(InputError) as e:
+            run(text, tmp_path)
+        msg = str(e.value)
+        assert "\n" not in msg and ".ups:" in msg
+        for w in words:
+            assert w in msg, msg
+        if old:
+            text = edit(text, (old, new))
