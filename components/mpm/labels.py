@@ -62,7 +62,9 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
                                                          # failure stress or strain
          "p.damage": _pair("p.damage"),                  # damage.py: Brittle's damage
          "p.localizedMPM": _pair("p.localizedMPM"),      # damage.py: 1 once ThresholdVar localized it
-         "p.timeofloc": _pair("p.timeofloc")}            # damage.py: when it localized (erosion)
+         "p.timeofloc": _pair("p.timeofloc"),            # damage.py: when it localized (erosion)
+         "p.progressF": _pair("p.progressF"),            # jwlpp_mpm: burned fraction
+         "p.progressdelF": _pair("p.progressdelF")}      # jwlpp_mpm: its increment of the last step
 # elastic_plastic_hp with <deviatoric_stress_model type="hypoViscoElastic">: the deviatoric
 # stress of Maxwell element j (Uintah's names sigmaDevj, sigmaDevj+)
 MAX_MAXWELL_ELEMENTS = 8

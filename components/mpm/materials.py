@@ -35,17 +35,11 @@ MODELS = {
     "comp_neo_hook_plastic": "comp_neo_hook_plastic",
     "UCNH": "ucnh",
     "UCNHVar": "ucnh_var",
-}
-
-# Uintah models its regression decks use that pysus refuses with what they are
-NOT_IMPLEMENTED = {
-    "jwlpp_mpm": "Uintah's JWLppMPM: a reacting explosive whose burn fraction p.progressF grows at "
-                 "G (1 - f) p^b above the ignition pressure, the pressure mixing a Murnaghan reactant and "
-                 "JWL products, integrated by sub-steps with Newton iterations",
+    "jwlpp_mpm": "jwlpp_mpm",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
-NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH", "UCNHVar")
+NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH", "UCNHVar", "jwlpp_mpm")
 
 # models with state per particle: the carried particle label holding it (one name), or the
 # labels (a tuple: the model's update gets tuples of old and new arrays in that order)
@@ -104,9 +98,6 @@ class Material:
             raise node.error("<thermal_conductivity> and <specific_heat> must not be negative")
         cm = node.child("constitutive_model", required=True)
         kind = cm.attr("type")
-        if kind in NOT_IMPLEMENTED:
-            raise cm.error(f'constitutive_model type="{kind}" ({NOT_IMPLEMENTED[kind]}) is not implemented; '
-                           f"accepted: {', '.join(MODELS)}")
         if kind not in MODELS:
             raise cm.error(f'constitutive_model type="{kind}" is not supported; accepted: '
                            f"{', '.join(MODELS)}")
@@ -130,7 +121,7 @@ class Material:
                            '</withColor>')
         if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp, UCNHVar)
             params = self.model.read_params(cm, node, props)
-            if kind in damage.MODELS:
+            if kind in damage.MODELS or kind == "jwlpp_mpm":     # jwlpp_mpm: an <erosion> alone is read
                 self._read_damage(node, cm, kind)
             self._finish(node, props, params, kind, with_color, geom_reader)
             return
@@ -192,6 +183,9 @@ class Material:
         self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
         self.needs_temperature = getattr(self.model, "NEEDS_TEMPERATURE", False)   # p.temperature / p.dTdt in the state
         self.max_delT = getattr(self.model, "MAX_DELT", np.inf)
+        # V = m J / volume_density: the density over the initial J (Uintah's V_old J/J_old, where
+        # a model starts from F != I with the geometric volume: jwlpp_mpm's initial pressure)
+        self.volume_density = self.density * getattr(self.model, "initial_J", lambda params: 1.0)(self.params)
         if kind == "ideal_gas_fluid":
             # e0 = c_v T: the model's <specific_heat>, else the material's
             self.cv = self.params.specific_heat or props["specific_heat"]

@@ -138,9 +138,12 @@ class MPMTasks:
                            axisymmetric=self.axisymmetric)
             n = len(d["id"])
             new_dw.create_particles(m, patch, n)
-            F = np.zeros((n, 3, 3))
-            F[:, 0, 0] = F[:, 1, 1] = F[:, 2, 2] = 1.0
-            stress = np.zeros((n, 3, 3))
+            if hasattr(mat.model, "initial_deformation"):     # jwlpp_mpm's initial pressure
+                F, stress = mat.model.initial_deformation(mat.params, n)
+            else:
+                F = np.zeros((n, 3, 3))
+                F[:, 0, 0] = F[:, 1, 1] = F[:, 2, 2] = 1.0
+                stress = np.zeros((n, 3, 3))
             energy = np.zeros(n)
             state = mat.initial_state(d)
             if mat.is_membrane:
@@ -521,7 +524,7 @@ class MPMTasks:
             self.g2p(self.musl, tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low,
                      new_dw.get(L.gVelocityStar, m, patch), new_dw.get(L.gAcceleration, m, patch), dt, x_new, v_new,
                      Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"], mat.uses_L,
-                     F_old, F_new, vol_new, mat.density, xpic=xpic)
+                     F_old, F_new, vol_new, mat.volume_density, xpic=xpic)
             if self.musl:
                 kernels.divide_by_mass(new_dw.get(L.gMass, m, patch), gvl, gvl)
                 if not self.contact.active:
@@ -574,7 +577,7 @@ class MPMTasks:
             model, K, mu = transfer.FUSED[mat.model_name], mat.params.bulk_modulus, mat.params.shear_modulus
         ws = self.grad(px, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
                        np.array(patch.low_index(NC), np.int64), new_dw.get(L.gVelocityL, m, patch), Lg,
-                       mat.uses_L, dt, pm, mat.density, F_old, F_new, vol_new, model, K, mu, *stress)
+                       mat.uses_L, dt, pm, mat.volume_density, F_old, F_new, vol_new, model, K, mu, *stress)
         return Lg, np.array(ws)
 
     def membrane_tangents(self, patch, matls, old_dw, new_dw):

@@ -255,15 +255,21 @@ def test_projection_and_draws_on_two_ranks(tmp_path):
 def test_half_space_deck_is_refused_naming_what_is_missing(tmp_path):
     """Uintah's halfSpaceUCNH_EP_JWLMPM.ups is refused in one line at each piece pysus lacks, in
     deck order: UCNH's per-particle yield stress (yield_distrib uniform; its comp_neo_hook with
-    <usePlasticity>true is Uintah's UCNH), then the JWL++ explosive (jwlpp_mpm)."""
+    <usePlasticity>true is Uintah's UCNH), the Pressure BC (which Uintah's MPM does not read),
+    then <DoPressureStabilization>; its jwlpp_mpm charge and Threshold gauss damage are read."""
     text = open(HERE / "uintah_reference" / "halfSpaceUCNH_EP_JWLMPM.ups").read()
-    for words, old, new in ((("yield_distrib", "uniform"), "<yield_distrib>uniform</yield_distrib>", ""),
-                            (("jwlpp_mpm", "JWLppMPM", "not implemented"), None, None)):
+    bcs = re.compile(r'<BCType id = "0"   label = "Pressure".*?</BCType>|<BCType id = "all" label = "Density".*?'
+                     r'</BCType>|<BCType id = "all" label = "Temperature" var = "Neumann">.*?</BCType>', re.S)
+    steps = ((("yield_distrib", "uniform"), lambda t: edit(t, ("<yield_distrib>uniform</yield_distrib>", ""),
+                                                             ("<yield_range> 2.0e7 </yield_range>", ""))),
+             (('label="Pressure"',), lambda t: bcs.sub("", t)),
+             (("DoPressureStabilization",), None))
+    for words, fix in steps:
         with pytest.raises(InputError) as e:
             run(text, tmp_path)
         msg = str(e.value)
         assert "\n" not in msg and ".ups:" in msg
         for w in words:
             assert w in msg, msg
-        if old:
-            text = edit(text, (old, new))
+        if fix:
+            text = fix(text)
