@@ -63,6 +63,7 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.damage": _pair("p.damage"),                  # damage.py: Brittle's damage
          "p.localizedMPM": _pair("p.localizedMPM"),      # damage.py: 1 once ThresholdVar localized it
          "p.timeofloc": _pair("p.timeofloc"),            # damage.py: when it localized (erosion)
+         "p.yieldStress": _pair("p.yieldStress"),        # UCNH with yield_distrib uniform: drawn yield stress
          "p.progressF": _pair("p.progressF"),            # jwlpp_mpm: burned fraction
          "p.progressdelF": _pair("p.progressdelF")}      # jwlpp_mpm: its increment of the last step
 # elastic_plastic_hp with <deviatoric_stress_model type="hypoViscoElastic">: the deviatoric

@@ -108,12 +108,10 @@ class Material:
         if kind in ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH") and cm.get("useInitialStress", "bool", False):
             raise cm.child("useInitialStress").error("<useInitialStress> true (UCNH's initial pressure from "
                                                      "<initial_pressure>) is not implemented; accepted: false")
+        uniform_yield = None                  # UCNH's yield_distrib uniform: (yield_range, yield_seed)
         if kind in ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH") and cm.has("yield_distrib"):
-            dist = cm.get("yield_distrib", "str", choices=("constant", "uniform"))
-            if dist != "constant":
-                raise cm.child("yield_distrib").error(
-                    f"yield_distrib {dist} (UCNH's per-particle yield stress drawn from Uintah's random numbers) "
-                    "is not implemented; accepted: constant")
+            if cm.get("yield_distrib", "str", choices=("constant", "uniform")) == "uniform":
+                uniform_yield = (cm.get("yield_range", at_least=0.0), cm.get("yield_seed", "int", 0))
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
         if getattr(self.model, "USES_COLOR", False) and not with_color:
@@ -143,6 +141,9 @@ class Material:
             self.params = self.model.Params.from_ups(values)
         except KeyError as e:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
+        if uniform_yield and self.params.usePlasticity:
+            self.params = dataclasses.replace(self.params, yield_uniform=True, yield_range=uniform_yield[0],
+                                              yield_seed=uniform_yield[1])
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
         else:
@@ -235,12 +236,15 @@ class Material:
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
         (unit tangent, thickness) from the chain; the models with an initial_state
         (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple."""
+        drawn = getattr(self.params, "yield_uniform", False)      # UCNH's p.yieldStress
+        draw = None
+        if drawn or getattr(self.damage, "random", False):
+            draw = (self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
         if self.damage is not None:
-            draw = None
-            if getattr(self.damage, "random", False):
-                draw = (self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
             return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"], draw=draw)
         if self.state_names and hasattr(self.model, "initial_state"):
+            if drawn:
+                return self.model.initial_state(self.params, len(d["id"]), d["temp"], draw=draw)
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":
             return self.cv * d["temp"]

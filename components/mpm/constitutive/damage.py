@@ -434,7 +434,10 @@ class Damaged:
         ThresholdVar.initial_state)."""
         own = ()
         if self.n_model:
-            own = self.model.initial_state(params, n, temperature)
+            if getattr(params, "yield_uniform", False):      # UCNH's drawn p.yieldStress
+                own = self.model.initial_state(params, n, temperature, draw=draw)
+            else:
+                own = self.model.initial_state(params, n, temperature)
             own = own if isinstance(own, tuple) else (own,)
         color = np.zeros(n) if color is None else color
         if isinstance(self.damage, ThresholdVar):
