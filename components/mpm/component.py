@@ -83,6 +83,8 @@ FLAGS = {
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
+    "DoPressureStabilization": Param("bool", False, doc="each cell's particles take the cell's mean J "
+                                     "(volume-weighted) in F and L, as Uintah's SerialMPM"),
     "UseGradientEnhancedVelocityProjection": Param(
         "bool", False, doc="the particle-to-grid momentum takes m (v_p + L_p (x_i - x_p)) with L_p of the "
         "particle's last step, as Uintah's SerialMPM"),
@@ -472,6 +474,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 self._requires_lr(t)
         else:       # USL: F and V in the same pass (transfer.py)
             t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
+            if self.flags["DoPressureStabilization"]:
+                t.requires(OLD, L.pVolume)
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
             t.computes(r)
         sched.add_task(t)

@@ -530,12 +530,21 @@ class MPMTasks:
                 if not self.contact.active:
                     self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
             else:
+                if f["DoPressureStabilization"]:
+                    self._stabilize(patch, own[0], dt, F_old, old_dw.get(L.pVolume, m, patch), F_new, vol_new, Lg)
                 new_dw.put(L.pVelGrad, m, patch, Lg if mat.uses_L else _zeros33(n))
             new_dw.put(L.pXpre, m, patch, x_new)
             new_dw.put(L.pVelocityPre, m, patch, v_new)
         if self.musl and self.contact.active:
             self._contact_remapped(patch, matls, old_dw, new_dw, dt, remapped)
         self._put_totals(new_dw, tot)
+
+    def _stabilize(self, patch, px, dt, F_old, vol_old, F_new, vol_new, Lg):
+        """<DoPressureStabilization>: F_new and L_p of the owned particles (p.x at the step's
+        start) take their cell's mean J, V_new follows V_old (kernels.pressure_stabilization)."""
+        lv = self.level
+        kernels.pressure_stabilization(px, lv.anchor, lv.dx, np.array(patch.lo), np.array(patch.hi),
+                                       np.array(self.dims), dt, F_old, vol_old, F_new, vol_new, Lg)
 
     def _contact_remapped(self, patch, matls, old_dw, new_dw, dt, gvl):
         """MUSL with contact: the remapped velocities v^L get the same contact as v*
@@ -648,13 +657,17 @@ class MPMTasks:
             n = len(F_old)
             s_new = new_dw.allocate(L.pStressPre, m, patch, None)
             energy = np.empty(n)
-            fused = self.musl and mat.model_name in transfer.FUSED and mat.damage is None   # stress in the grad pass
+            fused = (self.musl and mat.model_name in transfer.FUSED and mat.damage is None      # stress in the grad pass
+                     and not self.flags["DoPressureStabilization"])
             if self.musl:
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
                 Lg, w = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new,
                                                 (old_dw.get(L.pVelocity, m, patch), s_new, energy) if fused
                                                 else None)
+                if self.flags["DoPressureStabilization"]:
+                    self._stabilize(patch, old_dw.get(L.pX, m, patch), dt, F_old, old_dw.get(L.pVolume, m, patch),
+                                    F_new, vol_new, Lg)
             else:                                   # F and V were computed with L_p by g2p
                 Lg = new_dw.get(L.pVelGrad, m, patch)
                 F_new = new_dw.get(L.pFPre, m, patch)

@@ -254,14 +254,14 @@ def test_projection_and_draws_on_two_ranks(tmp_path):
 
 def test_half_space_deck_is_refused_naming_what_is_missing(tmp_path):
     """Uintah's halfSpaceUCNH_EP_JWLMPM.ups is refused in one line at each piece pysus lacks, in
-    deck order: the Pressure BC (which Uintah's MPM does not read), then
-    <DoPressureStabilization>; its UCNH soil with drawn yield stresses, Threshold gauss damage
-    and jwlpp_mpm charge are read."""
+    deck order: the Pressure BC (which Uintah's MPM does not read), then the saved
+    p.temperature (pysus carries it with heat conduction only); its UCNH soil with drawn yield
+    stresses, Threshold gauss damage, jwlpp_mpm charge and pressure stabilization are read."""
     text = open(HERE / "uintah_reference" / "halfSpaceUCNH_EP_JWLMPM.ups").read()
     bcs = re.compile(r'<BCType id = "0"   label = "Pressure".*?</BCType>|<BCType id = "all" label = "Density".*?'
                      r'</BCType>|<BCType id = "all" label = "Temperature" var = "Neumann">.*?</BCType>', re.S)
     steps = ((('label="Pressure"',), lambda t: bcs.sub("", t)),
-             (("DoPressureStabilization",), None))
+             (("p.temperature",), None))
     for words, fix in steps:
         with pytest.raises(InputError) as e:
             run(text, tmp_path)
@@ -271,6 +271,34 @@ def test_half_space_deck_is_refused_naming_what_is_missing(tmp_path):
             assert w in msg, msg
         if fix:
             text = fix(text)
+
+
+SUS_STAB = HERE / "data" / "sus_disk_UCNHVar_stabilized.npz"
+
+
+def test_pressure_stabilization_as_sus(tmp_path):
+    """Run A with <DoPressureStabilization>true (sus ran the same deck; its p.stress of every
+    tenth particle at steps 150, 200, 250 in sus_disk_UCNHVar_stabilized.npz): pysus's within
+    3e-6 of the largest (measured 6e-9, 7e-7, 2e-7); the stabilization changes sus's stress by
+    more than 10 % (against run A's)."""
+    text = edit(disk_with_projection(steps=250, every=50),
+                ("<withColor>      true      </withColor>",
+                 "<withColor>      true      </withColor><DoPressureStabilization>true</DoPressureStabilization>"))
+    _, da = run(text, tmp_path)
+    sus, plain = np.load(SUS_STAB), np.load(SUS)
+    steps = list(da.timesteps)
+    p0 = da.particles(0, 0)
+    order = np.lexsort(np.round(p0["p.x"], 9).T[::-1])
+    assert np.abs(p0["p.x"][order][::10] - sus["x0_sel"]).max() < 1e-14
+    ids = p0["p.particleID"][order][::10]
+    for k, step in enumerate(sus["timestep"]):
+        p = da.particles(0, steps.index(step))
+        assert da.times[steps.index(step)] == pytest.approx(sus["time"][k], rel=1e-9)
+        at = {v: i for i, v in enumerate(p["p.particleID"])}
+        scale = np.abs(sus["stress"][k]).max()
+        assert np.abs(p["p.stress"][[at[v] for v in ids]] - sus["stress"][k]).max() < 3e-6 * scale
+        if step in list(plain["timestep"]):
+            assert np.abs(plain["stress"][list(plain["timestep"]).index(step)] - sus["stress"][k]).max() > 0.1 * scale
 
 
 SUS_UCNH = HERE / "data" / "sus_disk_UCNH_uniform_yield.npz"
