@@ -609,8 +609,12 @@ class IceTasks:
         eng_out = tuple(new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None) for m in matls)
         v = b.view
         vs = lambda arrs: tuple(v(x) for x in arrs)
-        K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
-                         vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
+        args = (vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
+                vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
+        if self.var_K or self.var_H:        # <CoefficientModel> linearVariation
+            K.exchange_cells_variable(*args, self.var_K, self.var_H)
+        else:
+            K.exchange_cells(*args)
         sl = getattr(self, "slip", None)
         if sl is not None and sl.use_coeffs:        # the solid's surface cells again, with slip
             SL.exchange_surface_cells(
