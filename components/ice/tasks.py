@@ -752,9 +752,17 @@ class IceTasks:
         new_dw.put_reduction(I.TotalIntEng, acc[2])
         new_dw.put_reduction(I.TotalMomentum, acc[3:6])
 
-    def internal_energy_sum(self, patch, matls, old_dw, new_dw):
-        """TotalIntEng alone: under MPMICE the other sums are MPM's (the solids' particles)."""
+    def fluid_sums(self, patch, matls, old_dw, new_dw):
+        """Under MPMICE (Uintah's conservationTest over the fluids' subset): each fluid's
+        TotalMass, KineticEnergy, TotalIntEng and TotalMomentum, and TotalIntEng of them all
+        (the particles add no internal energy; MPMICE adds their mass, KE and momentum)."""
         new_dw.put_reduction(I.TotalIntEng, self._conserved_sums(patch, matls, old_dw, new_dw)[2])
+        for m in matls:
+            acc = self._conserved_sums(patch, (m,), old_dw, new_dw)
+            new_dw.put_reduction(I.TotalMass, acc[0], m)
+            new_dw.put_reduction(I.KineticEnergy, acc[1], m)
+            new_dw.put_reduction(I.TotalIntEng, acc[2], m)
+            new_dw.put_reduction(I.TotalMomentum, acc[3:6], m)
 
     def _conserved_sums(self, patch, matls, old_dw, new_dw):
         """[mass, kinetic energy, internal energy, momentum x, y, z]: the sums over interior

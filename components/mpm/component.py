@@ -121,6 +121,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     ftm_refused = None
     # (final, pre-relocation) particle labels a coupled model computes and relocation carries
     carry_models = ()
+    # the particles' conservation sums; MPMICE puts them under its own names and adds the gas's
+    totals = (L.TotalMass, L.KineticEnergy, L.TotalMomentum)
 
     def problem_setup(self, root, level):
         self.level = level
@@ -321,8 +323,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         t = Task("MPM::actuallyInitialize", self.initialize, self.matls).computes(L.pX)
         for final, _ in self.carry:
             t.computes(final)
-        for r in (L.WaveSpeed, L.KineticEnergy, L.StrainEnergy, L.TotalMass, L.TotalMomentum,
-                  L.CenterOfMassPosition):
+        for r in (L.WaveSpeed, L.StrainEnergy, L.CenterOfMassPosition) + self.totals:
             t.computes(r)
         if self.pressure_bcs:
             t.computes(L.PressureBCParticles)
@@ -453,7 +454,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 self._requires_lr(t)
         else:       # USL: F and V in the same pass (transfer.py)
             t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
-        for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
+        for r in (L.CenterOfMassPosition,) + self.totals:
             t.computes(r)
         sched.add_task(t)
         self.schedule_temperature_update(sched)

@@ -180,9 +180,10 @@ class MPMTasks:
         new_dw.put_reduction(L.WaveSpeed, ws)
 
     def _put_totals(self, dw, tot):
-        dw.put_reduction(L.TotalMass, tot[0])
-        dw.put_reduction(L.KineticEnergy, tot[1])
-        dw.put_reduction(L.TotalMomentum, tot[2:5])
+        mass, ke, mom = self.totals
+        dw.put_reduction(mass, tot[0])
+        dw.put_reduction(ke, tot[1])
+        dw.put_reduction(mom, tot[2:5])
         dw.put_reduction(L.CenterOfMassPosition, tot[5:8])
 
     def compute_stable_timestep(self, patch, matls, old_dw, new_dw):

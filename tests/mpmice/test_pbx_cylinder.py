@@ -12,7 +12,8 @@ over the whole cylinder side, pysus over its part in the domain, so sus ran with
 by 0.00975). data/sus_oneCylinder_small.npz is sus's output on that deck, one rank, read with
 framework.uintah_uda.UintahArchive: the times, press_CC, temp_CC of the air and vol_frac_CC of
 the cylinder over the interior cells after steps 3 and 5, the number of particles, and the
-.dat files of the conservation sums (test_mpmice_conservation.py).
+.dat files of the conservation sums (TotalMass, KineticEnergy, TotalMomentum, TotalIntEng and
+their `_1`, `_2` per fluid).
 
 Measured (pysus against sus): the steps' delT equal; in the air's cells (the cylinder's volume
 fraction < 0.5) press_CC within 5.2e-6 and temp_CC within 6.8e-6 of their maxima after 5
@@ -124,3 +125,26 @@ def test_pbx_cylinder_fields_as_uintah(runs, step):
     if step == 3:        # the trace air in the cylinder's cells: the linearVariation coefficients
         t_air = da.read("temp_CC", 1, step)[0][:, :, 0]
         assert np.abs(t_air - sus["temp_CC_1_step3"])[vf > 0.999999].max() < 60.0
+
+
+def test_pbx_cylinder_conservation_sums_as_uintah(runs):
+    """The saved sums as sus's MPMICE writes them: TotalMass, KineticEnergy and TotalMomentum of
+    the particles plus every fluid, TotalIntEng of the fluids, each fluid's in name_<m>.dat, one
+    line per step from the first (none at t = 0). Measured over the 5 steps, of sus's largest:
+    TotalMass 9.4e-11 (the particles' mass exactly; the air's 5.2e-7), TotalIntEng 1.1e-6, the air's
+    KineticEnergy 5.4e-3 and TotalMomentum 2.7e-3; with the particles' (module docstring: the
+    loaded particles on the upper faces) KineticEnergy 7.5 %, TotalMomentum 3.2 %."""
+    da, sus = runs
+    for name, m, rtol in (("TotalMass", -1, 1e-9), ("TotalMass", 1, 2e-6), ("TotalIntEng", -1, 5e-6),
+                          ("TotalIntEng", 1, 5e-6), ("KineticEnergy", 1, 0.02), ("TotalMomentum", 1, 0.01),
+                          ("KineticEnergy", -1, 0.15), ("TotalMomentum", -1, 0.08)):
+        t, v = da.reduction(name, m)
+        want = sus[name if m < 0 else f"{name}_{m}"]
+        assert np.allclose(t, want[:, 0], rtol=1e-12, atol=0), name
+        want = want[:, 1:].squeeze()
+        assert np.abs(v - want).max() < rtol * np.abs(want).max(), (name, m)
+    particles = float(da.particles(0, 0)["p.mass"].sum())
+    _, total = da.reduction("TotalMass")
+    gas = da.reduction("TotalMass", 1)[1] + da.reduction("TotalMass", 2)[1]
+    assert np.allclose(total, particles + gas, rtol=1e-14, atol=0)
+    assert np.all(gas > 1e-4 * total)            # the air counts (8.4e-8 kg of 4.6e-4)
