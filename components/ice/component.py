@@ -49,7 +49,7 @@ G = Ghost.AROUND_CELLS
 
 EOS_TAGS = {"ideal_gas": (), "Murnaghan": ("K", "n", "rho0", "P0"), "JWL": ("A", "B", "R1", "R2", "om", "rho0"),
             "JWLC": ("A", "B", "C", "R1", "R2", "om", "rho0"), "Stiffened_gas": ("Pinf",),
-            "Thomsen_Hartka_water": ("a", "b", "co", "ko", "To", "L", "vo")}
+            "Thomsen_Hartka_water": ("a", "b", "co", "ko", "To", "L", "vo"), "TST": ("a", "b", "u", "w", "Gamma")}
 EOS_POSITIVE = ("K", "rho0")      # a bulk modulus and a reference density are positive
 MATERIAL = {
     "dynamic_viscosity": Param("float", 0.0, at_least=0.0),

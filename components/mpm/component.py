@@ -78,6 +78,8 @@ FLAGS = {
     "artificial_viscosity_coeff1": Param("float", 0.2, doc="A1, the linear term of q", at_least=0.0),
     "artificial_viscosity_coeff2": Param("float", 2.0, doc="A2, the quadratic term of q", at_least=0.0),
     "do_contact_friction_heating": Param("bool", False, (False,), "friction work to heat: not implemented"),
+    "computeColinearNormals": Param("bool", True, doc="contact normals (friction, approach) made collinear "
+                                    "with the other materials' (Uintah's default); false: each material's own"),
     "axisymmetric": Param("bool", False, doc="Uintah's axisymmetric MPM: x is r, y the axial z, one cell in z; "
                           "particle volumes and masses per radian"),
     "stress_update": Param("str", "musl", ("musl", "usl"),
