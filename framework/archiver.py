@@ -218,7 +218,7 @@ class Archiver:
         with h5py.File(fname, "w") as h5:
             meta = _write_dw(h5, dw, self.level, local_patches, names, "interior")
         allmeta = self.comm.allgather((self.comm.rank, meta))
-        reductions = {n: dw.reductions[(n, m)] for (n, m) in dw.reductions if n in names}
+        reductions = {(n, m): v for (n, m), v in dw.reductions.items() if n in names}
         if self.comm.rank == 0:
             patches = {}
             for r, m in allmeta:
@@ -243,11 +243,13 @@ class Archiver:
         """A line "time value" in each saved reduction's .dat file, on a step that writes no
         output timestep (Uintah writes reductions every timestep)."""
         if self.comm.rank == 0:
-            self._append_reductions({n: dw.reductions[(n, m)] for (n, m) in dw.reductions if n in names}, t)
+            self._append_reductions({(n, m): v for (n, m), v in dw.reductions.items() if n in names}, t)
 
     def _append_reductions(self, reductions, t):
-        for n, v in reductions.items():
-            with open(os.path.join(self.dir, f"{n}.dat"), "a") as f:
+        """One line per reduction {(name, material): value}: `name.dat`, or as Uintah's
+        `name_<material>.dat` for one material's sum."""
+        for (n, m), v in reductions.items():
+            with open(os.path.join(self.dir, f"{n}.dat" if m < 0 else f"{n}_{m}.dat"), "a") as f:
                 vals = " ".join(repr(float(x)) for x in np.atleast_1d(v))
                 f.write(f"{t!r} {vals}\n")
 
@@ -611,9 +613,9 @@ class DataArchive:
         """Particles of a material as a pandas.DataFrame (needs pandas)."""
         return _optional("pandas").DataFrame(self.particles_table(material, timestep))
 
-    def reduction(self, label):
-        """(times, values) from `<label>.dat`."""
-        fn = os.path.join(self.path, f"{label}.dat")
+    def reduction(self, label, material=-1):
+        """(times, values) from `<label>.dat` (`<label>_<material>.dat`: one material's sum)."""
+        fn = os.path.join(self.path, f"{label}.dat" if material < 0 else f"{label}_{material}.dat")
         data = np.loadtxt(fn, ndmin=2)
         return data[:, 0], data[:, 1:].squeeze()
 

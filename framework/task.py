@@ -80,6 +80,15 @@ class Task:
         return self.computes_ + self.modifies_
 
 
+def _union(have, matls):
+    """The materials of two declarations of one label; () stands for any material."""
+    if have is None:
+        return matls
+    if not have or not matls:
+        return ()
+    return tuple(dict.fromkeys(have + matls))
+
+
 class TaskView:
     """A warehouse as one task may see it: only what it declared."""
 
@@ -92,10 +101,10 @@ class TaskView:
         self.reads = {}
         self.ghosted = {}
         for dep in task.requires_:
-            if dep.dw == which:
-                self.reads[dep.label.name] = dep.matls
+            if dep.dw == which:       # a label required twice (a model's extra materials): the union
+                self.reads[dep.label.name] = _union(self.reads.get(dep.label.name), dep.matls)
                 if dep.n:
-                    self.ghosted[dep.label.name] = dep.n
+                    self.ghosted[dep.label.name] = max(dep.n, self.ghosted.get(dep.label.name, 0))
         self.writes = {}
         if which == NEW:
             for dep in task.modifies_:

@@ -49,7 +49,7 @@ G = Ghost.AROUND_CELLS
 
 EOS_TAGS = {"ideal_gas": (), "Murnaghan": ("K", "n", "rho0", "P0"), "JWL": ("A", "B", "R1", "R2", "om", "rho0"),
             "JWLC": ("A", "B", "C", "R1", "R2", "om", "rho0"), "Stiffened_gas": ("Pinf",),
-            "Thomsen_Hartka_water": ("a", "b", "co", "ko", "To", "L", "vo")}
+            "Thomsen_Hartka_water": ("a", "b", "co", "ko", "To", "L", "vo"), "TST": ("a", "b", "u", "w", "Gamma")}
 EOS_POSITIVE = ("K", "rho0")      # a bulk modulus and a reference density are positive
 MATERIAL = {
     "dynamic_viscosity": Param("float", 0.0, at_least=0.0),
@@ -103,6 +103,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     n_before = 0
     source_models, tracers = [], []      # <Models> of ICE alone (problem_setup)
     caloric = {}                         # {material: the model owning its caloric EOS} (gasCombustion)
+    var_K = var_H = False                 # <CoefficientModel> linearVariation (problem_setup)
 
     def problem_setup(self, root, level):
         self.level = level
@@ -156,8 +157,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         if not self.materials:
             raise icen.error("no <material>: ICE needs at least one")
         n = len(self.materials)
-        self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n)
-        self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H))
+        self.var_K, self.var_H = self._read_coefficient_model(mp.child("exchange_properties"), self.n_before + n)
+        self.K, self.H = self._read_exchange(mp.child("exchange_properties"), self.n_before + n,
+                                             skip=("heat",) if self.var_H else ())
+        self.exchange = n > 1 and bool(np.any(self.K) or np.any(self.H) or self.var_K or self.var_H)
         self.slip = read_slip(mp.child("exchange_properties"), self.n_before + n, self.n_before)
         self.exchange = self.exchange or self.slip is not None
         # Uintah's hydrostatic pressure (gravity): initial press_CC and the pressure's extra cells
@@ -393,7 +396,20 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                   "as in Uintah, the state starts from the density and temperature", file=sys.stderr)
 
     @staticmethod
-    def _read_exchange(node, n):
+    def _read_coefficient_model(node, n):
+        """<exchange_properties><CoefficientModel>: which of <momentum> and <heat> take Uintah's
+        linearVariation coefficients (from each cell's mass ratio, kernels.mass_ratio_coefficients)
+        in the cell-centred exchange; (False, False) without it."""
+        cm = node.child("CoefficientModel") if node is not None else None
+        if cm is None or n == 1:
+            return False, False
+        return tuple(cm.get(tag, "str", "ConstantCoeff", choices=("ConstantCoeff", "linearVariation"))
+                     == "linearVariation" for tag in ("momentum", "heat"))
+
+    @staticmethod
+    def _read_exchange(node, n, skip=()):
+        """The constant coefficient matrices K and H of <exchange_coefficients>; a tag in `skip`
+        (heat under a linearVariation <CoefficientModel>, which Uintah does not count) is left zero."""
         K, H = np.zeros((n, n)), np.zeros((n, n))
         if node is None:
             return K, H
@@ -407,6 +423,9 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         for tag, mat in (("momentum", K), ("heat", H)):
             c = ec.child(tag)
             if c is None:
+                continue
+            if tag in skip:
+                c.mark_used()
                 continue
             txt = c.text().strip()
             try:

@@ -26,6 +26,10 @@ Codes and parameter layouts (Uintah deck tags in brackets):
   STIFFENED_GAS = 4  ``Stiffened_gas`` [Pinf]   (not in Uintah; pysus tag names)
                      p = (gamma-1) rho e - gamma Pinf with e = cv T + Pinf/rho,
                      i.e. p = (gamma-1) rho cv T - Pinf.
+  TST = 7            ``TST`` (Twu-Sim-Tassone) [a, b, u, w, Gamma]
+                     p = (Gamma-1) cv T / (v - b) - a / ((v + u b)(v + w b)),  v = 1/rho;
+                     rho_micro(p, T) from the cubic in v in closed form with the material's
+                     <gamma> in place of Gamma, and T(p, rho), as Uintah's TST.cc
   SOLID_JWL = 6      (MPMICE: a visco_scram solid's <useJWLEOS>) [A, B, R1, R2, om, Cv, rho0, p_ref]
                      p = A exp(-R1 V) + B exp(-R2 V) + om Cv T / V, V = rho0/rho, Cv per volume
                      (Uintah's ViscoScram computePressEOSCM); dp_de = 0, c^2 = dp/drho. p_ref > 0
@@ -79,6 +83,7 @@ JWLC = 3
 STIFFENED_GAS = 4
 THOMSEN_HARTKA = 5
 SOLID_JWL = 6
+TST = 7
 RHO_REF_TOL = 1e-10       # SOLID_JWL: relative tolerance of rho_ref (Uintah's computeRhoRef)
 MAX_PARAMS = 8
 
@@ -288,6 +293,34 @@ def thomsen_hartka_rho_micro(press, temp, a, ko, To, L, vo):
     return 1.0 / (vo * (1.0 - ko * press + L * x * x))
 
 
+# Twu-Sim-Tassone (Uintah's TST): p = (Gamma - 1) cv T / (v - b) - a / ((v + u b)(v + w b)), v = 1/rho
+@njit(cache=True)
+def tst_press_eos(rho, temp, cv, a, b, u, w, Gamma):
+    """(p, (dp/drho)_T, dp/de) as Uintah's TST::computePressEOS (its own <Gamma>)."""
+    v = 1.0 / rho
+    d1, d2, d3 = v - b, v + u * b, v + w * b
+    p1 = (Gamma - 1.0) * cv * temp / d1
+    p2 = a / (d2 * d3)
+    return p1 - p2, v * v * (p1 / d1 - p2 * (1.0 / d2 + 1.0 / d3)), (Gamma - 1.0) / d1
+
+
+@njit(cache=True)
+def tst_rho_micro(press, temp, cv, gamma, a, b, u, w):
+    """Uintah's TST::computeRhoMicro: the cubic in v solved in closed form (trigonometric root);
+    as Uintah's, with the material's <gamma> (its pressure takes the EOS's <Gamma>)."""
+    k = (gamma - 1.0) * cv * temp
+    c1 = -press
+    c2 = press * b * (1.0 - u - w) + k
+    c3 = k * (b * u + b * w) - a + press * b * b * (u + w - u * w)
+    c4 = (press * b + k) * (b * u) * (b * w) + a * b
+    r = c2 / c1
+    pp = abs(c3 / c1 - r * r / 3.0)
+    q = r * r * r / 13.5 - c2 * c3 / (c1 * c1) / 3.0 + c4 / c1
+    cos_val = min(1.0, max(-1.0, -q / pp ** 1.5 * 2.5980762113533159402911695122588))
+    v = 2.0 * math.sqrt(pp / 3.0) * math.cos(math.acos(cos_val) / 3.0) - r / 3.0
+    return 1.0 / v
+
+
 # ----------------------------------------------------------------------------
 # dispatchers
 @njit(cache=True)
@@ -311,6 +344,8 @@ def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
     elif code == SOLID_JWL:
         return solid_jwl_press_eos(rho_micro, temp, params[0], params[1], params[2], params[3], params[4],
                                    params[5], params[6], params[7])
+    elif code == TST:
+        return tst_press_eos(rho_micro, temp, cv, params[0], params[1], params[2], params[3], params[4])
     return math.nan, math.nan, math.nan
 
 
@@ -357,6 +392,10 @@ def eos_cold_energy(code, params, rho_micro):
             om = params[5]
             e += params[2] * (rho_micro / rho0) ** om / (om * rho0)
         return e
+    elif code == TST:          # de_c = a dv / ((v + u b)(v + w b)), zero at v -> infinity
+        a, b, u, w = params[0], params[1], params[2], params[3]
+        v = 1.0 / rho_micro
+        return a / ((w - u) * b) * math.log((v + u * b) / (v + w * b))
     return math.nan
 
 
@@ -369,6 +408,8 @@ def _dp_dtemp(code, params, rho_micro, temp, cv, gamma):
         return params[4] * cv * rho_micro
     elif code == THOMSEN_HARTKA:
         return eos_dp_de(code, params, rho_micro, temp, cv, gamma) * cv
+    elif code == TST:
+        return (params[4] - 1.0) * cv / (1.0 / rho_micro - params[1])
     return 0.0
 
 
@@ -417,6 +458,8 @@ def eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess):
     elif code == SOLID_JWL:
         return solid_jwl_rho_micro(press, temp, params[0], params[1], params[2], params[3], params[4], params[5],
                                    params[6], params[7], rho_guess)
+    elif code == TST:
+        return tst_rho_micro(press, temp, cv, gamma, params[0], params[1], params[2], params[3])
     return math.nan
 
 
@@ -433,6 +476,11 @@ def eos_temp(code, params, press, rho_micro, cv, gamma):
         return (press - cold) / (params[4] * rho_micro * cv)
     elif code == THOMSEN_HARTKA:       # as Uintah's computeTempCC
         return -params[0] * press + params[4] + math.sqrt(1.0 + params[6] * rho_micro * (params[3] * press - 1.0))
+    elif code == TST:                  # Uintah's TST::computeTempCC
+        a, b, u, w, G = params[0], params[1], params[2], params[3], params[4]
+        v = 1.0 / rho_micro
+        return (v - b) * (press * v * v + press * v * b * (u + w) + press * b * b * u * w + a) / \
+            ((v + u * b) * (v + w * b) * (G - 1.0) * cv)
     return 300.0  # Murnaghan, JWLC: T-independent; Uintah sets 300 K
 
 
@@ -546,9 +594,11 @@ JWLEOS = _model("JWL", JWL, ("A", "B", "R1", "R2", "om", "rho0"))
 JWLCEOS = _model("JWLC", JWLC, ("A", "B", "C", "R1", "R2", "om", "rho0"))
 StiffenedGasEOS = _model("Stiffened_gas", STIFFENED_GAS, ("Pinf",))
 ThomsenHartkaEOS = _model("Thomsen_Hartka_water", THOMSEN_HARTKA, ("a", "b", "co", "ko", "To", "L", "vo"))
+TSTEOS = _model("TST", TST, ("a", "b", "u", "w", "Gamma"))
 
 EOS_TYPES = {"ideal_gas": IdealGasEOS, "Murnaghan": MurnaghanEOS, "JWL": JWLEOS,
-             "JWLC": JWLCEOS, "Stiffened_gas": StiffenedGasEOS, "Thomsen_Hartka_water": ThomsenHartkaEOS}
+             "JWLC": JWLCEOS, "Stiffened_gas": StiffenedGasEOS, "Thomsen_Hartka_water": ThomsenHartkaEOS,
+             "TST": TSTEOS}
 
 
 def make_eos(type_name, tags):

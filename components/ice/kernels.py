@@ -453,6 +453,39 @@ def exchange_cells(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, 
     if n == 2:
         _exchange_cells2(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H)
         return
+    _exchange_cells_n(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H, False, False)
+
+
+@njit(cache=True)
+def exchange_cells_variable(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H, var_mom, var_heat):
+    """exchange_cells with Uintah's <CoefficientModel> linearVariation: where var_mom (var_heat)
+    each cell's momentum (heat) coefficients come from its Lagrangian masses
+    (mass_ratio_coefficients) instead of K (H)."""
+    _exchange_cells_n(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H, var_mom, var_heat)
+
+
+@njit(cache=True)
+def mass_ratio_coefficients(Q, masses, i, j, k, n):
+    """Uintah's linearVariation exchange coefficient of each material pair m < q in cell (i, j, k)
+    (ExchangeCoefficients::getVariableExchangeCoeff): r = (m_q / m_m)^2, Q = max(r, 1/r) clamped to
+    [1e5, 1e12], so materials of like mass exchange at 1e5 and a trace material locks to its host."""
+    for m in range(n):
+        Q[m, m] = 0.0
+        for q in range(m + 1, n):
+            ratio = masses[q][i, j, k] / masses[m][i, j, k]
+            r = ratio * ratio
+            c = r if r >= 1.0 else 1.0 / r
+            c = min(max(c, 1e5), 1e12)
+            Q[m, q] = c
+            Q[q, m] = c
+
+
+@njit(cache=True)
+def _exchange_cells_n(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, dt, K, H, var_mom, var_heat):
+    """exchange_cells for any number of materials, one cell at a time (see exchange_cells)."""
+    n = len(masses)
+    K = K.copy()
+    H = H.copy()
     a = np.empty((n, n))
     b = np.empty(n)
     th = np.empty(n)
@@ -466,6 +499,10 @@ def exchange_cells(masses, moms, engs, vfs, sps, cvs, mom_out, eng_out, lo, hi, 
                 for m in range(n):
                     th[m] = vfs[m][i, j, k]
                     sv[m] = sps[m][i, j, k]
+                if var_mom:
+                    mass_ratio_coefficients(K, masses, i, j, k, n)
+                if var_heat:
+                    mass_ratio_coefficients(H, masses, i, j, k, n)
                 msum = 0.0
                 esum = 0.0
                 for m in range(n):

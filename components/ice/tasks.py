@@ -634,8 +634,12 @@ class IceTasks:
         eng_out = tuple(new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None) for m in matls)
         v = b.view
         vs = lambda arrs: tuple(v(x) for x in arrs)
-        K.exchange_cells(vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
-                         vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
+        args = (vs(get(I.mass_L_CC)), vs(get(I.mom_L_CC)), vs(get(I.int_eng_L_CC)), vs(get(I.vol_frac_CC)),
+                vs(get(I.sp_vol_CC)), self.cvs, vs(mom_out), vs(eng_out), b.v_olo, b.v_ohi, dt, self.K, self.H)
+        if self.var_K or self.var_H:        # <CoefficientModel> linearVariation
+            K.exchange_cells_variable(*args, self.var_K, self.var_H)
+        else:
+            K.exchange_cells(*args)
         sl = getattr(self, "slip", None)
         if sl is not None and sl.use_coeffs:        # the solid's surface cells again, with slip
             SL.exchange_surface_cells(
@@ -780,9 +784,17 @@ class IceTasks:
         new_dw.put_reduction(I.TotalIntEng, acc[2])
         new_dw.put_reduction(I.TotalMomentum, acc[3:6])
 
-    def internal_energy_sum(self, patch, matls, old_dw, new_dw):
-        """TotalIntEng alone: under MPMICE the other sums are MPM's (the solids' particles)."""
+    def fluid_sums(self, patch, matls, old_dw, new_dw):
+        """Under MPMICE (Uintah's conservationTest over the fluids' subset): each fluid's
+        TotalMass, KineticEnergy, TotalIntEng and TotalMomentum, and TotalIntEng of them all
+        (the particles add no internal energy; MPMICE adds their mass, KE and momentum)."""
         new_dw.put_reduction(I.TotalIntEng, self._conserved_sums(patch, matls, old_dw, new_dw)[2])
+        for m in matls:
+            acc = self._conserved_sums(patch, (m,), old_dw, new_dw)
+            new_dw.put_reduction(I.TotalMass, acc[0], m)
+            new_dw.put_reduction(I.KineticEnergy, acc[1], m)
+            new_dw.put_reduction(I.TotalIntEng, acc[2], m)
+            new_dw.put_reduction(I.TotalMomentum, acc[3:6], m)
 
     def _conserved_sums(self, patch, matls, old_dw, new_dw):
         """[mass, kinetic energy, internal energy, momentum x, y, z]: the sums over interior

@@ -330,6 +330,9 @@ class DDT1(SteadyBurn):
             if cm != "visco_scram":
                 raise dd.child("useCrackModel").error("<useCrackModel> true needs the reactant's constitutive_model "
                                                       f"visco_scram (its crack radius); this one is {cm}")
+        else:           # as Uintah, the crack tags of a deck with <useCrackModel> false change nothing
+            for tag, prm in CRACK_TABLE.items():
+                dd.get(tag, prm.type, None)
         adj = dd.child("adjust_IO_intervals")
         if adj is not None:
             adj.mark_used()

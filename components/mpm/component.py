@@ -78,6 +78,8 @@ FLAGS = {
     "artificial_viscosity_coeff1": Param("float", 0.2, doc="A1, the linear term of q", at_least=0.0),
     "artificial_viscosity_coeff2": Param("float", 2.0, doc="A2, the quadratic term of q", at_least=0.0),
     "do_contact_friction_heating": Param("bool", False, (False,), "friction work to heat: not implemented"),
+    "computeColinearNormals": Param("bool", True, doc="contact normals (friction, approach) made collinear "
+                                    "with the other materials' (Uintah's default); false: each material's own"),
     "axisymmetric": Param("bool", False, doc="Uintah's axisymmetric MPM: x is r, y the axial z, one cell in z; "
                           "particle volumes and masses per radian"),
     "stress_update": Param("str", "musl", ("musl", "usl"),
@@ -128,6 +130,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     ftm_refused = None
     # (final, pre-relocation) particle labels a coupled model computes and relocation carries
     carry_models = ()
+    # the particles' conservation sums; MPMICE puts them under its own names and adds the gas's
+    totals = (L.TotalMass, L.KineticEnergy, L.TotalMomentum)
 
     def problem_setup(self, root, level):
         self.level = level
@@ -342,8 +346,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         t = Task("MPM::actuallyInitialize", self.initialize, self.matls).computes(L.pX)
         for final, _ in self.carry:
             t.computes(final)
-        for r in (L.WaveSpeed, L.KineticEnergy, L.StrainEnergy, L.TotalMass, L.TotalMomentum,
-                  L.CenterOfMassPosition):
+        for r in (L.WaveSpeed, L.StrainEnergy, L.CenterOfMassPosition) + self.totals:
             t.computes(r)
         if self.pressure_bcs:
             t.computes(L.PressureBCParticles)
@@ -476,7 +479,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
             if self.flags["DoPressureStabilization"]:
                 t.requires(OLD, L.pVolume)
-        for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
+        for r in (L.CenterOfMassPosition,) + self.totals:
             t.computes(r)
         sched.add_task(t)
         self.schedule_temperature_update(sched)

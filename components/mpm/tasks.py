@@ -185,9 +185,10 @@ class MPMTasks:
         new_dw.put_reduction(L.WaveSpeed, ws)
 
     def _put_totals(self, dw, tot):
-        dw.put_reduction(L.TotalMass, tot[0])
-        dw.put_reduction(L.KineticEnergy, tot[1])
-        dw.put_reduction(L.TotalMomentum, tot[2:5])
+        mass, ke, mom = self.totals
+        dw.put_reduction(mass, tot[0])
+        dw.put_reduction(ke, tot[1])
+        dw.put_reduction(mom, tot[2:5])
         dw.put_reduction(L.CenterOfMassPosition, tot[5:8])
 
     def compute_stable_timestep(self, patch, matls, old_dw, new_dw):
@@ -366,7 +367,8 @@ class MPMTasks:
     def _normals(self, patch, old_dw, new_dw):
         """g.surfNorm per contact material, as Uintah's computeNormals: g_m = sum m_p grad S
         (outward: mass falls off along it), made collinear with the other materials'
-        (0.5 (g_m - mass-weighted mean of the others' g)), then unit length."""
+        (0.5 (g_m - mass-weighted mean of the others' g)) unless <computeColinearNormals>
+        false, then unit length."""
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
         kind = transfer.INTERPOLATORS[self.kind]
@@ -378,13 +380,17 @@ class MPMTasks:
                                    self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, g[m])
             gm[m] = new_dw.get(L.gMass, m, patch)[..., None]
         out = {}
+        collinear = self.flags.get("computeColinearNormals", True)
         for m in self.contact.materials:
-            others = [k for k in self.contact.materials if k != m]
-            mon = sum(gm[k] for k in others)
-            mwon = sum(gm[k] * g[k] for k in others) / (mon + 1e-100)
             n = new_dw.allocate(L.gSurfNorm, m, patch, None)
-            np.multiply(0.5, g[m] - mwon, out=n)
-            n[np.broadcast_to(gm[m] <= 1e-200, n.shape)] = 0.0
+            if collinear:
+                others = [k for k in self.contact.materials if k != m]
+                mon = sum(gm[k] for k in others)
+                mwon = sum(gm[k] * g[k] for k in others) / (mon + 1e-100)
+                np.multiply(0.5, g[m] - mwon, out=n)
+                n[np.broadcast_to(gm[m] <= 1e-200, n.shape)] = 0.0
+            else:
+                n[...] = g[m]
             norm = np.linalg.norm(n, axis=-1, keepdims=True)
             np.divide(n, norm, out=n, where=norm > 1e-15)
             out[m] = n

@@ -69,6 +69,10 @@ from .setup import ICEinMPMICE, MPMinMPMICE
 from .slip import SlipTasks
 from .tasks import MPMICETasks, _Capture
 
+# the conservation sums each fluid gets (Uintah's conservationTest); the first three also summed
+# with the particles' under their own names
+SUMS = (I.TotalMass, I.KineticEnergy, I.TotalMomentum, I.TotalIntEng)
+
 G = Ghost.AROUND_CELLS
 STATE = (I.rho_CC, I.vel_CC, I.temp_CC)
 MPM_AFTER = "MPM::computeAndIntegrateAcceleration"
@@ -387,11 +391,17 @@ class MPMICE(MPMICETasks, Component):
         sched.add_task(t)
         for model in ice.scalars:
             model.schedule_conservation(sched, dirs)
-        t = Task("ICE::TestConservation", ice.internal_energy_sum, fl) \
+        t = Task("ICE::TestConservation", ice.fluid_sums, fl) \
             .requires(OLD, FL.delT).requires(NEW, I.rho_CC).requires(NEW, I.vel_CC).requires(NEW, I.temp_CC) \
             .computes(I.TotalIntEng)
+        for lab in SUMS:
+            t.computes(lab, matls=fl)
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d])
+        sched.add_task(t)
+        t = Task("MPMICE::sumConservedQuantities", self.sum_conserved, fl)
+        for total, particles in zip(SUMS[:3], self.mpm.totals):
+            t.requires(NEW, particles).requires(NEW, total, matls=fl).computes(total)
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", ice.compute_mach, fl)
                        .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))
@@ -408,6 +418,16 @@ class MPMICE(MPMICETasks, Component):
             self.mpm.compute_stable_timestep(patch, self.mpm_matls, old_dw, b)
             dt = min(dt, float(b.value))
         new_dw.put_reduction(FL.delT, dt)
+
+    def sum_conserved(self, patch, matls, old_dw, new_dw):
+        """TotalMass, KineticEnergy and TotalMomentum: the particles' plus every fluid's, as
+        Uintah's MPM and ICE put into one reduction. The parts are global sums already, so only
+        the level's first patch puts them (the reduction adds the patches)."""
+        if patch.id != patch.level.patches[0].id:
+            return
+        for total, particles in zip(SUMS[:3], self.mpm.totals):
+            new_dw.put_reduction(total, new_dw.get_reduction(particles)
+                                 + sum(new_dw.get_reduction(total, m) for m in matls))
 
     @property
     def rigid(self):

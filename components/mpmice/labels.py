@@ -24,3 +24,10 @@ Tdot = L.create("Tdot", CC)                           # step 10: (T after exchan
 # the solid's heat exchange (step 10 -> 13), only when a solid exchanges heat with a fluid
 dTdt_CC = L.create("dTdt_CC", CC)                     # step 10: solid temperature rate from the exchange
 dTdt_NC = L.create("dTdt_NC", VarType.NC)             # step 13: its mean over the cells around a node
+
+# the particles' conservation sums (MPM's TotalMass, KineticEnergy, TotalMomentum); the saved sums
+# add the fluids' (MPMICE::sumConservedQuantities), as Uintah's MPM and ICE put into one reduction
+R = VarType.REDUCTION
+mpm_TotalMass = L.create("MPM.TotalMass", R, reduction="sum")
+mpm_KineticEnergy = L.create("MPM.KineticEnergy", R, reduction="sum")
+mpm_TotalMomentum = L.create("MPM.TotalMomentum", R, (3,), reduction="sum")

@@ -27,6 +27,8 @@ from framework.grid import FACES
 from framework.gridspec import boundary_faces, sub_faces
 from framework.problemspec import Param
 
+from . import labels as MI
+
 
 class ContactWithICE(Contact):
     """<contact> whose <materials> list may hold ICE indices (Uintah decks do); those are dropped."""
@@ -83,6 +85,7 @@ class MPMinMPMICE(MPM):
     artificial_viscosity_refused = None
     ftm_refused = "in MPMICE (Uintah's MPMICE does not schedule its task either)"
     projection_refused = "in MPMICE (its particle-to-grid transfer of mass, momentum and temperature is its own)"
+    totals = (MI.mpm_TotalMass, MI.mpm_KineticEnergy, MI.mpm_TotalMomentum)
 
     def __init__(self, n_all):
         super().__init__()

@@ -157,12 +157,15 @@ class MPMICETasks:
             pw = _spread(pw, empty)
             tot = sum(fr)
             fr = [np.where(tot > 0, f, 1.0 if k == 0 else 0.0) for k, f in enumerate(fr)]
+            pw = np.where(tot > 0, pw, ice.reference_pressure)    # no fluid on the patch: Uintah's p_ref
             tot = np.where(tot > 0, tot, 1.0)
         press = pw / tot
-        if empty.any() and len(ice_mats) == 1 and ice_mats[0].first_object_outside:
-            # Uintah's idiom (DDT.ups): a first object outside the domain gives the state of the
-            # cells no object covers, here those the solid fills
-            press[empty] = self._object_pressure(ice.ice_matls[0], ice_mats[0], 0)
+        outside_idiom = empty.any() and ice_mats[-1].first_object_outside
+        if outside_idiom:
+            # Uintah's idiom (DDT.ups, PBX_array/oneCylinder.ups): the last fluid's first object
+            # outside the domain; Uintah's ICE sets press_CC to each fluid's EOS pressure in turn,
+            # so the cells no object covers, here those the solid fills, start at the last one's
+            press[empty] = self._object_pressure(ice.ice_matls[-1], ice_mats[-1], 0)
         free = np.clip(1.0 - ths[sl], 0.0, 1.0)
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
         p_arr[sl] = press
@@ -174,6 +177,8 @@ class MPMICETasks:
                 hit = fk > 0.0
                 temp[hit], vel[hit] = g["temperature"], g["velocity"]
             rho_micro = _rho_micro_array(press, temp, g0["density"], *ice._eos(m))
+            if outside_idiom and mat is not ice_mats[-1]:
+                rho_micro[empty] = g0["density"]        # Uintah's: the first object's, at any pressure
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,
                                                                 I.speedSound_CC)]
             if self.gas_start == "geometry":
@@ -480,7 +485,8 @@ class MPMICETasks:
         coefficient) carries p.temperature, and the exchange's change of its cell
         temperature goes back to the nodes (dTdt_NC) and particles like dV/dt does."""
         H, fl = self.ice.H, self.ice.ice_matls
-        self.solid_heat = [m for m in self.mpm_matls if any(H[m, f] > 0 or H[f, m] > 0 for f in fl)]
+        self.solid_heat = [m for m in self.mpm_matls
+                           if self.ice.var_H or any(H[m, f] > 0 or H[f, m] > 0 for f in fl)]
         for m in self.solid_heat:
             mat = self.mpm.materials[m]
             if mat.specific_heat <= 0:
@@ -553,9 +559,7 @@ def _spread(f, empty):
     (repeated until every cell has a value or nothing changes)."""
     f = f.copy()
     known = ~empty
-    for _ in range(64):
-        if known.all():
-            break
+    while not known.all():
         s = np.zeros_like(f)
         n = np.zeros_like(f)
         for d in range(f.ndim):

@@ -22,6 +22,7 @@ JWLC = E.make_eos("JWLC", dict(A=2.9867e11, B=4.1126e9, C=1.0e9, R1=4.95, R2=1.1
 WATER = E.make_eos("Stiffened_gas", dict(Pinf=6.0e8))
 WATER_G = 4.4
 IDEAL = E.make_eos("ideal_gas", {})
+TST = E.make_eos("TST", dict(a=-260.1385968, b=7.955153678e-4, u=-0.5, w=3.0, Gamma=1.63))
 
 # (model, cv, gamma, densities, temperature) used by the generic checks
 CASES = {
@@ -34,6 +35,8 @@ CASES = {
     "JWL": (JWL, 1000.0, 1.4, [10.0, 500.0, 1891.0, 2500.0], 2500.0),
     "JWLC": (JWLC, 1000.0, 1.4, [50.0, 900.0, 1800.0, 2600.0], 300.0),
     "Stiffened_gas": (WATER, 588.0, WATER_G, [990.0, 1000.0, 1100.0], 300.0),
+    # Uintah's SteadyBurn_2dRT.ups product (HMX gas): gamma = Gamma = 1.63
+    "TST": (TST, 514.96, 1.63, [0.5, 10.0, 300.0, 900.0], 2500.0),
 }
 
 
@@ -213,3 +216,19 @@ def test_multimaterial_kernel_dispatch():
     for k, m in enumerate(models):
         assert press[k, 1] == E.eos_press(m.code, params[k], rho[k, 1], 300.0, cv[k], gamma[k])
     assert np.all(c2 > 0.0)
+
+
+def test_tst_is_uintahs():
+    """TST (Uintah's TST.cc): p(rho, T) from its formula, T(p, rho) its inverse, rho_micro(p, T) the
+    cubic's root with the material's gamma (equal to <Gamma> here: the round trip closes)."""
+    pr, cv, g = TST.params(), 514.96, 1.63
+    a, b, u, w, G = -260.1385968, 7.955153678e-4, -0.5, 3.0, 1.63
+    for rho, T in ((1.0, 300.0), (50.0, 2000.0), (800.0, 3500.0)):
+        v = 1.0 / rho
+        p = (G - 1.0) * cv * T / (v - b) - a / ((v + u * b) * (v + w * b))
+        assert E.eos_press(E.TST, pr, rho, T, cv, g) == pytest.approx(p, rel=1e-14)
+        assert E.eos_temp(E.TST, pr, p, rho, cv, g) == pytest.approx(T, rel=1e-12)
+        assert E.eos_rho_micro(E.TST, pr, p, T, cv, g, 1.0) == pytest.approx(rho, rel=1e-9)
+    # Uintah's rho_micro takes the material's gamma: with another gamma it is another root
+    p = E.eos_press(E.TST, pr, 10.0, 2000.0, cv, g)
+    assert E.eos_rho_micro(E.TST, pr, p, 2000.0, cv, 1.4, 1.0) != pytest.approx(10.0, rel=1e-3)

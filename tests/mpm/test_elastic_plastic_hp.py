@@ -271,3 +271,28 @@ def test_adiabatic_copper_deck_runs_near_sus(tmp_path):
     assert p["p.plasticStrain"][0] == pytest.approx(d[39, 19], rel=0.02)
     assert p["p.temperature"][0] == pytest.approx(d[39, 23], rel=0.01)
     assert p["p.temperature"][0] > 690.0 and p["p.plasticStrain"][0] > 0.15
+
+
+def _steel_cp_uintah(T, Tc=1040.0):
+    """Uintah's SteelCp::computeSpecificHeat with its default (4340 steel) constants."""
+    if T == Tc:
+        T -= 1.0
+    if T < Tc:
+        t = 1.0 - T / Tc
+        return 190.14 - 273.75 * t + 418.30 / t ** 0.2
+    t = T / Tc - 1.0
+    return 465.21 + 267.52 * t + 58.16 / t ** 0.35
+
+
+@pytest.mark.parametrize("T", [300.0, 560.0, 1000.0, 1040.0, 1100.0, 1500.0])
+def test_steel_cp_is_uintahs(T):
+    """<specific_heat_model type="steel_Cp"> (SteelCp, as Uintah's SteadyBurn_2dRT steel): both
+    branches and the transition point (taken 1 K below), from the deck's defaults; a tag overrides."""
+    from components.mpm.constitutive import plasticity_kernels as pk
+    old = '<compute_specific_heat>false</compute_specific_heat>\n    <specific_heat_model type="constant_Cp"/>'
+    new = '<compute_specific_heat>true</compute_specific_heat><specific_heat_model type="steel_Cp">{}</specific_heat_model>'
+    P = params("JC", (old, new.format("")))
+    assert P.codes[4] == pk.STEEL_CP
+    assert pk.specific_heat(pk.STEEL_CP, P.cp, 414.0, T) == pytest.approx(_steel_cp_uintah(T), rel=1e-14)
+    Q = params("JC", (old, new.format("<T_transition>900</T_transition>")))
+    assert pk.specific_heat(pk.STEEL_CP, Q.cp, 414.0, T) == pytest.approx(_steel_cp_uintah(T, 900.0), rel=1e-14)

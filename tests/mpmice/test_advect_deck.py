@@ -100,3 +100,21 @@ def test_advect_plane_averages_and_tracers_as_uintah(runs):
         idx = [where[i] for i in sus[f"tracer_ids@{step}"]]
         assert np.allclose(p["p.x"][idx], sus[f"tracer_x@{step}"], rtol=0, atol=1e-12)
         assert np.allclose(p["p.scalar"][idx], sus[f"tracer_scalar@{step}"], rtol=0, atol=1e-14)
+
+
+# sus's TotalMass.dat and TotalMass_1.dat on this deck, 2 steps, one rank: (time, total, air). Uintah's
+# MPM puts the copper's particles and ICE's conservationTest the air into the one reduction.
+SUS_TOTAL_MASS = ((2.1018671035656177e-05, 1130.7788353573812, 18.278835357380363),
+                  (4.2037342071312354e-05, 1130.778835357381, 18.278835357380359))
+
+
+def test_advect_total_mass_as_uintah(runs):
+    """TotalMass is the particles' plus the air's (measured 2e-14 of sus's after step 1), the air's
+    own in TotalMass_1.dat; a line per step, none at t = 0."""
+    da, _ = runs
+    ref = np.array(SUS_TOTAL_MASS)
+    t, total = da.reduction("TotalMass")
+    _, air = da.reduction("TotalMass", 1)
+    assert np.allclose(t, ref[:, 0], rtol=1e-12, atol=0)
+    assert np.allclose(total, ref[:, 1], rtol=1e-12, atol=0)
+    assert np.allclose(air, ref[:, 2], rtol=1e-12, atol=0)

@@ -116,7 +116,10 @@ EOS = {"default_hyper": (pk.HYPER_EOS, {}), "default_hypo": (pk.HYPO_EOS, {}),
 CP = {"constant_Cp": (pk.CONST_CP, {}),
       "copper_Cp": (pk.COPPER_CP, {"T_transition": _opt(270.0), "A_LowT": _opt(0.0000416), "B_LowT": _opt(0.027),
                                    "C_LowT": _opt(6.21), "D_LowT": _opt(142.6), "A_HighT": _opt(0.1009),
-                                   "B_HighT": _opt(358.4)})}
+                                   "B_HighT": _opt(358.4)}),
+      "steel_Cp": (pk.STEEL_CP, {"T_transition": _opt(1040.0), "A_LowT": _opt(190.14), "B_LowT": _opt(273.75),
+                                 "C_LowT": _opt(418.30), "n_LowT": _opt(0.2), "A_HighT": _opt(465.21),
+                                 "B_HighT": _opt(267.52), "C_HighT": _opt(58.16), "n_HighT": _opt(0.35)})}
 YIELD = ("vonMises",)
 HYPO_ELASTIC, HYPO_VISCO_ELASTIC = 0, 1
 DEV = {"hypoElastic": HYPO_ELASTIC, "hypoViscoElastic": HYPO_VISCO_ELASTIC}

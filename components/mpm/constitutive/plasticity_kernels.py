@@ -16,7 +16,7 @@ ISO, JC, ZA, MTS, SCG, PTW = 0, 1, 2, 3, 4, 5
 CONST_SHEAR, MTS_SHEAR, SCG_SHEAR, NP_SHEAR = 0, 1, 2, 3
 CONST_TM, SCG_TM, BPS_TM, LINEAR_TM = 0, 1, 2, 3
 HYPER_EOS, MIE_GRUNEISEN, HYPO_EOS = 0, 1, 2
-CONST_CP, COPPER_CP = 0, 1
+CONST_CP, COPPER_CP, STEEL_CP = 0, 1, 2
 
 
 @njit(cache=True)
@@ -328,9 +328,19 @@ def isentropic_dTdt(code, qp, T, rho0, rho, trD):
 
 @njit(cache=True)
 def specific_heat(code, cpp, cp_init, T):
-    """c_p of model `code`: the material's <specific_heat>, or CopperCp's two-branch fit."""
+    """c_p of model `code`: the material's <specific_heat>, CopperCp's two-branch fit, or SteelCp's
+    (4340 steel, Lederman et al.: a power-law singularity at the transition temperature Tc)."""
     if code == CONST_CP:
         return cp_init
+    if code == STEEL_CP:
+        Tc = cpp[0]
+        if T == Tc:            # as Uintah: the singular point is taken 1 K below
+            T = T - 1.0
+        if T < Tc:
+            t = 1.0 - T / Tc
+            return cpp[1] - cpp[2] * t + cpp[3] / t ** cpp[4]
+        t = T / Tc - 1.0
+        return cpp[5] + cpp[6] * t + cpp[7] / t ** cpp[8]
     if T < cpp[0]:
         return cpp[1] * T * T * T - cpp[2] * T * T + cpp[3] * T - cpp[4]
     return cpp[5] * T + cpp[6]
