@@ -35,6 +35,7 @@ MODELS = {
     "comp_neo_hook_plastic": "comp_neo_hook_plastic",
     "UCNH": "ucnh",
     "UCNHVar": "ucnh_var",
+    "ArenaSoil": "arena_soil",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
