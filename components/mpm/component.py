@@ -29,6 +29,8 @@ One timestep (tasks.py), all MPM materials in each task:
                                   (only when saved, boundary_tractions.py)
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
+  setPrescribedMotion             v*_i = Fdot F^-1 x_i, a_i = 0 (only with <UsePrescribedDeformation>,
+                                  prescribed.py)
   computeSPlusSSPlusVp            XPIC(2)'s twice-smoothed grid velocity (only with <XPIC2>)
   computeGridVelocityForFTM       a force-transmitting material's one acceleration (only with one)
   interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals

@@ -43,6 +43,7 @@ increment D : (sigma_old + sigma_new)/2 V dt.  Not implemented (refused): Weibul
 variability of the yield parameters, use_disaggregation_algorithm.  A particle whose
 update fails keeps its old state (Uintah deletes it) with a note.
 """
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -446,8 +447,9 @@ def _trial(sig, deps, K, G):
 
 @njit(cache=True)
 def _substep(D, dt, st, ep, yp, prm):
-    """One substep from the state st = [sig (0:9) as 3x3 separately] -> (ok, new sig, new ep,
-    new scalars).  st: (sig, capX, pbar_w, phi, Sw, p3, coher, tgrow, epeq, K, G)."""
+    """One substep of time dt from the state st = (sigma, capX, pbar_w, phi, Sw, p3, coherence,
+    t_grow, ep_cum_eq, K, G) and the plastic strain ep: (ok, new state, new plastic strain).
+    Elastic, or the non-hardening return followed by the consistency bisection."""
     sig, capX, pbw, phi, Sw, p3, coh, tg, epeq, K, G = st
     deps = D * dt
     sig_t = _trial(sig, deps, K, G)
@@ -676,7 +678,6 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
     for k, arr in enumerate(new[YIELD_STATE:]):
         arr[:] = yp_n[:, k]
     if failed[0]:
-        import sys
         print(f"pysus: note: ArenaSoil: the update of {failed[0]} particle(s) failed (too many substeps or no "
               "convergence); they keep their old state (Uintah deletes them)", file=sys.stderr)
     return ws
