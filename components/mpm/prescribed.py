@@ -39,7 +39,8 @@ def find_file(name, deck):
 
 
 def read(node, deck):
-    """(times, F (n, 3, 3), angle (degrees), axes (n, 3)) from the file named by `node`."""
+    """(times, F (n, 3, 3), angle (degrees), axes (n, 3), the products of the rotations up to
+    each line (n, 3, 3)) from the file named by `node`."""
     name = node.text().strip()
     path = find_file(name, deck)
     if path is None:
@@ -54,7 +55,13 @@ def read(node, deck):
         raise node.error(f"{path}: needs at least two lines of 14 numbers")
     if np.any(np.diff(rows[:, 0]) <= 0):
         raise node.error(f"{path}: the times must increase")
-    return rows[:, 0].copy(), rows[:, 1:10].reshape(-1, 3, 3).copy(), rows[:, 10].copy(), rows[:, 11:14].copy()
+    angle, axis = rows[:, 10].copy(), rows[:, 11:14].copy()
+    before = np.empty((len(rows), 3, 3))       # Q_s ... Q_1 Q_0: the rotations up to line s
+    P = np.eye(3)
+    for i in range(len(rows)):
+        P = _rot(angle[i] * np.pi / 180.0, axis[i]) @ P
+        before[i] = P
+    return rows[:, 0].copy(), rows[:, 1:10].reshape(-1, 3, 3).copy(), angle, axis, before
 
 
 def _rot(theta, a):
@@ -66,7 +73,7 @@ def _rot(theta, a):
 
 def velocity_gradient(table, t):
     """M with v* = M x at time t (Uintah's Fdot* F^-1 P^-1 Q^T)."""
-    times, F, angle, axis = table
+    times, F, angle, axis, before = table
     n = len(times)
     if t <= times[0]:
         s = 0
@@ -85,9 +92,7 @@ def velocity_gradient(table, t):
     aa = np.outer(a, a)
     A = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
     Qdot = (np.eye(3) - aa) * (-np.sin(theta) * thetadot) + A * np.cos(theta) * thetadot
-    P = np.eye(3)
-    for i in range(s + 1):
-        P = _rot(angle[i] * deg, axis[i]) @ P
+    P = before[s]
     Fdot_star = Qdot @ P @ Ft + Qt @ P @ Fdot
     return Fdot_star @ np.linalg.inv(Ft) @ np.linalg.inv(P) @ Qt.T
 
