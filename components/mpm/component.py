@@ -129,6 +129,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     ftm_refused = None
     # (final, pre-relocation) particle labels a coupled model computes and relocation carries
     carry_models = ()
+    # a <save label="p.temperature"> without <DoExplicitHeatConduction> turns conduction on
+    # (Uintah's default; without it the save names nothing computed)
+    saved_temperature_conducts = True
 
     @property
     def save_aliases(self):
@@ -228,7 +231,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         self.thermal_contact_node = mp.child("thermal_contact")
         self.heat_flag_given = mpm is not None and mpm.has("DoExplicitHeatConduction")
         da = root.child("DataArchiver")
-        self.saves_temperature = da is not None and any(
+        self.saves_temperature = self.saved_temperature_conducts and da is not None and any(
             sv.attr("label", default="") == "p.temperature" for sv in da.children("save"))
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
