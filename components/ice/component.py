@@ -102,6 +102,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     # space; exchange coefficients and boundary-condition ids are read for all of them
     n_before = 0
     source_models, tracers = [], []      # <Models> of ICE alone (problem_setup)
+    caloric = {}                         # {material: the model owning its caloric EOS} (gasCombustion)
 
     def problem_setup(self, root, level):
         self.level = level
@@ -129,9 +130,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         # Lagrangian phase stays Uintah's. On by default for ICE alone (MPMICE: on request);
         # "false" with limiter="BarthJespersen" is Uintah's SecondOrderAdvector
         self.dissipation_heating = adv.attr("dissipationHeating", "bool", self.n_before == 0)
-        # pysus extension under MPMICE, on request: the fluid a solid displaces from a cell it
-        # advances through crosses the face as open as the neighbour (docs/MPMICE.md, step 12);
-        # "false" (default) is Uintah's advection, the fluxes of the face velocities alone
+        # pysus extension under MPMICE, on request: the fluid a solid's particles displace from a
+        # cell they advance through crosses the face as open as the neighbour (docs/MPMICE.md,
+        # step 12; nothing changes where the particles are at rest); "false" (default) is
+        # Uintah's advection, the fluxes of the face velocities alone
         self.open_faces = adv.attr("openFaceTransfers", "bool", False)
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100, at_least=1)
         # Uintah's <ClampSpecificVolume>: the Lagrangian m v kept >= tiny_rho V v (MPMICE too)
@@ -213,6 +215,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]
         if self.cv_matls:
             self._check_cv_models(n)
+        # a model owning a material's caloric EOS (gasCombustion): cv and gamma per cell, ICE
+        # carrying its sensible energy (tasks.py: _carrier_cv)
+        self.caloric = {mod.matl: mod for mod in self.source_models if getattr(mod, "owns_caloric_eos", False)}
+        for mod in self.caloric.values():
+            mod.check(self)
+        self.cv_matls = sorted(set(self.cv_matls) | set(self.caloric))
 
     def _check_cv_models(self, n):
         """<SpecificHeatModel> is available for explicit ICE alone with one material and no LODI
@@ -423,6 +431,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         sched.add_task(t)
         for model in self.scalars + self.tracers:
             model.schedule_initialize(sched)
+        for model in self.caloric.values():      # its species and the mixture's cv, gamma
+            model.schedule_initialize(sched)
 
     def schedule_transported(self, sched, matls):
         """Uintah's computeLagrangian_Transported_Vars: the models' scalars as m f (after mass_L_CC)."""
@@ -461,14 +471,20 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         cvm = self.cv_matls
         # Uintah's computeThermoTransportProperties: cv(T) of the step's start (runs only with a
         # <SpecificHeatModel> or when specific_heat or gamma is saved)
-        sched.add_task(Task("ICE::computeSpecificHeat", self.specific_heat_field, self.matls)
-                       .requires(OLD, I.temp_CC).computes(I.specific_heat).computes(I.gamma))
+        t = Task("ICE::computeSpecificHeat", self.specific_heat_field, self.matls) \
+            .requires(OLD, I.temp_CC).computes(I.specific_heat).computes(I.gamma)
+        for model in self.caloric.values():
+            for s in model.species:
+                t.requires(OLD, s.f, matls=[model.matl])
+        sched.add_task(t)
         t = Task("ICE::computeEquilibrationPressure", self.equilibration_pressure, self.matls) \
             .requires(OLD, I.rho_CC).requires(OLD, I.temp_CC).requires(OLD, I.sp_vol_CC) \
             .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \
             .computes(I.speedSound_CC)
         if cvm:
             t.requires(NEW, I.specific_heat, matls=cvm)
+        if self.caloric:
+            t.requires(NEW, I.gamma, matls=sorted(self.caloric))
         if many:
             t.requires(OLD, I.press_CC, matls=m0)
         if lodi:
@@ -640,6 +656,9 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             t.requires(NEW, I.FC_VEL_ME[d])
         if cvm:
             t.requires(NEW, I.specific_heat, matls=cvm)
+        for model in self.caloric.values():
+            for sp in model.species:
+                t.requires(NEW, sp.f, matls=[model.matl])
         sched.add_task(t)
         sched.add_task(Task("ICE::computeMach", self.compute_mach, self.matls)
                        .requires(NEW, I.vel_CC).requires(NEW, I.speedSound_CC).computes(I.mach))

@@ -23,7 +23,8 @@ TINY = 1.0e-100
 
 @njit(cache=True, error_model="numpy")
 def equilibrate_one(rho, temp, sp_vol, press, vol_frac, cs, code, params, cv, gamma, lo, hi):
-    """Eq. 13 for one material: theta = 1, rho_micro = rho; p and c from the EOS.
+    """Eq. 13 for one material: theta = 1, rho_micro = rho; p and c from the EOS (cv and gamma
+    one number, or one per cell where a model gives the mixture's).
 
     Kernels here loop over rows along the last axis through row slices indexed from 0
     (no negative-index wraparound: the loops vectorize); ICE's tasks pass arrays with the
@@ -37,18 +38,20 @@ def equilibrate_one(rho, temp, sp_vol, press, vol_frac, cs, code, params, cv, ga
             if code == IDEAL_GAS:          # the same operations without the EOS dispatch: vectorizes
                 for k in range(n):
                     cvk = cv_at(cv, i, j, lo[2] + k)
-                    p_[k] = ideal_gas_press_eos(r[k], t[k], cvk, gamma)[0]
+                    gk = cv_at(gamma, i, j, lo[2] + k)
+                    p_[k] = ideal_gas_press_eos(r[k], t[k], cvk, gk)[0]
                     v_[k] = 1.0 / r[k]
                     f_[k] = 1.0
-                    c_[k] = np.sqrt(max(ideal_gas_sound_speed2(r[k], t[k], cvk, gamma), TINY))
+                    c_[k] = np.sqrt(max(ideal_gas_sound_speed2(r[k], t[k], cvk, gk), TINY))
                 continue
             for k in range(n):
                 cvk = cv_at(cv, i, j, lo[2] + k)
-                p, dpdr, dpde = eos_press_eos(code, params, r[k], t[k], cvk, gamma)
+                gk = cv_at(gamma, i, j, lo[2] + k)
+                p, dpdr, dpde = eos_press_eos(code, params, r[k], t[k], cvk, gk)
                 p_[k] = p
                 v_[k] = 1.0 / r[k]
                 f_[k] = 1.0
-                c_[k] = np.sqrt(max(eos_sound_speed2(code, params, r[k], t[k], cvk, gamma), TINY))
+                c_[k] = np.sqrt(max(eos_sound_speed2(code, params, r[k], t[k], cvk, gk), TINY))
 
 @njit(cache=True, error_model="numpy")
 def equilibrate_ideal(rhos, temps, sp_new, vfs, css, press, cvs, gammas, lo, hi):

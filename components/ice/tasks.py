@@ -108,9 +108,25 @@ class IceTasks:
         """Material m's cv in this step: its <specific_heat>, or with a <SpecificHeatModel> the
         field specific_heat (one value per cell) that the step computed, seen through view (a
         Boxes.view) when given."""
-        if self._cv_model(m) is None:
+        if self._cv_model(m) is None and m not in self.caloric:
             return self.cvs[m]
         cv = dw.get(I.specific_heat, m, patch)
+        return cv if view is None else view(cv)
+
+    def _gamma(self, dw, m, patch, view=None):
+        """Material m's gamma: <gamma>, or the mixture's per cell where a model owns its caloric EOS."""
+        if m not in self.caloric:
+            return self.gammas[m]
+        g = dw.get(I.gamma, m, patch)
+        return g if view is None else view(g)
+
+    def _carrier_cv(self, m, patch, temp, y_dw, lo, hi, view=None):
+        """The cv with which m cv T is the energy ICE carries: _cv, or e_s(T, Y) / T over [lo, hi)
+        where a model owns the material's caloric EOS (Y from y_dw)."""
+        model = self.caloric.get(m)
+        if model is None:
+            return self._cv(y_dw, m, patch, view)
+        cv = model.carrier_cv(patch, temp, y_dw, lo, hi)
         return cv if view is None else view(cv)
 
     def _faces(self, dw, labels, m, patch):
@@ -258,20 +274,26 @@ class IceTasks:
         """specific_heat = cv(temp_CC) of the step's start in every cell, extra cells included, and
         gamma (Uintah's computeThermoTransportProperties)."""
         for m in matls:
-            self._thermo_fields(patch, m, old_dw.get(I.temp_CC, m, patch), new_dw)
+            self._thermo_fields(patch, m, old_dw.get(I.temp_CC, m, patch), new_dw, old_dw)
 
-    def _thermo_fields(self, patch, m, temp, new_dw):
+    def _thermo_fields(self, patch, m, temp, new_dw, y_dw=None):
         """Material m's specific_heat (its model's cv(temp), else <specific_heat>) and gamma
-        (<gamma>, as sus: see specific_heat.py) in a patch's own cells; returns specific_heat."""
+        (<gamma>, as sus: see specific_heat.py) in a patch's own cells; returns specific_heat.
+        A model owning the material's caloric EOS gives the mixture's cv and gamma at (temp, Y of
+        y_dw) (at the start, before its Y exist, the deck's values, which the model then sets)."""
         b = self.boxes(patch)
         own = tuple(slice(l, h) for l, h in zip(b.olo, b.ohi))
         cv = new_dw.allocate(I.specific_heat, m, patch)
+        gamma = new_dw.allocate(I.gamma, m, patch)
         model = self._cv_model(m)
+        if m in self.caloric and y_dw is not None:
+            self.caloric[m].thermo(patch, temp, cv, gamma, y_dw, b.olo, b.ohi)
+            return cv
         if model is None:
             cv[own] = self.cvs[m]
         else:
             model.fill(temp, cv, b.olo, b.ohi)
-        new_dw.allocate(I.gamma, m, patch)[own] = self.gammas[m]
+        gamma[own] = self.gammas[m]
         return cv
 
     # -- step 2: equilibration pressure (eq. 13) ------------------------------------------------
@@ -283,7 +305,7 @@ class IceTasks:
             v = b.view
             K.equilibrate_one(v(old_dw.get(I.rho_CC, 0, patch)), v(old_dw.get(I.temp_CC, 0, patch)), v(out[0]),
                               v(peq), v(out[1]), v(out[2]), self.codes[0], self.params[0],
-                              self._cv(new_dw, 0, patch, v), self.gammas[0], b.v_olo, b.v_ohi)
+                              self._cv(new_dw, 0, patch, v), self._gamma(new_dw, 0, patch, v), b.v_olo, b.v_ohi)
         else:
             get = lambda lab: tuple(old_dw.get(lab, m, patch) for m in matls)
             new = lambda lab: tuple(new_dw.allocate(lab, m, patch) for m in matls)
@@ -555,12 +577,15 @@ class IceTasks:
             eng = new_dw.allocate(I.int_eng_L_CC, m, patch, fill=None)
             masses.append(mass), moms.append(mom), engs.append(eng)
             v = b.view
+            cv = self._cv(new_dw, m, patch)
+            if m in self.caloric:       # the carried energy m e_s(T_old, Y_old), extra cells included
+                cv = self._carrier_cv(m, patch, old_dw.get(I.temp_CC, m, patch), old_dw, b.olo, b.ohi)
             K.lagrangian(v(old_dw.get(I.rho_CC, m, patch)), v(old_dw.get(I.vel_CC, m, patch)),
                          v(old_dw.get(I.temp_CC, m, patch)), v(new_dw.get(I.vol_frac_CC, m, patch)),
                          v(new_dw.get(I.sp_vol_CC, m, patch)), v(new_dw.get(I.speedSound_CC, m, patch)), v(press),
                          v(delP), *(v(pf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
                          v(mass), v(mom), v(eng), b.v_olo, b.v_ohi, b.v_lo, b.v_hi, b.vol, b.v_dx, dt,
-                         self._cv(new_dw, m, patch, v), self.gravity, self.use_gravity, self.codes[m],
+                         v(cv) if np.ndim(cv) else cv, self.gravity, self.use_gravity, self.codes[m],
                          self.params[m], self.gammas[m], b.perm)
             sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
             if self.viscous:
@@ -572,7 +597,7 @@ class IceTasks:
             if self.lodi is not None:
                 self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
             elif not self.exchange:
-                self._lagrangian_bcs(patch, m, mass, mom, eng, b, new_dw)
+                self._lagrangian_bcs(patch, m, mass, mom, eng, b, new_dw, cv)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays
                 new_dw.put(I.int_eng_L_ME_CC, m, patch, eng)
             if self.conserve_energy:
@@ -625,10 +650,11 @@ class IceTasks:
         if self.conserve_energy:
             self._share_total_energy(patch, matls, new_dw, get(I.mass_L_CC), mom_out, eng_out, get(I.tot_eng_L_CC))
 
-    def _lagrangian_bcs(self, patch, m, mass, mom, eng, b, new_dw):
+    def _lagrangian_bcs(self, patch, m, mass, mom, eng, b, new_dw, cv=None):
         """mom_L_ME_CC and int_eng_L_ME_CC in the extra cells from u and T with every face's
         conditions, as Uintah's exchange task ends (BoundaryConditions.lagrangian_extra_cells)."""
-        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, self._cv(new_dw, m, patch), m, b, self.dims)
+        cv = self._cv(new_dw, m, patch) if cv is None else cv
+        self.bcs.lagrangian_extra_cells(patch, mass, mom, eng, cv, m, b, self.dims)
 
     # -- step 11: specific volume (eq. 40) --------------------------------------------------------
     def lagrangian_sp_vol(self, patch, matls, old_dw, new_dw):
@@ -711,7 +737,10 @@ class IceTasks:
                       b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm])
             scratch = (self._scratch("q", (nq,) + shape), self._scratch("acc", (nq,) + shape),
                        self._scratch("buf", (nq, shape[2] + 1)))
-            out = (b.vol, self._cv(new_dw, m, patch, v), v(rho), v(vel), v(temp), v(spv), v(tot_o), scal_o)
+            caloric = self.caloric.get(m)
+            # a caloric owner's advected energy is e_s itself: the kernel's T = e / cv with cv = 1
+            out = (b.vol, 1.0 if caloric else self._cv(new_dw, m, patch, v), v(rho), v(vel), v(temp), v(spv),
+                   v(tot_o), scal_o)
             if self.second_order and self.limiter == A.EXTREMA:
                 A.advect_extrema(*common, self.compatible_fluxes, *scratch,
                                  self._scratch("grad", (3, nq) + shape), self._scratch("rc", (3,) + shape), *out)
@@ -721,6 +750,9 @@ class IceTasks:
             if self.conserve_energy:
                 A.energy_finish(rho, vel, temp, tot_o, b.lo, b.hi, b.vol, self._cv(new_dw, m, patch), self.codes[m],
                                 self.params[m])
+            if caloric is not None:     # T from e_s and the advected Y (Uintah's computeTempFromSensibleEnergy)
+                idx = [mine.index(s) for s in caloric.species]
+                caloric.temperature(patch, v(temp), np.ascontiguousarray(scal_o[idx]), v(temp), b.v_lo, b.v_hi)
             if self.lodi is not None:
                 self.lodi_advected(patch, m, rho, vel, temp, new_dw)
             self.bcs.scalar(patch, rho, "Density", m, b)
@@ -763,7 +795,7 @@ class IceTasks:
         delt = float(old_dw.get_reduction(L.delT))
         for m in matls:
             rho, vel, temp = new_dw.get(I.rho_CC, m, patch), new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch)
-            cv = self._cv(new_dw, m, patch)
+            cv = self._carrier_cv(m, patch, temp, new_dw, b.olo, b.ohi)
             K.conserved_sums(rho, vel, temp, cv, b.vol, b.lo, b.hi, acc)
             for d in range(3):
                 if self.dims[d] and "xyz"[d] + "+" in patch.boundary_faces:

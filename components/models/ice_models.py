@@ -4,6 +4,8 @@ in __init__.py).
     PassiveScalar             a scalar carried by a material's flow (passive_scalar.py)
     mass_momentum_energy_src  fans and heaters: fixed velocity/temperature regions (mass_mom_eng_src.py)
     TracerParticles           massless particles carried by the flow (tracer_particles.py)
+    gasCombustion             a reacting gas mixture: its species as scalars, finite-rate chemistry,
+                              the material's caloric EOS (gas_combustion.py)
 
 `read_ice_models` returns them grouped by what the ICE component does with them: the
 scalars it transports, the sources it adds to the Lagrangian state, and the particle models.
@@ -12,12 +14,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from .gas_combustion import GasCombustion
 from .mass_mom_eng_src import MassMomEngSrc
 from .passive_scalar import PassiveScalar
 from .tracer_particles import TracerParticles
 
 ICE_MODELS = {"PassiveScalar": PassiveScalar, "mass_momentum_energy_src": MassMomEngSrc,
-              "TracerParticles": TracerParticles}
+              "TracerParticles": TracerParticles, "gasCombustion": GasCombustion}
 
 
 @dataclass
@@ -54,6 +57,9 @@ def read_ice_models(root, ice, geo, others=()) -> IceModels:
                     "a PassiveScalar is carried by an ICE material's flow; accepted: an ICE material")
         elif kind == "mass_momentum_energy_src":
             out.sources.append(MassMomEngSrc(m, ice, geo))
+        elif kind == "gasCombustion":
+            out.sources.append(GasCombustion(m, ice, geo))
+            out.scalars.extend(out.sources[-1].species)
         else:
             out.tracers.append(TracerParticles(m, ice, geo, t0))
             if out.tracers[-1].matl < ice.n_before:
@@ -67,8 +73,8 @@ def read_ice_models(root, ice, geo, others=()) -> IceModels:
             raise node.error(f"two PassiveScalar models name their scalar {s.name}; accepted: distinct names")
     matls = [s.matl for s in out.sources]
     if len(set(matls)) < len(matls):
-        raise node.error("two mass_momentum_energy_src models act on one material; accepted: one per material "
-                         "(its <sources> may hold several regions)")
+        raise node.error("two source models (mass_momentum_energy_src, gasCombustion) act on one material; "
+                         "accepted: one per material (a MassMomEng_src's <sources> may hold several regions)")
     if len(out.tracers) > 1:
         raise node.error(f"{len(out.tracers)} TracerParticles models; accepted: one")
     for tr in out.tracers:

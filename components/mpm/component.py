@@ -85,6 +85,11 @@ FLAGS = {
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),
+    "DoPressureStabilization": Param("bool", False, doc="each cell's particles take the cell's mean J "
+                                     "(volume-weighted) in F and L, as Uintah's SerialMPM"),
+    "UseGradientEnhancedVelocityProjection": Param(
+        "bool", False, doc="the particle-to-grid momentum takes m (v_p + L_p (x_i - x_p)) with L_p of the "
+        "particle's last step, as Uintah's SerialMPM"),
     "XPIC2": Param("bool", False, doc="particle velocity and position from XPIC(2) (Hammerquist & Nairn 2017) "
                    "instead of FLIP, as Uintah's SerialMPM; not for rigid materials"),
     "use_load_curves": Param("bool", False, doc="pressure and torque BCs follow <PhysicalBC> load curves"),
@@ -123,6 +128,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     axisymmetric_refused = None
     # why <XPIC2>true is refused in this component (None: it is supported)
     xpic_refused = None
+    # why <UseGradientEnhancedVelocityProjection>true is refused here (None: it is supported)
+    projection_refused = None
     # why <artificial_viscosity>true is refused in this component (None: it is supported)
     artificial_viscosity_refused = None
     # why <is_force_transmitting_material>true is refused in this component (None: it is supported)
@@ -187,7 +194,16 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         if self.axisymmetric:
             self._check_axisymmetric_grid(root, mpm, level)
         self.act = self.axes | (AXI if self.axisymmetric else 0)      # the kernels' mask (shape.AXI)
-        self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.act)
+        self.projection = self.flags["UseGradientEnhancedVelocityProjection"]
+        if self.projection:
+            why = self.projection_refused or (
+                "with <DoExplicitHeatConduction>true (Uintah then also projects the temperature with "
+                "p.temperatureGradient, which pysus does not compute)" if self.flags["DoExplicitHeatConduction"]
+                else None)
+            if why:
+                raise mpm.child("UseGradientEnhancedVelocityProjection").error(
+                    f"the gradient-enhanced velocity projection is not implemented {why}; accepted: false")
+        self.p2g_runs, self.g2p, self.grad = kernels(self.kind, self.act, self.projection)
         self.p2g = merged_p2g(self.p2g_runs)      # one array per variable (MPMICE)
         self.xpic = self.flags["XPIC2"]
         if self.xpic:
@@ -207,6 +223,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         if not self.materials:
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
+        if self.projection:             # every material's L_p is kept for the next step's projection
+            for mt in self.materials:
+                mt.uses_L = True
         smooth = [o for m in self.materials for o in m.objects if o.get("smooth")]
         if smooth and self.kind != "linear":
             raise smooth[0]["node"].child("smoothcyl").error(
@@ -352,6 +371,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             c.append((L.pQ, L.pQPre))
         if self.saves_scale:
             c.append((L.pScaleFactor, L.pScaleFactorPre))
+        if self.projection:                   # L_p of the last step for the projection
+            c.append((L.pVelGradLast, L.pVelGradLastPre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
 
@@ -495,6 +516,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 self._requires_lr(t)
         else:       # USL: F and V in the same pass (transfer.py)
             t.computes(L.pVelGrad).requires(OLD, L.pF).computes(L.pFPre).computes(L.pVolumePre)
+            if self.flags["DoPressureStabilization"]:
+                t.requires(OLD, L.pVolume)
         for r in (L.KineticEnergy, L.TotalMass, L.TotalMomentum, L.CenterOfMassPosition):
             t.computes(r)
         sched.add_task(t)
@@ -586,6 +609,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             labs.append(L.pDisp)
         if self.av:
             labs.append(L.pQ)
+        if self.projection:
+            labs.append(L.pVelGradLast)
         return labs
 
     def _read_physical_bc(self, root):

@@ -528,3 +528,42 @@ def rigid_reaction(master_mass, fint, others, own_lo, own_hi, shape, anchor, spa
             torque[0] += r1 * f2 - r2 * f1
             torque[1] += r2 * f0 - r0 * f2
             torque[2] += r0 * f1 - r1 * f0
+
+
+@njit(cache=True)
+def pressure_stabilization(px, anchor, dx, lo, hi, dims, dt, F_old, vol_old, F, vol, L):
+    """Uintah's DoPressureStabilization (SerialMPM::computeParticleGradients): V = V_old J/J_old
+    (J_old of the stabilized F_old: the volume follows the unstabilized increments, as Uintah's);
+    in each cell of the patch (lo, hi; p.x at the step's start), J_c = sum V_p / sum (V_p / J_p);
+    each particle's F is scaled by (J_c/J_p)^(1/3) and L (if given, len(L) = len(F)) gets
+    ln(J_c/J_p)/(3 dt) I."""
+    n0, n1, n2 = hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]
+    vsum = np.zeros((n0, n1, n2))
+    v0sum = np.zeros((n0, n1, n2))
+    cells = np.empty((px.shape[0], 3), np.int64)
+    for p in range(px.shape[0]):
+        for d in range(3):
+            c = lo[d]
+            if dims[d]:
+                c = int(np.floor((px[p, d] - anchor[d]) / dx[d]))
+            cells[p, d] = min(max(c, lo[d]), hi[d] - 1) - lo[d]
+        J = _det3(F, p)
+        vol[p] = vol_old[p] * (J / _det3(F_old, p))
+        vsum[cells[p, 0], cells[p, 1], cells[p, 2]] += vol[p]
+        v0sum[cells[p, 0], cells[p, 1], cells[p, 2]] += vol[p] / J
+    has_L = L.shape[0] == F.shape[0]
+    for p in range(px.shape[0]):
+        Jc = vsum[cells[p, 0], cells[p, 1], cells[p, 2]] / v0sum[cells[p, 0], cells[p, 1], cells[p, 2]]
+        r = Jc / _det3(F, p)
+        F[p] *= np.cbrt(r)
+        if has_L:
+            g = np.log(r) / (3.0 * dt)
+            for d in range(3):
+                L[p, d, d] += g
+
+
+@njit(cache=True, inline="always")
+def _det3(F, p):
+    return (F[p, 0, 0] * (F[p, 1, 1] * F[p, 2, 2] - F[p, 1, 2] * F[p, 2, 1])
+            - F[p, 0, 1] * (F[p, 1, 0] * F[p, 2, 2] - F[p, 1, 2] * F[p, 2, 0])
+            + F[p, 0, 2] * (F[p, 1, 0] * F[p, 2, 1] - F[p, 1, 1] * F[p, 2, 0]))

@@ -62,7 +62,10 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
                                                          # failure stress or strain
          "p.damage": _pair("p.damage"),                  # damage.py: Brittle's damage
          "p.localizedMPM": _pair("p.localizedMPM"),      # damage.py: 1 once ThresholdVar localized it
-         "p.timeofloc": _pair("p.timeofloc")}            # damage.py: when it localized (erosion)
+         "p.timeofloc": _pair("p.timeofloc"),            # damage.py: when it localized (erosion)
+         "p.yieldStress": _pair("p.yieldStress"),        # UCNH with yield_distrib uniform: drawn yield stress
+         "p.progressF": _pair("p.progressF"),            # jwlpp_mpm: burned fraction
+         "p.progressdelF": _pair("p.progressdelF")}      # jwlpp_mpm: its increment of the last step
 # ArenaSoil (arena_soil.py): Uintah's labels; its plastic strain tensor (Uintah's p.plasticStrain)
 # has its own name beside the J2 models' scalar p.plasticStrain
 for _name in ("p.plasticStrainTensor", "p.porePressure", "p.stressQS"):
@@ -76,6 +79,9 @@ for _name in ("p.plasticCumEqStrain", "p.plasticVolStrain", "p.capX", "p.porosit
 MAX_MAXWELL_ELEMENTS = 8
 for _j in range(MAX_MAXWELL_ELEMENTS):
     STATE[f"sigmaDev{_j}"] = _pair(f"sigmaDev{_j}", (3, 3))
+# <UseGradientEnhancedVelocityProjection>: L_p of the particle's last step (Uintah's carried
+# p.velGrad; here p.velGrad is this step's L_p, not carried)
+pVelGradLast, pVelGradLastPre = _pair("p.velGradLast", (3, 3))
 pdTdt = L.create("p.dTdt", P)                      # elastic_plastic_hp: the model's temperature rate (not carried)
 pVelGrad = L.create("p.velGrad", P, (3, 3))        # L_p of this step (not carried)
 pTangentNbr = L.create("p.tangentFromNeighbours", P, (3,))   # membrane: from the chain (not carried)

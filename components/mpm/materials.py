@@ -35,11 +35,12 @@ MODELS = {
     "comp_neo_hook_plastic": "comp_neo_hook_plastic",
     "UCNH": "ucnh",
     "UCNHVar": "ucnh_var",
+    "jwlpp_mpm": "jwlpp_mpm",
     "ArenaSoil": "arena_soil",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)
-NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH", "UCNHVar")
+NO_L = ("comp_neo_hook", "comp_mooney_rivlin", "rigid", "comp_neo_hook_plastic", "UCNH", "UCNHVar", "jwlpp_mpm")
 
 # models with state per particle: the carried particle label holding it (one name), or the
 # labels (a tuple: the model's update gets tuples of old and new arrays in that order)
@@ -103,6 +104,15 @@ class Material:
                            f"{', '.join(MODELS)}")
         if kind == "elastic_plastic" and cm.has("flow_model"):     # Uintah's: elastic_plastic_hp
             kind = "elastic_plastic_hp"
+        if kind == "comp_neo_hook" and cm.get("usePlasticity", "bool", False):    # Uintah builds both as UCNH
+            kind = "UCNH"
+        if kind in ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH") and cm.get("useInitialStress", "bool", False):
+            raise cm.child("useInitialStress").error("<useInitialStress> true (UCNH's initial pressure from "
+                                                     "<initial_pressure>) is not implemented; accepted: false")
+        uniform_yield = None                  # UCNH's yield_distrib uniform: (yield_range, yield_seed)
+        if kind in ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH") and cm.has("yield_distrib"):
+            if cm.get("yield_distrib", "str", choices=("constant", "uniform")) == "uniform":
+                uniform_yield = (cm.get("yield_range", at_least=0.0), cm.get("yield_seed", "int", 0))
         self.model_name = kind
         self.model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
         if getattr(self.model, "USES_COLOR", False) and not with_color:
@@ -110,7 +120,7 @@ class Material:
                            '</withColor>')
         if hasattr(self.model, "read_params"):        # sub-model nodes (elastic_plastic_hp, UCNHVar)
             params = self.model.read_params(cm, node, props)
-            if kind in damage.MODELS:
+            if kind in damage.MODELS or kind == "jwlpp_mpm":     # jwlpp_mpm: an <erosion> alone is read
                 self._read_damage(node, cm, kind)
             self._finish(node, props, params, kind, with_color, geom_reader)
             return
@@ -132,6 +142,9 @@ class Material:
             self.params = self.model.Params.from_ups(values)
         except KeyError as e:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
+        if uniform_yield and self.params.usePlasticity:
+            self.params = dataclasses.replace(self.params, yield_uniform=True, yield_range=uniform_yield[0],
+                                              yield_seed=uniform_yield[1])
         if hasattr(self.model, "read_failure"):       # elastic_plastic: <damage_model>, <erosion>
             self.params = self.model.read_failure(self.params, node, cm)
         else:
@@ -172,6 +185,9 @@ class Material:
         self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
         self.needs_temperature = getattr(self.model, "NEEDS_TEMPERATURE", False)   # p.temperature / p.dTdt in the state
         self.max_delT = getattr(self.model, "MAX_DELT", np.inf)
+        # V = m J / volume_density: the density over the initial J (Uintah's V_old J/J_old, where
+        # a model starts from F != I with the geometric volume: jwlpp_mpm's initial pressure)
+        self.volume_density = self.density * getattr(self.model, "initial_J", lambda params: 1.0)(self.params)
         if kind == "ideal_gas_fluid":
             # e0 = c_v T: the model's <specific_heat>, else the material's
             self.cv = self.params.specific_heat or props["specific_heat"]
@@ -221,9 +237,15 @@ class Material:
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
         (unit tangent, thickness) from the chain; the models with an initial_state
         (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple."""
+        drawn = getattr(self.params, "yield_uniform", False)      # UCNH's p.yieldStress
+        draw = None
+        if drawn or getattr(self.damage, "random", False):
+            draw = (self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
         if self.damage is not None:
-            return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"])
+            return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"], draw=draw)
         if self.state_names and hasattr(self.model, "initial_state"):
+            if drawn:
+                return self.model.initial_state(self.params, len(d["id"]), d["temp"], draw=draw)
             return self.model.initial_state(self.params, len(d["id"]), d["temp"])
         if self.model_name == "ideal_gas_fluid":
             return self.cv * d["temp"]
@@ -296,7 +318,24 @@ class Material:
         order = np.argsort(data["id"], kind="stable")
         data = {key: np.ascontiguousarray(v[order]) for key, v in data.items()}
         data["mass"] = self.density * data["vol"]
+        data["patch"], data["obj_base"] = patch, obj_base
         return data
+
+    def uintah_creation_order(self, d):
+        """The indices of a patch's particles (create's dict d, sorted by ID) in the order
+        Uintah's ParticleCreator makes them: object by object, the cells x fastest, then each
+        cell's particles with the z lattice index fastest (its loops ix, iy, iz)."""
+        lv = d["patch"].level
+        ids = d["id"]
+        k = (ids >> 40) - d["obj_base"]
+        lattice = ids & ((1 << 40) - 1)
+        res = np.array([[1 if lv.collapsed[a] else o.get("res", (1, 1, 1))[a] for a in range(3)]
+                        for o in self.objects], np.int64)[k]
+        nsub = np.array(lv.ncells, np.int64) * res
+        sub = np.stack([lattice % nsub[:, 0], (lattice // nsub[:, 0]) % nsub[:, 1],
+                        lattice // (nsub[:, 0] * nsub[:, 1])], axis=1)
+        cell, ip = sub // res, sub % res
+        return np.lexsort((ip[:, 2], ip[:, 1], ip[:, 0], cell[:, 0], cell[:, 1], cell[:, 2], k)).astype(np.int64)
 
 
 # -- membrane strings (004 sec. 3.2) ------------------------------------------------------
@@ -305,6 +344,14 @@ MEMBRANE = {
     "thickness": Param("float", doc="membrane thickness h (m): point volume = spacing * h * depth", above=0.0),
     "closed": Param("bool", True, doc="the last vertex joins the first"),
 }
+
+
+def uintah_patch_id(patch):
+    """The ID Uintah gives this patch of a one-level grid: its Grid loops over the layout with z
+    fastest, where pysus numbers x fastest."""
+    i, j, k = patch.index
+    _, ny, nz = patch.level.layout
+    return (i * ny + j) * nz + k
 
 
 def read_membrane_object(g, with_color):

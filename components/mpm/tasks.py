@@ -138,9 +138,12 @@ class MPMTasks:
                            axisymmetric=self.axisymmetric)
             n = len(d["id"])
             new_dw.create_particles(m, patch, n)
-            F = np.zeros((n, 3, 3))
-            F[:, 0, 0] = F[:, 1, 1] = F[:, 2, 2] = 1.0
-            stress = np.zeros((n, 3, 3))
+            if hasattr(mat.model, "initial_deformation"):     # jwlpp_mpm's initial pressure
+                F, stress = mat.model.initial_deformation(mat.params, n)
+            else:
+                F = np.zeros((n, 3, 3))
+                F[:, 0, 0] = F[:, 1, 1] = F[:, 2, 2] = 1.0
+                stress = np.zeros((n, 3, 3))
             energy = np.zeros(n)
             state = mat.initial_state(d)
             if mat.is_membrane:
@@ -157,6 +160,8 @@ class MPMTasks:
                    L.pQ: np.zeros(n)}
             if self.saves_scale:
                 put[L.pScaleFactor] = scale_factor(F, d["size"])
+            if self.projection:
+                put[L.pVelGradLast] = np.zeros((n, 3, 3))
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for lab, _ in self.carry:           # the carried model states: this material's, else zeros
                 if lab.name in L.STATE:
@@ -215,8 +220,12 @@ class MPMTasks:
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
             gv = new_dw.allocate(L.gVelocity, m, patch, 0.0)     # momentum, then velocity
             gvol = new_dw.allocate(L.gVolume, m, patch, 0.0) if self.grid_volume else _NOS
+            grads = _split(old_dw, L.pVelGradLast, m, patch)[:2] if self.projection else ()
+            if self.projection and not self.grid_volume:
+                gvol = np.zeros_like(gm)      # the projected p2g computes the volume anyway
             self.p2g_runs(own, ghost, runs, has_f, self.grid_volume, lv.anchor, lv.dx, low, gm, gv, gvol,
-                          new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0))
+                          new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0),
+                          *grads)
             kernels.divide_by_mass(gm, gv, gv)
             self.bcs.apply_symmetric(patch, m, gv)             # as Uintah (bc.py)
 
@@ -526,7 +535,8 @@ class MPMTasks:
             self.g2p(self.musl, tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low,
                      new_dw.get(L.gVelocityStar, m, patch), new_dw.get(L.gAcceleration, m, patch), dt, x_new, v_new,
                      Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"],
-                     mat.uses_L or (not self.musl and self.f_terms != 1), F_old, F_new, vol_new, mat.density, xpic=xpic)
+                     mat.uses_L or (not self.musl and self.f_terms != 1), F_old, F_new, vol_new, mat.volume_density,
+                     xpic=xpic)
             if not self.musl and self.f_terms != 1:     # Uintah's minimum_subcycles_for_F (prescribed.py)
                 from .prescribed import deform_series
                 deform_series(Lg, F_old, dt, self.f_terms, F_new, vol_new)
@@ -535,12 +545,21 @@ class MPMTasks:
                 if not self.contact.active:
                     self.bcs.apply(patch, m, gvl, np.empty_like(gvl), gvl, dt)
             else:
+                if f["DoPressureStabilization"]:
+                    self._stabilize(patch, own[0], dt, F_old, old_dw.get(L.pVolume, m, patch), F_new, vol_new, Lg)
                 new_dw.put(L.pVelGrad, m, patch, Lg if mat.uses_L else _zeros33(n))
             new_dw.put(L.pXpre, m, patch, x_new)
             new_dw.put(L.pVelocityPre, m, patch, v_new)
         if self.musl and self.contact.active:
             self._contact_remapped(patch, matls, old_dw, new_dw, dt, remapped)
         self._put_totals(new_dw, tot)
+
+    def _stabilize(self, patch, px, dt, F_old, vol_old, F_new, vol_new, Lg):
+        """<DoPressureStabilization>: F_new and L_p of the owned particles (p.x at the step's
+        start) take their cell's mean J, V_new follows V_old (kernels.pressure_stabilization)."""
+        lv = self.level
+        kernels.pressure_stabilization(px, lv.anchor, lv.dx, np.array(patch.lo), np.array(patch.hi),
+                                       np.array(self.dims), dt, F_old, vol_old, F_new, vol_new, Lg)
 
     def _contact_remapped(self, patch, matls, old_dw, new_dw, dt, gvl):
         """MUSL with contact: the remapped velocities v^L get the same contact as v*
@@ -582,7 +601,7 @@ class MPMTasks:
             model, K, mu = transfer.FUSED[mat.model_name], mat.params.bulk_modulus, mat.params.shear_modulus
         ws = self.grad(px, self._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
                        np.array(patch.low_index(NC), np.int64), new_dw.get(L.gVelocityL, m, patch), Lg,
-                       mat.uses_L, dt, pm, mat.density, F_old, F_new, vol_new, model, K, mu, *stress)
+                       mat.uses_L, dt, pm, mat.volume_density, F_old, F_new, vol_new, model, K, mu, *stress)
         return Lg, np.array(ws)
 
     def membrane_tangents(self, patch, matls, old_dw, new_dw):
@@ -653,13 +672,17 @@ class MPMTasks:
             n = len(F_old)
             s_new = new_dw.allocate(L.pStressPre, m, patch, None)
             energy = np.empty(n)
-            fused = self.musl and mat.model_name in transfer.FUSED and mat.damage is None   # stress in the grad pass
+            fused = (self.musl and mat.model_name in transfer.FUSED and mat.damage is None      # stress in the grad pass
+                     and not self.flags["DoPressureStabilization"])
             if self.musl:
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
                 Lg, w = self._velocity_gradient(patch, m, old_dw, new_dw, dt, pm, F_old, F_new, vol_new,
                                                 (old_dw.get(L.pVelocity, m, patch), s_new, energy) if fused
                                                 else None)
+                if self.flags["DoPressureStabilization"]:
+                    self._stabilize(patch, old_dw.get(L.pX, m, patch), dt, F_old, old_dw.get(L.pVolume, m, patch),
+                                    F_new, vol_new, Lg)
             else:                                   # F and V were computed with L_p by g2p
                 Lg = new_dw.get(L.pVelGrad, m, patch)
                 F_new = new_dw.get(L.pFPre, m, patch)
@@ -720,6 +743,11 @@ class MPMTasks:
                                                        else None,
                                                        old_dw.get_reduction(FL.simTime) if mat.damage is not None
                                                        else 0.0))
+            if self.projection:         # L_p for the next step's projection, eroded as Uintah's
+                if getattr(mat.damage, "erodes_F", False):
+                    Lg = mat.damage.erode_kinematics(old_dw.get(L.STATE["p.localizedMPM"][0], m, patch), F_old,
+                                                     F_new.copy(), Lg)
+                new_dw.put(L.pVelGradLastPre, m, patch, Lg)
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
                 q = self.av.q(m, mat, Lg, F_new)
                 new_dw.put(L.pQPre, m, patch, q)

@@ -160,10 +160,13 @@ def _add_L(act, wa, wb, wc, ga, gb, gc, ta, gv0, gv1, gv2, L00, L01, L02, L10, L
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass, gmom, gvol, gfext, gfint):
+def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass, gmom, gvol, gfext, gfint,
+         proj, grad_own, grad_ghost):
     """Accumulate (+=) m, mv, V (if has_v), fext (if has_f), fint of the particles on the node
     arrays: the owned and ghost sources (x, m, v, V, sigma, fext, lp), run by run in their
-    merged ID order (particle_kernels.runs), so every node adds its shares in particle-ID order."""
+    merged ID order (particle_kernels.runs), so every node adds its shares in particle-ID order.
+    proj: Uintah's gradient-enhanced velocity projection, m (v_p + L_p (x_i - x_p)) at node i,
+    with the particles' velocity gradients grad_own, grad_ghost of their last step."""
     sh0, sh1, sh2 = gmass.shape
     ih = _inv_dx(dx)
     fm = gmass.reshape(-1)
@@ -175,6 +178,7 @@ def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass,
     nq = _corners(kind, act)
     for r in range(runs.shape[0]):
         px, pmass, pvel, pvol, pstress, pfext, lp = own if runs[r, 0] == 0 else ghost
+        pgrad = grad_own if runs[r, 0] == 0 else grad_ghost
         for c0 in range(runs[r, 1], runs[r, 2], CHUNK):
             c1 = min(c0 + CHUNK, runs[r, 2])
             for p in range(c0, c1):
@@ -188,14 +192,17 @@ def _p2g(kind, act, own, ghost, runs, has_f, has_v, anchor, dx, node_low, gmass,
                 for cq in range(nq):
                     q = (p - c0) * nq + cq
                     _p2g_one(kind, act, has_f, has_v, p, q, sb, _stencil_get(kind, act, q, ih, sw), sh0, sh1,
-                             sh2, pmass, pvel, pvol, pstress, pfext, fm, fv, fp, fe, fi)
+                             sh2, pmass, pvel, pvol, pstress, pfext, fm, fv, fp, fe, fi, proj, px, pgrad, anchor,
+                             dx, node_low)
 
 
 @njit(cache=True, fastmath=FM, inline="always")
 def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, pvol, pstress, pfext, fm, fv, fp, fe,
-             fi):
+             fi, proj, px, pgrad, anchor, dx, node_low):
     """p2g's shares of particle p on the flat node arrays: weights st (_stencil_get), local base
-    node (i, j, k) in column q of sb; shares on nodes beyond the arrays are dropped."""
+    node (i, j, k) in column q of sb; shares on nodes beyond the arrays are dropped. proj: the
+    momentum at node i is m (v + L (x_i - x_p)) (SerialMPM's interpolateParticlesToGrid with
+    UseGradientEnhancedVelocityProjection), x_i = anchor + (local index + node_low) dx."""
     na, nb, nc = _counts(kind, act)
     wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2 = st
     i, j, k = sb[0, q], sb[1, q], sb[2, q]
@@ -239,9 +246,22 @@ def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, 
                 fm[f] += m * S
                 if has_v:
                     fv[f] += V * S
-                fp[f3] += mv0 * S
-                fp[f3 + np.uint64(1)] += mv1 * S
-                fp[f3 + np.uint64(2)] += mv2 * S
+                if proj:
+                    d0, d1, d2 = _node_offset(act, px, p, anchor, dx, node_low, i + a, j + b, k + c)
+                    pv0 = m * (pvel[p, 0] - (pgrad[p, 0, 0] * d0 + pgrad[p, 0, 1] * d1 + pgrad[p, 0, 2] * d2))
+                    pv1 = m * (pvel[p, 1] - (pgrad[p, 1, 0] * d0 + pgrad[p, 1, 1] * d1 + pgrad[p, 1, 2] * d2))
+                    pv2 = m * (pvel[p, 2] - (pgrad[p, 2, 0] * d0 + pgrad[p, 2, 1] * d1 + pgrad[p, 2, 2] * d2))
+                    if act & AXI:
+                        pv2 = 0.0
+                        if not act & 2:
+                            pv1 = 0.0
+                    fp[f3] += pv0 * S
+                    fp[f3 + np.uint64(1)] += pv1 * S
+                    fp[f3 + np.uint64(2)] += pv2 * S
+                else:
+                    fp[f3] += mv0 * S
+                    fp[f3 + np.uint64(1)] += mv1 * S
+                    fp[f3 + np.uint64(2)] += mv2 * S
                 if has_f:
                     fe[f3] += pfext[p, 0] * S
                     if act & AXI:
@@ -266,6 +286,16 @@ def _p2g_one(kind, act, has_f, has_v, p, q, sb, st, sh0, sh1, sh2, pmass, pvel, 
                     fi[f3] -= s00 * G0 + s01 * G1 + s02 * G2
                     fi[f3 + np.uint64(1)] -= s10 * G0 + s11 * G1 + s12 * G2
                     fi[f3 + np.uint64(2)] -= s20 * G0 + s21 * G1 + s22 * G2
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _node_offset(act, px, p, anchor, dx, node_low, li, lj, lk):
+    """x_p - x_i of particle p and the node of local index (li, lj, lk) (0 along an inactive axis,
+    whose one node layer has no position of its own)."""
+    d0 = px[p, 0] - (anchor[0] + (li + node_low[0]) * dx[0]) if act & 1 else 0.0
+    d1 = px[p, 1] - (anchor[1] + (lj + node_low[1]) * dx[1]) if act & 2 else 0.0
+    d2 = px[p, 2] - (anchor[2] + (lk + node_low[2]) * dx[2]) if act & 4 else 0.0
+    return d0, d1, d2
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -542,22 +572,37 @@ INTERPOLATORS = {"linear": LINEAR, "gimp": GIMP, "cpdi": CPDI, "fast_cpdi": CPDI
 
 
 @functools.lru_cache(maxsize=None)
-def _p2g_entry(interpolator, axes):
-    """p2g (signature above) for one interpolator and active-axis mask."""
+def _p2g_entry(interpolator, axes, projection=False):
+    """p2g (signature above) for one interpolator and active-axis mask; with projection (Uintah's
+    UseGradientEnhancedVelocityProjection) it takes the owned and ghost particles' velocity
+    gradients after grid_fint (and always computes g.volume)."""
     kind = INTERPOLATORS[interpolator]
+
+    if projection:
+        @njit(cache=True, fastmath=FM)
+        def p2g_projected(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum,
+                          grid_volume, grid_fext, grid_fint, grad_owned, grad_ghost):
+            if has_fext:
+                _p2g(kind, axes, owned, ghost, runs, True, True, anchor, dx, node_low, grid_mass, grid_momentum,
+                     grid_volume, grid_fext, grid_fint, True, grad_owned, grad_ghost)
+            else:
+                _p2g(kind, axes, owned, ghost, runs, False, True, anchor, dx, node_low, grid_mass, grid_momentum,
+                     grid_volume, grid_fext, grid_fint, True, grad_owned, grad_ghost)
+        return p2g_projected
 
     @njit(cache=True, fastmath=FM)
     def p2g(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum, grid_volume,
             grid_fext, grid_fint):
+        no_grad = np.empty((0, 3, 3))
         if has_fext:
             _p2g(kind, axes, owned, ghost, runs, True, True, anchor, dx, node_low, grid_mass, grid_momentum,
-                 grid_volume, grid_fext, grid_fint)
+                 grid_volume, grid_fext, grid_fint, False, no_grad, no_grad)
         elif has_volume:
             _p2g(kind, axes, owned, ghost, runs, False, True, anchor, dx, node_low, grid_mass, grid_momentum,
-                 grid_volume, grid_fext, grid_fint)
+                 grid_volume, grid_fext, grid_fint, False, no_grad, no_grad)
         else:
             _p2g(kind, axes, owned, ghost, runs, False, False, anchor, dx, node_low, grid_mass, grid_momentum,
-                 grid_volume, grid_fext, grid_fint)
+                 grid_volume, grid_fext, grid_fint, False, no_grad, no_grad)
     return p2g
 
 
@@ -655,15 +700,16 @@ def one_run(n):
     return np.array([[0, 0, n]], np.int64)
 
 
-def kernels(interpolator, axes):
+def kernels(interpolator, axes, projection=False):
     """(p2g, g2p, grad) for `interpolator` on the active-axis mask `axes`, with shape.AXI for an
     axisymmetric run (signatures above). g2p(musl, *args, xpic=(grid_velocity, grid_vel_spssp))
-    is XPIC(2)'s update (FLIP's without xpic)."""
+    is XPIC(2)'s update (FLIP's without xpic). projection: p2g is the gradient-enhanced one
+    (_p2g_entry)."""
     def g2p(musl_flag, *args, xpic=None):
         if xpic is None:            # FLIP: the stand-ins have g.velocity_star's type (no new specialisation)
             return _g2p_entry(interpolator, axes, musl_flag, False)(*args, args[6], args[6])
         return _g2p_entry(interpolator, axes, musl_flag, True)(*args, *xpic)
-    return _p2g_entry(interpolator, axes), g2p, _grad_entry(interpolator, axes)
+    return _p2g_entry(interpolator, axes, projection), g2p, _grad_entry(interpolator, axes)
 
 
 def xpic_kernel(interpolator, axes):

@@ -23,8 +23,8 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
      Fluids with thermal_conductivity > 0 conduct (ICE::computeHeatFlux).
   13 MPM grid BCs, interpolateToParticlesAndUpdate, computeStressTensor, relocation
   12 ICE::advectAndAdvanceInTime (fluids; with <advection openFaceTransfers="true">, where a
-     solid advances through a cell toward a more open neighbour, the fluid it displaces crosses
-     the face as open as that neighbour: tasks.open_faces, docs/MPMICE.md)
+     solid's particles advance through a cell toward a more open neighbour, the fluid they
+     displace crosses the face as open as that neighbour: tasks.open_faces, docs/MPMICE.md)
 The ICE and MPM tasks are those components' own task bodies; this module only
 declares them over the right material sets and interleaves the coupling tasks.
 With <CFD><ICE><ImplicitSolver> steps 3-5 are ICE's semi-implicit pressure solve
@@ -386,6 +386,8 @@ class MPMICE(MPMICETasks, Component):
             .computes(I.rho_CC).computes(I.vel_CC).computes(I.temp_CC).modifies(I.sp_vol_CC)
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d], G, 1, matls=self.all_matls)
+        if ice.open_faces:          # the solids' own velocity across a face (tasks.open_faces)
+            t.requires(NEW, I.vel_CC, G, 1, matls=self.mpm_matls)
         ice.advect_scalars(t, gadv)
         sched.add_task(t)
         for model in ice.scalars:

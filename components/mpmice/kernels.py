@@ -446,18 +446,22 @@ def open_fraction(solid_vf, fluid_vf, lo, hi, out):
 
 
 @njit(cache=True)
-def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e):
+def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e):
     """Step 12 next to a moving solid, per face [flo, fhi) along d (R cell = face + sh, L = R - e_d):
-    u_s = the solids' face velocities weighted by their volume fractions in the two cells. Where
-    the solid advances from its upwind cell (the donor, open part o_d = opn, fluid mass m_d)
-    toward a more open neighbour (o_n > o_d) in which the fluid is less dense per open volume
-    (m_n / o_n < m_d / o_d), e = min((o_n / o_d - 1) |u_s| dt/dx, the fraction of m_d that makes
-    the two densities per open volume equal), signed as u_s. The solid fills the donor from the
-    side away from the neighbour and displaces the fluid in its open part, which lies against
-    the face, as though the face were as open as the neighbour: u_s o_n dt/dx of the cell's
-    volume, where ICE's flux at the fluid's mean density carries about u o_d dt/dx. |e| <= cap
-    on each face (a face's own bound, the same on the patches either side of it). Returns
-    whether any face moves fluid so."""
+    u_s = the solids' own velocity across the face, the d component of their cell-centred
+    velocities from their particles at the start of the step (vel_CC, step 1) weighted by
+    their volume fractions in the two cells: how fast the particles carry the solid across,
+    not the exchanged face velocity (which a gas flowing through a solid at rest gives it).
+    Where the solid advances from its upwind cell (the donor, open part o_d = opn, fluid mass
+    m_d) toward a more open neighbour (o_n > o_d) in which the fluid is less dense per open
+    volume (m_n / o_n < m_d / o_d), e = min((o_n / o_d - 1) |u_s| dt/dx, the fraction of m_d
+    that makes the two densities per open volume equal), signed as u_s. The solid fills the
+    donor from the side away from the neighbour and displaces the fluid in its open part,
+    which lies against the face, as though the face were as open as the neighbour: u_s o_n
+    dt/dx of the cell's volume, where ICE's flux at the fluid's mean density carries about
+    u o_d dt/dx. |e| <= cap on each face (a face's own bound, the same on the patches either
+    side of it). Returns whether any face moves fluid so: never where the solids' particles
+    are at rest."""
     moved = False
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     for i in range(flo[0], fhi[0]):
@@ -468,10 +472,10 @@ def open_face_transfers(solid_u, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, ca
                 l0, l1, l2 = r0 - e0, r1 - e1, r2 - e2
                 w = 0.0
                 uw = 0.0
-                for s in range(len(solid_u)):
-                    ws = solid_vf[s][l0, l1, l2] + solid_vf[s][r0, r1, r2]
-                    w += ws
-                    uw += ws * solid_u[s][i, j, k]
+                for s in range(len(solid_vel)):
+                    wl, wr = solid_vf[s][l0, l1, l2], solid_vf[s][r0, r1, r2]
+                    w += wl + wr
+                    uw += wl * solid_vel[s][l0, l1, l2, d] + wr * solid_vel[s][r0, r1, r2, d]
                 if w < 1e-9 or uw == 0.0:
                     continue
                 us = uw / w

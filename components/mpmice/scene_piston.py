@@ -36,7 +36,7 @@ def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, 
          open_faces=None):
     """The validation deck with n cells; t_end: maxTime; stop: the piston's stop_time;
     heat: the heat-exchange coefficients (one number for all pairs); output: outputInterval;
-    gamma: both gases' gamma; speed: the piston's speed (m/s; maxTime, stop_time, delt_max and
+    gamma: both gases' gamma (their densities scaled to keep the pressure P1); speed: the piston's speed (m/s; maxTime, stop_time, delt_max and
     outputInterval scale with 1/speed unless given); ratio: V1/V2 at the stop (sets stop_time);
     open_faces: "false" for Uintah's advection next to the piston (the deck's "true": docs/MPMICE.md,
     step 12)."""
@@ -59,6 +59,11 @@ def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, 
         old = "<gamma>                      1.4             </gamma>"
         assert text.count(old) == 2, old
         text = text.replace(old, f"<gamma> {float(gamma)!r} </gamma>")
+        # the gases start from their density (as sus's): scaled so that they start at P1 still
+        old = "<density>               1179.294693       </density>"
+        assert text.count(old) == 2, old
+        rho = 1179.294693 * (GAMMA - 1.0) / (float(gamma) - 1.0)
+        text = text.replace(old, f"<density> {rho!r} </density>")
     if open_faces is not None:
         reps.append(('<advection type = "SecondOrder" openFaceTransfers = "true"/>',
                      f'<advection type = "SecondOrder" openFaceTransfers = "{str(open_faces).lower()}"/>'))

@@ -83,6 +83,7 @@ class MPMinMPMICE(MPM):
     xpic_refused = "in MPMICE (Uintah's MPMICE does not schedule its passes either)"
     artificial_viscosity_refused = None
     ftm_refused = "in MPMICE (Uintah's MPMICE does not schedule its task either)"
+    projection_refused = "in MPMICE (its particle-to-grid transfer of mass, momentum and temperature is its own)"
 
     def __init__(self, n_all):
         super().__init__()

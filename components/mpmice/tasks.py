@@ -293,12 +293,14 @@ class MPMICETasks:
     # -- step 12: the fluids' advection next to the solids -----------------------------------------
     def open_faces(self, patch, m, new_dw, dt):
         """What ICE's advection of fluid m moves across the faces (ice.advection_faces): its face
-        velocities, and where a solid advances from a cell toward a more open neighbour (the
-        open part of a cell: the sum of the fluids' volume fractions) the further fraction of
-        the cell's fluid that the solid displaces through the face (kernels.open_face_transfers,
-        at most OPEN_CAP of a cell a step). ICE's flux alone carries the fluid at the cell's mean
-        density and leaves some of it in the cells a piston fills. Nothing changes where no
-        solid moves into a cell that holds fluid."""
+        velocities, and where a solid's particles advance from a cell toward a more open
+        neighbour (the open part of a cell: the sum of the fluids' volume fractions) the further
+        fraction of the cell's fluid that the solid displaces through the face
+        (kernels.open_face_transfers, at most OPEN_CAP of a cell a step). ICE's flux alone
+        carries the fluid at the cell's mean density and leaves some of it in the cells a piston
+        fills. The solid's motion is its particles' (vel_CC of step 1), not its exchanged face
+        velocity, which a gas flowing through a solid at rest gives it: nothing changes where
+        the particles are at rest or no solid moves into a cell that holds fluid."""
         ice = self.ice
         uf = ice._faces(new_dw, I.FC_VEL_ME, m, patch)
         none = [np.zeros((1, 1, 1))] * 3
@@ -312,11 +314,11 @@ class MPMICETasks:
         cap = self.OPEN_CAP / (2 * int(np.count_nonzero(ice.dims)))        # per face: a cell's faces together
         ef = list(none)
         moved = False
+        solid_vel = tuple(new_dw.get(I.vel_CC, s, patch) for s in self.mpm_matls)    # step 1: the particles'
         for d in range(3):
             if ice.dims[d]:
-                solid_u = tuple(new_dw.get(I.FC_VEL_ME[d], s, patch) for s in self.mpm_matls)
                 ef[d] = np.empty(uf[d].shape)
-                moved |= K.open_face_transfers(solid_u, solid_vf, opn, mass, b.sh[d], d, b.flo[d], b.fhi[d],
+                moved |= K.open_face_transfers(solid_vel, solid_vf, opn, mass, b.sh[d], d, b.flo[d], b.fhi[d],
                                                dt / patch.level.dx[d], cap, ef[d])
         return uf, (ef if moved else none)
 

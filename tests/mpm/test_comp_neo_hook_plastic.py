@@ -241,7 +241,7 @@ def test_const_test_nhp_steps_as_sus(tmp_path):
 @pytest.mark.parametrize("old,new,words", [
     ("<yield_stress>1000.0</yield_stress>", "", ("yield_stress",)),
     ("<alpha> 0.0 </alpha>", "<alpha> 0.0 </alpha><yield_distrib>uniform</yield_distrib>",
-     ("yield_distrib", "accepted", "<hardening_modulus>")),
+     ("yield_range",)),
     ("<hardening_modulus>500.0</hardening_modulus>", "<hardening_modulus>-5</hardening_modulus>",
      ("hardening_modulus",)),
     ("<alpha> 0.0 </alpha>", "<alpha> -0.1 </alpha>", ("alpha",)),

@@ -232,9 +232,9 @@ def test_strain_criterion_and_kinematics():
 
 
 def disk_with_threshold(steps=300, every=10):
-    """disk_UCNHVar.ups with ThresholdVar's constant distribution (Uintah's gauss draws are not
-    implemented), without the gradient-enhanced velocity projection, with GIMP and both
-    objects at 10 m/s (test_ucnh_var.py says why), sus's USL stress update."""
+    """disk_UCNHVar.ups with ThresholdVar's constant distribution (its gauss draws and the
+    gradient-enhanced velocity projection: test_damage_draws.py), without the projection, with
+    GIMP and both objects at 10 m/s (test_ucnh_var.py says why), sus's USL stress update."""
     text = open(DISK).read()
     for old, new in (("<UseGradientEnhancedVelocityProjection>true\n                         "
                       "</UseGradientEnhancedVelocityProjection>", ""),
@@ -283,15 +283,6 @@ def test_disk_UCNHVar_threshold_as_sus(tmp_path):
     t, se = da.reduction("StrainEnergy")
     assert np.allclose(t[1:], sus["se_time"], rtol=1e-11)
     assert np.allclose(se[1:], sus["StrainEnergy"], rtol=1e-8, atol=1e-9 * np.max(sus["StrainEnergy"]))
-
-
-def test_disk_UCNHVar_unchanged_is_refused(tmp_path):
-    with pytest.raises(InputError) as e:
-        run(open(DISK).read().replace("<maxTime>0.30</maxTime>",
-                                      "<maxTime>0.30</maxTime><max_Timesteps>1</max_Timesteps>"), tmp_path)
-    msg = str(e.value)
-    assert "\n" not in msg and ".ups:" in msg
-    assert "UseGradientEnhancedVelocityProjection" in msg or "failure_distrib" in msg, msg
 
 
 def test_erosion_without_damage_changes_nothing(tmp_path):

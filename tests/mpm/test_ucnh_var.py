@@ -1,7 +1,7 @@
 """UCNHVar (components/mpm/constitutive/ucnh_var.py): UCNH with moduli from p.color; Uintah's sus.
 
-Uintah's disk_UCNHVar.ups (tests/mpm/uintah_reference/) needs Uintah's gradient-enhanced
-velocity projection, which pysus does not have. Edited (that flag, the ThresholdVar damage and
+Uintah's disk_UCNHVar.ups (tests/mpm/uintah_reference/) as it is: test_damage_draws.py.
+Edited (the gradient-enhanced velocity projection, the ThresholdVar damage and
 its erosion and the saves of their variables removed; <interpolator>gimp (with fast_cpdi,
 pysus and sus part at the x+ wall from the first step a particle's domain reaches it, 1e-7 in
 velocity growing to 2e-2 in stress: a difference of the CPDI transfer at the wall, not of

@@ -18,8 +18,11 @@ elastic left Cauchy-Green tensor, I at the start).  One step, with f = F_new F_o
     W = K/2 (1/2 (J^2 - 1) - ln J) + mu/2 (tr bbar - 3); ``energy`` gets W V/J
     c = sqrt((K + 4 mu/3) V/m)
 
-As in Uintah, the yield stress is the same for every particle (``yield_distrib``
-"constant"; its random "uniform" distribution is not read), the thermal part of J
+The yield stress is the same for every particle (``yield_distrib`` "constant"), or, with
+``yield_distrib`` "uniform", ``yield_range`` r and ``yield_seed`` (0), each particle's
+p.yieldStress is sigma_y + (2 u - 1) r with u from Uintah's MusilRNG, one stream per patch
+seeded as Uintah's UCNH (uintah_random.py), drawn in Uintah's order of particle creation, so
+that it is sus's on the same patch layout.  As in Uintah, the thermal part of J
 (p.JThermal) is 1 and the stress needs F only (not the velocity gradient).  Without
 plasticity the stress is comp_neo_hook's (the same formula) and there is no state.
 """
@@ -30,6 +33,7 @@ from numba import njit
 
 from . import comp_neo_hook
 from ._common import _get, max_wavespeed
+from .uintah_random import STATE_SIZE, musil_next, musil_start, patch_seed
 
 ENERGY_IS_INCREMENT = False
 UINTAH_UNREAD = ("strain_limit", "reduction_factor")     # in Uintah's decks, read by no Uintah model
@@ -44,6 +48,9 @@ class Params:
     hardening_modulus: float = 0.0
     alpha: float = 0.0                    # initial equivalent plastic strain
     usePlasticity: bool = True
+    yield_uniform: bool = False           # yield_distrib uniform: p.yieldStress drawn per particle
+    yield_range: float = 0.0
+    yield_seed: int = 0
 
     @classmethod
     def from_ups(cls, d):
@@ -54,11 +61,31 @@ class Params:
                    _get(d, "hardening_modulus"), _get(d, "alpha", 0.0), True)
 
 
-def initial_state(params, n, temperature=None):
-    """p.plasticStrain = alpha, p.bElBar = I (Uintah's initializeCMData)."""
+def state_of(params):
+    """p.plasticStrain, p.bElBar (and p.yieldStress, drawn)."""
+    return ("p.plasticStrain", "p.bElBar") + (("p.yieldStress",) if getattr(params, "yield_uniform", False) else ())
+
+
+def initial_state(params, n, temperature=None, draw=None):
+    """p.plasticStrain = alpha, p.bElBar = I (Uintah's initializeCMData); p.yieldStress drawn
+    (draw = (the particles' order of creation in Uintah, the patch's Uintah ID))."""
     be = np.zeros((n, 3, 3))
     be[:, 0, 0] = be[:, 1, 1] = be[:, 2, 2] = 1.0
-    return np.full(n, params.alpha), be
+    if not getattr(params, "yield_uniform", False):        # (UCNHVar's params have no draw)
+        return np.full(n, params.alpha), be
+    ys = np.empty(n)
+    order, patch_id = draw
+    draw_uniform(patch_seed(params.yield_seed, patch_id), params.yield_stress, params.yield_range, order, ys)
+    return np.full(n, params.alpha), be, ys
+
+
+@njit(cache=True)
+def draw_uniform(seed, mean, half_range, order, out):
+    """out[order[k]] = mean + (2 u_k - 1) half_range, u_k the k-th value of one generator."""
+    st = np.zeros(STATE_SIZE, np.int64)
+    musil_start(seed, st)
+    for k in range(order.shape[0]):
+        out[order[k]] = mean + (2.0 * musil_next(st) - 1.0) * half_range
 
 
 @njit(cache=True, inline="always")
@@ -99,9 +126,9 @@ def _abt(a, b):
 
 @njit(cache=True, fastmath={'contract'})
 def kernel(K, mu, sy, H, F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_new, be_new,
-           stress_new, energy):
+           stress_new, energy, yields):
     """Every particle's stress, plastic strain, bElBar and energy; the wave speed (3,).
-    Scalar locals (9-tuples) only."""
+    Scalar locals (9-tuples) only. yields: each particle's yield stress (empty: sy)."""
     ws = np.zeros(3)
     cK = K + 4.0 * mu / 3.0
     for p in range(F_new.shape[0]):
@@ -115,7 +142,7 @@ def kernel(K, mu, sy, H, F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_
         snorm = mu * np.sqrt(d0 * d0 + d4 * d4 + d8 * d8 + bt[1] * bt[1] + bt[2] * bt[2] + bt[3] * bt[3]
                              + bt[5] * bt[5] + bt[6] * bt[6] + bt[7] * bt[7])
         a = alpha_old[p]
-        ftrial = snorm - SQ23 * (H * a + sy)
+        ftrial = snorm - SQ23 * (H * a + (yields[p] if yields.shape[0] else sy))
         scale = 1.0                               # s = scale * s_trial
         if ftrial > 0.0:                          # radial return
             mubar = Ie * mu
@@ -155,6 +182,11 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
     if not params.usePlasticity:
         return comp_neo_hook.update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
                                     energy)
-    (alpha_old, be_old), (alpha_new, be_new) = old, new
+    if params.yield_uniform:
+        (alpha_old, be_old, yields), (alpha_new, be_new, y_new) = old, new
+        y_new[:] = yields
+    else:
+        (alpha_old, be_old), (alpha_new, be_new) = old, new
+        yields = np.empty(0)
     return kernel(params.bulk_modulus, params.shear_modulus, params.yield_stress, params.hardening_modulus,
-                  F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_new, be_new, stress_new, energy)
+                  F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_new, be_new, stress_new, energy, yields)

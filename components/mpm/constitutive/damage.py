@@ -30,9 +30,21 @@ Brittle damage never localizes a particle, so its erosion algorithm changes noth
 ThresholdVar (Uintah's ThresholdDamageVar): ``<variable_properties>`` with ``<entry>``s of
 ``color``, ``mean`` and ``std``: a particle's failure threshold p.epsf is the mean at its
 p.color (interpolated as UCNHVar's moduli); Threshold (ThresholdDamage): the one
-``failure_mean`` (``failure_std`` for a random draw) for every particle; ``failure_distrib``
-"constant" (Uintah's random "gauss", "weibull" and "uniform" draws are not implemented),
-``failure_criteria`` MaximumPrincipalStress (the largest eigenvalue of p.stress+ above
+``failure_mean`` (and ``failure_std``) for every particle; ``failure_distrib`` "constant"
+(p.epsf = the mean) or one of Uintah's random draws, made as Uintah makes them
+(uintah_random.py: its MusilRNG, seeded per patch from ``failure_seed``, 0, and the patch's
+Uintah ID; the particles drawn for in the order Uintah creates them on the patch,
+materials.uintah_creation_order), so that p.epsf is sus's on the same patch layout:
+
+    gauss    |mean + std sqrt(-2 ln x) cos(2 pi y)|, two values x, y; ThresholdVar: a new
+             generator for each particle, seeded with the patch's seed + the particle's number
+             on the patch; Threshold: one generator per patch
+    weibull  eta (-ln y)^(1/std), eta = mean / Gamma(1 + 1/std) (std is the Weibull modulus);
+             ThresholdVar: a new generator with the patch's seed for each particle (so the
+             same y for all of a patch's particles, as Uintah's); Threshold: one per patch
+
+(Uintah's models also have a "uniform" draw and a volume ``<scaling>``, which its input
+specification refuses, and so does pysus).  ``failure_criteria`` MaximumPrincipalStress (the largest eigenvalue of p.stress+ above
 p.epsf) or MaximumPrincipalStrain (of the Almansi strain (I - (F F^T)^-1)/2),
 ``LocalizeParticles`` (true).  A particle that meets it is localized (p.localizedMPM = 1, for good).  The erosion
 then acts on the localized particles (Uintah's ErosionModel), with p.timeofloc the step-start
@@ -56,9 +68,12 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from .uintah_random import STATE_SIZE, gauss, musil_start, patch_seed, weibull
+
 TYPES = ("Brittle", "Threshold", "ThresholdVar")
 EROSION = {"none": 0, "AllowNoTension": 1, "ZeroStress": 2, "AllowNoShear": 3, "PreserveStress": 4}
 CRITERIA = {"MaximumPrincipalStress": 0, "MaximumPrincipalStrain": 1}
+DISTRIBUTIONS = {"constant": 0, "gauss": 1, "weibull": 2}
 
 
 @dataclass(frozen=True)
@@ -93,18 +108,34 @@ class ThresholdVar:
     localize: bool                 # <LocalizeParticles>
     erosion: int                   # EROSION code
     char_time: float
+    stds: tuple = (0.0,)           # the std (gauss) or Weibull modulus at each color
+    distribution: int = 0          # DISTRIBUTIONS code
+    seed: int = 0                  # <failure_seed>
+    by_color: bool = True          # ThresholdVar (draws per particle), else Threshold (per patch)
 
     STATE = ("p.epsf", "p.localizedMPM", "p.timeofloc")
+
+    @property
+    def random(self):
+        """The thresholds are drawn (they need the patch and Uintah's particle order)."""
+        return self.distribution != 0
 
     @property
     def erodes_F(self):
         """The erosion changes F^{n+1} of localized particles (ZeroStress, AllowNo...)."""
         return self.erosion in (1, 2, 3)
 
-    def initial_state(self, n, color):
-        """p.epsf = the mean at the particle's color, not localized, p.timeofloc = -1e99."""
+    def initial_state(self, n, color, draw=None):
+        """p.epsf = the mean at the particle's color, or drawn (draw = (the particles' order of
+        creation in Uintah, the patch's Uintah ID)); not localized, p.timeofloc = -1e99."""
         eps = np.empty(n)
-        threshold_at(np.array(self.colors, float), np.array(self.means, float), color, eps)
+        C, M = np.array(self.colors, float), np.array(self.means, float)
+        if self.random:
+            order, patch_id = draw
+            draw_thresholds(self.distribution, self.by_color, patch_seed(self.seed, patch_id), C, M,
+                            np.array(self.stds, float), order, color, eps)
+        else:
+            threshold_at(C, M, color, eps)
         return eps, np.zeros(n), np.full(n, -1.0e99)
 
     def erode_kinematics(self, loc_old, F_old, F_new, L):
@@ -141,6 +172,39 @@ def threshold_at(C, M, color, out):
                 s = (C[i] - c) / (C[i] - C[i - 1])
                 out[p] = M[i - 1] * s + M[i] * (1.0 - s)
                 break
+
+
+@njit(cache=True, inline="always")
+def mean_std_at(C, M, S, c):
+    """(mean, std) at color c: ThresholdDamageVar's findPropertiesFromColor."""
+    n = C.shape[0]
+    if c >= C[n - 1]:
+        return M[n - 1], S[n - 1]
+    for i in range(1, n):
+        if c <= C[i]:
+            s = (C[i] - c) / (C[i] - C[i - 1])
+            return M[i - 1] * s + M[i] * (1.0 - s), S[i - 1] * s + S[i] * (1.0 - s)
+    return M[0], S[0]
+
+
+@njit(cache=True)
+def draw_thresholds(dist, by_color, seed, C, M, S, order, color, out):
+    """p.epsf of a patch's particles drawn as Uintah's initializeLabels (module docstring), in
+    Uintah's order of creation `order`; `seed` is the patch's."""
+    st = np.zeros(STATE_SIZE, np.int64)
+    if not by_color:                            # one generator for the patch
+        musil_start(seed, st)
+    for num in range(order.shape[0]):
+        p = order[num]
+        mean, std = mean_std_at(C, M, S, color[p])
+        if dist == 1:
+            if by_color:
+                musil_start(seed + num, st)
+            out[p] = abs(gauss(st, mean, std, 1.0))
+        else:
+            if by_color:
+                musil_start(seed, st)
+            out[p] = weibull(st, mean, std, 1.0)
 
 
 @njit(cache=True)
@@ -262,29 +326,35 @@ def read_erosion(er):
 
 def read_threshold_var(dm, erosion, char_time, by_color):
     """<damage_model type="ThresholdVar"> (the entries) or "Threshold" (one <failure_mean>): the
-    criterion, a constant distribution."""
+    criterion and the distribution of the thresholds."""
     crit = dm.get("failure_criteria", "str", choices=tuple(CRITERIA) + ("MohrCoulomb",))
     if crit == "MohrCoulomb":
         raise dm.child("failure_criteria").error("MohrCoulomb is not implemented; accepted: "
                                                  + ", ".join(CRITERIA))
-    dist = dm.get("failure_distrib", "str", "constant", choices=("constant", "gauss", "weibull", "uniform"))
-    if dist != "constant":
-        raise dm.child("failure_distrib").error(f"failure_distrib {dist} draws from Uintah's random number "
-                                                "generators, which are not implemented; accepted: constant")
-    if dm.get("scaling", "str", "none") != "none":
-        raise dm.child("scaling").error("only <scaling>none</scaling> is implemented (no volume scaling)")
-    dm.get("failure_seed", "int", 0)
-    if not by_color:
-        return ThresholdVar((0.0,), (dm.get("failure_mean"),), CRITERIA[crit],
-                            dm.get("LocalizeParticles", "bool", True), erosion, char_time)
-    vp = dm.child("variable_properties", required=True)
-    rows = [(e.get("color"), e.get("mean"), e.get("std", at_least=0.0)) for e in vp.children("entry")]
-    if not rows:
-        raise vp.error("<variable_properties> needs at least one <entry> (<color>, <mean>, <std>)")
-    if any(b[0] <= a[0] for a, b in zip(rows, rows[1:])):
-        raise vp.error("the <entry>s' <color>s must increase")
+    dist = dm.get("failure_distrib", "str", "constant", choices=tuple(DISTRIBUTIONS) + ("uniform",))
+    for tag, what in (("failure_distrib", "uniform"), ("scaling", None), ("reference_volume", None),
+                      ("exponent", None)):
+        c = dm.child(tag)
+        if c is not None and (what is None or c.text().strip() == what):
+            raise c.error(f"<{tag}>{c.text().strip()} is refused by Uintah's input specification (sus does not run "
+                          "it); accepted: <failure_distrib> constant, gauss, weibull, without volume scaling")
+    seed = dm.get("failure_seed", "int", 0)
+    if by_color:
+        vp = dm.child("variable_properties", required=True)
+        rows = [(e.get("color"), e.get("mean"), e.get("std", at_least=0.0)) for e in vp.children("entry")]
+        if not rows:
+            raise vp.error("<variable_properties> needs at least one <entry> (<color>, <mean>, <std>)")
+        if any(b[0] <= a[0] for a, b in zip(rows, rows[1:])):
+            raise vp.error("the <entry>s' <color>s must increase")
+    else:
+        rows = [(0.0, dm.get("failure_mean"),
+                 dm.get("failure_std", at_least=0.0) if dist != "constant" else dm.get("failure_std", "float", 0.0))]
+    if dist == "weibull" and min(r[2] for r in rows) <= 0.0:
+        raise (dm.child("variable_properties") or dm.child("failure_std") or dm).error(
+            "a weibull draw needs a positive Weibull modulus (<std>, <failure_std>)")
     return ThresholdVar(tuple(r[0] for r in rows), tuple(r[1] for r in rows), CRITERIA[crit],
-                        dm.get("LocalizeParticles", "bool", True), erosion, char_time)
+                        dm.get("LocalizeParticles", "bool", True), erosion, char_time, tuple(r[2] for r in rows),
+                        DISTRIBUTIONS[dist], seed, by_color)
 
 
 @njit(cache=True, inline="always")
@@ -359,12 +429,20 @@ class Damaged:
             raise AttributeError(name)
         return getattr(self.model, name)
 
-    def initial_state(self, params, n, temperature=None, color=None):
+    def initial_state(self, params, n, temperature=None, color=None, draw=None):
+        """The model's state, then the damage's (draw: what a random threshold needs,
+        ThresholdVar.initial_state)."""
         own = ()
         if self.n_model:
-            own = self.model.initial_state(params, n, temperature)
+            if getattr(params, "yield_uniform", False):      # UCNH's drawn p.yieldStress
+                own = self.model.initial_state(params, n, temperature, draw=draw)
+            else:
+                own = self.model.initial_state(params, n, temperature)
             own = own if isinstance(own, tuple) else (own,)
-        return own + self.damage.initial_state(n, np.zeros(n) if color is None else color)
+        color = np.zeros(n) if color is None else color
+        if isinstance(self.damage, ThresholdVar):
+            return own + self.damage.initial_state(n, color, draw)
+        return own + self.damage.initial_state(n, color)
 
     def update(self, params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new,
                time=0.0, color=None):

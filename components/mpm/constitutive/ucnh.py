@@ -5,7 +5,8 @@ differ only in the default of ``usePlasticity`` (false here).  Elastic, it is co
 """
 from dataclasses import dataclass
 
-from .comp_neo_hook_plastic import ENERGY_IS_INCREMENT, Params as _PlasticParams, initial_state, update  # noqa: F401
+from .comp_neo_hook_plastic import (ENERGY_IS_INCREMENT, Params as _PlasticParams, initial_state, state_of,  # noqa: F401
+                                    update)
 
 
 @dataclass(frozen=True)

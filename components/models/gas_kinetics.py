@@ -1,0 +1,593 @@
+"""Numba kernels of the gasCombustion model: NASA-7 thermodynamics, reaction rates and the
+constant-volume chemistry sub-integration of one cell, and the mixture's transport properties.
+
+The operations follow Uintah's ReactionMech and gasCombustion::chemStep in the same order,
+so that a deck gives sus's numbers to round-off. `mech` is the Kinetics tuple of a Mechanism
+(gas_mechanism.py): index k over all species, j over the tracked ones (k without the closure).
+"""
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+from numba import njit
+
+from .gas_mechanism import FALLOFF, ELEMENTARY, P_ATM, RU, T_REF
+
+Kinetics = namedtuple("Kinetics", "mw r_gas t_mid h_coef g_coef nasa h_ref rxn_type reactants products "
+                                  "arrhenius efficiencies troe troe_t2 closure visc_fit cond_fit diff_fit "
+                                  "mw_ratio phi_denom")
+
+# chemistry step status codes (the task turns them into an error naming the cell)
+OK, NEG_DENSITY, HARD_T, NEG_Y, BAD_SUM, NO_CONVERGENCE, NEWTON_FAILED = 0, 1, 2, 3, 4, 5, 6
+
+
+def kinetics(mech) -> Kinetics:
+    """The kernels' view of a Mechanism, with the Wilke rule's tables of molecular weight ratios."""
+    mw = mech.mw
+    ratio = (mw[None, :] / mw[:, None]) ** 0.25
+    phi = np.sqrt(8.0 + 8.0 * mw[:, None] / mw[None, :])
+    return Kinetics(mw, mech.r_gas, mech.t_mid, mech.h_coef, mech.g_coef, mech.nasa, mech.h_ref, mech.rxn_type,
+                    mech.reactants, mech.products, mech.arrhenius, mech.efficiencies, mech.troe, mech.troe_t2,
+                    mech.closure, mech.visc_fit, mech.cond_fit, mech.diff_fit, ratio, phi)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _range(t, t_mid):
+    return 1 if t > t_mid else 0
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def cp_over_r(mech, k, t):
+    """cp_k / R_k, the NASA-7 polynomial."""
+    a = mech.nasa[_range(t, mech.t_mid), k]
+    tsqr = t * t
+    tcube = tsqr * t
+    tquad = tcube * t
+    return a[0] + a[1] * t + a[2] * tsqr + a[3] * tcube + a[4] * tquad
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def gibbs_rt(mech, k, t, tlog):
+    """g_k / (Ru T); tlog = 1 - ln T (one logarithm for all species)."""
+    g = mech.g_coef[_range(t, mech.t_mid), k]
+    tsqr = t * t
+    tcube = tsqr * t
+    tquad = tcube * t
+    return (g[0] * tlog) - (g[1] * t) - (g[2] * tsqr) - (g[3] * tcube) - (g[4] * tquad) + (g[5] / t) - g[6]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _h_over_r(h, t):
+    """h_k / R_k (K) of the NASA-7 enthalpy coefficients h = a0, a1/2, .., a4/5, a5."""
+    tsqr = t * t
+    tcube = tsqr * t
+    tquad = tcube * t
+    tpent = tquad * t
+    return (h[0] * t) + (h[1] * tsqr) + (h[2] * tcube) + (h[3] * tquad) + (h[4] * tpent) + h[5]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def energy_molar(mech, k, t):
+    """u_k = h_k - Ru T, J/mol."""
+    return RU * (_h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - t)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def sensible_enthalpy(mech, k, t):
+    """h_s,k = h_k(T) - h_k(T_REF), J/kg."""
+    return mech.r_gas[k] * _h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - mech.h_ref[k]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def sensible_energy(mech, t, y):
+    """e_s(T, Y) = sum_k Y_k (h_s,k(T) - R_k (T - T_REF)), J/kg: the energy ICE carries for the gas."""
+    e = 0.0
+    for k in range(y.shape[0]):
+        e += y[k] * (sensible_enthalpy(mech, k, t) - mech.r_gas[k] * (t - T_REF))
+    return e
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def cv_cp_r(mech, t, y):
+    """The mixture's cp, R = sum Y_k R_k (J/(kg K))."""
+    cp = 0.0
+    r = 0.0
+    for k in range(y.shape[0]):
+        cp += y[k] * mech.r_gas[k] * cp_over_r(mech, k, t)
+        r += y[k] * mech.r_gas[k]
+    return cp, r
+
+
+@njit(cache=True, error_model="numpy")
+def temperature_from_energy(mech, e_s, y, t_guess, t_low, t_high):
+    """T with e_s(T, Y) = e_s: Newton from the guess clamped to the polynomials' range; (T, ok)."""
+    t = min(max(t_guess, t_low), t_high)
+    for _ in range(50):
+        f = sensible_energy(mech, t, y) - e_s
+        cv = 0.0
+        for k in range(y.shape[0]):
+            cv += y[k] * mech.r_gas[k] * (cp_over_r(mech, k, t) - 1.0)
+        dt = f / cv
+        t -= dt
+        if abs(dt) < 1e-10 * t:
+            return t, True
+    return t, False
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _arrhenius(a, b, ea, t, rt):
+    """A T^b exp(-Ea / (Ru T)), skipping the powers and exponentials that are exactly 1 (the
+    same result as evaluating them)."""
+    k = a * t ** b if b != 0.0 else a * 1.0
+    return k * np.exp(-ea / rt) if ea != 0.0 else k * 1.0
+
+
+@njit(cache=True, error_model="numpy")
+def rates_of_progress(mech, t, conc, g, q):
+    """Net rate of each reaction (mol/(cm^3 s)): Arrhenius forward rates (Troe falloff), third
+    bodies, the reverse rate from the equilibrium constant Kc = Kp (1e-6 P_ATM / (Ru T))^dn."""
+    rt = RU * t
+    n = conc.shape[0]
+    tlog = 1.0 - np.log(t)
+    for k in range(n):
+        g[k] = gibbs_rt(mech, k, t, tlog)
+    for r in range(mech.rxn_type.shape[0]):
+        a = mech.arrhenius[r]
+        kf = _arrhenius(a[0], a[1], a[2], t, rt)
+        m = 1.0
+        if mech.rxn_type[r] != ELEMENTARY:
+            m = 0.0
+            for k in range(n):
+                m += mech.efficiencies[r, k] * conc[k]
+        if mech.rxn_type[r] == FALLOFF:
+            k0 = _arrhenius(a[3], a[4], a[5], t, rt)
+            kinf = kf
+            pr = max(k0 * m / kinf, 1e-300)
+            log10_pr = np.log10(pr)
+            tr = mech.troe[r]
+            fc = (1.0 - tr[0]) * np.exp(-t / tr[1]) + tr[0] * np.exp(-t / tr[2])
+            if mech.troe_t2[r]:
+                fc += np.exp(-tr[3] / t)
+            log10_fc = np.log10(fc)
+            c = -0.4 - 0.67 * log10_fc
+            nn = 0.75 - 1.27 * log10_fc
+            sq = (log10_pr + c) / (nn - 0.14 * (log10_pr + c))
+            log10_f = log10_fc / (1.0 + sq * sq)
+            f = 10.0 ** log10_f
+            kf = kinf * pr * f / (1.0 + pr)
+            m = 1.0
+        sum_g = 0.0
+        n_r = 0
+        n_p = 0
+        for s in range(mech.reactants.shape[1]):
+            if mech.reactants[r, s] >= 0:
+                sum_g += g[mech.reactants[r, s]]
+                n_r += 1
+        for s in range(mech.products.shape[1]):
+            if mech.products[r, s] >= 0:
+                sum_g -= g[mech.products[r, s]]
+                n_p += 1
+        kc = np.exp(sum_g)
+        dn = n_p - n_r
+        if dn == 1:             # pow(x, 1) and pow(x, -1) are x and 1 / x exactly
+            kc *= 1e-6 * P_ATM / rt
+        elif dn == -1:
+            kc *= 1.0 / (1e-6 * P_ATM / rt)
+        elif dn != 0:
+            kc *= (1e-6 * P_ATM / rt) ** float(dn)
+        kr = kf / kc
+        fwd = kf
+        for s in range(n_r):
+            fwd *= conc[mech.reactants[r, s]]
+        rev = kr
+        for s in range(n_p):
+            rev *= conc[mech.products[r, s]]
+        q[r] = m * (fwd - rev)
+
+
+@njit(cache=True, error_model="numpy")
+def chem_rhs(mech, t, y, rho, cell_vol, conc, g, q, u, sdot, rhs_mass):
+    """Uintah's chemStep: dY_j/dt (rhs_mass, tracked order) and returns (dT/dt, q_dot V): the
+    constant-volume reactor's right-hand side at (T, Y, rho)."""
+    n = y.shape[0]
+    cp, r_mix = cv_cp_r(mech, t, y)
+    cv = cp - r_mix
+    for k in range(n):
+        conc[k] = 1e-3 * rho * y[k] / mech.mw[k]
+    rates_of_progress(mech, t, conc, g, q)
+    for k in range(n):
+        sdot[k] = 0.0
+    nr = mech.rxn_type.shape[0]
+    for r in range(nr):
+        for s in range(mech.reactants.shape[1]):
+            if mech.reactants[r, s] >= 0:
+                sdot[mech.reactants[r, s]] -= q[r]
+        for s in range(mech.products.shape[1]):
+            if mech.products[r, s] >= 0:
+                sdot[mech.products[r, s]] += q[r]
+    j = 0
+    for k in range(n):
+        if k == mech.closure:
+            continue
+        rhs_mass[j] = mech.mw[k] * sdot[k] * 1e3 / rho
+        j += 1
+    for k in range(n):
+        u[k] = energy_molar(mech, k, t)
+    qdot = 0.0
+    for r in range(nr):
+        du = 0.0
+        for s in range(mech.reactants.shape[1]):
+            if mech.reactants[r, s] >= 0:
+                du += u[mech.reactants[r, s]]
+        for s in range(mech.products.shape[1]):
+            if mech.products[r, s] >= 0:
+                du -= u[mech.products[r, s]]
+        qdot += q[r] * du
+    qdot *= 1e6
+    return qdot / (rho * cv), qdot * cell_vol
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _cell_y(y_tr, i, j, k, yt, y, closure):
+    """Cell (i, j, k)'s mass fractions of all species into y (yt: scratch for the tracked ones)."""
+    for s in range(yt.shape[0]):
+        yt[s] = y_tr[s, i, j, k]
+    _fill_y(y, yt, closure)
+
+
+@njit(cache=True, error_model="numpy")
+def _fill_y(y, y_tracked, closure):
+    """All species' mass fractions from the tracked ones, the closure species 1 - their sum."""
+    s = 0.0
+    j = 0
+    for k in range(y.shape[0]):
+        if k == closure:
+            continue
+        y[k] = y_tracked[j]
+        s += y_tracked[j]
+        j += 1
+    y[closure] = 1.0 - s
+
+
+@njit(cache=True, error_model="numpy")
+def chemistry_cells(mech, y_old, temp, rho, y_src, eng_src, dt_chem, limiter, hrr, lo, hi, dt, cell_vol,
+                    rtol, atol_y, atol_t, safety, max_grow, max_shrink, t_warn, t_hard, do_chemistry):
+    """Uintah's gasCombustion::computeModelSources over the cells [lo, hi): each cell's reactor
+    integrated at constant volume over dt by the adaptive Heun-Euler pair (RK2(1), weighted RMS
+    error of Y and T against rtol |y| + atol), the tracked species' increments added to y_src,
+    rho V (e_s(T, Y) - e_s(T0, Y0)) to eng_src. Returns (status, i, j, k, value, warned): status
+    OK or the first cell's failure, warned the number of cells outside the NASA-7 range."""
+    n = mech.mw.shape[0]
+    nt = n - 1
+    cl = mech.closure
+    y, y_start, y_orig = np.empty(n), np.empty(n), np.empty(n)
+    y_pred, y_heun = np.empty(n), np.empty(n)
+    conc, g, u, sdot = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    q = np.empty(mech.rxn_type.shape[0])
+    k1, k2 = np.empty(nt), np.empty(nt)
+    msrc = np.empty(nt)
+    yt = np.empty(nt)
+    warned = 0
+    for i in range(lo[0], hi[0]):
+        for jj in range(lo[1], hi[1]):
+            for kk in range(lo[2], hi[2]):
+                t = temp[i, jj, kk]
+                rho_c = rho[i, jj, kk]
+                if rho_c <= 0.0:
+                    return NEG_DENSITY, i, jj, kk, rho_c, warned
+                if t < t_warn[0] or t > t_warn[1]:
+                    if t < t_hard[0] or t > t_hard[1]:
+                        return HARD_T, i, jj, kk, t, warned
+                    warned += 1
+                _cell_y(y_old, i, jj, kk, yt, y, cl)
+                ysum = 0.0
+                for k in range(n):
+                    if y[k] < -1e-15:
+                        return NEG_Y, i, jj, kk, y[k], warned
+                    ysum += y[k]
+                if ysum > 1.1 or ysum < 0.0:
+                    return BAD_SUM, i, jj, kk, ysum, warned
+                h = dt
+                tt = 0.0
+                h_min = dt
+                i_worst_min = -1
+                eng_acc = 0.0
+                for s in range(nt):
+                    msrc[s] = 0.0
+                t_start = t
+                y_start[:] = y
+                if do_chemistry:
+                    while tt < dt:
+                        if tt + h > dt:
+                            h = dt - tt
+                            if h <= 1e-15:
+                                break
+                        t_orig = t
+                        y_orig[:] = y
+                        accepted = False
+                        e1_dt, e1_src = chem_rhs(mech, t_orig, y_orig, rho_c, cell_vol, conc, g, q, u, sdot, k1)
+                        while not accepted and h > 1e-15:
+                            ysum = 0.0
+                            s = 0
+                            for k in range(n):
+                                if k == cl:
+                                    continue
+                                y_pred[k] = y_orig[k] + k1[s] * h
+                                ysum += y_pred[k]
+                                s += 1
+                            y_pred[cl] = 1.0 - ysum
+                            t_pred = t_orig + h * e1_dt
+                            e2_dt, e2_src = chem_rhs(mech, t_pred, y_pred, rho_c, cell_vol, conc, g, q, u, sdot, k2)
+                            ysum = 0.0
+                            s = 0
+                            for k in range(n):
+                                if k == cl:
+                                    continue
+                                y_heun[k] = y_orig[k] + 0.5 * h * (k1[s] + k2[s])
+                                ysum += y_heun[k]
+                                s += 1
+                            y_heun[cl] = 1.0 - ysum
+                            t_heun = t_orig + 0.5 * h * (e1_dt + e2_dt)
+                            err = 0.0
+                            worst = 0.0
+                            i_worst = -1
+                            count = 0
+                            for k in range(n):
+                                if k == cl:
+                                    continue
+                                r = (y_heun[k] - y_pred[k]) / (rtol * abs(y_heun[k]) + atol_y)
+                                err += r * r
+                                if abs(r) > worst:
+                                    worst = abs(r)
+                                    i_worst = k
+                                count += 1
+                            r = (t_heun - t_pred) / (rtol * abs(t_heun) + atol_t)
+                            err += r * r
+                            if abs(r) > worst:
+                                worst = abs(r)
+                                i_worst = n
+                            count += 1
+                            err = np.sqrt(err / count)
+                            fac = safety * max(err, 1e-300) ** -0.5
+                            fac = min(max_grow, max(max_shrink, fac))
+                            if err <= 1.0:
+                                for s in range(nt):
+                                    msrc[s] += 0.5 * h * (k1[s] + k2[s])
+                                y[:] = y_heun
+                                eng_acc += 0.5 * h * (e1_src + e2_src)
+                                t = t_heun
+                                if h < h_min:
+                                    h_min = h
+                                    i_worst_min = i_worst
+                                tt += h
+                                h *= fac
+                                accepted = True
+                            else:
+                                h *= fac
+                        if not accepted:
+                            return NO_CONVERGENCE, i, jj, kk, t, warned
+                dt_chem[i, jj, kk] = h_min
+                limiter[i, jj, kk] = i_worst_min
+                for s in range(nt):
+                    y_src[s, i, jj, kk] += msrc[s]
+                eng_src[i, jj, kk] += rho_c * cell_vol * (sensible_energy(mech, t, y) - sensible_energy(mech, t_start, y_start))
+                hrr[i, jj, kk] = eng_acc / (cell_vol * dt)
+    return OK, 0, 0, 0, 0.0, warned
+
+
+@njit(cache=True, error_model="numpy")
+def thermo_cells(mech, y_tr, temp, cv, gamma, lo, hi):
+    """cv and gamma of the mixture at (T, Y) over [lo, hi) (Uintah's modifyThermoTransportProperties);
+    returns the first cell with cv <= 0 as (i, j, k), or (-1, 0, 0)."""
+    n = mech.mw.shape[0]
+    y, yt = np.empty(n), np.empty(n - 1)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
+                cp, r = cv_cp_r(mech, temp[i, j, k], y)
+                c = cp - r
+                if c < 0.0:
+                    return i, j, k
+                cv[i, j, k] = c
+                gamma[i, j, k] = cp / c
+    return -1, 0, 0
+
+
+@njit(cache=True, error_model="numpy")
+def transport_cells(mech, y_tr, temp, rho, mu, lam, diff, lo, hi):
+    """The mixture's viscosity (Wilke's rule), thermal conductivity (the mean of the mole-fraction
+    weighted arithmetic and harmonic means) and mixture-averaged diffusion coefficients
+    D_k = (M - X_k M_k) / (P M sum_j!=k X_j / D_jk) over [lo, hi), from the species' fits."""
+    n = mech.mw.shape[0]
+    y, yt, x, sv, dk = np.empty(n), np.empty(n - 1), np.empty(n), np.empty(n), np.empty(n)
+    dbin = np.empty((n, n))
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
+                t = temp[i, j, k]
+                inv_mw = 0.0
+                for s in range(n):
+                    inv_mw += y[s] / mech.mw[s]
+                for s in range(n):
+                    x[s] = y[s] / (inv_mw * mech.mw[s])
+                ln_t = np.log(t)
+                ln_t2 = ln_t * ln_t
+                ln_t3 = ln_t * ln_t2
+                ln_t4 = ln_t * ln_t3
+                t14 = np.sqrt(np.sqrt(t))
+                for s in range(n):
+                    c = mech.visc_fit[s]
+                    sv[s] = t14 * (c[0] + c[1] * ln_t + c[2] * ln_t2 + c[3] * ln_t3 + c[4] * ln_t4)
+                m = 0.0
+                for a in range(n):
+                    den = 0.0
+                    for b in range(n):
+                        tmp = 1.0 + (sv[a] / sv[b]) * mech.mw_ratio[a, b]
+                        den += (tmp * tmp / mech.phi_denom[a, b]) * x[b]
+                    m += x[a] * (sv[a] * sv[a]) / den
+                mu[i, j, k] = m
+                t12 = np.sqrt(t)
+                arith = 0.0
+                harm = 0.0
+                for s in range(n):
+                    c = mech.cond_fit[s]
+                    la = t12 * (c[0] + c[1] * ln_t + c[2] * ln_t2 + c[3] * ln_t3 + c[4] * ln_t4)
+                    arith += x[s] * la
+                    harm += x[s] / la
+                lam[i, j, k] = 0.5 * (arith + 1.0 / harm)
+                if diff.shape[0] == 0:
+                    continue
+                _mixture_diffusion(mech, t, rho[i, j, k], y, x, dbin, dk)
+                for s in range(n):
+                    diff[s, i, j, k] = dk[s]
+
+
+@njit(cache=True, error_model="numpy")
+def energy_cells(mech, y_tr, temp, es, lo, hi):
+    """e_s(T, Y) over [lo, hi): the specific energy ICE carries for the gas."""
+    n = mech.mw.shape[0]
+    y, yt = np.empty(n), np.empty(n - 1)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
+                es[i, j, k] = sensible_energy(mech, temp[i, j, k], y)
+
+
+@njit(cache=True, error_model="numpy")
+def temperature_cells(mech, y_tr, es, temp, lo, hi, t_low, t_high):
+    """T from e_s and Y over [lo, hi) (Uintah's computeTempFromSensibleEnergy, its guess
+    T_REF + e_s / 1000); returns the first cell whose Newton iteration fails, or (-1, 0, 0)."""
+    n = mech.mw.shape[0]
+    y, yt = np.empty(n), np.empty(n - 1)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
+                e = es[i, j, k]
+                t, ok = temperature_from_energy(mech, e, y, T_REF + e / 1000.0, t_low, t_high)
+                if not ok:
+                    return i, j, k
+                temp[i, j, k] = t
+    return -1, 0, 0
+
+
+@njit(cache=True, error_model="numpy")
+def diffusion_sources(mech, y_tr, temp, rho, y_src, eng_src, dims, lo, hi, dx, dt):
+    """The species' molecular diffusion added to y_src and eng_src over the cells [lo, hi)
+    (Uintah's gasCombustion, doDiffusion): on each face the mixture-averaged fluxes
+    j*_k = rho D_k (M_k / M) (-grad X_k) of the face's mean state, corrected to
+    j_k = j*_k - Y_k sum j* so that they carry no net mass, and the enthalpy they carry
+    sum_k j_k (h_s,k(T_L) + h_s,k(T_R)) / 2; then Y_k -= dt div j_k / rho, m e -= dt div(flux)."""
+    n = mech.mw.shape[0]
+    sh = temp.shape
+    y_all = np.zeros((n,) + sh)
+    x = np.zeros((n,) + sh)
+    hs = np.zeros((n,) + sh)
+    inv_mw = np.zeros(sh)
+    yt, yc = np.empty(n - 1), np.empty(n)
+    for i in range(sh[0]):
+        for j in range(sh[1]):
+            for k in range(sh[2]):
+                _cell_y(y_tr, i, j, k, yt, yc, mech.closure)
+                m = 0.0
+                for s in range(n):
+                    m += yc[s] / mech.mw[s]
+                inv_mw[i, j, k] = m
+                for s in range(n):
+                    y_all[s, i, j, k] = yc[s]
+                    x[s, i, j, k] = yc[s] / (m * mech.mw[s])
+                    hs[s, i, j, k] = sensible_enthalpy(mech, s, temp[i, j, k])
+    jf = np.zeros((3, n) + sh)
+    phi = np.zeros((3,) + sh)
+    yf, dk, xf, dbin = np.empty(n), np.empty(n), np.empty(n), np.empty((n, n))
+    jstar = np.empty(n)
+    for d in range(3):
+        if not dims[d]:
+            continue
+        hi_f = np.array([hi[0], hi[1], hi[2]])
+        hi_f[d] += 1
+        for i in range(lo[0], hi_f[0]):
+            for j in range(lo[1], hi_f[1]):
+                for k in range(lo[2], hi_f[2]):
+                    li, lj, lk = i - (d == 0), j - (d == 1), k - (d == 2)
+                    rho_f = 0.5 * (rho[li, lj, lk] + rho[i, j, k])
+                    inv_f = 0.5 * (inv_mw[li, lj, lk] + inv_mw[i, j, k])
+                    t_f = 0.5 * (temp[li, lj, lk] + temp[i, j, k])
+                    for s in range(n):
+                        yf[s] = 0.5 * (y_all[s, li, lj, lk] + y_all[s, i, j, k])
+                    _mixture_diffusion(mech, t_f, rho_f, yf, xf, dbin, dk)
+                    tot = 0.0
+                    for s in range(n):
+                        grad = -(x[s, i, j, k] - x[s, li, lj, lk]) / dx[d]
+                        jstar[s] = rho_f * dk[s] * mech.mw[s] * inv_f * grad
+                        tot += jstar[s]
+                    flux = 0.0
+                    for s in range(n):
+                        js = jstar[s] - yf[s] * tot
+                        jf[d, s, i, j, k] = js
+                        flux += js * 0.5 * (hs[s, li, lj, lk] + hs[s, i, j, k])
+                    phi[d, i, j, k] = flux
+    area = np.array([dx[1] * dx[2], dx[0] * dx[2], dx[0] * dx[1]])
+    vol = dx[0] * dx[1] * dx[2]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                t = 0
+                for s in range(n):
+                    if s == mech.closure:
+                        continue
+                    div = 0.0
+                    if dims[0]:
+                        div += (jf[0, s, i + 1, j, k] - jf[0, s, i, j, k]) * area[0]
+                    if dims[1]:
+                        div += (jf[1, s, i, j + 1, k] - jf[1, s, i, j, k]) * area[1]
+                    if dims[2]:
+                        div += (jf[2, s, i, j, k + 1] - jf[2, s, i, j, k]) * area[2]
+                    y_src[t, i, j, k] -= div / vol * dt / rho[i, j, k]
+                    t += 1
+                dphi = 0.0
+                if dims[0]:
+                    dphi += (phi[0, i + 1, j, k] - phi[0, i, j, k]) * area[0]
+                if dims[1]:
+                    dphi += (phi[1, i, j + 1, k] - phi[1, i, j, k]) * area[1]
+                if dims[2]:
+                    dphi += (phi[2, i, j, k + 1] - phi[2, i, j, k]) * area[2]
+                eng_src[i, j, k] -= dphi * dt
+
+
+@njit(cache=True, error_model="numpy")
+def _mixture_diffusion(mech, t, rho, y, x, dbin, dk):
+    """Mixture-averaged diffusion coefficients D_k (m^2/s) of a state (T, rho, Y) into dk
+    (Uintah's ReactionMech::mixtureAvgDiffCoeffs)."""
+    n = y.shape[0]
+    r_mix = 0.0
+    for s in range(n):
+        r_mix += y[s] * mech.r_gas[s]
+    inv_mw = 0.0
+    for s in range(n):
+        inv_mw += y[s] / mech.mw[s]
+    for s in range(n):
+        x[s] = y[s] / (inv_mw * mech.mw[s])
+    m_mix = 1.0 / inv_mw
+    p = rho * r_mix * t
+    ln_t = np.log(t)
+    ln_t2 = ln_t * ln_t
+    ln_t3 = ln_t * ln_t2
+    ln_t4 = ln_t * ln_t3
+    t12 = np.sqrt(t)
+    for a in range(n):
+        for b in range(a + 1, n):
+            c = mech.diff_fit[a, b]
+            v = t * t12 * (c[0] + c[1] * ln_t + c[2] * ln_t2 + c[3] * ln_t3 + c[4] * ln_t4)
+            dbin[a, b] = v
+            dbin[b, a] = v
+    for a in range(n):
+        s_ = 0.0
+        for b in range(n):
+            if b != a:
+                s_ += x[b] / dbin[b, a]
+        dk[a] = (m_mix - x[a] * mech.mw[a]) / (p * m_mix * s_)

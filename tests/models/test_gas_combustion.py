@@ -1,0 +1,196 @@
+"""gasCombustion (components/models/gas_combustion.py, gas_mechanism.py, gas_kinetics.py): a
+reacting hydrogen-air mixture in ICE, against sus and against the physics of a closed reactor.
+
+tests/models/cv_hydrogen.ups is Uintah's cvHydrogen2.ups (RX_MODELS: stoichiometric hydrogen-air
+at 1500 K in a closed box, Burke et al.'s mechanism, Uintah's Burke2012Modified.xml, copied here)
+on one cell instead of 27 uniform ones, run to 30 us: the mixture ignites after about 10 us and
+heats to 2496 K. data/sus_cv_hydrogen.npz is sus's output on that deck (one rank, `sus
+cv_hydrogen.ups`, read with framework.uintah_uda): every output's temp_CC, press_CC, rho_CC,
+specific_heat, five species and HeatReleaseRate, and the time of each of its 306 steps.
+
+tests/models/gas_pocket3d.ups: a pocket of hydrogen-rich gas (Y_H2 0.1, O2 0.15) in stoichiometric
+air at 1000 K, 10 x 4 x 4 cells, no chemistry: its higher R_mix pushes the gas out while the
+species diffuse (mixture-averaged, with the enthalpy they carry), so the test runs ICE's whole
+step with the model's caloric EOS, advected species and the diffusion. data/sus_gas_pocket3d.npz:
+sus's fields after each of its 10 steps on the same deck without the advection attributes
+(pysus's `limiter="BarthJespersen" dissipationHeating="false"` is Uintah's scheme, which sus's
+parser does not accept as attributes). Measured: every field to 1.2e-14 of its range.
+
+Measured on cv_hydrogen: the same 306 steps to round-off, temperature, pressure and species to 5e-14 of
+sus's through the ignition, HeatReleaseRate to 4e-13 (dt_chemistry, the smallest adaptive
+sub-step, to 1e-2: it follows the integrator's accept/reject decisions, not a result).
+"""
+import os
+
+import numpy as np
+import pytest
+
+from components.models import gas_kinetics as GK
+from components.models.gas_mechanism import ATOMIC_WEIGHTS, FALLOFF, read_mechanism
+from framework.problemspec import InputError
+
+HERE = os.path.dirname(__file__)
+DECK = os.path.join(HERE, "cv_hydrogen.ups")
+MECH = os.path.join(HERE, "Burke2012Modified.xml")
+
+
+@pytest.fixture(scope="module")
+def mech():
+    return read_mechanism(MECH, "N2")
+
+
+def test_mechanism_is_read(mech):
+    """Burke's 9 species and 23 reactions, molecular weights from Uintah's atomic weights."""
+    assert mech.names == ["H", "H2", "O", "OH", "H2O", "O2", "HO2", "H2O2", "N2"]
+    assert mech.closure == 8
+    assert mech.mw[4] == 2 * ATOMIC_WEIGHTS["H"] + ATOMIC_WEIGHTS["O"]
+    assert len(mech.rxn_type) == 23 and np.count_nonzero(mech.rxn_type == FALLOFF) == 2
+    assert (mech.t_low, mech.t_mid, mech.t_high) == (300.0, 1000.0, 3500.0)     # N2 from 300 K
+
+
+def test_mechanism_errors_name_file_and_line(tmp_path):
+    text = open(MECH).read()
+    with pytest.raises(InputError, match="closure species Ar is not in the mechanism"):
+        read_mechanism(MECH, "Ar")
+    bad = tmp_path / "bad.xml"
+    bad.write_text(text.replace("<reactants>H:1 O2:1</reactants>", "<reactants>H:1 XO2:1</reactants>", 1))
+    with pytest.raises(InputError, match="unknown species XO2") as e:
+        read_mechanism(str(bad), "N2")
+    assert e.value.filename.endswith("bad.xml") and e.value.line == 202
+
+
+def _one_cell(mech, t0, y0, rho, dt, steps):
+    """A closed constant-volume reactor integrated by the model's kernel: (T, Y) after each step,
+    T from the sensible energy that the sources give (as ICE does)."""
+    kin = GK.kinetics(mech)
+    nt = len(mech.names) - 1
+    shape = (1, 1, 1)
+    lo, hi = np.zeros(3, np.int64), np.ones(3, np.int64)
+    temp = np.full(shape, t0)
+    y = np.array(y0, float).reshape(nt, 1, 1, 1)
+    rho_a = np.full(shape, rho)
+    out = []
+    for _ in range(steps):
+        src, eng = np.zeros_like(y), np.zeros(shape)
+        hrr, dtc, lim = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+        es = np.zeros(shape)
+        GK.energy_cells(kin, y, temp, es, lo, hi)
+        st = GK.chemistry_cells(kin, y, temp, rho_a, src, eng, dtc, lim, hrr, lo, hi, dt, 1.0, 1e-10, 1e-12,
+                                1e-12, 0.9, 2.0, 0.1, np.array([200.0, 3500.0]), np.array([120.0, 4900.0]), True)
+        assert st[0] == GK.OK
+        y = y + src
+        es += eng / rho
+        GK.temperature_cells(kin, y, es, temp, lo, hi, 200.0, 3500.0)
+        out.append((float(temp[0, 0, 0]), y[:, 0, 0, 0].copy()))
+    return out
+
+
+def test_closed_reactor_conserves_elements_and_energy(mech):
+    """Stoichiometric hydrogen-air at 1500 K, 0.17 kg/m^3: the H and O atoms and the absolute
+    internal energy sum Y_k u_k(T) / M_k (formation included) stay constant through the ignition,
+    and the burned gas ends at chemical equilibrium (every reaction's net rate small next to
+    its forward rate)."""
+    y0 = [0.0, 0.028522387527567396, 0.0, 0.0, 0.0, 0.22635400697103147, 0.0, 0.0]
+    rho = 0.1698944217103173
+    hist = _one_cell(mech, 1500.0, y0, rho, 1e-6, 400)
+    kin = GK.kinetics(mech)
+    counts = {"H": [1, 2, 0, 1, 2, 0, 1, 2, 0], "O": [0, 0, 1, 1, 1, 2, 2, 2, 0]}
+
+    def full(yt):
+        return np.append(yt, 1.0 - yt.sum())
+
+    def atoms(y, el):
+        return sum(y[k] * counts[el][k] / mech.mw[k] for k in range(9))
+
+    def u_abs(t, y):
+        return sum(y[k] * GK.energy_molar(kin, k, t) / mech.mw[k] * 1e3 for k in range(9))
+
+    y_first = full(np.array(y0))
+    t_end, y_end = hist[-1][0], full(hist[-1][1])
+    assert t_end > 2800.0                                   # it burned
+    for el in counts:
+        assert atoms(y_end, el) == pytest.approx(atoms(y_first, el), rel=1e-12)
+    assert u_abs(t_end, y_end) == pytest.approx(u_abs(1500.0, y_first), rel=1e-10, abs=1e-3 * 2e6)
+    conc = np.array([1e-3 * rho * y_end[k] / mech.mw[k] for k in range(9)])
+    g, q = np.zeros(9), np.zeros(23)
+    GK.rates_of_progress(kin, t_end, conc, g, q)
+    fwd = np.zeros(23)
+    rt = GK.RU * t_end
+    for r in range(23):
+        a = mech.arrhenius[r]
+        fwd[r] = a[0] * t_end ** a[1] * np.exp(-a[2] / rt) * np.prod([conc[k] for k in mech.reactants[r] if k >= 0])
+    main = fwd > 1e-6 * fwd.max()
+    assert np.all(np.abs(q[main]) < 1e-3 * fwd[main])
+
+
+def test_cv_hydrogen_against_sus(tmp_path):
+    """The deck's 306 steps and every output through the ignition, against sus."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    ref = np.load(os.path.join(HERE, "data", "sus_cv_hydrogen.npz"))
+    c = Controller(DECK, quiet=True, filebase=str(tmp_path / "cv.uda"))
+    c.run()
+    da = DataArchive(c.archiver.dir)
+    assert c.timestep == len(ref["step_times"]) - 1            # sus's log counts its initialization as step 0
+    assert c.t == pytest.approx(ref["step_times"][-1], rel=1e-12)
+    checked = 0
+    for i, t in enumerate(da.times):
+        j = np.flatnonzero(np.isclose(ref["times"], t, rtol=1e-12, atol=0))
+        if t == 0.0 or not j.size:
+            continue
+        j = j[0]
+        for lab, tol in (("temp_CC", 1e-12), ("press_CC", 1e-12), ("rho_CC", 1e-13), ("specific_heat", 1e-12),
+                         ("scalar-YH2", 1e-11), ("scalar-YO2", 1e-12), ("scalar-YH2O", 1e-11),
+                         ("scalar-YOH", 1e-11), ("scalar-YH", 1e-11), ("HeatReleaseRate", 1e-11)):
+            ours = float(np.squeeze(da.read(lab, 0, i)[0]))
+            scale = max(abs(ref[lab]).max(), 1e-300)
+            assert abs(ours - ref[lab][j]) <= tol * scale, (lab, t, ours, ref[lab][j])
+        checked += 1
+    assert checked == 15
+    assert ref["temp_CC"][-1] > 2400.0                       # the comparison spans the ignition
+
+
+def test_pocket3d_against_sus(tmp_path):
+    """Flow, advected species, diffusion and the caloric EOS over 10 steps in 3D, against sus."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    ref = np.load(os.path.join(HERE, "data", "sus_gas_pocket3d.npz"))
+    c = Controller(os.path.join(HERE, "gas_pocket3d.ups"), quiet=True, filebase=str(tmp_path / "p.uda"))
+    c.run()
+    da = DataArchive(c.archiver.dir)
+    times = [t for t in da.times if t > 0.0]
+    assert np.allclose(times, ref["times"], rtol=1e-13, atol=0)
+    for j in range(len(times)):
+        for lab in ("temp_CC", "press_CC", "rho_CC", "vel_CC", "scalar-YH2", "scalar-YO2", "specific_heat"):
+            ours = da.read(lab, 0, j + 1)[0]
+            theirs = ref[lab][j]
+            span = np.ptp(ref[lab]) if np.ptp(ref[lab]) > 0 else 1.0
+            assert np.max(np.abs(ours.reshape(theirs.shape) - theirs)) <= 1e-13 * span, (lab, j)
+    moved = da.read("scalar-YH2", 0, -1)[0] - da.read("scalar-YH2", 0, 0)[0]
+    assert np.abs(moved).max() > 1e-3                      # the species did move
+
+
+def _mutated(tmp_path, old, new):
+    """The deck with one edit, its mechanism file named by its absolute path."""
+    text = open(DECK).read().replace("<mechanismFile> Burke2012Modified.xml", f"<mechanismFile> {MECH}")
+    assert old in text
+    p = tmp_path / "deck.ups"
+    p.write_text(text.replace(old, new))
+    return str(p)
+
+
+@pytest.mark.parametrize("old,new,message", [
+    ("<Y_init> [0.0, 0.028522387527567396,", "<Y_init> [0.028522387527567396,",
+     "7 mass fractions; accepted: 8, the tracked species H H2 O OH H2O O2 HO2 H2O2"),
+    ("<closureSpecies> N2 </closureSpecies>", "<closureSpecies> Ar </closureSpecies>",
+     "closure species Ar is not in the mechanism"),
+    ("<dynamic_viscosity>     0.0", "<dynamic_viscosity>     1e-5",
+     "runs with the material's <dynamic_viscosity> and <thermal_conductivity> 0"),
+    (f"<mechanismFile> {MECH}", "<mechanismFile> nowhere/Burke2012Modified.xml", "not found"),
+])
+def test_deck_errors(tmp_path, old, new, message):
+    """Each refusal is one line naming the deck's tag."""
+    from framework.controller import Controller
+    with pytest.raises(InputError) as e:
+        Controller(_mutated(tmp_path, old, new), quiet=True, filebase=str(tmp_path / "x.uda"))
+    assert message in str(e.value)
