@@ -223,6 +223,7 @@ class Controller:
         self.recomputes = 0
         self.recompute_reason = None
         self.outputs = set(self.archive_spec["save"]) if self.archive_spec else set()
+        self._apply_save_aliases()
         self.sched.output_labels = set(self.outputs)
         self.compile()
         self._check_memory()
@@ -237,6 +238,19 @@ class Controller:
             for module in self.analysis:          # modules that write files of their own in the uda
                 if hasattr(module, "uda"):
                     module.uda = self.archiver.dir
+
+    def _apply_save_aliases(self):
+        """A component's save_aliases {Uintah's name: the label holding it here}: a <save> of
+        such a name writes that label (ArenaSoil's plastic strain tensor), with a note."""
+        aliases = getattr(self.component, "save_aliases", {})
+        for name in sorted(self.outputs & set(aliases)):
+            held = aliases[name]
+            self.outputs = (self.outputs - {name}) | {held}
+            self.archive_spec["save"] = [held if n == name else n for n in self.archive_spec["save"]]
+            self.archive_spec["save_nodes"][held] = self.archive_spec["save_nodes"][name]
+            if self.comm.rank == 0:
+                print(f'pysus: note: <save label="{name}"> writes {held} (this deck\'s {name} is a tensor, '
+                      f"held under that name)", file=sys.stderr)
 
     def compile(self):
         """Compile the initialization and timestep graphs and check they fit together."""

@@ -28,7 +28,8 @@ from .constitutive._common import det3
 # the models Uintah's artificial viscosity reaches, and the bulk modulus of c_bulk
 BULK = {"elastic_plastic_hp": lambda p: p.bulk_modulus, "hypo_elastic": lambda p: p.K,
         "comp_neo_hook": lambda p: p.bulk_modulus, "comp_neo_hook_plastic": lambda p: p.bulk_modulus,
-        "UCNH": lambda p: p.bulk_modulus, "visco_scram": lambda p: p.bulk_modulus, "rigid": None}
+        "UCNH": lambda p: p.bulk_modulus, "visco_scram": lambda p: p.bulk_modulus, "rigid": None,
+        "ArenaSoil": lambda p: 40.0e9 * p.prm[7] * p.prm[15]}    # arena: the initial b0 K_s (Uintah: the current K)
 HEATING = ("elastic_plastic_hp",)
 
 

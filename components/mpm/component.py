@@ -29,6 +29,8 @@ One timestep (tasks.py), all MPM materials in each task:
                                   (only when saved, boundary_tractions.py)
   exMomIntegrated                 contact on v*_i, a_i    (only with contact)
   setGridBoundaryConditions       v*_i, a_i on boundary nodes (only with BCs)
+  setPrescribedMotion             v*_i = Fdot F^-1 x_i, a_i = 0 (only with <UsePrescribedDeformation>,
+                                  prescribed.py)
   computeSPlusSSPlusVp            XPIC(2)'s twice-smoothed grid velocity (only with <XPIC2>)
   computeGridVelocityForFTM       a force-transmitting material's one acceleration (only with one)
   interpolateToParticlesAndUpdate v_p, x_p (USL: L_p, F_p, V_p; MUSL: v^L_i); totals
@@ -103,6 +105,12 @@ FLAGS = {
                            "TwistedAnnulus"),
     "mms_amplitude": Param("float", 1.0, doc="pysus, mms.py: the stretch (bar) or twist (annulus) at the end"),
     "mms_ramp_time": Param("float", 1.0, above=0.0, doc="pysus, mms.py: the time the motion takes"),
+    "UsePrescribedDeformation": Param("bool", False, doc="the grid velocity of a prescribed deformation "
+                                      "(prescribed.py); implies <stress_update>usl"),
+    "PrescribedDeformationFile": Param("str", "", doc="its table (prescribed.py)"),
+    "minimum_subcycles_for_F": Param("int", 1, doc="F^{n+1} = exp(L dt) F^n: < 0 the Taylor series to that many "
+                                     "terms, > 1 that many substeps (Uintah's); 1: I + L dt (USL only otherwise)"),
+    "UseMomentumForm": Param("bool", False, (False,), "read (false only); sus's validation refuses the tag"),
 }
 
 
@@ -132,6 +140,18 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     carry_models = ()
     # the particles' conservation sums; MPMICE puts them under its own names and adds the gas's
     totals = (L.TotalMass, L.KineticEnergy, L.TotalMomentum)
+    # a <save label="p.temperature"> without <DoExplicitHeatConduction> turns conduction on
+    # (Uintah's default; without it the save names nothing computed)
+    saved_temperature_conducts = True
+
+    @property
+    def save_aliases(self):
+        """ArenaSoil's p.plasticStrain is a tensor, held as p.plasticStrainTensor (labels.py)."""
+        models = {m.model_name for m in self.materials}
+        if "ArenaSoil" in models and not models & {"elastic_plastic", "elastic_plastic_hp", "comp_neo_hook_plastic",
+                                                   "UCNH", "UCNHVar"}:
+            return {"p.plasticStrain": "p.plasticStrainTensor"}
+        return {}
 
     def problem_setup(self, root, level):
         self.level = level
@@ -149,6 +169,22 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 "cpti needs the particles' tetrahedral domains from Uintah's preprocessing step (.pts files "
                 "with the r vectors), which pysus does not read; accepted: linear, gimp, cpdi, fast_cpdi")
         self.musl = self.flags["stress_update"] == "musl"
+        self.prescribed = None
+        if self.flags["UsePrescribedDeformation"]:
+            from . import prescribed
+            if mpm.has("stress_update") and self.musl:
+                raise mpm.child("stress_update").error("a prescribed deformation sets v* (Uintah's USL): accepted "
+                                                       "with it: usl")
+            if not mpm.has("PrescribedDeformationFile"):
+                raise mpm.error("<UsePrescribedDeformation>true needs <PrescribedDeformationFile>")
+            self.musl = False
+            self.prescribed = prescribed.read(mpm.child("PrescribedDeformationFile"), mpm.filename)
+        self.f_terms = self.flags["minimum_subcycles_for_F"]
+        if self.f_terms == 0:
+            raise mpm.child("minimum_subcycles_for_F").error("0 is not accepted: < 0 Taylor terms, > 0 substeps")
+        if self.f_terms != 1 and self.musl:
+            raise mpm.child("minimum_subcycles_for_F").error("a value other than 1 needs <stress_update>usl "
+                                                             "(or a prescribed deformation)")
         if self.dim == 0:
             raise root.child("Grid").error("MPM needs at least one direction with more than one cell")
         if self.kind != "linear":
@@ -217,6 +253,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         self.pressure_bcs = None
         self.thermal_contact_node = mp.child("thermal_contact")
         self.heat_flag_given = mpm is not None and mpm.has("DoExplicitHeatConduction")
+        da = root.child("DataArchiver")
+        self.saves_temperature = self.saved_temperature_conducts and da is not None and any(
+            sv.attr("label", default="") == "p.temperature" for sv in da.children("save"))
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
         self.mms = None
@@ -447,6 +486,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             sched.add_task(Task("MPM::setGridBoundaryConditions", self.set_grid_bcs, ms)
                            .requires(OLD, FL.delT).requires(NEW, L.gVelocity)
                            .modifies(L.gVelocityStar).modifies(L.gAcceleration))
+        if self.prescribed is not None:
+            sched.add_task(Task("MPM::setPrescribedMotion", self.set_prescribed_motion, ms)
+                           .requires(OLD, FL.simTime).modifies(L.gVelocityStar).modifies(L.gAcceleration))
         gg = 2 * ng if self.musl else ng
         if self.xpic:       # ghost particles' nodes: 2 ng around the patch
             t = Task("MPM::computeSPlusSSPlusVp", self.xpic_grid_velocity, ms)

@@ -133,6 +133,8 @@ class Contact:
                                "passed over as Uintah does")
             print(f"pysus: warning: {note}")
             mats = tuple(m for m in mats if m < nmat)
+        if self.type == "null" and node is not None and node.has("mu"):
+            node.child("mu").mark_used()          # Uintah's NullContact passes it over too
         if self.type == "friction":
             self.mu = node.read(FRICTION)["mu"]
             if self.mu < 0:

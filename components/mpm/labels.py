@@ -66,6 +66,14 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.yieldStress": _pair("p.yieldStress"),        # UCNH with yield_distrib uniform: drawn yield stress
          "p.progressF": _pair("p.progressF"),            # jwlpp_mpm: burned fraction
          "p.progressdelF": _pair("p.progressdelF")}      # jwlpp_mpm: its increment of the last step
+# ArenaSoil (arena_soil.py): Uintah's labels; its plastic strain tensor (Uintah's p.plasticStrain)
+# has its own name beside the J2 models' scalar p.plasticStrain
+for _name in ("p.plasticStrainTensor", "p.porePressure", "p.stressQS"):
+    STATE[_name] = _pair(_name, (3, 3))
+for _name in ("p.plasticCumEqStrain", "p.plasticVolStrain", "p.capX", "p.porosity", "p.saturation", "p.p3",
+              "p.elasticVolStrain", "p.COHER", "p.TGROW", "p.ArenaPEAKI1", "p.ArenaFSLOPE", "p.ArenaSTREN",
+              "p.ArenaYSLOPE", "p.ArenaBETA", "p.ArenaCR", "p.ArenaT1", "p.ArenaT2"):
+    STATE[_name] = _pair(_name)
 # elastic_plastic_hp with <deviatoric_stress_model type="hypoViscoElastic">: the deviatoric
 # stress of Maxwell element j (Uintah's names sigmaDevj, sigmaDevj+)
 MAX_MAXWELL_ELEMENTS = 8

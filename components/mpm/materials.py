@@ -36,6 +36,7 @@ MODELS = {
     "UCNH": "ucnh",
     "UCNHVar": "ucnh_var",
     "jwlpp_mpm": "jwlpp_mpm",
+    "ArenaSoil": "arena_soil",
 }
 
 # models whose stress needs only F (their velocity gradient need not be stored)

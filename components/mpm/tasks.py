@@ -455,6 +455,16 @@ class MPMTasks:
                            new_dw.get_modifiable(L.gAcceleration, m, patch),
                            new_dw.get(L.gVelocity, m, patch), dt)
 
+    def set_prescribed_motion(self, patch, matls, old_dw, new_dw):
+        """Uintah's setPrescribedMotion: v*_i = M x_i at the step's start time, a_i = 0 (prescribed.py)."""
+        from . import prescribed
+        M = prescribed.velocity_gradient(self.prescribed, old_dw.get_reduction(FL.simTime))
+        low = np.array(patch.low_index(NC), np.int64)
+        for m in matls:
+            prescribed.set_nodes(M, np.asarray(self.level.anchor, float), np.asarray(self.level.dx, float), low,
+                                 new_dw.get_modifiable(L.gVelocityStar, m, patch),
+                                 new_dw.get_modifiable(L.gAcceleration, m, patch))
+
     def xpic_grid_velocity(self, patch, matls, old_dw, new_dw):
         """XPIC(2) (Hammerquist & Nairn 2017; Uintah's computeSSPlusVp and computeSPlusSSPlusVp in
         one pass): v+_p = sum S v_i at every owned and ghost particle, then g.velSPSSP =
@@ -519,7 +529,8 @@ class MPMTasks:
                 own, runs = self._parts(old_dw, m, patch, [L.pX, L.pVelocity, L.pMass])[::2]
                 ghost, n = own, len(own[0])
                 n_own, gvl = n, _NOG
-                Lg = np.empty((n, 3, 3)) if mat.uses_L else _NOL
+                write_L = mat.uses_L or self.f_terms != 1
+                Lg = np.empty((n, 3, 3)) if write_L else _NOL
                 F_old = old_dw.get(L.pF, m, patch)
                 F_new = new_dw.allocate(L.pFPre, m, patch, None)
                 vol_new = new_dw.allocate(L.pVolumePre, m, patch, None)
@@ -529,8 +540,12 @@ class MPMTasks:
                     if self.xpic and not mat.is_rigid else None)
             self.g2p(self.musl, tuple(own), tuple(ghost), runs, lv.anchor, lv.dx, low,
                      new_dw.get(L.gVelocityStar, m, patch), new_dw.get(L.gAcceleration, m, patch), dt, x_new, v_new,
-                     Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"], mat.uses_L,
-                     F_old, F_new, vol_new, mat.volume_density, xpic=xpic)
+                     Lg, gvl, tot, f["minimum_particle_mass"], f["maximum_particle_velocity"],
+                     mat.uses_L or (not self.musl and self.f_terms != 1), F_old, F_new, vol_new, mat.volume_density,
+                     xpic=xpic)
+            if not self.musl and self.f_terms != 1:     # Uintah's minimum_subcycles_for_F (prescribed.py)
+                from .prescribed import deform_series
+                deform_series(Lg, F_old, dt, self.f_terms, F_new, vol_new)
             if self.musl:
                 kernels.divide_by_mass(new_dw.get(L.gMass, m, patch), gvl, gvl)
                 if not self.contact.active:

@@ -199,8 +199,9 @@ class ThermalTasks:
         node = self.thermal_contact_node
         self.temperature_bcs = bool(self.bcs.temperature_items)
         # Uintah's default is conduction on: a deck that leaves the flag out and asks for thermal
-        # contact or Temperature BCs gets it (pysus's default, off, only spares decks without them)
-        implied = not self.heat_flag_given and (node is not None or self.temperature_bcs)
+        # contact, Temperature BCs or saves p.temperature gets it (pysus's default, off, only spares decks without them)
+        implied = not self.heat_flag_given and (node is not None or self.temperature_bcs
+                                                 or getattr(self, "saves_temperature", False))
         # elastic_plastic_hp carries p.temperature (its p.dTdt heats the particles) but conducts
         # only where Uintah would: not with <DoExplicitHeatConduction>false
         carries_T = any(m.needs_temperature for m in self.materials)

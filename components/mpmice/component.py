@@ -144,6 +144,11 @@ class MPMICE(MPMICETasks, Component):
                     f"<{flag}> true is not implemented in MPMICE (the solid's EOS is the bulk modulus "
                     "with the low-pressure threshold, or <useJWLEOS>'s JWL); accepted: false")
         self.mpm_matls = list(range(nm))
+        for m in self.mpm.materials:
+            if m.model_name == "ArenaSoil":
+                raise m.node.child("constitutive_model").error(
+                    "ArenaSoil in MPMICE (its Murnaghan EOS of <K0_Murnaghan_EOS>, <n_Murnaghan_EOS>) is not "
+                    "implemented; accepted there: the other MPM models")
         bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]
         self.ice = ICEinMPMICE(self.mpm.materials, cv, bulk)

@@ -80,6 +80,7 @@ class GridBCsWithICE(GridBCs):
 class MPMinMPMICE(MPM):
     flags_spec = {**FLAGS, "testForNegTemps_mpm": Param("bool", True, doc="MPMICE: read; no MPM temperature")}
     coupled_reads_grid_volume = True
+    saved_temperature_conducts = False     # MPMICE decides on the solids' temperature itself
     axisymmetric_refused = "with MPMICE (ICE's fluxes and the MPM-ICE pressure force are planar)"
     xpic_refused = "in MPMICE (Uintah's MPMICE does not schedule its passes either)"
     artificial_viscosity_refused = None

@@ -10,6 +10,16 @@ def det3(A):
             + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
 
 
+@njit(cache=True)
+def matmul3(a, b):
+    """a b of 3x3 arrays (numba's @ needs scipy's BLAS)."""
+    c = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            c[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
+    return c
+
+
 @njit(cache=True, inline="always")
 def inv3(A, out):
     """out = A^-1 (3x3)."""
