@@ -224,6 +224,7 @@ TOL = {"stress": 1e-7, "plasticStrain": 2e-8, "porosity": 2e-9, "temperature": 3
     ("<initial_porosity_distrib>      gauss </initial_porosity_distrib>",
      "<initial_porosity_distrib>weibull</initial_porosity_distrib>", ("initial_porosity_distrib", "gauss")),
     ("<mu>0.0</mu>", "<mu>0.0</mu><include_rotation>true</include_rotation>", ("include_rotation",)),
+    ("<stddevstrain_nucleation>       0.1", "<stddevstrain_nucleation>       0.0", ("stddevstrain_nucleation",)),
 ])
 def test_bad_input_is_one_line(tmp_path, old, new, words):
     text = sus_copy()

@@ -158,12 +158,12 @@ TOP = {
 }
 # porosity (Uintah's defaults): used by the gurson yield condition, read and not used with vonMises
 TOP.update({
-    "initial_mean_porosity": Param("float", 0.002, doc="f_0", at_least=0.0),
-    "initial_std_porosity": Param("float", 0.002, doc="std of f_0 with gauss", at_least=0.0),
+    "initial_mean_porosity": Param("float", 0.002, doc="f_0"),
+    "initial_std_porosity": Param("float", 0.002, doc="std of f_0 with gauss"),
     "critical_porosity": Param("float", 0.5, doc="TEPLA erosion only (not implemented)"),
     "frac_nucleation": Param("float", 0.1, doc="f_n, volume fraction of void-nucleating particles"),
     "meanstrain_nucleation": Param("float", 0.3, doc="e_n, mean plastic strain of nucleation"),
-    "stddevstrain_nucleation": Param("float", 0.1, doc="s_n, its standard deviation", above=0.0),
+    "stddevstrain_nucleation": Param("float", 0.1, doc="s_n, its standard deviation (> 0 with gurson)"),
     "initial_porosity_distrib": Param("str", "constant", ("constant", "gauss"),
                                       "f_0 everywhere, or |N(f_0, std)| from Uintah's seeded generator"),
 })
@@ -261,6 +261,11 @@ def read_params(cm, material, props):
         if top["plastic_convergence_algo"] != "biswajit":
             raise yc.error('the gurson yield condition needs <plastic_convergence_algo>biswajit'
                            '</plastic_convergence_algo> (as Uintah); accepted: that, or type="vonMises"')
+        if not top["stddevstrain_nucleation"] > 0.0:
+            sn = cm.child("stddevstrain_nucleation")
+            raise (sn if sn is not None else cm).error(
+                f"<stddevstrain_nucleation> {top['stddevstrain_nucleation']:g} is not accepted with gurson; "
+                "accepted: a positive number (the nucleation's spread in plastic strain)")
     porosity = np.array([top["frac_nucleation"], top["meanstrain_nucleation"], top["stddevstrain_nucleation"],
                          1.0 if top["evolve_porosity"] else 0.0, top["initial_mean_porosity"],
                          top["initial_std_porosity"]])
