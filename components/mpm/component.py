@@ -289,7 +289,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         """Uintah's SpecifiedBodyContact makes its master material rigid (FLIP's particle update
         under <XPIC2>) and, with <XPIC2>, acts after interpolation too (its OneOrTwoStep 2)."""
         c = self.contact
-        if c.type != "rigid":
+        if c.type not in ("rigid", "specified_friction"):
             return
         self.materials[c.master].is_rigid = True
         if self.xpic and c.active:

@@ -34,6 +34,16 @@
                    together): the sum over the nodes where the master has mass of minus
                    the other contact materials' internal force, and of (x - o) x that
                    (0 without include_rotation, as Uintah).
+  specified_friction  Uintah's SpecifiedBodyFrictionContact: the <master_material> (default
+                   0, rigid) moves as `rigid` does (its own grid velocity, a <filename> profile
+                   "t vx vy vz", <stop_time>, <velocity_after_stop>; <include_rotation> is
+                   refused); at a node with friction_LR's alpha material (below) the master
+                   takes that velocity and each other listed material touching it (prominence
+                   not past alpha's) and approaching it (dv.n > 0, dv relative to the rigid
+                   velocity) loses its normal part and, of its tangential part, up to <mu>
+                   times that; the master takes nothing back. Nodes where <ExcludeMaterial>
+                   has mass are left alone. <OneOrTwoStep> 1 (default): after integration
+                   only; 2: also after interpolation. RigidReactionForce is not computed.
   friction_LR      Nairn & Hammerquist's logistic-regression contact (Uintah's
   (friction_LRVar) FrictionContactLR, <mu>): at every node where two or more materials
                    have mass (and particles), the one with the most mass is alpha
@@ -70,7 +80,7 @@ from framework.problemspec import Param
 from . import kernels
 
 TYPES = ("null", "single_velocity", "friction", "friction_bard", "approach", "rigid", "specified",
-         "specified_velocity", "friction_LR", "friction_LRVar")
+         "specified_velocity", "friction_LR", "friction_LRVar", "specified_friction")
 CONTACT = {"type": Param("str", "null", TYPES)}
 FRICTION = {"mu": Param("float", doc="Coulomb friction coefficient", at_least=0.0),
             "volume_constraint": Param("float", 0.0, (0.0,), "only 0 (no constraint)"),
@@ -91,6 +101,16 @@ RIGID = {"direction": Param("ivector", (0, 0, 1), doc="components imposed on the
          "include_rotation": Param("bool", False),
          "normal_only": Param("bool", False, (False,), "normal_only is not implemented"),
          "volume_constraint": Param("float", 0.0, (0.0,), "only 0 (no constraint)")}
+SPECIFIED_FRICTION = {"mu": Param("float", doc="Coulomb friction coefficient", at_least=0.0),
+                      "master_material": Param("int", 0),
+                      "stop_time": Param("float", np.inf),
+                      "velocity_after_stop": Param("vector", (0.0, 0.0, 0.0)),
+                      "filename": Param("str", ""),
+                      "include_rotation": Param("bool", False, (False,), "include_rotation is not implemented "
+                                                "with specified_friction"),
+                      "ExcludeMaterial": Param("int", -999, doc="nodes where it has mass are left alone"),
+                      "OneOrTwoStep": Param("int", 1, (1, 2), "1: after integration only; 2: also after "
+                                            "interpolation")}
 
 
 def _int_list(node):
@@ -141,6 +161,18 @@ class Contact:
                 raise node.child("mu").error("mu must not be negative")
         elif self.type in ("friction_LR", "friction_LRVar"):
             self._read_lr(node, nmat, mats)
+        elif self.type == "specified_friction":
+            r = node.read(SPECIFIED_FRICTION)
+            self.master, self.mu, self.one_or_two = r["master_material"], r["mu"], r["OneOrTwoStep"]
+            if not 0 <= self.master < nmat:
+                raise node.child("master_material").error(
+                    f"material {self.master} does not exist; there are {nmat} MPM materials")
+            self.exclude = r["ExcludeMaterial"] if 0 <= r["ExcludeMaterial"] < nmat else -1
+            mats = (self.master,) + mats
+            self.stop_time = r["stop_time"]
+            self.vel_after_stop = np.array(r["velocity_after_stop"], float)
+            self.rotation = False
+            self.profile = self._profile(node, r["filename"], 4) if r["filename"] else None
         elif self.type == "rigid":
             r = node.read(RIGID)
             self.master = r["master_material"]
@@ -159,13 +191,13 @@ class Contact:
         self.materials = tuple(dict.fromkeys(mats))
         self.active = self.type != "null" and len(self.materials) > 1
         # where the contact acts: after interpolation (v) and/or after integration (v*)
-        lr = self.type in ("friction_LR", "friction_LRVar")
+        lr = self.type in ("friction_LR", "friction_LRVar", "specified_friction")
         self.interpolated = self.active and (self.type in ("single_velocity", "friction")
                                              or (lr and self.one_or_two == 2))
         self.needs_normals = self.active and self.type == "friction"
         self.needs_lr = self.active and lr
         self.needs_color = self.active and self.type == "friction_LRVar"
-        self.needs_time = self.active and self.type == "rigid"
+        self.needs_time = self.active and self.type in ("rigid", "specified_friction")
 
     def _read_lr(self, node, nmat, mats):
         """friction_LR's <mu>, friction_LRVar's <master_material> and colour table."""
@@ -233,6 +265,26 @@ class Contact:
             if integrated:
                 gacc[i].reshape(-1, 3)[...] = a[k]
 
+    def _exchange_specified_friction(self, gmass, gvel, gacc, gvel_old, dt, t, lr):
+        """specified_friction over all MPM materials, with friction_LR's normals."""
+        idx = sorted(gmass)
+        alpha, normal, prom = lr
+        m = np.stack([gmass[i].reshape(-1) for i in idx])
+        v = np.stack([gvel[i].reshape(-1, 3) for i in idx])
+        integrated = gacc is not None
+        a = np.stack([gacc[i].reshape(-1, 3) for i in idx]) if integrated else v
+        vo = np.stack([gvel_old[i].reshape(-1, 3) for i in idx]) if integrated else v
+        requested = np.array([i in self.materials for i in idx], np.bool_)
+        vel, _, _, own = self.rigid_velocity(t)
+        kernels.specified_friction(m, v, requested, alpha.reshape(-1).astype(np.int64), normal.reshape(-1, 3),
+                                   np.stack([prom[i].reshape(-1) for i in idx]), idx.index(self.master),
+                                   np.asarray(vel, float), own, idx.index(self.exclude) if self.exclude >= 0 else -1,
+                                   self.mu, a, vo, dt if integrated else 0.0)
+        for k, i in enumerate(idx):
+            gvel[i].reshape(-1, 3)[...] = v[k]
+            if integrated:
+                gacc[i].reshape(-1, 3)[...] = a[k]
+
     def reaction(self, gmass, fint, t, node_x, own):
         """(RigidReactionForce, RigidReactionTorque) of one patch: see the module doc."""
         idx = list(self.materials)
@@ -269,6 +321,9 @@ class Contact:
         of the patch's nodes, for a rotating rigid body; lr: (g.alphaMaterial,
         g.normAlphaToBeta, {material: g.matlProminence}) and color: the master's g.color
         for friction_LR(Var)."""
+        if self.type == "specified_friction":
+            self._exchange_specified_friction(gmass, gvel, gacc, gvel_old, dt, t, lr)
+            return
         if self.needs_lr:
             self._exchange_lr(gmass, gvel, gacc, gvel_old, dt, lr, color)
             return

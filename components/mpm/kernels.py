@@ -501,6 +501,59 @@ def friction_lr(gmass, gvel, requested, alpha, normal, prom, mu, gacc, gvel_old,
 
 
 @njit(cache=True)
+def specified_friction(gmass, gvel, requested, alpha, normal, prom, master, vel, use_own, exclude, mu,
+                       gacc, gvel_old, dt):
+    """Uintah's SpecifiedBodyFrictionContact: at a node with an alpha material the master
+    takes the rigid velocity (`vel`, or its own with use_own) and another requested material
+    with mass there, not standing out past alpha (prominence) and moving toward the master
+    (dv.n > 0, dv = v_b - v_rigid, n = -normAlphaToBeta) loses that normal part and, of its
+    tangential part, up to mu |dv.n| (the master takes nothing back); elsewhere the master
+    takes the rigid velocity where it has mass. A node where material `exclude` (>= 0) has
+    mass is left alone. dt > 0: a = (v - v_old)/dt at the nodes changed."""
+    nm, nn = gmass.shape
+    rv = np.empty(3)
+    for i in range(nn):
+        for d in range(3):
+            rv[d] = gvel[master, i, d] if use_own else vel[d]
+        al = alpha[i]
+        if al < 0:
+            if gmass[master, i] > 1e-99:
+                for d in range(3):
+                    gvel[master, i, d] = rv[d]
+                    if dt > 0.0:
+                        gacc[master, i, d] = (rv[d] - gvel_old[master, i, d]) / dt
+            continue
+        if exclude >= 0 and gmass[exclude, i] >= 1e-99:
+            continue
+        n0, n1, n2 = -normal[i, 0], -normal[i, 1], -normal[i, 2]
+        for m in range(nm):
+            if not requested[m]:
+                continue
+            if m == master:
+                for d in range(3):
+                    gvel[m, i, d] = rv[d]
+                    if dt > 0.0:
+                        gacc[m, i, d] = (rv[d] - gvel_old[m, i, d]) / dt
+                continue
+            if abs(gmass[master, i]) <= 1e-14 or abs(gmass[m, i]) <= 1e-14 or prom[m, i] - prom[al, i] > 0.0:
+                continue
+            d0, d1, d2 = gvel[m, i, 0] - rv[0], gvel[m, i, 1] - rv[1], gvel[m, i, 2] - rv[2]
+            dn = d0 * n0 + d1 * n1 + d2 * n2
+            if not dn > 0.0:
+                continue
+            t0, t1, t2 = d0 - dn * n0, d1 - dn * n1, d2 - dn * n2
+            tl = np.sqrt(t0 * t0 + t1 * t1 + t2 * t2) + 1e-100
+            t0, t1, t2 = t0 / tl, t1 / tl, t2 / tl
+            fc = min(mu, (d0 * t0 + d1 * t1 + d2 * t2) / (abs(dn) + 1e-100))
+            gvel[m, i, 0] += -dn * n0 - t0 * fc * abs(dn)
+            gvel[m, i, 1] += -dn * n1 - t1 * fc * abs(dn)
+            gvel[m, i, 2] += -dn * n2 - t2 * fc * abs(dn)
+            if dt > 0.0:
+                for d in range(3):
+                    gacc[m, i, d] = (gvel[m, i, d] - gvel_old[m, i, d]) / dt
+
+
+@njit(cache=True)
 def rigid_reaction(master_mass, fint, others, own_lo, own_hi, shape, anchor, spacing, low, origin,
                    with_arm, force, torque):
     """Uintah's RigidReactionForce/Torque: at the owned nodes where the rigid (master)

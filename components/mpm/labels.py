@@ -57,6 +57,7 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.plasticStrainRate": (pPlasticStrainRate, pPlasticStrainRatePre),
          "p.energy": (pEnergy, pEnergyPre),
          "p.strainRate": (pStrainRate, pStrainRatePre),
+         "p.porosity": _pair("p.porosity"),              # elastic_plastic_hp with gurson: void fraction
          "p.bElBar": (pBElBar, pBElBarPre),                              # comp_neo_hook_plastic, UCNH
          "p.epsf": _pair("p.epsf"),                      # damage.py: Brittle's energy threshold, ThresholdVar's
                                                          # failure stress or strain

@@ -236,13 +236,17 @@ class Material:
         """The model state of new particles: plastic strain 0; ideal gas: the specific
         internal energy e = specific_heat * <temperature> of the geometry object; membrane:
         (unit tangent, thickness) from the chain; the models with an initial_state
-        (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple."""
+        (visco_scram, elastic_plastic_hp, comp_neo_hook_plastic): their tuple (elastic_plastic_hp
+        also gets Uintah's order of creation, for its random initial porosity)."""
         drawn = getattr(self.params, "yield_uniform", False)      # UCNH's p.yieldStress
         draw = None
         if drawn or getattr(self.damage, "random", False):
             draw = (self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
         if self.damage is not None:
             return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"], draw=draw)
+        if getattr(self.params, "porosity_gauss", False):
+            return self.model.initial_state(self.params, len(d["id"]), d["temp"],
+                                            creation_order=self.uintah_creation_order(d))
         if self.state_names and hasattr(self.model, "initial_state"):
             if drawn:
                 return self.model.initial_state(self.params, len(d["id"]), d["temp"], draw=draw)

@@ -218,8 +218,11 @@ def test_adiabatic_uniaxial_stress_follows_closed_form(model):
 @pytest.mark.parametrize("replace, words", [
     (('type="johnson_cook"', 'type="johnson_cook_2"'), ("flow_model", "johnson_cook_2", "zerilli_armstrong")),
     (("<B>292.0e6</B>", ""), ("<B>",)),
-    (('<yield_condition type="vonMises"/>', '<yield_condition type="gurson"/>'), ("gurson", "vonMises")),
-    (("<tolerance>", "<plastic_convergence_algo>biswajit</plastic_convergence_algo><tolerance>"),
+    (('<yield_condition type="vonMises"/>', '<yield_condition type="gurson"/>'), ("yield_condition", "q1")),
+    (('<yield_condition type="vonMises"/>', '<yield_condition type="gurson"><q1>1.5</q1><q2>1</q2><q3>2.25</q3>'
+      '<k>4</k><f_c>0.05</f_c></yield_condition>'), ("gurson", "biswajit")),       # as Uintah
+    (('<yield_condition type="vonMises"/>', '<yield_condition type="drucker_prager"/>'), ("gurson", "vonMises")),
+    (("<tolerance>", "<plastic_convergence_algo>newton</plastic_convergence_algo><tolerance>"),
      ("biswajit", "radialReturn")),
     (("<shear_modulus>46.0e9", "<shear_modulus>-46.0e9"), ("shear_modulus", "-46.0e9")),
     (('type="mie_gruneisen"', 'type="tillotson"'), ("equation_of_state", "tillotson", "mie_gruneisen")),

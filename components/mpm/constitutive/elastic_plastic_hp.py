@@ -19,14 +19,22 @@ Deck (``<constitutive_model type="elastic_plastic">`` with a ``<flow_model>``, o
 ``type="elastic_plastic_hp"``): ``shear_modulus``, ``bulk_modulus``,
 ``taylor_quinney_coeff`` (0.9), ``tolerance``, ``initial_material_temperature`` (294 K, the
 reference temperature of T-dependent sub-models), ``compute_specific_heat``,
-sub-models ``flow_model`` (FLOW), ``yield_condition`` (vonMises), ``equation_of_state``
+sub-models ``flow_model`` (FLOW), ``yield_condition`` (YIELD), ``equation_of_state``
 (EOS; none: Uintah's default hyperelastic K/2 (J - 1/J)), ``shear_modulus_model`` (SHEAR),
 ``melting_temp_model`` (MELT), ``specific_heat_model`` (CP), ``stability_check`` (only
 used by Uintah's erosion, which pysus does not couple to this model: "none" is accepted).
 Tags Uintah's model reads and uses only in code pysus does not have (implicit MPM, MPMICE's
-modified EOS, porosity for Gurson and the TEPLA erosion check) are accepted and recorded;
-a deck whose run would need them (a Gurson yield condition, the biswajit algorithm, a
-porosity-driven erosion) is refused.
+modified EOS, the TEPLA erosion check) are accepted and recorded; a deck whose run would need
+them (erosion) is refused.
+``yield_condition type="gurson"`` (GursonYield, with ``plastic_convergence_algo`` biswajit as
+Uintah requires): the trial stress yields where sigma_eq^2 >= sigma_y^2 (1 + q3 f*^2 - 2 q1 f*
+cosh(q2 tr/(2 sigma_y))), tr Uintah's trial trace 3 p + 2 mu tr(D) dt; the biswajit return
+(ElasticPlasticHP::computePlasticStateBiswajit) takes the plastic multiplier from the rate
+and the stress at the step's start (plasticity_kernels.biswajit_increment) and scales the
+trial deviatoric stress to sigma_y(ep, epdot); where that estimate fails, the radial return
+above. In a plastic step the porosity p.porosity grows by (1 - f) tr D dt (expansion) and
+nucleates by A(ep) sqrt(2/3) |dev D| dt; its initial value is f_0 or Uintah's seeded
+Gaussian draws (uintah_random.py) in Uintah's order of particle creation.
 ``deviatoric_stress_model`` (DEV): ``hypoElastic`` (the default, the trial stress above) or
 ``hypoViscoElastic`` with Maxwell elements ``<mu>[mu_1, ...]</mu>`` ``<tau>[tau_1, ...]</tau>``:
 each element j carries its deviatoric stress s_j (Uintah's sigmaDevj), the trial stress is
@@ -55,11 +63,15 @@ from framework.problemspec import Param
 
 from . import plasticity_kernels as pk
 from ._common import det3, inv3, max_wavespeed
+from .uintah_random import STATE_SIZE, gauss, musil_start
 
 ENERGY_IS_INCREMENT = True
 # carried per-particle state (labels.STATE names), in the order of `old`/`new` in update();
 # hypoViscoElastic adds the Maxwell element stresses sigmaDev0, sigmaDev1, ... (state_of)
 STATE = ("p.plasticStrain", "p.plasticStrainRate", "p.energy", "p.strainRate")
+# with the gurson yield condition also the void fraction and Uintah's localization flag (never
+# set: erosion is refused)
+GURSON_STATE = ("p.porosity", "p.localizedMPM")
 MAX_MAXWELL_ELEMENTS = 8          # labels.MAX_MAXWELL_ELEMENTS
 NEEDS_TEMPERATURE = True
 
@@ -120,7 +132,10 @@ CP = {"constant_Cp": (pk.CONST_CP, {}),
       "steel_Cp": (pk.STEEL_CP, {"T_transition": _opt(1040.0), "A_LowT": _opt(190.14), "B_LowT": _opt(273.75),
                                  "C_LowT": _opt(418.30), "n_LowT": _opt(0.2), "A_HighT": _opt(465.21),
                                  "B_HighT": _opt(267.52), "C_HighT": _opt(58.16), "n_HighT": _opt(0.35)})}
-YIELD = ("vonMises",)
+YIELD = {"vonMises": (pk.VON_MISES, {}),
+         "gurson": (pk.GURSON, {"q1": _F(), "q2": _F(), "q3": _F(), "k": _F("f* slope above f_c"),
+                                "f_c": _F("critical porosity of f*")})}
+ALGO = {"radialReturn": False, "biswajit": True}
 HYPO_ELASTIC, HYPO_VISCO_ELASTIC = 0, 1
 DEV = {"hypoElastic": HYPO_ELASTIC, "hypoViscoElastic": HYPO_VISCO_ELASTIC}
 # <stability_check> types: Uintah consults them only for erosion, which this model refuses
@@ -133,9 +148,9 @@ TOP = {
     "tolerance": Param("float", 1.0e-10, doc="read as in Uintah (its flow models ignore it)", above=0.0),
     "initial_material_temperature": Param("float", 294.0, doc="reference T of the EOS energy (K)", above=0.0),
     "compute_specific_heat": Param("bool", False, doc="c_p from <specific_heat_model>, else the material's"),
-    "plastic_convergence_algo": Param("str", "radialReturn", ("radialReturn",),
-                                      "radialReturn (Uintah's biswajit algorithm is not implemented)"),
-    "evolve_porosity": Param("bool", True, doc="porosity only feeds Gurson yield and TEPLA erosion"),
+    "plastic_convergence_algo": Param("str", "radialReturn", tuple(ALGO),
+                                      "radialReturn, or biswajit (needed by gurson)"),
+    "evolve_porosity": Param("bool", True, doc="porosity grows and nucleates in plastic steps (gurson)"),
     "check_TEPLA_failure_criterion": Param("bool", True, doc="with erosion only"),
     "do_melting": Param("bool", True, doc="read; Uintah's model does not use it"),
     "useModifiedEOS": Param("bool", False, doc="MPMICE's rho(p) only"),
@@ -144,10 +159,17 @@ TOP = {
     "check_max_stress_failure": Param("bool", False, (False,), "read; Uintah's model does not use it"),
     "critical_stress": Param("float", 0.0, doc="read; Uintah's model does not use it"),
 }
-for _k in ("initial_mean_porosity", "initial_std_porosity", "critical_porosity", "frac_nucleation",
-           "meanstrain_nucleation", "stddevstrain_nucleation"):
-    TOP[_k] = Param("float", 0.0, doc="porosity (Gurson, TEPLA): read, not used by von Mises")
-TOP["initial_porosity_distrib"] = Param("str", "constant", ("constant", "gauss"), "porosity: read, not used")
+# porosity (Uintah's defaults): used by the gurson yield condition, read and not used with vonMises
+TOP.update({
+    "initial_mean_porosity": Param("float", 0.002, doc="f_0"),
+    "initial_std_porosity": Param("float", 0.002, doc="std of f_0 with gauss"),
+    "critical_porosity": Param("float", 0.5, doc="TEPLA erosion only (not implemented)"),
+    "frac_nucleation": Param("float", 0.1, doc="f_n, volume fraction of void-nucleating particles"),
+    "meanstrain_nucleation": Param("float", 0.3, doc="e_n, mean plastic strain of nucleation"),
+    "stddevstrain_nucleation": Param("float", 0.1, doc="s_n, its standard deviation (> 0 with gurson)"),
+    "initial_porosity_distrib": Param("str", "constant", ("constant", "gauss"),
+                                      "f_0 everywhere, or |N(f_0, std)| from Uintah's seeded generator"),
+})
 
 
 @dataclass(frozen=True)
@@ -168,13 +190,20 @@ class Params:
     dev: int = HYPO_ELASTIC          # deviatoric stress model (DEV)
     maxwell_mu: np.ndarray = None    # hypoViscoElastic: mu_j and tau_j of the Maxwell elements
     maxwell_tau: np.ndarray = None
+    yield_code: int = pk.VON_MISES   # YIELD; gurson's q1, q2, q3, k, f_c in yield_params
+    yield_params: np.ndarray = None
+    biswajit: bool = False           # <plastic_convergence_algo>biswajit
+    porosity: np.ndarray = None      # f_n, e_n, s_n, evolve (1/0), f_0, std f_0
+    porosity_gauss: bool = False
 
 
 def state_of(params):
-    """The carried state names of this deck's model: STATE, and one sigmaDevj per Maxwell element."""
+    """The carried state names of this deck's model: STATE, GURSON_STATE with gurson, and one
+    sigmaDevj per Maxwell element."""
+    st = STATE + (GURSON_STATE if params.yield_code == pk.GURSON else ())
     if params.dev != HYPO_VISCO_ELASTIC:
-        return STATE
-    return STATE + tuple(f"sigmaDev{j}" for j in range(len(params.maxwell_mu)))
+        return st
+    return st + tuple(f"sigmaDev{j}" for j in range(len(params.maxwell_mu)))
 
 
 def _numbers(node, tag):
@@ -229,7 +258,20 @@ def read_params(cm, material, props):
     density, melt_temp, specific_heat)."""
     top = cm.read(TOP)
     yc = cm.child("yield_condition", required=True)
-    yc.attr("type", choices=YIELD)
+    yield_code, yield_params = YIELD[yc.attr("type", choices=tuple(YIELD))][0], np.zeros(0)
+    if yield_code == pk.GURSON:
+        yield_params = _vector(yc, YIELD["gurson"][1])[1]
+        if top["plastic_convergence_algo"] != "biswajit":
+            raise yc.error('the gurson yield condition needs <plastic_convergence_algo>biswajit'
+                           '</plastic_convergence_algo> (as Uintah); accepted: that, or type="vonMises"')
+        if not top["stddevstrain_nucleation"] > 0.0:
+            sn = cm.child("stddevstrain_nucleation")
+            raise (sn if sn is not None else cm).error(
+                f"<stddevstrain_nucleation> {top['stddevstrain_nucleation']:g} is not accepted with gurson; "
+                "accepted: a positive number (the nucleation's spread in plastic strain)")
+    porosity = np.array([top["frac_nucleation"], top["meanstrain_nucleation"], top["stddevstrain_nucleation"],
+                         1.0 if top["evolve_porosity"] else 0.0, top["initial_mean_porosity"],
+                         top["initial_std_porosity"]])
     st = cm.child("stability_check")
     if st is not None:
         st.attr("type", choices=STABILITY)
@@ -274,7 +316,8 @@ def read_params(cm, material, props):
     return Params(top["shear_modulus"], top["bulk_modulus"], props["density"], props["melt_temp"],
                   props["specific_heat"], top["taylor_quinney_coeff"], top["initial_material_temperature"],
                   (code, shear_code, melt_code, eos_code, cp_code), flow, shear, melt, eos, cp,
-                  dev, maxwell_mu, maxwell_tau)
+                  dev, maxwell_mu, maxwell_tau, yield_code, yield_params, ALGO[top["plastic_convergence_algo"]],
+                  porosity, top["initial_porosity_distrib"] == "gauss")
 
 
 def _linear_melt(node):
@@ -292,10 +335,33 @@ def _linear_melt(node):
     raise node.error("linear_Tm needs <a> and <K_T>, <b>, <a>, or <Gamma_0>")
 
 
-def initial_state(params, n, temperature=None):
+def initial_state(params, n, temperature=None, creation_order=None):
     """Plastic strain, its rate, specific energy, strain rate and Maxwell element stresses of
-    new particles: zero (whatever their temperature)."""
-    return tuple(np.zeros(n) for _ in STATE) + tuple(np.zeros((n, 3, 3)) for _ in state_of(params)[len(STATE):])
+    new particles: zero (whatever their temperature); with gurson the localization flag 0 and
+    the porosity f_0, or with gauss |N(f_0, std)| drawn, as Uintah, in its order of particle
+    creation in the patch (`creation_order`: the particles' indices in that order)."""
+    names = state_of(params)
+    out = tuple(np.zeros(n) for _ in STATE)
+    if params.yield_code == pk.GURSON:
+        f0, std = params.porosity[4], params.porosity[5]
+        f = np.full(n, f0)
+        if params.porosity_gauss and n:
+            order = np.arange(n) if creation_order is None else creation_order
+            f[order] = initial_porosity(n, f0, std)
+        out += (f, np.zeros(n))
+    return out + tuple(np.zeros((n, 3, 3)) for _ in names[len(out):])
+
+
+@njit(cache=True)
+def initial_porosity(n, f0, std):
+    """n draws |N(f0, std)| of Uintah's Gaussian(f0, std, seed 0) (ElasticPlasticHP's initial
+    porosity with gauss: the generator restarts with seed 0 for every patch and material)."""
+    st = np.zeros(STATE_SIZE, np.int64)
+    musil_start(0, st)
+    out = np.empty(n)
+    for p in range(n):
+        out[p] = abs(gauss(st, f0, std, 1.0))
+    return out
 
 
 @njit(cache=True)
@@ -336,26 +402,33 @@ def _rotate(R, A, out, forward, B):
 _KERNELS = {}
 
 
-def kernel_for(codes, dev=HYPO_ELASTIC):
-    """The stress kernel of one choice of sub-models (flow, shear, melt, eos, cp) and
-    deviatoric model `dev`: the codes are compile-time constants of the closure, so each
-    choice compiles (and caches) its own. mw_mu, mw_inv_tau (mu_j, 1/tau_j) and sd_old,
-    sd_new (n, elements, 3, 3) are the Maxwell elements' (empty with hypoElastic)."""
-    if (codes, dev) in _KERNELS:
-        return _KERNELS[codes, dev]
+def kernel_for(codes, dev=HYPO_ELASTIC, yield_code=pk.VON_MISES, biswajit=False):
+    """The stress kernel of one choice of sub-models (flow, shear, melt, eos, cp), deviatoric
+    model `dev`, yield condition and return algorithm: the codes are compile-time constants
+    of the closure, so each choice compiles (and caches) its own. mw_mu, mw_inv_tau (mu_j,
+    1/tau_j) and sd_old, sd_new (n, elements, 3, 3) are the Maxwell elements' (empty with
+    hypoElastic); gp, pp the yield condition's and porosity's parameters, f_old, f_new the
+    porosity (empty without gurson); edot_old the strain rate of the previous step."""
+    key = (codes, dev, yield_code, biswajit)
+    if key in _KERNELS:
+        return _KERNELS[key]
     FLOW_C, SHEAR_C, MELT_C, EOS_C, CP_C = codes
     VISCO = dev == HYPO_VISCO_ELASTIC
+    GURSON = yield_code == pk.GURSON
+    BISWAJIT = biswajit
 
     def kernel(G0, K, rho0, Tm0, cp0, chi, L, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                fp, sp, mp, qp, cpp, T_p, ep_old, epdot_old, e_old, ep_new, epdot_new, e_new, edot_new, dTdt,
-               work, mw_mu, mw_inv_tau, sd_old, sd_new):
+               work, mw_mu, mw_inv_tau, sd_old, sd_new, gp, pp, f_old, f_new, edot_old):
         ws = np.zeros(3)
         R, Rinv = np.empty((3, 3)), np.empty((3, 3))
         D, sig, tmp, B = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
         n_mw = mw_mu.shape[0]
         sdm, eta, rate_j, sdot = np.empty((n_mw, 3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
         s23 = math.sqrt(2.0 / 3.0)
+        S_old, eta_b = np.empty((3, 3)), np.empty((3, 3))
         for p in range(L.shape[0]):
+            edot_prev = edot_old[p]                         # (edot_old may be edot_new at t = 0)
             J = det3(F_new[p])
             rho = rho0 / J
             for i in range(3):
@@ -411,12 +484,40 @@ def kernel_for(codes, dev=HYPO_ELASTIC):
             norm_s = math.sqrt(ss)
             ep, epdot = ep_old[p] + epdot_old[p] * dt, epdot_old[p]
             sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)[0]
-            plastic = False
+            plastic = newton = False
             fac, dg = 1.0, 0.0
+            if GURSON:      # Uintah's trial trace: 3 p + 2 mu tr(D) dt
+                phi, sy_eff = pk.gurson_yield(gp, math.sqrt(1.5) * norm_s, sy, 3.0 * pres + trD * (2.0 * mu * dt),
+                                              f_old[p])
+            else:
+                phi, sy_eff = 1.5 * ss - sy * sy, sy
             if T > Tm:                                   # melted: no deviatoric stress
                 fac = 0.0
-            elif 1.5 * ss - sy * sy >= 0.0:              # von Mises: radial return (Newton on dgamma)
-                plastic = True
+            elif phi >= 0.0:
+                plastic = newton = True
+            if plastic and BISWAJIT:
+                # the rate-based estimate from the stress at the start of the step, then scaled
+                # to the flow stress; where it fails, the radial return below
+                nS = 0.0
+                for i in range(3):
+                    for j in range(3):
+                        S_old[i, j] = sig[i, j] - (pres if i == j else 0.0)
+                        eta_b[i, j] = D[i, j] - (trD / 3.0 if i == j else 0.0)
+                        nS += S_old[i, j] * S_old[i, j]
+                if nS > 0.0:
+                    dgb, epd = pk.biswajit_increment(S_old, eta_b, sy_eff, mu, dt)
+                    if dgb > 0.0 and epd <= edot_prev:
+                        epdot, ep = epd, ep_old[p] + epd * dt
+                        sy = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)[0]
+                        denom = 1.0 + (3.0 * math.sqrt(2.0) * mu * dgb) / sy
+                        st = 0.0
+                        for i in range(3):
+                            for j in range(3):
+                                tmp[i, j] = tmp[i, j] / denom
+                                st += tmp[i, j] * tmp[i, j]
+                        fac = sy / (math.sqrt(1.5) * math.sqrt(st))
+                        newton = False
+            if newton:                                   # radial return (Newton on dgamma)
                 tol = min(dt, 1.0e-6)
                 epdot, ep = edot, ep_old[p]
                 dg = epdot * dt / s23
@@ -447,7 +548,7 @@ def kernel_for(codes, dev=HYPO_ELASTIC):
                             if T > Tm:
                                 v = 0.0
                             else:
-                                dp = (tmp[i, j] / norm_s * dg) / dt if plastic else 0.0
+                                dp = (tmp[i, j] / norm_s * dg) / dt if newton else 0.0
                                 v = sdm[k, i, j] + (2.0 * mw_mu[k] * (eta[i, j] - dp)
                                                     - sdm[k, i, j] * mw_inv_tau[k]) * dt
                             rate_j[i, j] = v
@@ -458,8 +559,12 @@ def kernel_for(codes, dev=HYPO_ELASTIC):
             if plastic:
                 ep_new[p], epdot_new[p] = ep, epdot
                 rate += sy * epdot * chi / (rho * cp)        # plastic work to heat
+                if GURSON:
+                    f_new[p] = pk.porosity_update(pp, f_old[p], D, dt, ep) if pp[3] != 0.0 else f_old[p]
             else:
                 ep_new[p], epdot_new[p] = ep_old[p], 0.0
+                if GURSON:
+                    f_new[p] = f_old[p]
             dTdt[p] = rate
             for i in range(3):
                 for j in range(3):
@@ -483,22 +588,29 @@ def kernel_for(codes, dev=HYPO_ELASTIC):
     # its own name per choice: numba's cache keeps one file and one environment per name (two
     # cached closures of one name clash when both are loaded in a process)
     kernel.__name__ = kernel.__qualname__ = ("elastic_plastic_kernel_" + "_".join(map(str, codes))
-                                             + ("_visco" if VISCO else ""))
-    _KERNELS[codes, dev] = njit(cache=True)(kernel)
-    return _KERNELS[codes, dev]
+                                             + ("_visco" if VISCO else "") + ("_gurson" if GURSON else "")
+                                             + ("_biswajit" if BISWAJIT else ""))
+    _KERNELS[key] = njit(cache=True)(kernel)
+    return _KERNELS[key]
 
 
 _NO_MAXWELL = np.zeros(0)
+_NO_POROSITY = np.array([0.1, 0.3, 0.1, 0.0, 0.002, 0.002])     # Uintah's defaults, not evolved
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new):
     """Stress, state and temperature rate of one material's particles; returns the wave speed.
-    old = (p.plasticStrain, p.plasticStrainRate, p.energy, p.strainRate, [sigmaDevj ...,] p.temperature);
-    new = the same updated, with p.dTdt last; `energy` receives the stress-work increment."""
-    ep, epdot, e, _ = old[:4]
+    old = (p.plasticStrain, p.plasticStrainRate, p.energy, p.strainRate, [p.porosity,] [sigmaDevj ...,]
+    p.temperature); new = the same updated, with p.dTdt last; `energy` receives the stress-work increment."""
+    ep, epdot, e, edot_o = old[:4]
     ep_n, epdot_n, e_n, edot_n = new[:4]
     T, dTdt = old[-1], new[-1]
-    kern = kernel_for(params.codes, params.dev)
+    gurson = params.yield_code == pk.GURSON
+    f_o, f_n = (old[4], new[4]) if gurson else (_NO_MAXWELL, _NO_MAXWELL)
+    if gurson:
+        new[5][:] = old[5]                # p.localizedMPM: no erosion, so never set
+    k0 = len(STATE) + (len(GURSON_STATE) if gurson else 0)     # the first Maxwell element stress
+    kern = kernel_for(params.codes, params.dev, params.yield_code, params.biswajit)
     n = len(L)
     if params.dev == HYPO_VISCO_ELASTIC:
         if dt > params.maxwell_tau.min():
@@ -506,7 +618,7 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
                              f"element's tau {params.maxwell_tau.min():g} (Uintah stops there too); a smaller "
                              "<delt_max> or <timestep_multiplier> avoids it")
         mw_mu, mw_inv_tau = params.maxwell_mu, 1.0 / params.maxwell_tau
-        sd_old = np.stack(old[4:-1], axis=1) if n else np.zeros((0, len(mw_mu), 3, 3))
+        sd_old = np.stack(old[k0:-1], axis=1) if n else np.zeros((0, len(mw_mu), 3, 3))
         sd_new = np.empty_like(sd_old)
     else:
         mw_mu = mw_inv_tau = _NO_MAXWELL
@@ -514,8 +626,10 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
     ws = kern(params.shear_modulus, params.bulk_modulus, params.density, params.melt_temp, params.specific_heat,
                 params.taylor_quinney, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
                 params.flow, params.shear, params.melt, params.eos, params.cp, T, ep, epdot, e,
-                ep_n, epdot_n, e_n, edot_n, dTdt, energy, mw_mu, mw_inv_tau, sd_old, sd_new)
-    for k, out in enumerate(new[4:-1]):
+                ep_n, epdot_n, e_n, edot_n, dTdt, energy, mw_mu, mw_inv_tau, sd_old, sd_new,
+                _NO_MAXWELL if params.yield_params is None else params.yield_params,
+                _NO_POROSITY if params.porosity is None else params.porosity, f_o, f_n, edot_o)
+    for k, out in enumerate(new[k0:-1]):
         out[:] = sd_new[:, k]
     if dt == 0.0 and len(vel):      # the first step's: with <shear_modulus>, not the shear model's mu
         c = math.sqrt((params.bulk_modulus + 4.0 * params.shear_modulus / 3.0) / params.density)

@@ -344,3 +344,85 @@ def specific_heat(code, cpp, cp_init, T):
     if T < cpp[0]:
         return cpp[1] * T * T * T - cpp[2] * T * T + cpp[3] * T - cpp[4]
     return cpp[5] * T + cpp[6]
+
+
+# yield conditions (elastic_plastic_hp.YIELD order); Gurson's parameter vector: q1, q2, q3, k, f_c
+VON_MISES, GURSON = 0, 1
+
+
+@njit(cache=True)
+def gurson_yield(gp, sig_eq, sig_flow, tr_sig, f):
+    """(Phi, sigma_eff) of the Gurson-Tvergaard-Needleman condition (GursonYield):
+    Phi = sig_eq^2 - sig_flow^2 (1 + q3 f*^2 - 2 q1 f* cosh(q2 tr_sig/(2 sig_flow))), with
+    f* = f_c + k (f - f_c) above f_c, the cosh argument capped at +-30, and sigma_eff the
+    sqrt of the subtracted term (von Mises with sig_flow where that term is negative)."""
+    q1, q2, q3, k, fc = gp[0], gp[1], gp[2], gp[3], gp[4]
+    fs = fc + k * (f - fc) if f > fc else f
+    arg = 0.5 * q2 * tr_sig / sig_flow
+    if abs(arg) > 30.0:
+        arg = math.copysign(30.0, arg)
+    a = 1.0 + q3 * fs * fs
+    b = 2.0 * q1 * fs * math.cosh(arg)
+    if a - b < 0.0:
+        return sig_eq * sig_eq - sig_flow * sig_flow, sig_flow
+    sig2 = sig_flow * sig_flow * (a - b)
+    return sig_eq * sig_eq - sig2, math.sqrt(sig2)
+
+
+@njit(cache=True)
+def void_nucleation(pp, ep):
+    """Chu and Needleman's strain-controlled nucleation factor A = f_n/(s_n sqrt(2 pi))
+    exp(-((ep - e_n)/s_n)^2/2); pp = f_n, e_n, s_n."""
+    t = (ep - pp[1]) / pp[2]
+    return pp[0] / (pp[2] * math.sqrt(2.0 * math.pi)) * math.exp(-0.5 * t * t)
+
+
+@njit(cache=True)
+def porosity_update(pp, f, D, dt, ep):
+    """Void volume fraction after a plastic step (ElasticPlasticHP::updatePorosity), forward
+    Euler: growth (1 - f) tr D in expansion plus nucleation A(ep) sqrt(2/3) |dev D|."""
+    trD = D[0, 0] + D[1, 1] + D[2, 2]
+    grow = (1.0 - f) * trD if trD > 0.0 else 0.0
+    ee = 0.0
+    for i in range(3):
+        for j in range(3):
+            e = D[i, j] - (trD / 3.0 if i == j else 0.0)
+            ee += e * e
+    return f + dt * (void_nucleation(pp, ep) * math.sqrt(ee / 1.5) + grow)
+
+
+@njit(cache=True)
+def biswajit_increment(S, eta, sy_eff, mu, dt):
+    """The plastic multiplier increment of Uintah's "biswajit" return (after Zocher, Maudlin,
+    Chen and Flower-Maudlin 2000: all the deviatoric rate plastic, the flow direction the
+    yield-surface normal q = 3 S of the stress S at the start of the step) and the plastic
+    strain rate it implies, (delGamma, epdot); delGamma <= 0 when that estimate fails."""
+    qs, qq, ee, ue, uq = 0.0, 0.0, 0.0, 0.0, 0.0
+    for i in range(3):
+        for j in range(3):
+            q = 3.0 * S[i, j]
+            qs += q * S[i, j]
+            qq += q * q
+            ee += eta[i, j] * eta[i, j]
+    sqrtqs, sqrtqq, etaeta = math.sqrt(qs), math.sqrt(qq), math.sqrt(ee)
+    cplus, dplus = 0.0, 0.0
+    for i in range(3):
+        for j in range(3):
+            u = 3.0 * S[i, j] / sqrtqs
+            cplus += u * u
+            dplus += u * eta[i, j]
+    gdot = dplus / cplus                             # the rate at the start of the step
+    if not gdot > 0.0:
+        return 0.0, 0.0
+    for i in range(3):
+        for j in range(3):
+            ue += eta[i, j] / etaeta * eta[i, j]
+            uq += 3.0 * S[i, j] / sqrtqq * eta[i, j]
+    AA = 2.0 / math.sqrt(cplus)
+    BB = -(ue + uq)
+    CC = -gdot * cplus * (ue - uq)
+    disc = max(BB * BB - 4.0 * AA * CC, 0.0)
+    dstar = (-BB + math.sqrt(disc)) / (2.0 * AA)
+    dg_elastic = (math.sqrt(2.0) * sy_eff - sqrtqs) / (2.0 * mu * cplus)    # the part of the step to yield
+    dg = dstar / cplus * dt - dg_elastic
+    return dg, (1.0 / math.sqrt(1.5) * sqrtqq * dg) / (sqrtqs * dt)
