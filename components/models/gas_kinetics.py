@@ -40,43 +40,46 @@ def _range(t, t_mid):
 @njit(cache=True, inline="always", error_model="numpy")
 def cp_over_r(mech, k, t):
     """cp_k / R_k, the NASA-7 polynomial."""
-    a = mech.nasa[_range(t, mech.t_mid), k]
+    a, i = mech.nasa, _range(t, mech.t_mid)      # 2D indexing: no row views in the hot loops
     tsqr = t * t
     tcube = tsqr * t
     tquad = tcube * t
-    return a[0] + a[1] * t + a[2] * tsqr + a[3] * tcube + a[4] * tquad
+    return a[i, k, 0] + a[i, k, 1] * t + a[i, k, 2] * tsqr + a[i, k, 3] * tcube + a[i, k, 4] * tquad
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def gibbs_rt(mech, k, t, tlog):
     """g_k / (Ru T); tlog = 1 - ln T (one logarithm for all species)."""
-    g = mech.g_coef[_range(t, mech.t_mid), k]
+    g, i = mech.g_coef, _range(t, mech.t_mid)
     tsqr = t * t
     tcube = tsqr * t
     tquad = tcube * t
-    return (g[0] * tlog) - (g[1] * t) - (g[2] * tsqr) - (g[3] * tcube) - (g[4] * tquad) + (g[5] / t) - g[6]
+    return (g[i, k, 0] * tlog) - (g[i, k, 1] * t) - (g[i, k, 2] * tsqr) - (g[i, k, 3] * tcube) \
+        - (g[i, k, 4] * tquad) + (g[i, k, 5] / t) - g[i, k, 6]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _h_over_r(h, t):
-    """h_k / R_k (K) of the NASA-7 enthalpy coefficients h = a0, a1/2, .., a4/5, a5."""
+def _h_over_r(mech, k, t):
+    """h_k / R_k (K) from the NASA-7 enthalpy coefficients a0, a1/2, .., a4/5, a5."""
+    h, i = mech.h_coef, _range(t, mech.t_mid)
     tsqr = t * t
     tcube = tsqr * t
     tquad = tcube * t
     tpent = tquad * t
-    return (h[0] * t) + (h[1] * tsqr) + (h[2] * tcube) + (h[3] * tquad) + (h[4] * tpent) + h[5]
+    return (h[i, k, 0] * t) + (h[i, k, 1] * tsqr) + (h[i, k, 2] * tcube) + (h[i, k, 3] * tquad) \
+        + (h[i, k, 4] * tpent) + h[i, k, 5]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def energy_molar(mech, k, t):
     """u_k = h_k - Ru T, J/mol."""
-    return RU * (_h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - t)
+    return RU * (_h_over_r(mech, k, t) - t)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def sensible_enthalpy(mech, k, t):
     """h_s,k = h_k(T) - h_k(T_REF), J/kg."""
-    return mech.r_gas[k] * _h_over_r(mech.h_coef[_range(t, mech.t_mid), k], t) - mech.h_ref[k]
+    return mech.r_gas[k] * _h_over_r(mech, k, t) - mech.h_ref[k]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -133,22 +136,22 @@ def rates_of_progress(mech, t, conc, g, q):
     for k in range(n):
         g[k] = gibbs_rt(mech, k, t, tlog)
     for r in range(mech.rxn_type.shape[0]):
-        a = mech.arrhenius[r]
-        kf = _arrhenius(a[0], a[1], a[2], t, rt)
+        a = mech.arrhenius
+        kf = _arrhenius(a[r, 0], a[r, 1], a[r, 2], t, rt)
         m = 1.0
         if mech.rxn_type[r] != ELEMENTARY:
             m = 0.0
             for k in range(n):
                 m += mech.efficiencies[r, k] * conc[k]
         if mech.rxn_type[r] == FALLOFF:
-            k0 = _arrhenius(a[3], a[4], a[5], t, rt)
+            k0 = _arrhenius(a[r, 3], a[r, 4], a[r, 5], t, rt)
             kinf = kf
             pr = max(k0 * m / kinf, 1e-300)
             log10_pr = np.log10(pr)
-            tr = mech.troe[r]
-            fc = (1.0 - tr[0]) * np.exp(-t / tr[1]) + tr[0] * np.exp(-t / tr[2])
+            tr = mech.troe
+            fc = (1.0 - tr[r, 0]) * np.exp(-t / tr[r, 1]) + tr[r, 0] * np.exp(-t / tr[r, 2])
             if mech.troe_t2[r]:
-                fc += np.exp(-tr[3] / t)
+                fc += np.exp(-tr[r, 3] / t)
             log10_fc = np.log10(fc)
             c = -0.4 - 0.67 * log10_fc
             nn = 0.75 - 1.27 * log10_fc
