@@ -172,11 +172,13 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
         smooth = [o for m in self.materials for o in m.objects if o.get("smooth")]
-        if smooth and self.kind != "linear":
+        if smooth and self.kind == "gimp":
             raise smooth[0]["node"].child("smoothcyl").error(
-                f"a <smoothcyl>'s particles with <interpolator>{self.kind} are not implemented: Uintah gives each a "
-                "size matrix turned with its ring sector, which pysus's p.size (three half-widths) cannot hold; "
-                "accepted: <interpolator>linear")
+                "a <smoothcyl>'s particles with <interpolator>gimp are not implemented (Uintah's GIMP reads the "
+                "diagonal of their turned size matrix); accepted: linear, cpdi, fast_cpdi")
+        # CPDI takes each particle's domain from its size matrix (p.sizeMatrix), turned with a
+        # <smoothcyl>'s ring sector; lattice particles keep the diagonal p.size
+        self.size_matrix = bool(smooth) and self.kind in ("cpdi", "fast_cpdi")
         self.has_membrane = any(m.is_membrane for m in self.materials)
         # fluid points with artificial viscosity: its scales are reduced over the level
         self.av_matls = [i for i, m in enumerate(self.materials)
@@ -293,6 +295,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         # GIMP, CPDI; friction_LR: the particle faces; p.scalefactor
         if self.kind != "linear" or self.contact.needs_lr or self.saves_scale:
             c.append((L.pSize, L.pSizePre))
+        if self.size_matrix:
+            c.append((L.pSizeMatrix, L.pSizeMatrixPre))
         if self.contact.needs_lr:
             c.append((L.pSurface, L.pSurfacePre))
         if self.flags["withColor"]:

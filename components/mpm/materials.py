@@ -291,6 +291,9 @@ class Material:
             out.append(dict(x=np.empty((0, 3)), id=np.empty(0, np.int64), vol=np.empty(0), temp=np.empty(0),
                             lcid=np.empty((0, 3)), vel=np.empty((0, 3)), size=np.empty((0, 3)),
                             color=np.empty(0), **({"surf": np.empty(0)} if surface else {})))
+        for o in out:       # the size matrix's columns: the half-vectors of the particle's domain
+            if "size_matrix" not in o:
+                o["size_matrix"] = o["size"][:, :, None] * np.eye(3)
         data = {key: np.concatenate([o[key] for o in out]) for key in out[0]}
         order = np.argsort(data["id"], kind="stable")
         data = {key: np.ascontiguousarray(v[order]) for key, v in data.items()}
@@ -340,10 +343,12 @@ def read_membrane_object(g, with_color):
 def smooth_points(obj, patch, obj_id, res, pressure, matl):
     """The particles of a <smoothcyl> object that lie in the patch's cells (Uintah's
     FileGeomPieceParticleCreator): positions and volumes from SmoothCylinder.points, mass =
-    density * volume; IDs obj_id * 2^40 + the index in the piece's list. A point outside the
+    density * volume; IDs obj_id * 2^40 + the index in the piece's list; size_matrix the
+    half-vectors of each particle's domain, half its ring sector's edges (Uintah's p.size
+    matrix times the cell size). A point outside the
     level (extra cells included) is an error, as Uintah's."""
     lv = patch.level
-    x, vol = obj["piece"].cached_points(lv.dx)
+    x, vol, size = obj["piece"].cached_points(lv.dx)
     extra = np.asarray(lv.extra) * lv.dx
     lo, hi = lv.anchor - extra, lv.upper + extra
     bad = np.nonzero(np.any((x < lo) | (x > hi), axis=1))[0]
@@ -359,6 +364,7 @@ def smooth_points(obj, patch, obj_id, res, pressure, matl):
                 lcid=pressure.flag(x, obj["piece"], dxpp, matl) if pressure else np.zeros((n, 3)),
                 vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                 size=np.tile(0.5 * dxpp, (n, 1)),
+                size_matrix=0.5 * size[idx],
                 color=np.full(n, obj["color"] if obj["color"] is not None else 0.0))
 
 

@@ -331,15 +331,21 @@ def _inv_dx(dx):
 def cpdi_domains(act, F, lp, dx, lcrit, out):
     """CPDI's domain array of each particle, out (n, 18): r_1, r_2, r_3 (physical units), then the
     rows of J^-1, J = [r_k] on the active axes (identity on the others). r_k = F e_k l_k is half
-    of Uintah's (F p.size)(:, k); where a corner r_3 +- r_1 +- r_2 reaches beyond lcrit cells it
-    is scaled back to lcrit and the r_k are rebuilt from those corners (Uintah's cpdi_lcrit)."""
+    of Uintah's (F p.size)(:, k); with a size matrix lp (n, 3, 3), whose columns are the
+    undeformed half-vectors H e_k (a <smoothcyl>'s turned sectors), r_k = F H e_k. Where a corner
+    r_3 +- r_1 +- r_2 reaches beyond lcrit cells it is scaled back to lcrit and the r_k are
+    rebuilt from those corners (Uintah's cpdi_lcrit)."""
     ih0, ih1, ih2 = _inv_dx(dx)
     ih = (ih0, ih1, ih2)
     for p in range(F.shape[0]):
         r = np.empty((3, 3))        # r[k, d]: component d of r_k, in cells
         for k in range(3):
             for d in range(3):
-                r[k, d] = F[p, d, k] * lp[p, k] * ih[d] if dx[d] != 0.0 else 0.0
+                if lp.ndim == 2:
+                    r[k, d] = F[p, d, k] * lp[p, k] * ih[d] if dx[d] != 0.0 else 0.0
+                else:
+                    FH = F[p, d, 0] * lp[p, 0, k] + F[p, d, 1] * lp[p, 1, k] + F[p, d, 2] * lp[p, 2, k]
+                    r[k, d] = FH * ih[d] if dx[d] != 0.0 else 0.0
         # the corners r_3 + a r_1 + b r_2 (Uintah's la, lb, lc, ld: a, b = ++, +-, -+, --)
         c = np.empty((4, 3))
         scaled = False

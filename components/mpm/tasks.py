@@ -65,7 +65,10 @@ def _split(dw, label, m, patch):
 
 def scale_factor(F, size):
     """Uintah's p.scalefactor, F diag(dx) p.size with its p.size in cells: F diag(2 h) with
-    pysus's half-widths h (the particle's deformed extent, for visualisation)."""
+    pysus's half-widths h, or F 2 H with a size matrix H (p.sizeMatrix) (the particle's
+    deformed extent, for visualisation)."""
+    if size.ndim == 3:
+        return np.matmul(F, 2.0 * size)
     return F * (2.0 * size)[:, None, :]
 
 
@@ -84,7 +87,12 @@ class MPMTasks:
             return _zeros3(n)
         if self.kind == "gimp":
             return dw.get(L.pSize, m, patch)
-        return self._domains(dw.get(L.pF, m, patch), dw.get(L.pSize, m, patch))
+        return self._domains(dw.get(L.pF, m, patch), dw.get(self._size_label, m, patch))
+
+    @property
+    def _size_label(self):
+        """What CPDI's domains and p.scalefactor read: p.size, or p.sizeMatrix (<smoothcyl>)."""
+        return L.pSizeMatrix if getattr(self, "size_matrix", False) else L.pSize
 
     def _domains(self, F, size):
         out = np.empty((len(F), 18))
@@ -93,7 +101,7 @@ class MPMTasks:
 
     def size_labels(self):
         """The particle labels the weights read besides p.x (ghosted where p.x is)."""
-        return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [L.pSize, L.pF])
+        return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [self._size_label, L.pF])
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
                       old=None, new=None, scale=None, temperature=None, color=None, time=0.0):
@@ -153,10 +161,11 @@ class MPMTasks:
                                                    temperature=d["temp"], color=d["color"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
+                   L.pSizeMatrix: d["size_matrix"],
                    L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3)),
                    L.pQ: np.zeros(n)}
             if self.saves_scale:
-                put[L.pScaleFactor] = scale_factor(F, d["size"])
+                put[L.pScaleFactor] = scale_factor(F, d["size_matrix"] if self.size_matrix else d["size"])
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
             for lab, _ in self.carry:           # the carried model states: this material's, else zeros
                 if lab.name in L.STATE:
@@ -722,13 +731,13 @@ class MPMTasks:
                 new_dw.put(L.pStrainEnergyPre, m, patch, energy)
             se += energy.sum()
             for final, pre in self.carry:
-                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID, L.pSurface):
+                if final in (L.pMass, L.pID, L.pSize, L.pSizeMatrix, L.pColor, L.pLoadCurveID, L.pSurface):
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
             if self.mms or self.saves_disp:
                 new_dw.put(L.pDispPre, m, patch, old_dw.get(L.pDisp, m, patch) + new_dw.get(L.pXpre, m, patch)
                            - old_dw.get(L.pX, m, patch))
             if self.saves_scale:
-                new_dw.put(L.pScaleFactorPre, m, patch, scale_factor(F_new, old_dw.get(L.pSize, m, patch)))
+                new_dw.put(L.pScaleFactorPre, m, patch, scale_factor(F_new, old_dw.get(self._size_label, m, patch)))
             if self.pressure_bcs:
                 lcid = old_dw.get(L.pLoadCurveID, m, patch)
                 px_old = old_dw.get(L.pX, m, patch)
