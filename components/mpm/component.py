@@ -275,13 +275,14 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     def _check_axisymmetric_physics(self, mpm, mp):
         """The parts of MPM whose axisymmetric form is not implemented are refused."""
         tag = mpm.child("axisymmetric")
-        if self.thermal:
+        if self.conducting or self.thermal_contact:
             raise tag.error("heat conduction is not implemented with <axisymmetric>true (Uintah has no "
-                            "axisymmetric temperature gradient either); accepted: false")
-        if self.contact.needs_normals or self.contact.needs_lr:
+                            "axisymmetric temperature gradient either); accepted: <DoExplicitHeatConduction>false "
+                            "(the particles' own heating, as elastic_plastic_hp's, is kept)")
+        if self.contact.needs_lr:
             raise mp.child("contact").child("type").error(
                 f"contact type {self.contact.type} is not implemented with <axisymmetric>true (its normals are "
-                "planar); accepted there: null, single_velocity, rigid")
+                "planar); accepted there: null, single_velocity, rigid, friction")
         for m in self.materials:
             if m.is_membrane or getattr(m.params, "density_from_grid", False):
                 raise m.node.child("constitutive_model").error(
@@ -398,9 +399,11 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
             if self.contact.needs_normals:
-                for lab in [L.pX, L.pMass] + self.size_labels():
+                for lab in [L.pX, L.pMass] + ([L.pVolume] if self.axisymmetric else []) + self.size_labels():
                     t.requires(OLD, lab, g, ng)
                 t.computes(L.gSurfNorm)
+                if self.contact.needs_traction:
+                    t.requires(OLD, L.pStress, g, ng).computes(L.gNormTraction)
             self._requires_lr(t)
             sched.add_task(t)
         t = (Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
@@ -415,6 +418,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                  .modifies(L.gVelocityStar).modifies(L.gAcceleration))
             if self.contact.needs_normals:
                 t.requires(NEW, L.gSurfNorm)
+            if self.contact.needs_traction:
+                t.requires(NEW, L.gNormTraction)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
             if self.contact.type == "rigid":
@@ -451,6 +456,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             t.requires(NEW, L.gMass).requires(OLD, FL.delT).computes(L.gVelocityL)
             if self.contact.needs_normals:
                 t.requires(NEW, L.gSurfNorm)
+            if self.contact.needs_traction:
+                t.requires(NEW, L.gNormTraction)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
             if self.contact.active:

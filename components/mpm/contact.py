@@ -161,6 +161,8 @@ class Contact:
         self.interpolated = self.active and (self.type in ("single_velocity", "friction")
                                              or (lr and self.one_or_two == 2))
         self.needs_normals = self.active and self.type == "friction"
+        # friction_bard also holds a node in compression (Uintah's g.normtraction < 0)
+        self.needs_traction = self.needs_normals and kind == "friction_bard"
         self.needs_lr = self.active and lr
         self.needs_color = self.active and self.type == "friction_LRVar"
         self.needs_time = self.active and self.type == "rigid"
@@ -261,12 +263,12 @@ class Contact:
         return zero, zero, zero, True
 
     def exchange(self, gmass, gvel, gacc, gvel_old, dt, t=0.0, normals=None, dx=None, node_x=None,
-                 lr=None, color=None):
+                 lr=None, color=None, traction=None):
         """Apply to dicts (per material) of node arrays; modifies gvel (and gacc: a is
         then (v_new - v_old)/dt where the contact acts). node_x: (anchor, dx, low index)
         of the patch's nodes, for a rotating rigid body; lr: (g.alphaMaterial,
         g.normAlphaToBeta, {material: g.matlProminence}) and color: the master's g.color
-        for friction_LR(Var)."""
+        for friction_LR(Var); traction: friction_bard's g.normtraction per material."""
         if self.needs_lr:
             self._exchange_lr(gmass, gvel, gacc, gvel_old, dt, lr, color)
             return
@@ -281,7 +283,8 @@ class Contact:
             kernels.single_velocity(m, v, a, vo, h)
         elif self.type == "friction":
             nrm = np.stack([normals[i].reshape(-1, 3) for i in idx])
-            kernels.friction(m, v, nrm, self.mu, np.asarray(dx, float), dt, a, vo, h)
+            tn = np.stack([traction[i].reshape(-1) for i in idx]) if self.needs_traction else np.empty((0, 0))
+            kernels.friction(m, v, nrm, tn, self.mu, np.asarray(dx, float), dt, a, vo, h)
         else:
             vel, origin, omega, own = self.rigid_velocity(t)
             shape = np.array(gmass[idx[0]].shape, np.int64)

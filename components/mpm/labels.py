@@ -83,6 +83,7 @@ gIntForce = L.create("g.internalforce", NC, (3,))
 gStressFS = L.create("g.stressFS", NC, (3, 3))     # mass-weighted nodal stress (output)
 gVelocityL = L.create("g.velocity_L", NC, (3,))     # remapped updated velocity (MUSL, 004 eq. 13)
 gSurfNorm = L.create("g.surfNorm", NC, (3,))       # outward unit normal (friction contact)
+gNormTraction = L.create("g.normtraction", NC)     # n . sum S sigma . n (friction_bard: < 0 pressed)
 gAlphaMaterial = L.create("g.alphaMaterial", NC)           # friction_LR: the alpha material, -99 none (matl 0)
 gNormAlphaToBeta = L.create("g.normAlphaToBeta", NC, (3,))  # friction_LR: unit normal alpha -> beta (matl 0)
 gMatlProminence = L.create("g.matlProminence", NC)         # friction_LR: extreme face projection, -99 none

@@ -290,12 +290,13 @@ class MPMTasks:
         """Contact on the interpolated velocities (friction: normals first)."""
         gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
         gv = {m: new_dw.get_modifiable(L.gVelocity, m, patch) for m in matls}
-        normals = self._normals(patch, old_dw, new_dw) if self.contact.needs_normals else None
+        traction = {} if self.contact.needs_traction else None
+        normals = self._normals(patch, old_dw, new_dw, traction) if self.contact.needs_normals else None
         lr, color = self._lr(patch, new_dw)
         t = old_dw.get_reduction(FL.simTime) if self.contact.needs_time else 0.0
         self.contact.exchange(gm, gv, None, None, old_dw.get_reduction(FL.delT), t=t, normals=normals,
                               dx=self.level.dx, node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)),
-                              lr=lr, color=color)
+                              lr=lr, color=color, traction=traction)
 
     def logistic_regression(self, patch, matls, old_dw, new_dw):
         """friction_LR's g.alphaMaterial, g.normAlphaToBeta (material 0) and each material's
@@ -363,10 +364,13 @@ class MPMTasks:
               {m: new_dw.get(L.gMatlProminence, m, patch) for m in self.matls})
         return lr, (new_dw.get(L.gColor, c.master, patch) if c.needs_color else None)
 
-    def _normals(self, patch, old_dw, new_dw):
+    def _normals(self, patch, old_dw, new_dw, traction=None):
         """g.surfNorm per contact material, as Uintah's computeNormals: g_m = sum m_p grad S
         (outward: mass falls off along it), made collinear with the other materials'
-        (0.5 (g_m - mass-weighted mean of the others' g)), then unit length."""
+        (0.5 (g_m - mass-weighted mean of the others' g)), then unit length. Axisymmetric, as
+        Uintah's: g_m = sum rho_p (dS/dr, dS/dz, 0) with the r-weighted weights and the
+        derivatives in cell units (the particles' mass grows with r, their density does not).
+        traction (a dict): friction_bard's g.normtraction of each contact material goes there."""
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
         kind = transfer.INTERPOLATORS[self.kind]
@@ -374,8 +378,14 @@ class MPMTasks:
         for m in self.contact.materials:
             px = old_dw.get(L.pX, m, patch)
             g[m] = np.zeros(patch.alloc_shape(NC) + (3,))
-            transfer.mass_gradient(kind, self.axes, px, old_dw.get(L.pMass, m, patch),
+            weight = old_dw.get(L.pMass, m, patch)
+            if self.axisymmetric:
+                weight = weight / old_dw.get(L.pVolume, m, patch)
+            transfer.mass_gradient(kind, self.act, px, weight,
                                    self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, g[m])
+            if self.axisymmetric:
+                g[m][..., :2] *= np.asarray(lv.dx)[:2]
+                g[m][..., 2] = 0.0
             gm[m] = new_dw.get(L.gMass, m, patch)[..., None]
         out = {}
         for m in self.contact.materials:
@@ -385,12 +395,39 @@ class MPMTasks:
             n = new_dw.allocate(L.gSurfNorm, m, patch, None)
             np.multiply(0.5, g[m] - mwon, out=n)
             n[np.broadcast_to(gm[m] <= 1e-200, n.shape)] = 0.0
+            self.bcs.symmetric_normal(patch, n)        # Uintah's "Symmetric" condition on g.surfNorm
             norm = np.linalg.norm(n, axis=-1, keepdims=True)
             np.divide(n, norm, out=n, where=norm > 1e-15)
             out[m] = n
+            if traction is not None:
+                traction[m] = self._normal_traction(patch, old_dw, new_dw, m, n)
         for m in matls_not_in(self.matls, self.contact.materials):
             new_dw.allocate(L.gSurfNorm, m, patch, 0.0)
+            if self.contact.needs_traction:
+                new_dw.allocate(L.gNormTraction, m, patch, 0.0)
         return out
+
+    def _normal_traction(self, patch, old_dw, new_dw, m, n):
+        """friction_bard's g.normtraction = n . (sum_p S sigma_p) . n (Uintah's computeNormals; its
+        sign tells a node in compression)."""
+        lv = self.level
+        alo, ahi = patch.alloc(NC)
+        pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
+        shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
+        px = old_dw.get(L.pX, m, patch)
+        gs = np.zeros(shape + (3, 3))
+        kernels.p2g_stress(transfer.INTERPOLATORS[self.kind], self.act, px, np.ones(len(px)),
+                           old_dw.get(L.pStress, m, patch), self._lp(old_dw, m, patch, len(px)), lv.anchor,
+                           lv.dx, np.array(alo) - pad, np.zeros(shape), gs)
+        gs = gs[tuple(slice(p, p + h - l) for p, l, h in zip(pad, alo, ahi))]
+        tn = np.ascontiguousarray(np.einsum("...i,...ij,...j->...", n, gs, n))
+        new_dw.put(L.gNormTraction, m, patch, tn)
+        return tn
+
+    def _traction(self, new_dw, patch):
+        if not self.contact.needs_traction:
+            return None
+        return {m: new_dw.get(L.gNormTraction, m, patch) for m in self.contact.materials}
 
     def integrate_acceleration(self, patch, matls, old_dw, new_dw):
         """a_i = (fint + fext)/m_i + g (000 eq. 21), v*_i = v_i + a_i dt (000 eq. 25)."""
@@ -433,7 +470,8 @@ class MPMTasks:
             new_dw.put_reduction(L.RigidReactionForce, force)
             new_dw.put_reduction(L.RigidReactionTorque, torque)
         before = {m: gvs[m].copy() for m in c.materials} if self.ftm_contact else None
-        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx, node_x=node_x, lr=lr, color=color)
+        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx, node_x=node_x, lr=lr, color=color,
+                   traction=self._traction(new_dw, patch))
         if before is not None:      # the force the rigid body exerts, taken back by it (Uintah's STF)
             inner = tuple(slice(lo, hi) for lo, hi in zip(*patch.interior(NC)))     # no extra nodes, as Uintah
             force = np.zeros(3)
@@ -546,7 +584,8 @@ class MPMTasks:
         t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
         lr, color = self._lr(patch, new_dw)
         c.exchange(gm, gvl, None, None, dt, t=t, normals=normals, dx=self.level.dx,
-                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)), lr=lr, color=color)
+                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)), lr=lr, color=color,
+                   traction=self._traction(new_dw, patch))
         for m in matls:
             self.bcs.apply(patch, m, gvl[m], np.empty_like(gvl[m]), gvl[m], dt)
 

@@ -37,7 +37,7 @@ from framework.variables import Ghost, VarType
 from . import labels as L
 from .shape import _counts as _sizes
 from .shape import _sel as _pick
-from .shape import _stencil
+from .shape import AXI, _stencil
 
 FM = {'contract'}
 NC = VarType.NC
@@ -212,7 +212,9 @@ class ThermalTasks:
             if self.materials[m].specific_heat <= 0:
                 raise self.materials[m].node.error(
                     "heat conduction needs <specific_heat> > 0 (thermal_conductivity is positive)")
-        self.th_act = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask of the kernels
+        # active-axis mask of the kernels; axisymmetric: the r-weighted weights (shape.AXI), as
+        # Uintah's g.temperature (the heat of a non-conducting run: conduction is refused there)
+        self.th_act = sum(1 << d for d in range(3) if self.dims[d]) | (AXI if self.axisymmetric else 0)
         self.thermal_contact = node is not None and len(self.materials) > 1
         for what, given, where in (("<thermal_contact>", node is not None, node),
                                    ("a Temperature grid BC", self.temperature_bcs, None)):
