@@ -143,6 +143,9 @@ def owned_mask(px, anchor, dx, lo, hi, dims, out):
         out[p] = ok
 
 
+CONTACT_EPSILON = 1e-14       # Uintah's Contact::compare
+
+
 @njit(cache=True)
 def friction(gmass, gvel, gnorm, tn, mu, dx, delt, gacc, gvel_old, dt):
     """Coulomb friction contact (Uintah's FrictionContactBard without the separation and
@@ -168,7 +171,9 @@ def friction(gmass, gvel, gnorm, tn, mu, dx, delt, gacc, gvel_old, dt):
             vcm[d] = P / M
         for m in range(nm):
             mass = gmass[m, i]
-            if not (mass > 1e-15 * M and M - mass > 1e-15 * M):
+            # Uintah's !compare(mass / M, 0) && !compare(mass - M, 0): its EPSILON 1e-14, the second
+            # in kg, passes over round-off masses at the edge of a GIMP particle's reach
+            if not (mass / M > CONTACT_EPSILON and M - mass > CONTACT_EPSILON):
                 continue
             d0 = gvel[m, i, 0] - vcm[0]
             d1 = gvel[m, i, 1] - vcm[1]
