@@ -221,6 +221,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             raise mpm.child("artificial_viscosity_heating").error(
                 "artificial_viscosity_heating needs <artificial_viscosity>true (as in Uintah)")
         self.saves_disp = self.saves_scale = False      # until schedule_time_advance sees the <save>s
+        self.saves_localized = False
         self.saves_acc_energy = self.saves_tractions = False
         self.traction_faces = read_traction_faces(mpm, self.flags["boundary_traction_faces"], level)
         self._carried()
@@ -304,7 +305,10 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             c.append((L.pColor, L.pColorPre))
         if any(m.increment_energy for m in self.materials):
             c.append((L.pStrainEnergy, L.pStrainEnergyPre))
-        for name in dict.fromkeys(k for m in self.materials for k in m.state_names):
+        states = dict.fromkeys(k for m in self.materials for k in m.state_names)
+        if self.saves_localized:              # Uintah carries it for every material: 0 unless localized
+            states["p.localizedMPM"] = None
+        for name in states:
             c.append(L.STATE[name])
         if self.has_membrane:                 # 004 sec. 3.2: tangent and thickness per point
             c += [(L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)]
@@ -363,13 +367,14 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
 
     def _saved_particle_labels(self, sched):
         """p.displacement and p.scalefactor are carried only when a deck saves them (as Uintah
-        computes p.scalefactor): decks without them pay nothing."""
+        computes p.scalefactor): decks without them pay nothing. So is p.localizedMPM where no
+        damage model sets it (zero, as Uintah's for such a material)."""
         out = getattr(sched, "output_labels", ())
         self.saves_acc_energy = L.AccStrainEnergy.name in out
         self.saves_tractions = saves_face_labels(self.traction_faces, out)
-        disp, scale = "p.displacement" in out, "p.scalefactor" in out
-        if (disp, scale) != (self.saves_disp, self.saves_scale):
-            self.saves_disp, self.saves_scale = disp, scale
+        disp, scale, loc = "p.displacement" in out, "p.scalefactor" in out, "p.localizedMPM" in out
+        if (disp, scale, loc) != (self.saves_disp, self.saves_scale, self.saves_localized):
+            self.saves_disp, self.saves_scale, self.saves_localized = disp, scale, loc
             self._carried()
 
     def schedule_time_advance(self, level, sched):
