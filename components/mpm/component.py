@@ -205,9 +205,10 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 raise mpm.child("RunMMSProblem").error("a manufactured solution's body force and <PhysicalBC> "
                                                        "loads cannot be combined")
             self.mms = ManufacturedSolution(mpm, self.flags, self.materials, level)
-        if self.thermal and self.kind not in ("linear", "gimp"):
+        if (self.conducting or self.thermal_contact or self.temperature_bcs) and self.kind not in ("linear", "gimp"):
             raise mpm.child("interpolator").error(
-                f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp")
+                f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp (or "
+                "<DoExplicitHeatConduction>false: the particles' own heating is kept)")
         if self.axisymmetric:
             self._check_axisymmetric_physics(mpm, mp)
         self.av = None
@@ -263,9 +264,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                             f"the grid has {level.ncells[2]}; accepted: false, or a grid one cell thick in z")
         if not self.dims[0]:
             raise tag.error("axisymmetric MPM needs more than one cell in x (the radius)")
-        if self.kind not in ("linear", "gimp"):
+        if self.kind not in ("linear", "gimp", "cpdi", "fast_cpdi"):
             raise mpm.child("interpolator").error(
-                f"{self.kind} is not implemented with <axisymmetric>true; accepted there: linear, gimp")
+                f"{self.kind} is not implemented with <axisymmetric>true; accepted there: linear, gimp, cpdi, fast_cpdi")
         if level.anchor[0] < 0.0:
             raise root.child("Grid").error(f"with <axisymmetric>true x is the radius: the domain's lower x "
                                            f"({level.anchor[0]:g}) must be >= 0 (the axis is x = 0)")

@@ -95,8 +95,11 @@ class MPMTasks:
         return L.pSizeMatrix if getattr(self, "size_matrix", False) else L.pSize
 
     def _domains(self, F, size):
+        """CPDI's domains; axisymmetric: the in-plane ones (F's hoop stretch is not a side of the
+        domain), without cpdi_lcrit, as Uintah's axiCpdiInterpolator."""
         out = np.empty((len(F), 18))
-        shape.cpdi_domains(self.axes, F, size, self.level.dx, self.flags["cpdi_lcrit"], out)
+        lcrit = np.inf if self.axisymmetric else self.flags["cpdi_lcrit"]
+        shape.cpdi_domains(self.axes, F, size, self.level.dx, lcrit, out)
         return out
 
     def size_labels(self):
