@@ -172,13 +172,18 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
         smooth = [o for m in self.materials for o in m.objects if o.get("smooth")]
+        affine = [o for m in self.materials for o in m.objects if o.get("affine") is not None]
+        if affine and self.kind == "gimp":
+            raise affine[0]["node"].error(
+                "an affine transformation's particles with <interpolator>gimp are not implemented (their "
+                "domains are not boxes); accepted: linear, cpdi, fast_cpdi")
         if smooth and self.kind == "gimp":
             raise smooth[0]["node"].child("smoothcyl").error(
                 "a <smoothcyl>'s particles with <interpolator>gimp are not implemented (Uintah's GIMP reads the "
                 "diagonal of their turned size matrix); accepted: linear, cpdi, fast_cpdi")
         # CPDI takes each particle's domain from its size matrix (p.sizeMatrix), turned with a
         # <smoothcyl>'s ring sector; lattice particles keep the diagonal p.size
-        self.size_matrix = bool(smooth) and self.kind in ("cpdi", "fast_cpdi")
+        self.size_matrix = bool(smooth or affine) and self.kind in ("cpdi", "fast_cpdi")
         self.has_membrane = any(m.is_membrane for m in self.materials)
         # fluid points with artificial viscosity: its scales are reduced over the level
         self.av_matls = [i for i, m in enumerate(self.materials)
@@ -192,6 +197,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             raise mp.child("contact").child("type").error(
                 "friction_LRVar takes mu from the colour: it needs <MPM><withColor>true</withColor>")
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
+        self.bcs.mirror_extra = self.kind != "linear"
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
         self.thermal_contact_node = mp.child("thermal_contact")

@@ -123,6 +123,8 @@ class Contact:
         kind = spec["type"]
         self.type = {"friction_bard": "friction", "approach": "friction", "specified": "rigid",
                      "specified_velocity": "rigid"}.get(kind, kind)
+        if kind == "null" and node is not None and node.has("mu"):
+            node.child("mu").mark_used()          # Uintah's NullContact does not read it
         mnode = node.child("materials") if node is not None else None
         mats = _int_list(mnode) if mnode is not None else tuple(range(nmat))
         if any(m < 0 for m in mats):

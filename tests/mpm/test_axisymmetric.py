@@ -334,3 +334,37 @@ def test_axisymmetric_cpdi_equals_uintahs_sus(tmp_path):
         r = np.cumsum(ref[key][:, 1]) if total else ref[key][:, 1]
         assert np.allclose(t[t > 0], ref[key][:, 0], rtol=1e-12)
         assert np.abs(v[t > 0] - r).max() < AXI_CPDI_TOL * np.abs(r).max(), lab
+
+
+# sus on uintah_reference/ColPlate_AffineTrans.ups (5 steps): times, TotalMomentum.dat, the particle
+# count and p.x, p.velocity, p.stress, p.scalefactor of every 20th particle (ordered by position)
+# at step 5 (read from sus's uda with UintahArchive)
+COLPLATE_TOL_X = 1e-11             # m; measured 8e-14
+COLPLATE_TOL = 1e-7                # of the largest; measured stress 3.8e-9, velocity 2.8e-10, scale factor 1.6e-11, momentum 1.5e-12
+
+
+def test_colplate_affine_trans_equals_uintahs_sus(tmp_path):
+    """Uintah's ColPlate_AffineTrans (axisymmetric CPDI; a plate of lattice particles turned by 50
+    degrees and moved by its <affineTransformation_A0..A2, b>, so each domain is a turned
+    parallelogram, p.sizeMatrix; elastic_plastic_hp with Mie-Gruneisen; the plate reaches the
+    axis, where the domains' corners cross into the extra nodes, which the symmetry plane fills
+    with the mirrored velocity), 5 steps against sus: the 8000 particles, their p.x, p.velocity,
+    p.stress, p.scalefactor and TotalMomentum."""
+    text = (REF / "ColPlate_AffineTrans.ups").read_text(encoding="iso-8859-1").replace(
+        "<interpolator>                cpdi     </interpolator>",
+        "<interpolator>cpdi</interpolator><stress_update>usl</stress_update>")
+    assert "usl" in text
+    da = run(text, tmp_path)[1]
+    ref = np.load(HERE / "data" / "sus_colplate_affine.npz")
+    assert np.allclose(np.asarray(da.times)[-5:], ref["time"], rtol=1e-12)
+    p = da.particles(0, -1)
+    x, rx = p["p.x"], ref["x"]
+    assert len(x) == int(ref["n"]) == 8000
+    k = np.argmin(((rx[:, None, :2] - x[None, :, :2]) ** 2).sum(axis=2), axis=1)
+    assert np.abs(x[k] - rx).max() < COLPLATE_TOL_X
+    for lab, key in (("p.velocity", "velocity"), ("p.stress", "stress"), ("p.scalefactor", "scalefactor")):
+        assert np.abs(p[lab][k] - ref[key]).max() < COLPLATE_TOL * np.abs(ref[key]).max(), lab
+    t, mom = (np.asarray(a) for a in da.reduction("TotalMomentum"))
+    r = ref["momentum"]
+    assert np.allclose(t[t > 0], r[:, 0], rtol=1e-12)
+    assert np.abs(mom[t > 0] - r[:, 1:]).max() < COLPLATE_TOL * np.abs(r[:, 1:]).max()
