@@ -304,14 +304,16 @@ class SmoothCylinder:
         return _run(inside_smooth_cylinder, x, self.bottom, self.top, self.r_outer, self.r_inner, self.cap)
 
     def cached_points(self, cell_dx):
-        """points(cell_dx), computed once per cell size (every patch asks)."""
+        """points(cell_dx), computed once per cell size (every patch asks): positions,
+        volumes and size matrices."""
         key = tuple(float(d) for d in cell_dx)
         if getattr(self, "_points", (None,))[0] != key:
             self._points = (key, self.points(cell_dx))
         return self._points[1]
 
     def points(self, cell_dx):
-        """Particle positions (n, 3) and volumes (n,) of Uintah's createCylPoints: num_axial
+        """Particle positions (n, 3), volumes (n,) and size matrices (n, 3, 3) of Uintah's
+        createCylPoints: num_axial
         layers, num_radial rings of width (outer - inner) / num_radial, each ring cut into
         equal arcs (particle at the arc's middle, volume = ring sector area * layer height).
         The arcs: constant_particle_volumes, int(span r / dr) of them (at least 1);
@@ -319,7 +321,11 @@ class SmoothCylinder:
         under 5 % of a cell. The span of the arcs is arc_angle - arc_start_angle, as Uintah
         computes it. The layers are laid in the x-y plane and turned onto the axis with
         Uintah's rotation. End caps get no particles: Uintah's createCylPoints discards
-        them."""
+        them. A particle's size matrix (m) has the edges of its ring sector as columns: the arc
+        (span r / n, tangential), the ring width (radial), the layer height (axial), turned onto
+        the axis as R S R^T; CPDI takes the particle's domain from it. It is Uintah's p.size
+        times the cell size where the cells are square in the plane of the rings (Uintah divides
+        both components of the arc by dx and of the width by dy)."""
         axis = self.top - self.bottom
         length = float(np.sqrt(axis @ axis))
         axis = axis / length
@@ -331,7 +337,7 @@ class SmoothCylinder:
         span = self.arc - self.arc_start
         axis_inc = length / self.n_axial
         rad_inc = (self.r_outer - self.r_inner) / self.n_radial
-        xs, vols = [], []
+        xs, vols, sizes = [], [], []
         z = 0.5 * axis_inc
         for _ in range(self.n_axial):
             centre = self.bottom + axis * z
@@ -358,7 +364,14 @@ class SmoothCylinder:
                 local = np.stack([r * np.cos(ang), r * np.sin(ang), np.zeros(n_ang)], axis=1)
                 xs.append(local @ rot.T + centre)
                 vols.append(np.full(n_ang, axis_inc * area))
-        return np.concatenate(xs).reshape(-1, 3), np.concatenate(vols)
+                size = np.zeros((n_ang, 3, 3))
+                arc, width = span / n_ang, rad_inc / r
+                size[:, 0, 0], size[:, 1, 0] = arc * local[:, 1], -arc * local[:, 0]
+                size[:, 0, 1], size[:, 1, 1] = width * local[:, 0], width * local[:, 1]
+                size[:, 2, 2] = axis_inc
+                sizes.append(rot @ size @ rot.T)
+        return (np.concatenate(xs).reshape(-1, 3), np.concatenate(vols),
+                np.concatenate(sizes).reshape(-1, 3, 3))
 
 
 def _uintah_rotation(angle, a):

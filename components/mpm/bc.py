@@ -31,6 +31,9 @@ from . import kernels
 
 class GridBCs:
     temperature_items = ()
+    # GIMP and CPDI reach the extra nodes: there a symmetry plane mirrors the velocity of the node
+    # as far inside (normal component negated), as Uintah's MPMBoundCond for those interpolators
+    mirror_extra = False
 
     def __init__(self, root, level, nmat):
         self.items = []          # (d, side, comps mask, value, materials, where)
@@ -42,16 +45,16 @@ class GridBCs:
         faces = [(side, None, face) for side, face in boundary_faces(bcs, FACES)] + sub_faces(bcs, FACES, level)
         for side, geom, face in faces:
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
-            given = {"Velocity": set(), "Temperature": set()}
+            given = {"Velocity": set(), "Symmetric": set(), "Temperature": set()}
             for bc in face.children("BCType"):
                 ident = bc.attr("id")
                 var = bc.attr("var", choices=("Dirichlet", "symmetry", "Neumann"))
                 label = bc.attr("label", choices=("Velocity", "Symmetric", "Temperature"))
                 mats = _materials(bc, ident, nmat)
-                kind = "Temperature" if label == "Temperature" else "Velocity"
+                kind = label                  # Uintah keeps a Velocity and a Symmetric condition apart
                 if given[kind] & set(mats):
                     raise bc.error(f"a second {kind} <BCType> for material {min(given[kind] & set(mats))} on this "
-                                   "face; accepted: one condition per material on a face")
+                                   "face; accepted: one condition of each label per material on a face")
                 given[kind] |= set(mats)
                 if label == "Temperature":
                     if var != "Dirichlet":
@@ -81,8 +84,12 @@ class GridBCs:
                     value = np.array(bc.get("value", "vector"), float)
                 if level.periodic[d]:
                     raise bc.error(f"face {side} is periodic; it takes no boundary condition")
-                if not level.collapsed[d]:
+                # a collapsed direction's one node layer is that face's nodes (Uintah's one cell
+                # has both faces' nodes): a Dirichlet velocity there holds the material's every node
+                if not level.collapsed[d] or var == "Dirichlet":
                     self.items.append((d, s, comps, value, mats, geom))
+        # Uintah sets every face's Velocity conditions, then the Symmetric ones
+        self.items.sort(key=lambda item: bool(item[2].sum() == 1))      # symmetric: one component
         self._place_sub_faces(faces, nmat)
 
     def _place_sub_faces(self, faces, nmat):
@@ -167,6 +174,8 @@ class GridBCs:
             if where is None:
                 kernels.velocity_bc(gvs, gacc, gvel, dt, np.asarray(lo, np.int64), np.asarray(hi, np.int64),
                                     comps, value)
+                if self.mirror_extra and comps.sum() == 1 and not value.any():
+                    self._mirror(gvs, gacc, gvel, dt, d, s, lo, hi, inner[s][d] - base[d] - s)
                 continue
             sl = tuple(slice(a, b) for a, b in zip(lo, hi))
             mask = self._where(patch, where, d, lo, hi)
@@ -174,6 +183,22 @@ class GridBCs:
             for c in np.flatnonzero(comps):     # velocity_bc on the selected nodes
                 vs[..., c][mask] = value[c]
                 acc[..., c][mask] = (value[c] - v[..., c][mask]) / dt
+
+    @staticmethod
+    def _mirror(gvs, gacc, gvel, dt, d, s, lo, hi, face):
+        """Extra node e beyond the face node takes the velocity of the node as far inside, its
+        d component negated (Uintah's Symmetric condition for GIMP and CPDI)."""
+        extra = range(lo[d], face) if s == 0 else range(face + 1, hi[d])
+        for e in extra:
+            src = 2 * face - e
+            if not 0 <= src < gvs.shape[d]:
+                continue
+            sl_e = tuple(slice(lo[c], hi[c]) if c != d else e for c in range(3))
+            sl_s = tuple(slice(lo[c], hi[c]) if c != d else src for c in range(3))
+            v = gvs[sl_s].copy()
+            v[..., d] = -v[..., d]
+            gvs[sl_e] = v
+            gacc[sl_e] = (v - gvel[sl_e]) / dt
 
     def _face_nodes(self, patch, d, s, shape):
         """The slices of a patch's node array on face (d, s): the face nodes and the extra

@@ -231,11 +231,18 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             for mt in self.materials:
                 mt.uses_L = True
         smooth = [o for m in self.materials for o in m.objects if o.get("smooth")]
-        if smooth and self.kind != "linear":
+        affine = [o for m in self.materials for o in m.objects if o.get("affine") is not None]
+        if affine and self.kind == "gimp":
+            raise affine[0]["node"].error(
+                "an affine transformation's particles with <interpolator>gimp are not implemented (their "
+                "domains are not boxes); accepted: linear, cpdi, fast_cpdi")
+        if smooth and self.kind == "gimp":
             raise smooth[0]["node"].child("smoothcyl").error(
-                f"a <smoothcyl>'s particles with <interpolator>{self.kind} are not implemented: Uintah gives each a "
-                "size matrix turned with its ring sector, which pysus's p.size (three half-widths) cannot hold; "
-                "accepted: <interpolator>linear")
+                "a <smoothcyl>'s particles with <interpolator>gimp are not implemented (Uintah's GIMP reads the "
+                "diagonal of their turned size matrix); accepted: linear, cpdi, fast_cpdi")
+        # CPDI takes each particle's domain from its size matrix (p.sizeMatrix), turned with a
+        # <smoothcyl>'s ring sector; lattice particles keep the diagonal p.size
+        self.size_matrix = bool(smooth or affine) and self.kind in ("cpdi", "fast_cpdi")
         self.has_membrane = any(m.is_membrane for m in self.materials)
         # fluid points with artificial viscosity: its scales are reduced over the level
         self.av_matls = [i for i, m in enumerate(self.materials)
@@ -249,6 +256,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             raise mp.child("contact").child("type").error(
                 "friction_LRVar takes mu from the colour: it needs <MPM><withColor>true</withColor>")
         self.bcs = self.grid_bcs_class(root, level, len(self.materials))
+        self.bcs.mirror_extra = self.kind != "linear"
         self.analysis = ParticleExtract(root, self)
         self.pressure_bcs = None
         self.thermal_contact_node = mp.child("thermal_contact")
@@ -265,9 +273,10 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 raise mpm.child("RunMMSProblem").error("a manufactured solution's body force and <PhysicalBC> "
                                                        "loads cannot be combined")
             self.mms = ManufacturedSolution(mpm, self.flags, self.materials, level)
-        if self.thermal and self.kind not in ("linear", "gimp"):
+        if (self.conducting or self.thermal_contact or self.temperature_bcs) and self.kind not in ("linear", "gimp"):
             raise mpm.child("interpolator").error(
-                f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp")
+                f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp (or "
+                "<DoExplicitHeatConduction>false: the particles' own heating is kept)")
         if self.axisymmetric:
             self._check_axisymmetric_physics(mpm, mp)
         self.av = None
@@ -281,6 +290,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             raise mpm.child("artificial_viscosity_heating").error(
                 "artificial_viscosity_heating needs <artificial_viscosity>true (as in Uintah)")
         self.saves_disp = self.saves_scale = False      # until schedule_time_advance sees the <save>s
+        self.saves_localized = False
         self.saves_acc_energy = self.saves_tractions = False
         self.traction_faces = read_traction_faces(mpm, self.flags["boundary_traction_faces"], level)
         self._carried()
@@ -322,9 +332,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                             f"the grid has {level.ncells[2]}; accepted: false, or a grid one cell thick in z")
         if not self.dims[0]:
             raise tag.error("axisymmetric MPM needs more than one cell in x (the radius)")
-        if self.kind not in ("linear", "gimp"):
+        if self.kind not in ("linear", "gimp", "cpdi", "fast_cpdi"):
             raise mpm.child("interpolator").error(
-                f"{self.kind} is not implemented with <axisymmetric>true; accepted there: linear, gimp")
+                f"{self.kind} is not implemented with <axisymmetric>true; accepted there: linear, gimp, cpdi, fast_cpdi")
         if level.anchor[0] < 0.0:
             raise root.child("Grid").error(f"with <axisymmetric>true x is the radius: the domain's lower x "
                                            f"({level.anchor[0]:g}) must be >= 0 (the axis is x = 0)")
@@ -335,13 +345,14 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     def _check_axisymmetric_physics(self, mpm, mp):
         """The parts of MPM whose axisymmetric form is not implemented are refused."""
         tag = mpm.child("axisymmetric")
-        if self.thermal:
+        if self.conducting or self.thermal_contact:
             raise tag.error("heat conduction is not implemented with <axisymmetric>true (Uintah has no "
-                            "axisymmetric temperature gradient either); accepted: false")
-        if self.contact.needs_normals or self.contact.needs_lr:
+                            "axisymmetric temperature gradient either); accepted: <DoExplicitHeatConduction>false "
+                            "(the particles' own heating, as elastic_plastic_hp's, is kept)")
+        if self.contact.needs_lr:
             raise mp.child("contact").child("type").error(
                 f"contact type {self.contact.type} is not implemented with <axisymmetric>true (its normals are "
-                "planar); accepted there: null, single_velocity, rigid")
+                "planar); accepted there: null, single_velocity, rigid, friction")
         for m in self.materials:
             if m.is_membrane or getattr(m.params, "density_from_grid", False):
                 raise m.node.child("constitutive_model").error(
@@ -355,13 +366,18 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         # GIMP, CPDI; friction_LR: the particle faces; p.scalefactor
         if self.kind != "linear" or self.contact.needs_lr or self.saves_scale:
             c.append((L.pSize, L.pSizePre))
+        if self.size_matrix:
+            c.append((L.pSizeMatrix, L.pSizeMatrixPre))
         if self.contact.needs_lr:
             c.append((L.pSurface, L.pSurfacePre))
         if self.flags["withColor"]:
             c.append((L.pColor, L.pColorPre))
         if any(m.increment_energy for m in self.materials):
             c.append((L.pStrainEnergy, L.pStrainEnergyPre))
-        for name in dict.fromkeys(k for m in self.materials for k in m.state_names):
+        states = dict.fromkeys(k for m in self.materials for k in m.state_names)
+        if self.saves_localized:              # Uintah carries it for every material: 0 unless localized
+            states["p.localizedMPM"] = None
+        for name in states:
             c.append(L.STATE[name])
         if self.has_membrane:                 # 004 sec. 3.2: tangent and thickness per point
             c += [(L.pTangent, L.pTangentPre), (L.pThickness, L.pThicknessPre)]
@@ -421,13 +437,14 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
 
     def _saved_particle_labels(self, sched):
         """p.displacement and p.scalefactor are carried only when a deck saves them (as Uintah
-        computes p.scalefactor): decks without them pay nothing."""
+        computes p.scalefactor): decks without them pay nothing. So is p.localizedMPM where no
+        damage model sets it (zero, as Uintah's for such a material)."""
         out = getattr(sched, "output_labels", ())
         self.saves_acc_energy = L.AccStrainEnergy.name in out
         self.saves_tractions = saves_face_labels(self.traction_faces, out)
-        disp, scale = "p.displacement" in out, "p.scalefactor" in out
-        if (disp, scale) != (self.saves_disp, self.saves_scale):
-            self.saves_disp, self.saves_scale = disp, scale
+        disp, scale, loc = "p.displacement" in out, "p.scalefactor" in out, "p.localizedMPM" in out
+        if (disp, scale, loc) != (self.saves_disp, self.saves_scale, self.saves_localized):
+            self.saves_disp, self.saves_scale, self.saves_localized = disp, scale, loc
             self._carried()
 
     def schedule_time_advance(self, level, sched):
@@ -457,9 +474,11 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
             if self.contact.needs_normals:
-                for lab in [L.pX, L.pMass] + self.size_labels():
+                for lab in [L.pX, L.pMass] + ([L.pVolume] if self.axisymmetric else []) + self.size_labels():
                     t.requires(OLD, lab, g, ng)
                 t.computes(L.gSurfNorm)
+                if self.contact.needs_traction:
+                    t.requires(OLD, L.pStress, g, ng).computes(L.gNormTraction)
             self._requires_lr(t)
             sched.add_task(t)
         t = (Task("MPM::computeAndIntegrateAcceleration", self.integrate_acceleration, ms)
@@ -474,6 +493,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                  .modifies(L.gVelocityStar).modifies(L.gAcceleration))
             if self.contact.needs_normals:
                 t.requires(NEW, L.gSurfNorm)
+            if self.contact.needs_traction:
+                t.requires(NEW, L.gNormTraction)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
             if self.contact.type == "rigid":
@@ -513,6 +534,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             t.requires(NEW, L.gMass).requires(OLD, FL.delT).computes(L.gVelocityL)
             if self.contact.needs_normals:
                 t.requires(NEW, L.gSurfNorm)
+            if self.contact.needs_traction:
+                t.requires(NEW, L.gNormTraction)
             if self.contact.needs_time:
                 t.requires(OLD, FL.simTime)
             if self.contact.active:

@@ -143,6 +143,8 @@ class Contact:
         kind = spec["type"]
         self.type = {"friction_bard": "friction", "approach": "friction", "specified": "rigid",
                      "specified_velocity": "rigid"}.get(kind, kind)
+        if kind == "null" and node is not None and node.has("mu"):
+            node.child("mu").mark_used()          # Uintah's NullContact does not read it
         mnode = node.child("materials") if node is not None else None
         mats = _int_list(mnode) if mnode is not None else tuple(range(nmat))
         if any(m < 0 for m in mats):
@@ -195,6 +197,8 @@ class Contact:
         self.interpolated = self.active and (self.type in ("single_velocity", "friction")
                                              or (lr and self.one_or_two == 2))
         self.needs_normals = self.active and self.type == "friction"
+        # friction_bard also holds a node in compression (Uintah's g.normtraction < 0)
+        self.needs_traction = self.needs_normals and kind == "friction_bard"
         self.needs_lr = self.active and lr
         self.needs_color = self.active and self.type == "friction_LRVar"
         self.needs_time = self.active and self.type in ("rigid", "specified_friction")
@@ -315,12 +319,12 @@ class Contact:
         return zero, zero, zero, True
 
     def exchange(self, gmass, gvel, gacc, gvel_old, dt, t=0.0, normals=None, dx=None, node_x=None,
-                 lr=None, color=None):
+                 lr=None, color=None, traction=None):
         """Apply to dicts (per material) of node arrays; modifies gvel (and gacc: a is
         then (v_new - v_old)/dt where the contact acts). node_x: (anchor, dx, low index)
         of the patch's nodes, for a rotating rigid body; lr: (g.alphaMaterial,
         g.normAlphaToBeta, {material: g.matlProminence}) and color: the master's g.color
-        for friction_LR(Var)."""
+        for friction_LR(Var); traction: friction_bard's g.normtraction per material."""
         if self.type == "specified_friction":
             self._exchange_specified_friction(gmass, gvel, gacc, gvel_old, dt, t, lr)
             return
@@ -338,7 +342,8 @@ class Contact:
             kernels.single_velocity(m, v, a, vo, h)
         elif self.type == "friction":
             nrm = np.stack([normals[i].reshape(-1, 3) for i in idx])
-            kernels.friction(m, v, nrm, self.mu, np.asarray(dx, float), dt, a, vo, h)
+            tn = np.stack([traction[i].reshape(-1) for i in idx]) if self.needs_traction else np.empty((0, 0))
+            kernels.friction(m, v, nrm, tn, self.mu, np.asarray(dx, float), dt, a, vo, h)
         else:
             vel, origin, omega, own = self.rigid_velocity(t)
             shape = np.array(gmass[idx[0]].shape, np.int64)

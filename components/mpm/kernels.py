@@ -143,11 +143,16 @@ def owned_mask(px, anchor, dx, lo, hi, dims, out):
         out[p] = ok
 
 
+CONTACT_EPSILON = 1e-14       # Uintah's Contact::compare
+
+
 @njit(cache=True)
-def friction(gmass, gvel, gnorm, mu, dx, delt, gacc, gvel_old, dt):
+def friction(gmass, gvel, gnorm, tn, mu, dx, delt, gacc, gvel_old, dt):
     """Coulomb friction contact (Uintah's FrictionContactBard without the separation and
-    volume constraints); see contact.py. gnorm: outward unit normals per material;
-    dt > 0: also a_m = (v_m - v_old_m)/dt at the nodes changed."""
+    volume constraints); see contact.py. gnorm: outward unit normals per material; tn: the
+    normal traction per material (friction_bard: a node in compression, tn < -1e-12, is in
+    contact even when its material separates) or an empty array (approach: only approaching
+    materials are); dt > 0: also a_m = (v_m - v_old_m)/dt at the nodes changed."""
     nm = gmass.shape[0]
     vcm = np.empty(3)
     for i in range(gmass.shape[1]):
@@ -166,15 +171,17 @@ def friction(gmass, gvel, gnorm, mu, dx, delt, gacc, gvel_old, dt):
             vcm[d] = P / M
         for m in range(nm):
             mass = gmass[m, i]
-            if not (mass > 1e-15 * M and M - mass > 1e-15 * M):
+            # Uintah's !compare(mass / M, 0) && !compare(mass - M, 0): its EPSILON 1e-14, the second
+            # in kg, passes over round-off masses at the edge of a GIMP particle's reach
+            if not (mass / M > CONTACT_EPSILON and M - mass > CONTACT_EPSILON):
                 continue
             d0 = gvel[m, i, 0] - vcm[0]
             d1 = gvel[m, i, 1] - vcm[1]
             d2 = gvel[m, i, 2] - vcm[2]
             n0, n1, n2 = gnorm[m, i, 0], gnorm[m, i, 1], gnorm[m, i, 2]
             dn = d0 * n0 + d1 * n1 + d2 * n2
-            if not dn > 0.0:                        # separating or sliding: free surface
-                continue
+            if not (dn > 0.0 or (tn.shape[0] > 0 and tn[m, i] < -1e-12)):
+                continue                            # separating or sliding, not pressed: free surface
             t0 = d0 - dn * n0
             t1 = d1 - dn * n1
             t2 = d2 - dn * n2
@@ -183,10 +190,11 @@ def friction(gmass, gvel, gnorm, mu, dx, delt, gacc, gvel_old, dt):
             D1 = -dn * n1
             D2 = -dn * n2
             if tl > 1e-14 * abs(dn):
-                fc = min(mu, tl / dn)               # tl = dv . tangent
-                D0 -= t0 / tl * fc * dn
-                D1 -= t1 / tl * fc * dn
-                D2 -= t2 / tl * fc * dn
+                adn = abs(dn)
+                fc = min(mu, tl / adn)              # tl = dv . tangent
+                D0 -= t0 / tl * fc * adn
+                D1 -= t1 / tl * fc * adn
+                D2 -= t2 / tl * fc * adn
             # Uintah's limiter on the strain the contact imposes in one step
             emax = 0.0
             for d, Dd in ((0, D0), (1, D1), (2, D2)):

@@ -71,6 +71,20 @@ GEOM = {
 }
 
 
+def _read_affine(g):
+    """Uintah's <affineTransformation_A0|A1|A2> (the rows of A) and <affineTransformation_b>: the
+    particles laid on the lattice inside the piece are moved to A x + b and their domains turned
+    and stretched by A (conforming particles for CPDI); None when the object has none."""
+    tags = ("affineTransformation_A0", "affineTransformation_A1", "affineTransformation_A2", "affineTransformation_b")
+    if not any(g.has(t) for t in tags):
+        return None
+    rows = [g.get(t, "vector", tuple(np.eye(3)[k])) for k, t in enumerate(tags[:3])]
+    A = np.array(rows, float)
+    if abs(np.linalg.det(A)) < 1e-12:
+        raise g.child(next(t for t in tags if g.has(t))).error("the affine transformation's A is singular")
+    return A, np.array(g.get(tags[3], "vector", (0.0, 0.0, 0.0)), float)
+
+
 # accepted ranges (above, at_least) of constitutive-model tags: moduli of a deforming solid
 # have a positive bulk modulus (none gives no or an imaginary wave speed), shear >= 0, gamma > 1
 MODEL_RANGES = {"bulk_modulus": (0.0, None), "shear_modulus": (None, 0.0), "K": (0.0, None), "G": (None, 0.0),
@@ -210,6 +224,7 @@ class Material:
             spec["piece"] = piece
             spec["node"] = g
             spec["smooth"] = isinstance(piece, SmoothCylinder)
+            spec["affine"] = _read_affine(g)
             self.objects.append(spec)
         if not self.objects:
             raise node.error("a material needs at least one <geom_object>")
@@ -298,17 +313,30 @@ class Material:
             if taken is not None:
                 inside &= ~taken.inside(x)
             x, sub = x[inside], sub[inside]
+            std = np.diag(1.0 / res)                 # Uintah's p.size in cells
+            if obj["affine"] is not None:            # moved, kept where the patch owns them (as Uintah)
+                A, b = obj["affine"]
+                x = x @ A.T + b
+                cell = np.floor((x - lv.anchor) / lv.dx).astype(np.int64)
+                mine = np.all((cell >= patch.lo) & (cell < patch.hi), axis=1)
+                x, sub, std = x[mine], sub[mine], A @ std
             nsub = np.array(lv.ncells) * res
             ids = (obj_base + k) * (1 << 40) + sub[:, 0] + nsub[0] * (sub[:, 1] + nsub[1] * sub[:, 2])
             n = len(x)
-            vol = (x[:, 0] * (lv.dx[0] / res[0]) * (lv.dx[1] / res[1]) if axisymmetric
-                   else np.full(n, float(np.prod(lv.dx / res))))
+            dx = np.asarray(lv.dx, float)
+            if obj["affine"] is None:
+                vol = (x[:, 0] * (lv.dx[0] / res[0]) * (lv.dx[1] / res[1]) if axisymmetric
+                       else np.full(n, float(np.prod(lv.dx / res))))
+            else:                                    # Uintah's volumes of the turned domains
+                vol = (x[:, 0] * (std[0, 0] * std[1, 1] - std[0, 1] * std[1, 0]) * dx[0] * dx[1] if axisymmetric
+                       else np.full(n, float(np.linalg.det(std) * np.prod(dx))))
             dxpp = lv.dx / res
             out.append(dict(x=x, id=ids.astype(np.int64), vol=vol, temp=np.full(n, obj["temperature"]),
                             lcid=pressure.flag(x, obj["piece"], dxpp, self.index) if pressure
                                  else np.zeros((n, 3)),
                             vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                             size=np.tile(0.5 * lv.dx / res, (n, 1)),
+                            size_matrix=np.broadcast_to(0.5 * dx[:, None] * std, (n, 3, 3)).copy(),
                             color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))
             if surface:
                 out[-1]["surf"] = on_surface(x, obj["piece"], dxpp, ~np.asarray(lv.collapsed)).astype(float)
@@ -318,6 +346,9 @@ class Material:
             out.append(dict(x=np.empty((0, 3)), id=np.empty(0, np.int64), vol=np.empty(0), temp=np.empty(0),
                             lcid=np.empty((0, 3)), vel=np.empty((0, 3)), size=np.empty((0, 3)),
                             color=np.empty(0), **({"surf": np.empty(0)} if surface else {})))
+        for o in out:       # the size matrix's columns: the half-vectors of the particle's domain
+            if "size_matrix" not in o:
+                o["size_matrix"] = o["size"][:, :, None] * np.eye(3)
         data = {key: np.concatenate([o[key] for o in out]) for key in out[0]}
         order = np.argsort(data["id"], kind="stable")
         data = {key: np.ascontiguousarray(v[order]) for key, v in data.items()}
@@ -392,10 +423,12 @@ def read_membrane_object(g, with_color):
 def smooth_points(obj, patch, obj_id, res, pressure, matl):
     """The particles of a <smoothcyl> object that lie in the patch's cells (Uintah's
     FileGeomPieceParticleCreator): positions and volumes from SmoothCylinder.points, mass =
-    density * volume; IDs obj_id * 2^40 + the index in the piece's list. A point outside the
+    density * volume; IDs obj_id * 2^40 + the index in the piece's list; size_matrix the
+    half-vectors of each particle's domain, half its ring sector's edges (Uintah's p.size
+    matrix times the cell size). A point outside the
     level (extra cells included) is an error, as Uintah's."""
     lv = patch.level
-    x, vol = obj["piece"].cached_points(lv.dx)
+    x, vol, size = obj["piece"].cached_points(lv.dx)
     extra = np.asarray(lv.extra) * lv.dx
     lo, hi = lv.anchor - extra, lv.upper + extra
     bad = np.nonzero(np.any((x < lo) | (x > hi), axis=1))[0]
@@ -411,6 +444,7 @@ def smooth_points(obj, patch, obj_id, res, pressure, matl):
                 lcid=pressure.flag(x, obj["piece"], dxpp, matl) if pressure else np.zeros((n, 3)),
                 vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                 size=np.tile(0.5 * dxpp, (n, 1)),
+                size_matrix=0.5 * size[idx],
                 color=np.full(n, obj["color"] if obj["color"] is not None else 0.0))
 
 

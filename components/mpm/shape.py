@@ -174,6 +174,18 @@ def _cpdi_ax(act, d, x, lp, p, q, a0, ih):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
+def _axis_r(kind, act, px, lp, p, q, anchor, ih):
+    """The r axis of an axisymmetric run with its hoop values (see _ax_axi); CPDI (Uintah's
+    axiCpdiInterpolator): corner q's linear weights on the in-plane domain, t = w / r of the
+    particle's own radius."""
+    if kind == CPDI:
+        i, w0, w1, w2, g0, g1, g2 = _cpdi_ax(act, 0, px[p, 0], lp, p, q, anchor[0], ih[0])
+        rinv = 1.0 / px[p, 0]
+        return i, w0, w1, w2, g0, g1, g2, w0 * rinv, w1 * rinv, 0.0
+    return _ax_axi(kind, px[p, 0], anchor[0], ih[0], lp[p, 0])
+
+
+@njit(cache=True, fastmath=FM, inline="always")
 def _axis(kind, act, d, px, lp, p, q, anchor, ih):
     if kind == CPDI:
         return _cpdi_ax(act, d, px[p, d], lp, p, q, anchor[d], ih[d])
@@ -184,7 +196,7 @@ def _axis(kind, act, d, px, lp, p, q, anchor, ih):
 def _stencil(kind, act, px, lp, p, anchor, ih, node_low, q=0):
     """The weights of particle p (CPDI: of its corner q) on its three axes, base indices made local."""
     if act & AXI:
-        i, wx0, wx1, wx2, gx0, gx1, gx2, gz0, gz1, gz2 = _ax_axi(kind, px[p, 0], anchor[0], ih[0], lp[p, 0])
+        i, wx0, wx1, wx2, gx0, gx1, gx2, gz0, gz1, gz2 = _axis_r(kind, act, px, lp, p, q, anchor, ih)
         k, wz0, wz1, wz2 = 0, 1.0, 0.0, 0.0
     else:
         i, wx0, wx1, wx2, gx0, gx1, gx2 = _axis(kind, act, 0, px, lp, p, q, anchor, ih)
@@ -270,7 +282,7 @@ def _stencil_put(kind, act, px, lp, p, anchor, ih, node_low, q, sw, c=0):
     local base node (i, j, k) (0 on an inactive axis)."""
     i = j = k = 0
     if act & AXI:
-        i, w0, w1, w2, g0, g1, g2, t0, t1, t2 = _ax_axi(kind, px[p, 0], anchor[0], ih[0], lp[p, 0])
+        i, w0, w1, w2, g0, g1, g2, t0, t1, t2 = _axis_r(kind, act, px, lp, p, c, anchor, ih)
         i -= node_low[0]
         sw[0, 0, q] = w1
         if kind != LINEAR:
@@ -331,15 +343,21 @@ def _inv_dx(dx):
 def cpdi_domains(act, F, lp, dx, lcrit, out):
     """CPDI's domain array of each particle, out (n, 18): r_1, r_2, r_3 (physical units), then the
     rows of J^-1, J = [r_k] on the active axes (identity on the others). r_k = F e_k l_k is half
-    of Uintah's (F p.size)(:, k); where a corner r_3 +- r_1 +- r_2 reaches beyond lcrit cells it
-    is scaled back to lcrit and the r_k are rebuilt from those corners (Uintah's cpdi_lcrit)."""
+    of Uintah's (F p.size)(:, k); with a size matrix lp (n, 3, 3), whose columns are the
+    undeformed half-vectors H e_k (a <smoothcyl>'s turned sectors), r_k = F H e_k. Where a corner
+    r_3 +- r_1 +- r_2 reaches beyond lcrit cells it is scaled back to lcrit and the r_k are
+    rebuilt from those corners (Uintah's cpdi_lcrit)."""
     ih0, ih1, ih2 = _inv_dx(dx)
     ih = (ih0, ih1, ih2)
     for p in range(F.shape[0]):
         r = np.empty((3, 3))        # r[k, d]: component d of r_k, in cells
         for k in range(3):
             for d in range(3):
-                r[k, d] = F[p, d, k] * lp[p, k] * ih[d] if dx[d] != 0.0 else 0.0
+                if lp.ndim == 2:
+                    r[k, d] = F[p, d, k] * lp[p, k] * ih[d] if dx[d] != 0.0 else 0.0
+                else:
+                    FH = F[p, d, 0] * lp[p, 0, k] + F[p, d, 1] * lp[p, 1, k] + F[p, d, 2] * lp[p, 2, k]
+                    r[k, d] = FH * ih[d] if dx[d] != 0.0 else 0.0
         # the corners r_3 + a r_1 + b r_2 (Uintah's la, lb, lc, ld: a, b = ++, +-, -+, --)
         c = np.empty((4, 3))
         scaled = False

@@ -65,7 +65,10 @@ def _split(dw, label, m, patch):
 
 def scale_factor(F, size):
     """Uintah's p.scalefactor, F diag(dx) p.size with its p.size in cells: F diag(2 h) with
-    pysus's half-widths h (the particle's deformed extent, for visualisation)."""
+    pysus's half-widths h, or F 2 H with a size matrix H (p.sizeMatrix) (the particle's
+    deformed extent, for visualisation)."""
+    if size.ndim == 3:
+        return np.matmul(F, 2.0 * size)
     return F * (2.0 * size)[:, None, :]
 
 
@@ -84,16 +87,24 @@ class MPMTasks:
             return _zeros3(n)
         if self.kind == "gimp":
             return dw.get(L.pSize, m, patch)
-        return self._domains(dw.get(L.pF, m, patch), dw.get(L.pSize, m, patch))
+        return self._domains(dw.get(L.pF, m, patch), dw.get(self._size_label, m, patch))
+
+    @property
+    def _size_label(self):
+        """What CPDI's domains and p.scalefactor read: p.size, or p.sizeMatrix (<smoothcyl>)."""
+        return L.pSizeMatrix if getattr(self, "size_matrix", False) else L.pSize
 
     def _domains(self, F, size):
+        """CPDI's domains; axisymmetric: the in-plane ones (F's hoop stretch is not a side of the
+        domain), without cpdi_lcrit, as Uintah's axiCpdiInterpolator."""
         out = np.empty((len(F), 18))
-        shape.cpdi_domains(self.axes, F, size, self.level.dx, self.flags["cpdi_lcrit"], out)
+        lcrit = np.inf if self.axisymmetric else self.flags["cpdi_lcrit"]
+        shape.cpdi_domains(self.axes, F, size, self.level.dx, lcrit, out)
         return out
 
     def size_labels(self):
         """The particle labels the weights read besides p.x (ghosted where p.x is)."""
-        return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [L.pSize, L.pF])
+        return {"linear": [], "gimp": [L.pSize]}.get(self.kind, [self._size_label, L.pF])
 
     def _constitutive(self, mat, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy,
                       old=None, new=None, scale=None, temperature=None, color=None, time=0.0):
@@ -156,10 +167,11 @@ class MPMTasks:
                                                    temperature=d["temp"], color=d["color"]))
             put = {L.pX: d["x"], L.pVelocity: d["vel"], L.pMass: d["mass"], L.pVolume: d["vol"],
                    L.pStress: stress, L.pF: F, L.pID: d["id"], L.pSize: d["size"], L.pColor: d["color"],
+                   L.pSizeMatrix: d["size_matrix"],
                    L.pStrainEnergy: energy, L.pSurface: d.get("surf"), L.pDisp: np.zeros((n, 3)),
                    L.pQ: np.zeros(n)}
             if self.saves_scale:
-                put[L.pScaleFactor] = scale_factor(F, d["size"])
+                put[L.pScaleFactor] = scale_factor(F, d["size_matrix"] if self.size_matrix else d["size"])
             if self.projection:
                 put[L.pVelGradLast] = np.zeros((n, 3, 3))
             own = dict(zip(mat.state_names, state if len(mat.state_names) > 1 else (state,)))
@@ -291,12 +303,13 @@ class MPMTasks:
         """Contact on the interpolated velocities (friction: normals first)."""
         gm = {m: new_dw.get(L.gMass, m, patch) for m in matls}
         gv = {m: new_dw.get_modifiable(L.gVelocity, m, patch) for m in matls}
-        normals = self._normals(patch, old_dw, new_dw) if self.contact.needs_normals else None
+        traction = {} if self.contact.needs_traction else None
+        normals = self._normals(patch, old_dw, new_dw, traction) if self.contact.needs_normals else None
         lr, color = self._lr(patch, new_dw)
         t = old_dw.get_reduction(FL.simTime) if self.contact.needs_time else 0.0
         self.contact.exchange(gm, gv, None, None, old_dw.get_reduction(FL.delT), t=t, normals=normals,
                               dx=self.level.dx, node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)),
-                              lr=lr, color=color)
+                              lr=lr, color=color, traction=traction)
 
     def logistic_regression(self, patch, matls, old_dw, new_dw):
         """friction_LR's g.alphaMaterial, g.normAlphaToBeta (material 0) and each material's
@@ -364,11 +377,14 @@ class MPMTasks:
               {m: new_dw.get(L.gMatlProminence, m, patch) for m in self.matls})
         return lr, (new_dw.get(L.gColor, c.master, patch) if c.needs_color else None)
 
-    def _normals(self, patch, old_dw, new_dw):
+    def _normals(self, patch, old_dw, new_dw, traction=None):
         """g.surfNorm per contact material, as Uintah's computeNormals: g_m = sum m_p grad S
         (outward: mass falls off along it), made collinear with the other materials'
         (0.5 (g_m - mass-weighted mean of the others' g)) unless <computeColinearNormals>
-        false, then unit length."""
+        false, then unit length. Axisymmetric, as Uintah's: g_m = sum rho_p (dS/dr, dS/dz, 0) with
+        the r-weighted weights and the derivatives in cell units (the particles' mass grows with
+        r, their density does not). traction (a dict): friction_bard's g.normtraction of each
+        contact material goes there."""
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
         kind = transfer.INTERPOLATORS[self.kind]
@@ -376,8 +392,14 @@ class MPMTasks:
         for m in self.contact.materials:
             px = old_dw.get(L.pX, m, patch)
             g[m] = np.zeros(patch.alloc_shape(NC) + (3,))
-            transfer.mass_gradient(kind, self.axes, px, old_dw.get(L.pMass, m, patch),
+            weight = old_dw.get(L.pMass, m, patch)
+            if self.axisymmetric:
+                weight = weight / old_dw.get(L.pVolume, m, patch)
+            transfer.mass_gradient(kind, self.act, px, weight,
                                    self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, g[m])
+            if self.axisymmetric:
+                g[m][..., :2] *= np.asarray(lv.dx)[:2]
+                g[m][..., 2] = 0.0
             gm[m] = new_dw.get(L.gMass, m, patch)[..., None]
         out = {}
         collinear = self.flags.get("computeColinearNormals", True)
@@ -391,12 +413,39 @@ class MPMTasks:
                 n[np.broadcast_to(gm[m] <= 1e-200, n.shape)] = 0.0
             else:
                 n[...] = g[m]
+            self.bcs.symmetric_normal(patch, n)        # Uintah's "Symmetric" condition on g.surfNorm
             norm = np.linalg.norm(n, axis=-1, keepdims=True)
             np.divide(n, norm, out=n, where=norm > 1e-15)
             out[m] = n
+            if traction is not None:
+                traction[m] = self._normal_traction(patch, old_dw, new_dw, m, n)
         for m in matls_not_in(self.matls, self.contact.materials):
             new_dw.allocate(L.gSurfNorm, m, patch, 0.0)
+            if self.contact.needs_traction:
+                new_dw.allocate(L.gNormTraction, m, patch, 0.0)
         return out
+
+    def _normal_traction(self, patch, old_dw, new_dw, m, n):
+        """friction_bard's g.normtraction = n . (sum_p S sigma_p) . n (Uintah's computeNormals; its
+        sign tells a node in compression)."""
+        lv = self.level
+        alo, ahi = patch.alloc(NC)
+        pad = np.array([self.ng + 2 if self.dims[d] else 0 for d in range(3)])
+        shape = tuple(np.array(ahi) - np.array(alo) + 2 * pad)
+        px = old_dw.get(L.pX, m, patch)
+        gs = np.zeros(shape + (3, 3))
+        kernels.p2g_stress(transfer.INTERPOLATORS[self.kind], self.act, px, np.ones(len(px)),
+                           old_dw.get(L.pStress, m, patch), self._lp(old_dw, m, patch, len(px)), lv.anchor,
+                           lv.dx, np.array(alo) - pad, np.zeros(shape), gs)
+        gs = gs[tuple(slice(p, p + h - l) for p, l, h in zip(pad, alo, ahi))]
+        tn = np.ascontiguousarray(np.einsum("...i,...ij,...j->...", n, gs, n))
+        new_dw.put(L.gNormTraction, m, patch, tn)
+        return tn
+
+    def _traction(self, new_dw, patch):
+        if not self.contact.needs_traction:
+            return None
+        return {m: new_dw.get(L.gNormTraction, m, patch) for m in self.contact.materials}
 
     def integrate_acceleration(self, patch, matls, old_dw, new_dw):
         """a_i = (fint + fext)/m_i + g (000 eq. 21), v*_i = v_i + a_i dt (000 eq. 25)."""
@@ -439,7 +488,8 @@ class MPMTasks:
             new_dw.put_reduction(L.RigidReactionForce, force)
             new_dw.put_reduction(L.RigidReactionTorque, torque)
         before = {m: gvs[m].copy() for m in c.materials} if self.ftm_contact else None
-        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx, node_x=node_x, lr=lr, color=color)
+        c.exchange(gm, gvs, ga, gv, dt, t=t, normals=normals, dx=self.level.dx, node_x=node_x, lr=lr, color=color,
+                   traction=self._traction(new_dw, patch))
         if before is not None:      # the force the rigid body exerts, taken back by it (Uintah's STF)
             inner = tuple(slice(lo, hi) for lo, hi in zip(*patch.interior(NC)))     # no extra nodes, as Uintah
             force = np.zeros(3)
@@ -576,7 +626,8 @@ class MPMTasks:
         t = old_dw.get_reduction(FL.simTime) if c.needs_time else 0.0
         lr, color = self._lr(patch, new_dw)
         c.exchange(gm, gvl, None, None, dt, t=t, normals=normals, dx=self.level.dx,
-                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)), lr=lr, color=color)
+                   node_x=(self.level.anchor, self.level.dx, patch.low_index(NC)), lr=lr, color=color,
+                   traction=self._traction(new_dw, patch))
         for m in matls:
             self.bcs.apply(patch, m, gvl[m], np.empty_like(gvl[m]), gvl[m], dt)
 
@@ -770,13 +821,13 @@ class MPMTasks:
                 new_dw.put(L.pStrainEnergyPre, m, patch, energy)
             se += energy.sum()
             for final, pre in self.carry:
-                if final in (L.pMass, L.pID, L.pSize, L.pColor, L.pLoadCurveID, L.pSurface):
+                if final in (L.pMass, L.pID, L.pSize, L.pSizeMatrix, L.pColor, L.pLoadCurveID, L.pSurface):
                     new_dw.put(pre, m, patch, old_dw.get(final, m, patch))
             if self.mms or self.saves_disp:
                 new_dw.put(L.pDispPre, m, patch, old_dw.get(L.pDisp, m, patch) + new_dw.get(L.pXpre, m, patch)
                            - old_dw.get(L.pX, m, patch))
             if self.saves_scale:
-                new_dw.put(L.pScaleFactorPre, m, patch, scale_factor(F_new, old_dw.get(L.pSize, m, patch)))
+                new_dw.put(L.pScaleFactorPre, m, patch, scale_factor(F_new, old_dw.get(self._size_label, m, patch)))
             if self.pressure_bcs:
                 lcid = old_dw.get(L.pLoadCurveID, m, patch)
                 px_old = old_dw.get(L.pX, m, patch)

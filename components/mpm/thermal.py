@@ -37,7 +37,7 @@ from framework.variables import Ghost, VarType
 from . import labels as L
 from .shape import _counts as _sizes
 from .shape import _sel as _pick
-from .shape import _stencil
+from .shape import AXI, _stencil
 
 FM = {'contract'}
 NC = VarType.NC
@@ -213,7 +213,9 @@ class ThermalTasks:
             if self.materials[m].specific_heat <= 0:
                 raise self.materials[m].node.error(
                     "heat conduction needs <specific_heat> > 0 (thermal_conductivity is positive)")
-        self.th_act = sum(1 << d for d in range(3) if self.dims[d])     # active-axis mask of the kernels
+        # active-axis mask of the kernels; axisymmetric: the r-weighted weights (shape.AXI), as
+        # Uintah's g.temperature (the heat of a non-conducting run: conduction is refused there)
+        self.th_act = sum(1 << d for d in range(3) if self.dims[d]) | (AXI if self.axisymmetric else 0)
         self.thermal_contact = node is not None and len(self.materials) > 1
         for what, given, where in (("<thermal_contact>", node is not None, node),
                                    ("a Temperature grid BC", self.temperature_bcs, None)):
@@ -293,16 +295,24 @@ class ThermalTasks:
             e += mat.specific_heat * float(np.dot(new_dw.get(L.pMass, m, patch), T)) if len(ids) else 0.0
         new_dw.put_reduction(L.ThermalEnergy, e)
 
+    def _heat_stencil(self):
+        """The heat kernels' weights: GIMP's with p.size, else linear ones. CPDI runs them only
+        without conduction (refused with it), where the nodal rates are zero and the particles
+        keep their own heating: there g.temperature is the linear interpolation."""
+        if self.kind == "gimp":
+            return 1, self._lp
+        return 0, lambda dw, m, patch, n: self._lp(dw, m, patch, n) if self.kind == "linear" else np.zeros((n, 3))
+
     def interpolate_temperature(self, patch, matls, old_dw, new_dw):
         """g.temperature = sum S m T / m_i from the owned and ghost particles."""
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
-        kind = 0 if self.kind == "linear" else 1
+        kind, lps = self._heat_stencil()
         for m in matls:
             px = old_dw.get(L.pX, m, patch)
             gmT = np.zeros(patch.alloc_shape(NC))
             p2g_heat(kind, self.th_act, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pTemperature, m, patch),
-                     self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, gmT)
+                     lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, gmT)
             T = new_dw.allocate(L.gTemperature, m, patch, None)
             divide_by_mass(new_dw.get(L.gMass, m, patch), gmT, T)
             if self.temperature_bcs:
@@ -327,12 +337,12 @@ class ThermalTasks:
         flux = self.pressure_bcs is not None and self.pressure_bcs.heat_flux
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
-        kind = 0 if self.kind == "linear" else 1
+        kind, lps = self._heat_stencil()
         for m in matls:
             mat = self.materials[m]
             px = old_dw.get(L.pX, m, patch)
             acc = np.zeros(patch.alloc_shape(NC))
-            heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch), self._lp(old_dw, m, patch, len(px)),
+            heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch), lps(old_dw, m, patch, len(px)),
                       lv.anchor, lv.dx, low, new_dw.get(L.gTemperature, m, patch),
                       mat.conductivity / mat.specific_heat, acc)
             if flux:
@@ -340,7 +350,7 @@ class ThermalTasks:
                                                  old_dw.get_reduction(FL.simTime),
                                                  old_dw.get_reduction(L.PressureBCParticles))
                 p2g_heat(kind, self.th_act, px, q / mat.specific_heat, np.ones(len(px)),
-                         self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, acc)
+                         lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, acc)
             divide_by_mass(new_dw.get(L.gMass, m, patch), acc, new_dw.allocate(L.gTemperatureRate, m, patch, None))
 
     def update_particle_temperature(self, patch, matls, old_dw, new_dw):
@@ -348,7 +358,7 @@ class ThermalTasks:
         lv = self.level
         dt = old_dw.get_reduction(FL.delT)
         low = np.array(patch.low_index(NC), np.int64)
-        kind = 0 if self.kind == "linear" else 1
+        kind, lps = self._heat_stencil()
         e = 0.0
         for m in matls:
             mat = self.materials[m]
@@ -365,7 +375,7 @@ class ThermalTasks:
             px = old_dw.get(L.pX, m, patch)
             T_new = np.empty(len(px))
             e += g2p_heat(kind, self.th_act, px, old_dw.get(L.pTemperature, m, patch), old_dw.get(L.pMass, m, patch),
-                          self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, np.ascontiguousarray(rate), dt,
+                          lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, np.ascontiguousarray(rate), dt,
                           T_new, mat.specific_heat)
             new_dw.put(L.pTemperaturePre, m, patch, T_new)
         new_dw.put_reduction(L.ThermalEnergy, e)

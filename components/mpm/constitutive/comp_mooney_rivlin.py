@@ -81,6 +81,13 @@ def kernel(C1, C2, PR, F_new, vol, mass, vel, stress_new, energy):
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy):
-    """Stress from F_new (L, F_old, dt, stress_old unused); returns wave speed (3,)."""
-    return kernel(params.he_constant_1, params.he_constant_2, params.he_PR, F_new, vol,
-                  mass, vel, stress_new, energy)
+    """Stress from F_new (L, F_old, stress_old unused); returns wave speed (3,). At the
+    initialization (dt = 0) the wave speed is that of Uintah's computeStableTimestep there,
+    c^2 = 2 mu (1 - nu) V / ((1 - 2 nu) m), mu = 2 (C1 + C2), which differs from the step's."""
+    ws = kernel(params.he_constant_1, params.he_constant_2, params.he_PR, F_new, vol,
+                mass, vel, stress_new, energy)
+    if dt == 0.0 and len(vol):
+        nu = params.he_PR
+        c = np.sqrt(2.0 * params.shear_modulus * (1.0 - nu) * vol / ((1.0 - 2.0 * nu) * mass))
+        ws = (c[:, None] + np.abs(vel)).max(axis=0)
+    return ws
