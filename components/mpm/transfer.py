@@ -481,10 +481,12 @@ def _g2p(kind, act, musl, xpic, own, ghost, runs, anchor, dx, node_low, gvs, gac
     lim = (min_mass > 0.0 or max_vel < np.inf, min_mass, max_vel)
     acc = (0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     for r in range(runs.shape[0]):
-        if runs[r, 0] == 0:
+        if musl:                # one copy of the rows' code for the owned and the ghost runs
+            owned = runs[r, 0] == 0
+            acc = _g2p_rows(kind, act, musl, xpic, own if owned else ghost, runs[r, 1], runs[r, 2], owned, grid,
+                            outs, lim, acc)
+        elif runs[r, 0] == 0:   # USL: a ghost particle changes nothing (no remap), so no code for it
             acc = _g2p_rows(kind, act, musl, xpic, own, runs[r, 1], runs[r, 2], True, grid, outs, lim, acc)
-        elif musl:              # USL: a ghost particle changes nothing (no remap), so no code for it
-            acc = _g2p_rows(kind, act, musl, xpic, ghost, runs[r, 1], runs[r, 2], False, grid, outs, lim, acc)
     o, n_del, t0, t1, t2, t3, t4, t5, t6, t7 = acc
     tot[0] += t0
     tot[1] += t1
@@ -555,7 +557,7 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
 # p2g(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum,
 #     grid_volume, grid_fext, grid_fint)
 #     owned/ghost: (px, pm, pv, pvol, ps, pf, lp) of the owned and ghost particles; has_fext
-#     implies has_volume (V_i); both branched once per call, so each is compiled constant
+#     implies has_volume (V_i); each pair is its own compiled variant (_p2g_variant)
 # g2p(musl, owned, ghost, runs, anchor, dx, node_low, grid_velocity_star, grid_acceleration, dt,
 #     x_out, v_out, L_out, grid_momentum, totals, min_mass, max_vel, write_L, F_old, F_out,
 #     vol_out, rho0, grid_velocity, grid_vel_spssp) -> number deleted
@@ -569,6 +571,21 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
 # fast_cpdi (Uintah's fastCpdiInterpolator) merges the nodes the corners share before the transfer:
 # the same weights, one node list; here both visit the corners' linear stencils in turn
 INTERPOLATORS = {"linear": LINEAR, "gimp": GIMP, "cpdi": CPDI, "fast_cpdi": CPDI}
+
+
+@functools.lru_cache(maxsize=None)
+def _p2g_variant(interpolator, axes, has_fext, has_volume):
+    """p2g without its two flags for one interpolator, mask and pair of flags, each compiled only
+    where a run uses it (the three pairs in one entry cost three copies of the loop in every
+    compile; the flags as run-time values made the pass 20-30 % slower)."""
+    kind = INTERPOLATORS[interpolator]
+
+    @njit(cache=True, fastmath=FM)
+    def p2g(owned, ghost, runs, anchor, dx, node_low, grid_mass, grid_momentum, grid_volume, grid_fext, grid_fint):
+        no_grad = np.empty((0, 3, 3))
+        _p2g(kind, axes, owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum,
+             grid_volume, grid_fext, grid_fint, False, no_grad, no_grad)
+    return p2g
 
 
 @functools.lru_cache(maxsize=None)
@@ -590,19 +607,9 @@ def _p2g_entry(interpolator, axes, projection=False):
                      grid_volume, grid_fext, grid_fint, True, grad_owned, grad_ghost)
         return p2g_projected
 
-    @njit(cache=True, fastmath=FM)
-    def p2g(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum, grid_volume,
-            grid_fext, grid_fint):
-        no_grad = np.empty((0, 3, 3))
-        if has_fext:
-            _p2g(kind, axes, owned, ghost, runs, True, True, anchor, dx, node_low, grid_mass, grid_momentum,
-                 grid_volume, grid_fext, grid_fint, False, no_grad, no_grad)
-        elif has_volume:
-            _p2g(kind, axes, owned, ghost, runs, False, True, anchor, dx, node_low, grid_mass, grid_momentum,
-                 grid_volume, grid_fext, grid_fint, False, no_grad, no_grad)
-        else:
-            _p2g(kind, axes, owned, ghost, runs, False, False, anchor, dx, node_low, grid_mass, grid_momentum,
-                 grid_volume, grid_fext, grid_fint, False, no_grad, no_grad)
+    def p2g(owned, ghost, runs, has_fext, has_volume, *grid):
+        has_fext = bool(has_fext)
+        _p2g_variant(interpolator, axes, has_fext, has_fext or bool(has_volume))(owned, ghost, runs, *grid)
     return p2g
 
 
@@ -678,20 +685,17 @@ def _spssp_entry(interpolator, axes):
 
 @functools.lru_cache(maxsize=None)
 def _grad_entry(interpolator, axes):
-    """grad (signature above) for one interpolator and active-axis mask; the fused model is
-    branched once per call, so each is compiled constant."""
+    """grad (signature above) for one interpolator and active-axis mask; the fused model is a
+    run-time value (its branch per particle measured no slower than two compiled copies of the
+    loop, which doubled the compile)."""
     kind = INTERPOLATORS[interpolator]
 
     @njit(cache=True, fastmath=FM)
     def grad(px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt, particle_mass, rho0, F_old, F_out,
              vol_out, model, bulk_modulus, shear_modulus, particle_velocity, stress_out, energy_out):
-        if model == NEO_HOOKE:
-            return _grad(kind, axes, NEO_HOOKE, px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt,
-                         particle_mass, rho0, F_old, F_out, vol_out, bulk_modulus, shear_modulus, particle_velocity,
-                         stress_out, energy_out)
-        return _grad(kind, axes, 0, px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt, particle_mass,
-                     rho0, F_old, F_out, vol_out, bulk_modulus, shear_modulus, particle_velocity, stress_out,
-                     energy_out)
+        return _grad(kind, axes, model, px, lp, anchor, dx, node_low, grid_velocity, L_out, write_L, dt,
+                     particle_mass, rho0, F_old, F_out, vol_out, bulk_modulus, shear_modulus, particle_velocity,
+                     stress_out, energy_out)
     return grad
 
 
