@@ -37,8 +37,9 @@ def strain_rate(vel, n0, c0, lo, hi, dx, D):
 
 
 @njit(cache=True)
-def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_min, c0, lo, hi, N):
-    """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m.
+def solid_stress(D, sig_old, vf, fluid, sig_new, mean, excess, lam, mu, dt, slide, phi_min, c0, lo, hi, N):
+    """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m, and
+    excess += phi_m e_v, the solid's volume strain tr(sigma_m) / (2 (lambda + mu)).
 
     With `slide` (the paper's slide condition, eq. 24), an element that also holds fluid
     drops the solid's shear traction on the interface, whose normal n is the gradient of
@@ -55,6 +56,7 @@ def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_m
             sxx = sig_old[i, j, 0, 0] + dt * ((lam + 2.0 * mu) * exx + lam * eyy)
             syy = sig_old[i, j, 0, 1] + dt * (lam * exx + (lam + 2.0 * mu) * eyy)
             sxy = sig_old[i, j, 0, 2] + dt * mu * gxy
+            excess[i, j, 0] += phi * (sxx + syy) / (2.0 * (lam + mu))
             if slide and fluid[i, j, 0] > phi_min:
                 gx = (vf[i + 1, j, 0] if I + 1 < N[0] else phi) - (vf[i - 1, j, 0] if I > 0 else phi)
                 gy = (vf[i, j + 1, 0] if J + 1 < N[1] else phi) - (vf[i, j - 1, 0] if J > 0 else phi)
@@ -320,9 +322,9 @@ def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min,
     if fl < fill_min and fh < fill_min:
         return u
     if fl < fill_min:
-        return u + dt * press[ih, jh, 0] / (rho[ih, jh, 0] * _surface_distance(fh) * dx[d])
+        return u - dt * press[ih, jh, 0] / (rho[ih, jh, 0] * _surface_distance(fh) * dx[d])
     if fh < fill_min:
-        return u - dt * press[il, jl, 0] / (rho[il, jl, 0] * _surface_distance(fl) * dx[d])
+        return u + dt * press[il, jl, 0] / (rho[il, jl, 0] * _surface_distance(fl) * dx[d])
     return u - 2.0 * dt / (rho[il, jl, 0] + rho[ih, jh, 0]) * (press[ih, jh, 0] - press[il, jl, 0]) / dx[d]
 
 

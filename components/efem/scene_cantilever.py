@@ -36,6 +36,13 @@ def beam(x):
     return q * x ** 2 * (6 * L ** 2 - 4 * L * x + x ** 2) / (24 * Ep * I) + q * (L * x - x * x / 2) / (5.0 / 6.0 * MU * H)
 
 
+def period():
+    """First bending period 2 pi / omega_1 of the clamped-free beam (Euler-Bernoulli):
+    omega_1 = 1.8751^2 sqrt(E' I / (rho h L^4))."""
+    Ep, I = 4.0 * MU, H ** 3 / 12.0
+    return 2.0 * np.pi / (1.8751 ** 2 * np.sqrt(Ep * I / (RHO * H * L ** 4)))
+
+
 def deflection(da, timestep=-1):
     """(x of the element columns under the bar, their centroid drop) at an output."""
     f0, (x, y, z) = da.read("vol_frac_CC", 0, 0)
