@@ -23,6 +23,7 @@ fill_CC = L.create("efem.fill_CC", CC)                    # sum_m phi_m: 1 full,
 stress_L_CC = L.create("efem.stress_L_CC", CC, (3,))      # solid stress after eq. 22, before the remap
 sigma_CC = L.create("efem.sigma_CC", CC, (3,))            # mixed element stress of eq. 23 (material 0)
 hourglass_L_CC = L.create("efem.hourglass_L_CC", CC, (2,))  # solid hourglass forces before the remap
+fluid_CC = L.create("efem.fluid_CC", CC)                  # sum of the fluids' phi_m (material 0)
 excess_CC = L.create("efem.excess_CC", CC)                # sum_s phi_s e_v,s: the solids' volume strain (material 0)
 hgForce_CC = L.create("efem.hgForce_CC", CC, (2,))        # sum_m phi_m Q_m (material 0)
 gMass = L.create("g.mass", NC)                            # lumped nodal mass (material 0)

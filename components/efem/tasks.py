@@ -90,7 +90,7 @@ class EfemTasks:
         fill = new_dw.allocate(E.fill_CC, 0, patch)
         hg_force = new_dw.allocate(E.hgForce_CC, 0, patch)
         excess = new_dw.allocate(E.excess_CC, 0, patch)
-        fluid = np.zeros(patch.alloc_shape(CC))
+        fluid = new_dw.allocate(E.fluid_CC, 0, patch)
         for m, mat in enumerate(self.materials):
             vf = old_dw.get(E.vol_frac_CC, m, patch)
             rho += mat.density * vf
@@ -101,8 +101,9 @@ class EfemTasks:
             vf = old_dw.get(E.vol_frac_CC, m, patch)
             if mat.solid:
                 sig = new_dw.allocate(E.stress_L_CC, m, patch)
-                K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, fluid, sig, sigma, excess, mat.lam, mat.mu,
-                               dt, self.settings["slide_condition"], self.settings["solid_min"], f.c0, f.clo, f.chi, f.N)
+                K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, fluid, sig, sigma, excess, mat.lam,
+                               mat.mu, dt, self.settings["slide_condition"], self.settings["solid_min"], f.c0, f.clo,
+                               f.chi, f.N)
                 hg = new_dw.allocate(E.hourglass_L_CC, m, patch)
                 kx, ky = self.hourglass_stiffness(mat, f)
                 K.solid_hourglass(D, old_dw.get(E.hourglass_CC, m, patch), vf, hg, hg_force, kx, ky, dt,
@@ -128,14 +129,16 @@ class EfemTasks:
                         self.settings["damping"], self.walls, self.wall_vel, self.settings["fill_min"])
 
     def pressure_system(self, patch, matls, old_dw, new_dw):
-        """The stencil and right-hand side of the pressure Poisson equation (eq. 16)."""
+        """The stencil and right-hand side of the pressure Poisson equation (eq. 16), with the fill
+        correction."""
         f = self.frame(patch)
         dt = old_dw.get_reduction(L.delT)
         A = new_dw.allocate(E.press_A, 0, patch)
         rhs = new_dw.allocate(E.press_rhs, 0, patch)
         K.pressure_system(new_dw.get(E.gVelocityStar, 0, patch), new_dw.get(E.rho_CC, 0, patch),
-                          new_dw.get(E.fill_CC, 0, patch), A, rhs, f.n0, f.c0, f.clo, f.chi, f.N, f.dx, f.dz, dt,
-                          self.open_faces, self.settings["fill_min"])
+                          new_dw.get(E.fill_CC, 0, patch), new_dw.get(E.fluid_CC, 0, patch), A, rhs, f.n0, f.c0,
+                          f.clo, f.chi, f.N, f.dx, f.dz, dt, self.open_faces, self.settings["fill_min"],
+                          self.settings["fill_correction"])
         if self.pcg.precond == "mg":
             self.pcg.put_coarse_operator(patch, A, new_dw)
 
