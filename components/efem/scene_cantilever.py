@@ -18,9 +18,11 @@ L, H, RHO, E, NU, G = 0.8, 0.1, 1000.0, 1.5e7, 0.0, 9.81
 MU = E / (2.0 * (1.0 + NU))
 
 
-def deck_text(nx=40, ny=16, max_time=None, filebase=None):
+def deck_text(nx=40, ny=16, max_time=None, filebase=None, cfl=None):
     with open(DECK) as f:
         text = f.read()
+    if cfl is not None:
+        text = text.replace("<cfl> 0.1 </cfl>", f"<cfl> {cfl} </cfl>")
     text = text.replace("<resolution> [40, 16, 1] </resolution>", f"<resolution> [{nx}, {ny}, 1] </resolution>")
     if max_time is not None:
         text = text.replace("<maxTime> 0.3 </maxTime>", f"<maxTime> {max_time} </maxTime>")
