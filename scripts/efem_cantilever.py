@@ -8,6 +8,7 @@ About 3 min on one core at 25 x 10, 10 min at 40 x 16.
 
     .venv/bin/python scripts/efem_cantilever.py                 # 25 x 10 and 40 x 16
     .venv/bin/python scripts/efem_cantilever.py -n 25 --json cantilever.json
+    .venv/bin/python scripts/efem_cantilever.py -n 20 --cfl 0.25     # 20 x 8, faces on element edges
 """
 from __future__ import annotations
 
@@ -25,11 +26,11 @@ from framework.archiver import DataArchive  # noqa: E402
 from framework.controller import Controller  # noqa: E402
 
 
-def run(nx, max_time, workdir):
+def run(nx, max_time, workdir, cfl=None):
     ny = int(round(nx * 0.4))
     deck = os.path.join(workdir, f"cantilever{nx}.ups")
     with open(deck, "w") as f:
-        f.write(S.deck_text(nx, ny, max_time=max_time, filebase=os.path.join(workdir, f"cantilever{nx}.uda")))
+        f.write(S.deck_text(nx, ny, max_time=max_time, filebase=os.path.join(workdir, f"cantilever{nx}.uda"), cfl=cfl))
     t0 = time.perf_counter()
     ctl = Controller(deck, quiet=True)
     ctl.run()
@@ -48,12 +49,13 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("-n", type=int, nargs="+", default=[25, 40], help="elements along x (0.4 n along y)")
     ap.add_argument("--max-time", type=float, default=0.3)
+    ap.add_argument("--cfl", type=float, default=None, help="the deck's <cfl> (0.1) replaced")
     ap.add_argument("--json", default=None)
     args = ap.parse_args(argv)
     rows = []
     with tempfile.TemporaryDirectory() as wd:
         for n in args.n:
-            r = run(n, args.max_time, wd)
+            r = run(n, args.max_time, wd, args.cfl)
             rows.append(r)
             for name in ("tip", "mid"):
                 c = r[name]

@@ -107,7 +107,8 @@ class EFEM(EfemTasks, Component):
         t = Task("EFEM::computeStressTensor", self.compute_stress, self.matls) \
             .requires(OLD, L.delT).requires(OLD, E.gVelocity, G, 1, matls=m0).requires(OLD, E.vol_frac_CC, *g) \
             .computes(E.sigma_CC, matls=m0).computes(E.rho_CC, matls=m0).computes(E.fill_CC, matls=m0) \
-            .computes(E.hgForce_CC, matls=m0)
+            .computes(E.hgForce_CC, matls=m0).computes(E.excess_CC, matls=m0) \
+            .computes(E.fluid_CC, matls=m0)
         if solids:
             t.requires(OLD, E.stress_CC, matls=solids).computes(E.stress_L_CC, matls=solids) \
                 .requires(OLD, E.hourglass_CC, matls=solids).computes(E.hourglass_L_CC, matls=solids)
@@ -119,7 +120,7 @@ class EFEM(EfemTasks, Component):
                        .computes(E.gVelocityStar).computes(E.gMass))
         t = Task("EFEM::setupPressureSystem", self.pressure_system, m0) \
             .requires(OLD, L.delT).requires(NEW, E.gVelocityStar, G, 1).requires(NEW, E.rho_CC, G, 1) \
-            .requires(NEW, E.fill_CC, G, 1).computes(E.press_A).computes(E.press_rhs)
+            .requires(NEW, E.fill_CC, G, 1).requires(NEW, E.fluid_CC).computes(E.press_A).computes(E.press_rhs)
         if self.pcg.precond == "mg":
             t.computes(self.pcg.OP)
         sched.add_task(t)
@@ -131,7 +132,8 @@ class EFEM(EfemTasks, Component):
         sched.add_task(self.pcg.loop("EFEM::pressureSolve", E.press_CC))
         sched.add_task(Task("EFEM::projectVelocity", self.project, m0)
                        .requires(OLD, L.delT).requires(NEW, E.gVelocityStar).requires(NEW, E.gMass)
-                       .requires(NEW, E.press_CC, G, 1).computes(E.gVelocityL))
+                       .requires(NEW, E.press_CC, G, 1).requires(NEW, E.rho_CC, G, 1)
+                       .requires(NEW, E.excess_CC, G, 1).computes(E.gVelocityL))
         sched.add_task(Task("EFEM::computeMeanStress", self.mean_stress, m0)       # only when saved
                        .requires(NEW, E.sigma_CC).requires(NEW, E.press_CC).computes(E.mean_stress_CC))
         # Eulerian step

@@ -37,8 +37,9 @@ def strain_rate(vel, n0, c0, lo, hi, dx, D):
 
 
 @njit(cache=True)
-def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_min, c0, lo, hi, N):
-    """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m.
+def solid_stress(D, sig_old, vf, fluid, sig_new, mean, excess, lam, mu, dt, slide, phi_min, c0, lo, hi, N):
+    """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m, and
+    excess += phi_m e_v, the solid's volume strain tr(sigma_m) / (2 (lambda + mu)).
 
     With `slide` (the paper's slide condition, eq. 24), an element that also holds fluid
     drops the solid's shear traction on the interface, whose normal n is the gradient of
@@ -55,6 +56,7 @@ def solid_stress(D, sig_old, vf, fluid, sig_new, mean, lam, mu, dt, slide, phi_m
             sxx = sig_old[i, j, 0, 0] + dt * ((lam + 2.0 * mu) * exx + lam * eyy)
             syy = sig_old[i, j, 0, 1] + dt * (lam * exx + (lam + 2.0 * mu) * eyy)
             sxy = sig_old[i, j, 0, 2] + dt * mu * gxy
+            excess[i, j, 0] += phi * (sxx + syy) / (2.0 * (lam + mu))
             if slide and fluid[i, j, 0] > phi_min:
                 gx = (vf[i + 1, j, 0] if I + 1 < N[0] else phi) - (vf[i - 1, j, 0] if I > 0 else phi)
                 gy = (vf[i, j + 1, 0] if J + 1 < N[1] else phi) - (vf[i, j - 1, 0] if J > 0 else phi)
@@ -206,7 +208,7 @@ def _surface_distance(fill):
 
 
 @njit(cache=True)
-def pressure_system(vstar, rho, fill, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, open_faces, fill_min):
+def pressure_system(vstar, rho, fill, fluid, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, open_faces, fill_min, beta):
     """Eq. (16) on the elements: -div(dt / rho grad p) V = -V div v*, a 5-point stencil.
 
     A[.., 0] = kap, then W, E, S, N faces: (A p)_c = kap p_c + sum_f a_f (p_c - p_nb)
@@ -226,6 +228,7 @@ def pressure_system(vstar, rho, fill, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, ope
                 continue
             rc = rho[i, j, 0]
             kap = 0.0
+            surface = False
             for d in range(2):
                 area_over_h = dz * (dx[1] / dx[0] if d == 0 else dx[0] / dx[1])
                 for s in range(2):
@@ -240,10 +243,16 @@ def pressure_system(vstar, rho, fill, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, ope
                     fn = fill[k, l, 0]
                     if fn < fill_min:
                         kap += dt / rc * area_over_h / _surface_distance(fc)
+                        surface = True
                     else:
                         A[i, j, 0, 1 + 2 * d + s] = 2.0 * dt / (rc + rho[k, l, 0]) * area_over_h
             A[i, j, 0, 0] = kap
-            rhs[i, j, 0] = -_divergence_volume(vstar, I - n0[0], J - n0[1], dx, dx[0] * dx[1] * dz)
+            vol = dx[0] * dx[1] * dz
+            # the fill correction: div v = beta (fill - 1) / dt, an overfilled element gives its
+            # excess to its neighbours; an underfilled one that holds fluid and has no void
+            # neighbour (void the remap carried under the surface, beside a body) draws from them
+            excess = fc - 1.0 if (fc > 1.0 or (not surface and fluid[i, j, 0] > 0.0)) else 0.0
+            rhs[i, j, 0] = -_divergence_volume(vstar, I - n0[0], J - n0[1], dx, vol) + beta * vol * excess / dt
 
 
 @njit(cache=True)
@@ -299,8 +308,9 @@ def _van_leer(dm, dp):
 def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min, open_face):
     """Normal velocity of the face between elements E-1 and E along d (T across): the mean of
     v* at the face's two nodes, corrected by the pressure jump across it exactly as the
-    5-point operator of eq. (16) assumes, so that it has no divergence in any element the
-    pressure equation holds (the volume fractions stay bounded by one)."""
+    5-point operator of eq. (16) assumes, so that in any element the pressure equation holds
+    its divergence is the one asked for: zero but for the fill correction (the volume
+    fractions stay bounded by one)."""
     if d == 0:
         a, b = E - n0[0], T - n0[1]
         u = 0.5 * (vstar[a, b, 0, 0] + vstar[a, b + 1, 0, 0])
@@ -320,9 +330,9 @@ def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min,
     if fl < fill_min and fh < fill_min:
         return u
     if fl < fill_min:
-        return u + dt * press[ih, jh, 0] / (rho[ih, jh, 0] * _surface_distance(fh) * dx[d])
+        return u - dt * press[ih, jh, 0] / (rho[ih, jh, 0] * _surface_distance(fh) * dx[d])
     if fh < fill_min:
-        return u - dt * press[il, jl, 0] / (rho[il, jl, 0] * _surface_distance(fl) * dx[d])
+        return u + dt * press[il, jl, 0] / (rho[il, jl, 0] * _surface_distance(fl) * dx[d])
     return u - 2.0 * dt / (rho[il, jl, 0] + rho[ih, jh, 0]) * (press[ih, jh, 0] - press[il, jl, 0]) / dx[d]
 
 

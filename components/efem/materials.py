@@ -37,6 +37,8 @@ SETTINGS = {
     "fill_min": Param("float", 0.05, above=0.0),
     "slide_condition": Param("bool", False),
     "solid_min": Param("float", 0.1, at_least=0.0),
+    "volume_correction": Param("float", 0.25, at_least=0.0),
+    "fill_correction": Param("float", 0.1, at_least=0.0),
 }
 SOLVER = {
     "tolerance": Param("float", 1e-10, above=0.0),

@@ -18,9 +18,11 @@ L, H, RHO, E, NU, G = 0.8, 0.1, 1000.0, 1.5e7, 0.0, 9.81
 MU = E / (2.0 * (1.0 + NU))
 
 
-def deck_text(nx=40, ny=16, max_time=None, filebase=None):
+def deck_text(nx=40, ny=16, max_time=None, filebase=None, cfl=None):
     with open(DECK) as f:
         text = f.read()
+    if cfl is not None:
+        text = text.replace("<cfl> 0.1 </cfl>", f"<cfl> {cfl} </cfl>")
     text = text.replace("<resolution> [40, 16, 1] </resolution>", f"<resolution> [{nx}, {ny}, 1] </resolution>")
     if max_time is not None:
         text = text.replace("<maxTime> 0.3 </maxTime>", f"<maxTime> {max_time} </maxTime>")
@@ -34,6 +36,13 @@ def beam(x):
     q = RHO * G * H
     Ep, I = 4.0 * MU, H ** 3 / 12.0
     return q * x ** 2 * (6 * L ** 2 - 4 * L * x + x ** 2) / (24 * Ep * I) + q * (L * x - x * x / 2) / (5.0 / 6.0 * MU * H)
+
+
+def period():
+    """First bending period 2 pi / omega_1 of the clamped-free beam (Euler-Bernoulli):
+    omega_1 = 1.8751^2 sqrt(E' I / (rho h L^4))."""
+    Ep, I = 4.0 * MU, H ** 3 / 12.0
+    return 2.0 * np.pi / (1.8751 ** 2 * np.sqrt(Ep * I / (RHO * H * L ** 4)))
 
 
 def deflection(da, timestep=-1):

@@ -78,7 +78,8 @@ class EfemTasks:
     # -- the Lagrangian step --------------------------------------------------------------
     def compute_stress(self, patch, matls, old_dw, new_dw):
         """Element stresses: solids by Hooke (eqs. 21-22), fluids by Newton (eqs. 18-19), mixed by
-        volume fraction (eq. 23); the mixture density and fill for the nodal masses and eq. 16."""
+        volume fraction (eq. 23); the mixture density and fill for the nodal masses and eq. 16; the
+        solids' volume strain sum_s phi_s e_v,s for the volume correction."""
         f = self.frame(patch)
         dt = old_dw.get_reduction(L.delT)
         vel = old_dw.get(E.gVelocity, 0, patch)
@@ -88,7 +89,8 @@ class EfemTasks:
         rho = new_dw.allocate(E.rho_CC, 0, patch)
         fill = new_dw.allocate(E.fill_CC, 0, patch)
         hg_force = new_dw.allocate(E.hgForce_CC, 0, patch)
-        fluid = np.zeros(patch.alloc_shape(CC))
+        excess = new_dw.allocate(E.excess_CC, 0, patch)
+        fluid = new_dw.allocate(E.fluid_CC, 0, patch)
         for m, mat in enumerate(self.materials):
             vf = old_dw.get(E.vol_frac_CC, m, patch)
             rho += mat.density * vf
@@ -99,8 +101,9 @@ class EfemTasks:
             vf = old_dw.get(E.vol_frac_CC, m, patch)
             if mat.solid:
                 sig = new_dw.allocate(E.stress_L_CC, m, patch)
-                K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, fluid, sig, sigma, mat.lam, mat.mu, dt,
-                               self.settings["slide_condition"], self.settings["solid_min"], f.c0, f.clo, f.chi, f.N)
+                K.solid_stress(D, old_dw.get(E.stress_CC, m, patch), vf, fluid, sig, sigma, excess, mat.lam,
+                               mat.mu, dt, self.settings["slide_condition"], self.settings["solid_min"], f.c0, f.clo,
+                               f.chi, f.N)
                 hg = new_dw.allocate(E.hourglass_L_CC, m, patch)
                 kx, ky = self.hourglass_stiffness(mat, f)
                 K.solid_hourglass(D, old_dw.get(E.hourglass_CC, m, patch), vf, hg, hg_force, kx, ky, dt,
@@ -126,14 +129,16 @@ class EfemTasks:
                         self.settings["damping"], self.walls, self.wall_vel, self.settings["fill_min"])
 
     def pressure_system(self, patch, matls, old_dw, new_dw):
-        """The stencil and right-hand side of the pressure Poisson equation (eq. 16)."""
+        """The stencil and right-hand side of the pressure Poisson equation (eq. 16), with the fill
+        correction."""
         f = self.frame(patch)
         dt = old_dw.get_reduction(L.delT)
         A = new_dw.allocate(E.press_A, 0, patch)
         rhs = new_dw.allocate(E.press_rhs, 0, patch)
         K.pressure_system(new_dw.get(E.gVelocityStar, 0, patch), new_dw.get(E.rho_CC, 0, patch),
-                          new_dw.get(E.fill_CC, 0, patch), A, rhs, f.n0, f.c0, f.clo, f.chi, f.N, f.dx, f.dz, dt,
-                          self.open_faces, self.settings["fill_min"])
+                          new_dw.get(E.fill_CC, 0, patch), new_dw.get(E.fluid_CC, 0, patch), A, rhs, f.n0, f.c0,
+                          f.clo, f.chi, f.N, f.dx, f.dz, dt, self.open_faces, self.settings["fill_min"],
+                          self.settings["fill_correction"])
         if self.pcg.precond == "mg":
             self.pcg.put_coarse_operator(patch, A, new_dw)
 
@@ -143,12 +148,17 @@ class EfemTasks:
         self.pcg.put_seeds(patch, new_dw.get(E.press_rhs, 0, patch), new_dw)
 
     def project(self, patch, matls, old_dw, new_dw):
-        """Eq. (17): the pressure's correction of the nodal velocities."""
+        """Eq. (17): the pressure's correction of the nodal velocities, plus the solids' volume
+        correction: a pressure q = -beta rho dx dy e_v / (2 dt^2) on their volume strain e_v, which
+        takes the share beta of it back per step (the 5-point projection leaves the nodal
+        velocities slightly compressible, and a solid would otherwise bend as if it were)."""
         f = self.frame(patch)
+        dt = old_dw.get_reduction(L.delT)
+        beta = self.settings["volume_correction"] * f.dx[0] * f.dx[1] / (2.0 * dt * dt)
+        q = new_dw.get(E.press_CC, 0, patch) - beta * new_dw.get(E.rho_CC, 0, patch) * new_dw.get(E.excess_CC, 0, patch)
         vel = new_dw.allocate(E.gVelocityL, 0, patch)
-        K.project(new_dw.get(E.gVelocityStar, 0, patch), new_dw.get(E.press_CC, 0, patch),
-                  new_dw.get(E.gMass, 0, patch), vel, f.n0, f.c0, f.nlo, f.nhi, f.N, f.dx, f.vol,
-                  old_dw.get_reduction(L.delT), self.walls, self.wall_vel)
+        K.project(new_dw.get(E.gVelocityStar, 0, patch), q, new_dw.get(E.gMass, 0, patch), vel, f.n0, f.c0,
+                  f.nlo, f.nhi, f.N, f.dx, f.vol, dt, self.walls, self.wall_vel)
 
     # -- the Eulerian step ----------------------------------------------------------------
     def remap(self, patch, matls, old_dw, new_dw):
