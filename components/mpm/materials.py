@@ -314,7 +314,7 @@ class Material:
                 inside &= ~taken.inside(x)
             x, sub = x[inside], sub[inside]
             std = np.diag(1.0 / res)                 # Uintah's p.size in cells
-            if obj["affine"] is not None:            # moved, kept where the patch owns them (as Uintah)
+            if obj.get("affine") is not None:        # moved, kept where the patch owns them (as Uintah)
                 A, b = obj["affine"]
                 x = x @ A.T + b
                 cell = np.floor((x - lv.anchor) / lv.dx).astype(np.int64)
@@ -324,7 +324,7 @@ class Material:
             ids = (obj_base + k) * (1 << 40) + sub[:, 0] + nsub[0] * (sub[:, 1] + nsub[1] * sub[:, 2])
             n = len(x)
             dx = np.asarray(lv.dx, float)
-            if obj["affine"] is None:
+            if obj.get("affine") is None:
                 vol = (x[:, 0] * (lv.dx[0] / res[0]) * (lv.dx[1] / res[1]) if axisymmetric
                        else np.full(n, float(np.prod(lv.dx / res))))
             else:                                    # Uintah's volumes of the turned domains
