@@ -249,8 +249,10 @@ class Contact:
                 f"the rigid motion file needs at least 2 lines '{line}' with increasing t")
         return data
 
-    def _exchange_lr(self, gmass, gvel, gacc, gvel_old, dt, lr, color):
-        """friction_LR(Var) over all MPM materials (alpha may be any of them)."""
+    def _stacked(self, gmass, gvel, gacc, gvel_old, lr):
+        """The logistic-regression contacts' inputs over all MPM materials, one row per material:
+        (materials, m, v, a, v_old, requested, alpha, normal, prominence); a and v_old are v
+        itself where the velocities are not integrated yet (gacc None)."""
         idx = sorted(gmass)
         alpha, normal, prom = lr
         m = np.stack([gmass[i].reshape(-1) for i in idx])
@@ -259,35 +261,34 @@ class Contact:
         a = np.stack([gacc[i].reshape(-1, 3) for i in idx]) if integrated else v
         vo = np.stack([gvel_old[i].reshape(-1, 3) for i in idx]) if integrated else v
         requested = np.array([i in self.materials for i in idx], np.bool_)
+        return (idx, m, v, a, vo, requested, alpha.reshape(-1).astype(np.int64), normal.reshape(-1, 3),
+                np.stack([prom[i].reshape(-1) for i in idx]))
+
+    @staticmethod
+    def _unstack(idx, v, a, gvel, gacc):
+        """The rows back into each material's grid velocity (and acceleration once integrated)."""
+        for k, i in enumerate(idx):
+            gvel[i].reshape(-1, 3)[...] = v[k]
+            if gacc is not None:
+                gacc[i].reshape(-1, 3)[...] = a[k]
+
+    def _exchange_lr(self, gmass, gvel, gacc, gvel_old, dt, lr, color):
+        """friction_LR(Var) over all MPM materials (alpha may be any of them)."""
+        idx, m, v, a, vo, requested, alpha, normal, prom = self._stacked(gmass, gvel, gacc, gvel_old, lr)
         mu = self.mu_at(None if color is None else color.reshape(-1))
         if len(mu) == 1:
             mu = np.full(m.shape[1], mu[0])
-        kernels.friction_lr(m, v, requested, alpha.reshape(-1).astype(np.int64), normal.reshape(-1, 3),
-                            np.stack([prom[i].reshape(-1) for i in idx]), mu, a, vo, dt if integrated else 0.0)
-        for k, i in enumerate(idx):
-            gvel[i].reshape(-1, 3)[...] = v[k]
-            if integrated:
-                gacc[i].reshape(-1, 3)[...] = a[k]
+        kernels.friction_lr(m, v, requested, alpha, normal, prom, mu, a, vo, dt if gacc is not None else 0.0)
+        self._unstack(idx, v, a, gvel, gacc)
 
     def _exchange_specified_friction(self, gmass, gvel, gacc, gvel_old, dt, t, lr):
         """specified_friction over all MPM materials, with friction_LR's normals."""
-        idx = sorted(gmass)
-        alpha, normal, prom = lr
-        m = np.stack([gmass[i].reshape(-1) for i in idx])
-        v = np.stack([gvel[i].reshape(-1, 3) for i in idx])
-        integrated = gacc is not None
-        a = np.stack([gacc[i].reshape(-1, 3) for i in idx]) if integrated else v
-        vo = np.stack([gvel_old[i].reshape(-1, 3) for i in idx]) if integrated else v
-        requested = np.array([i in self.materials for i in idx], np.bool_)
+        idx, m, v, a, vo, requested, alpha, normal, prom = self._stacked(gmass, gvel, gacc, gvel_old, lr)
         vel, _, _, own = self.rigid_velocity(t)
-        kernels.specified_friction(m, v, requested, alpha.reshape(-1).astype(np.int64), normal.reshape(-1, 3),
-                                   np.stack([prom[i].reshape(-1) for i in idx]), idx.index(self.master),
+        kernels.specified_friction(m, v, requested, alpha, normal, prom, idx.index(self.master),
                                    np.asarray(vel, float), own, idx.index(self.exclude) if self.exclude >= 0 else -1,
-                                   self.mu, a, vo, dt if integrated else 0.0)
-        for k, i in enumerate(idx):
-            gvel[i].reshape(-1, 3)[...] = v[k]
-            if integrated:
-                gacc[i].reshape(-1, 3)[...] = a[k]
+                                   self.mu, a, vo, dt if gacc is not None else 0.0)
+        self._unstack(idx, v, a, gvel, gacc)
 
     def reaction(self, gmass, fint, t, node_x, own):
         """(RigidReactionForce, RigidReactionTorque) of one patch: see the module doc."""
