@@ -20,6 +20,8 @@ condition is left free (traction-free).
 """
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from framework.grid import FACES
@@ -27,6 +29,15 @@ from framework.gridspec import boundary_faces, sub_faces
 from framework.variables import VarType
 
 from . import kernels
+
+
+def _periodic_note(bc, side):
+    """A <BCType> on a periodic face is read and not applied: Uintah applies conditions on faces
+    without a neighbour only, and a periodic face has one."""
+    from mpi4py import MPI
+    if MPI.COMM_WORLD.Get_rank() == 0:
+        print(f"pysus: note: {bc.filename}:{bc.line}: face {side} is periodic; its <BCType> is not applied "
+              "(as in Uintah)", file=sys.stderr)
 
 
 class GridBCs:
@@ -59,9 +70,10 @@ class GridBCs:
                 if label == "Temperature":
                     if var != "Dirichlet":
                         raise bc.error(f'var="{var}" label="Temperature": accepted: var="Dirichlet"')
-                    if level.periodic[d]:
-                        raise bc.error(f"face {side} is periodic; it takes no boundary condition")
                     value = bc.get("value", "float")
+                    if level.periodic[d]:
+                        _periodic_note(bc, side)
+                        continue
                     self.temperature_node = bc
                     if not level.collapsed[d]:
                         self.temperature_items.append((d, s, value, mats, geom))
@@ -83,7 +95,8 @@ class GridBCs:
                     comps = np.ones(3, np.bool_)
                     value = np.array(bc.get("value", "vector"), float)
                 if level.periodic[d]:
-                    raise bc.error(f"face {side} is periodic; it takes no boundary condition")
+                    _periodic_note(bc, side)
+                    continue
                 # a collapsed direction's one node layer is that face's nodes (Uintah's one cell
                 # has both faces' nodes): a Dirichlet velocity there holds the material's every node
                 if not level.collapsed[d] or var == "Dirichlet":
