@@ -30,9 +30,8 @@ from framework.problemspec import Param
 from framework.task import NEW, OLD, Task
 from framework.variables import VarType
 
-from . import kernels as K
 from . import labels as ML
-from .simple_burn import _material, copy_to_symmetry_extra_cells
+from .simple_burn import IceSources, _material, copy_to_symmetry_extra_cells
 
 CC = VarType.CC
 TABLE = {
@@ -82,7 +81,7 @@ def mass_exchange_pressure(burned, v_r, v_p, vfs, sps, css, lo, hi, vol, press):
                 press[i, j, k] += mb * (v_p[i, j, k] - v_r[i, j, k]) / vol / ks
 
 
-class JWLpp:
+class JWLpp(IceSources):
     name = "JWLpp"
 
     def __init__(self, node, comp, root):
@@ -187,18 +186,3 @@ class JWLpp:
                                new_dw.get(I.sp_vol_CC, self.prod, patch), get(I.vol_frac_CC), get(I.sp_vol_CC),
                                get(I.speedSound_CC), b.lo, b.hi, b.vol, press)
         c.ice.bcs.scalar(patch, press, "Pressure", 0, b)
-
-    def lagrangian_sources(self, patch, matls, old_dw, new_dw):
-        b = self.comp.ice.boxes(patch)
-        sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
-        for m in matls:
-            new_dw.get_modifiable(I.mass_L_CC, m, patch)[sl] += new_dw.get(ML.modelMass_src, m, patch)[sl]
-            new_dw.get_modifiable(I.mom_L_CC, m, patch)[sl] += new_dw.get(ML.modelMom_src, m, patch)[sl]
-            new_dw.get_modifiable(I.int_eng_L_CC, m, patch)[sl] += new_dw.get(ML.modelEng_src, m, patch)[sl]
-
-    def volume_source(self, patch, matls, old_dw, new_dw):
-        """ICE's (m v)^L counts the new mass at the cell's v; Uintah's adds modelVol_src instead."""
-        b = self.comp.ice.boxes(patch)
-        for m in matls:
-            K.volume_source(new_dw.get(ML.modelMass_src, m, patch), new_dw.get(ML.modelVol_src, m, patch),
-                            new_dw.get(I.sp_vol_CC, m, patch), b.lo, b.hi, new_dw.get_modifiable(I.sp_vol_L_CC, m, patch))

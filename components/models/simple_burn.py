@@ -56,7 +56,27 @@ TABLE = {
 }
 
 
-class SimpleBurn:
+class IceSources:
+    """The two task bodies every reaction model shares: its mass, momentum and energy sources
+    added to ICE's Lagrangian state, and its volume source to the Lagrangian specific volume."""
+
+    def lagrangian_sources(self, patch, matls, old_dw, new_dw):
+        b = self.comp.ice.boxes(patch)
+        sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
+        for m in matls:
+            new_dw.get_modifiable(I.mass_L_CC, m, patch)[sl] += new_dw.get(ML.modelMass_src, m, patch)[sl]
+            new_dw.get_modifiable(I.mom_L_CC, m, patch)[sl] += new_dw.get(ML.modelMom_src, m, patch)[sl]
+            new_dw.get_modifiable(I.int_eng_L_CC, m, patch)[sl] += new_dw.get(ML.modelEng_src, m, patch)[sl]
+
+    def volume_source(self, patch, matls, old_dw, new_dw):
+        """ICE's (m v)^L counts the new mass at the cell's v; Uintah's adds modelVol_src instead."""
+        b = self.comp.ice.boxes(patch)
+        for m in matls:
+            K.volume_source(new_dw.get(ML.modelMass_src, m, patch), new_dw.get(ML.modelVol_src, m, patch),
+                            new_dw.get(I.sp_vol_CC, m, patch), b.lo, b.hi, new_dw.get_modifiable(I.sp_vol_L_CC, m, patch))
+
+
+class SimpleBurn(IceSources):
     def __init__(self, node, comp, root):
         self.comp = comp
         sb = node.child("Simple_Burn", required=True)
@@ -220,20 +240,6 @@ class SimpleBurn:
                           new_dw.get(I.sp_vol_CC, self.react, patch), get(I.vol_frac_CC), get(I.sp_vol_CC),
                           get(I.speedSound_CC), b.lo, b.hi, b.vol, press)
         c.ice.bcs.scalar(patch, press, "Pressure", 0, b)
-
-    def lagrangian_sources(self, patch, matls, old_dw, new_dw):
-        b = self.comp.ice.boxes(patch)
-        sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
-        for m in matls:
-            new_dw.get_modifiable(I.mass_L_CC, m, patch)[sl] += new_dw.get(ML.modelMass_src, m, patch)[sl]
-            new_dw.get_modifiable(I.mom_L_CC, m, patch)[sl] += new_dw.get(ML.modelMom_src, m, patch)[sl]
-            new_dw.get_modifiable(I.int_eng_L_CC, m, patch)[sl] += new_dw.get(ML.modelEng_src, m, patch)[sl]
-
-    def volume_source(self, patch, matls, old_dw, new_dw):
-        b = self.comp.ice.boxes(patch)
-        for m in matls:
-            K.volume_source(new_dw.get(ML.modelMass_src, m, patch), new_dw.get(ML.modelVol_src, m, patch),
-                            new_dw.get(I.sp_vol_CC, m, patch), b.lo, b.hi, new_dw.get_modifiable(I.sp_vol_L_CC, m, patch))
 
     def burn_particles(self, patch, matls, old_dw, new_dw):
         for m in matls:
