@@ -52,7 +52,7 @@ from framework.variables import Ghost, VarType
 from . import kernels as K
 from . import labels as ML
 from .simple_burn import _material, copy_to_symmetry_extra_cells, symmetry_nodes
-from .steady_burn import EPSILON, SteadyBurn
+from .steady_burn import EPSILON, WSB_CONSTANTS, SteadyBurn
 
 CC = VarType.CC
 TINY_RHO = 1e-12        # kg/m^3: a burning cell keeps at least this density of reactant
@@ -64,16 +64,7 @@ TABLE = {
     "E0": Param("float", doc="J/kg released by detonation"),
     "ThresholdPressureJWL": Param("float", doc="Pa: above it a cell detonates"),
     "ThresholdVolFrac": Param("float", 0.01, doc="read, unused (as Uintah's DDT1)"),
-    "IdealGasConst": Param("float", doc="R, J/(mol K)", above=0.0),
-    "PreExpCondPh": Param("float", doc="Ac, 1/s", above=0.0),
-    "ActEnergyCondPh": Param("float", doc="Ec, J/mol", above=0.0),
-    "PreExpGasPh": Param("float", doc="Bg, m^3/(kg s K^2)", above=0.0),
-    "CondPhaseHeat": Param("float", doc="Qc, J/kg"),
-    "GasPhaseHeat": Param("float", doc="Qg, J/kg"),
-    "HeatConductGasPh": Param("float", doc="Kg, W/(m K)", above=0.0),
-    "HeatConductCondPh": Param("float", doc="Kc, W/(m K)", above=0.0),
-    "SpecificHeatBoth": Param("float", doc="Cp, J/(kg K)", above=0.0),
-    "MoleWeightGasPh": Param("float", doc="W, kg/mol", above=0.0),
+    **WSB_CONSTANTS,
     "BoundaryParticles": Param("float", doc="a neighbour with at most this many particles can ignite a cell",
                                at_least=0.0),
     "IgnitionTemp": Param("float", doc="K", above=0.0),
@@ -201,7 +192,6 @@ def ddt1_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, numppc, cr
     G, bexp, E0, p_jwl, rho0 = jwl[0], jwl[1], jwl[2], jwl[3], jwl[4]
     BP, T_ign, p_sb, Q = wsb[0], wsb[1], wsb[2], wsb[3]
     vol = dx[0] * dx[1] * dx[2]
-    nm = len(temps)
     r0 = 1 if dims[0] else 0
     r1 = 1 if dims[1] else 0
     r2 = 1 if dims[2] else 0
@@ -230,29 +220,9 @@ def ddt1_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, numppc, cr
                 mx, mn, g0, g1, g2 = K._node_masses(gmass, node_low, i + cc_low[0], j + cc_low[1], k + cc_low[2],
                                                     dims, n_lo, n_hi)
                 surface = mn / mx < 0.7 and numppc[i, j, k] > 0.0
-                vf_r = -1.0
-                vf_p = -1.0
-                T0 = 0.0
-                P = 0.0
-                lit = False
-                hot = False
-                near_det = False
-                for a in range(i - r0, i + r0 + 1):
-                    for b in range(j - r1, j + r1 + 1):
-                        for c in range(k - r2, k + r2 + 1):
-                            if vfs[react][a, b, c] > vf_r:
-                                vf_r = vfs[react][a, b, c]
-                                T0 = temps[react][a, b, c]
-                            if vfs[prod][a, b, c] > vf_p:
-                                vf_p = vfs[prod][a, b, c]
-                                P = press[a, b, c]
-                            if press[a, b, c] > p_jwl:
-                                near_det = True
-                            for m in range(nm):
-                                if temps[m][a, b, c] > T_ign:
-                                    hot = True
-                                    if surface and numppc[a, b, c] <= BP and vfs[m][a, b, c] > 0.2:
-                                        lit = True
+                lit, T0, P, hot, near_det = K._ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press,
+                                                                      numppc, react, prod, BP, T_ign, p_jwl)
+                lit = lit and surface
                 det_local[i, j, k] = 1.0 if near_det else 0.0
                 code = 0.0
                 if induction[0] != 0.0:

@@ -248,15 +248,19 @@ def wsb_surface_temperature(Ts, C1, C2, C3, C4, C5, Ec, R, eps):
 
 
 @njit(cache=True, inline="always")
-def _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react, prod, BP, T_ign):
-    """Steady and Unsteady_Burn's look at a cell's neighbours: is one with at most BP particles
-    holding a material (volume fraction > 0.2) hotter than T_ign; the reactant temperature of
-    the neighbour richest in reactant (T0) and the pressure of the one richest in product."""
+def _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react, prod, BP, T_ign, p_det):
+    """The burn models' look at a cell's neighbours: lit, one with at most BP particles holds a
+    material (volume fraction > 0.2) hotter than T_ign; the reactant temperature of the
+    neighbour richest in reactant (T0) and the pressure of the one richest in product (P); hot,
+    any material of any neighbour is hotter than T_ign; near_det, a neighbour's pressure is
+    above p_det (DDT1's detonation threshold)."""
     vf_r = -1.0
     vf_p = -1.0
     T0 = 0.0
     P = 0.0
     lit = False
+    hot = False
+    near_det = False
     for a in range(i - r0, i + r0 + 1):
         for b in range(j - r1, j + r1 + 1):
             for c in range(k - r2, k + r2 + 1):
@@ -266,12 +270,14 @@ def _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, reac
                 if vfs[prod][a, b, c] > vf_p:
                     vf_p = vfs[prod][a, b, c]
                     P = press[a, b, c]
-                if not lit and numppc[a, b, c] <= BP:
-                    for m in range(len(temps)):
-                        if vfs[m][a, b, c] > 0.2 and temps[m][a, b, c] > T_ign:
+                if press[a, b, c] > p_det:
+                    near_det = True
+                for m in range(len(temps)):
+                    if temps[m][a, b, c] > T_ign:
+                        hot = True
+                        if numppc[a, b, c] <= BP and vfs[m][a, b, c] > 0.2:
                             lit = True
-                            break
-    return lit, T0, P
+    return lit, T0, P, hot, near_det
 
 
 @njit(cache=True)
@@ -298,8 +304,8 @@ def steady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, num
                                                   dims, n_lo, n_hi)
                 if not mn / mx < 0.7:
                     continue
-                lit, T0, P = _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react, prod,
-                                                     BP, T_ign)
+                lit, T0, P, _, _ = _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react,
+                                                           prod, BP, T_ign, np.inf)
                 if not (lit and P >= p_thresh):
                     continue
                 burning[i, j, k] = 1.0
@@ -376,8 +382,8 @@ def unsteady_burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, n
                                                   dims, n_lo, n_hi)
                 if not mn / mx < 0.7:
                     continue
-                lit, T0, P = _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react, prod,
-                                                     BP, T_ign)
+                lit, T0, P, _, _ = _ignition_neighbourhood(i, j, k, r0, r1, r2, vfs, temps, press, numppc, react,
+                                                           prod, BP, T_ign, np.inf)
                 if not (lit and P >= p_thresh):
                     continue
                 gx, gy, gz = g0 / dx[0], g1 / dx[1], g2 / dx[2]

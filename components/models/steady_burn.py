@@ -43,7 +43,8 @@ from . import labels as ML
 from .simple_burn import SimpleBurn, _material, symmetry_nodes
 
 CC = VarType.CC
-TABLE = {
+# the WSB burn rate's constants; DDT1 reads them too
+WSB_CONSTANTS = {
     "IdealGasConst": Param("float", doc="R, J/(mol K)", above=0.0),
     "PreExpCondPh": Param("float", doc="Ac, 1/s", above=0.0),
     "ActEnergyCondPh": Param("float", doc="Ec, J/mol", above=0.0),
@@ -54,6 +55,9 @@ TABLE = {
     "HeatConductCondPh": Param("float", doc="Kc, W/(m K)", above=0.0),
     "SpecificHeatBoth": Param("float", doc="Cp, J/(kg K)", above=0.0),
     "MoleWeightGasPh": Param("float", doc="W, kg/mol", above=0.0),
+}
+TABLE = {
+    **WSB_CONSTANTS,
     "BoundaryParticles": Param("float", doc="BP: a neighbour with at most BP particles can ignite a cell",
                                at_least=0.0),
     "ThresholdPressure": Param("float", doc="Pa"),
