@@ -16,7 +16,11 @@ bag's shape at a few times, and prints the checks:
 
     .venv/bin/python scripts/airbag.py [--png airbag.png] [--uda airbag.uda]
 
-Measured (inputs/MPM/airbag.ups, t = 0 .. 0.1 s, 2,821 steps; see the deck's header).
+Measured (inputs/MPM/airbag.ups, t = 0 .. 0.1 s, 2,785 steps, 183 s with an output every
+step on a loaded machine; the deck alone 19 s): gas_mass 0, energy -1.06 % of the total
+(-16.8 % of the probe's kinetic energy), impulse mismatch 2e-15, the probe stops at 51.8 ms
+122.2 mm into the bag and leaves at 0.936 of its impact speed; the gas points' volume is
+1.019 / 1.081 times the enclosed volume at the start / end.
 """
 from __future__ import annotations
 

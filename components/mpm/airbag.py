@@ -51,9 +51,10 @@ def airbag_deck(dx=0.025, t_end=0.1, out=2.0e-3, every_step=False, cfl=0.5, gas_
                 spacing=None, mu=GAS["mu"], sphere=None, damping=0.0):
     """Deck text: cells dx, membrane points `spacing` apart (default dx/16), gas_ppc^2 gas
     points per cell, output every `out` s (every step with every_step; the nodal masses and
-    forces are saved for probe_force). sphere=R: instead of the bag and probe, a spherical bag of radius R (centre on the
-    axis) holding the same gas, with <artificial_damping_coeff> `damping` (1/s): its
-    equilibrium has sigma_tt = sigma_hh = p R / (2 h)."""
+    forces are saved for probe_force). sphere=R: instead of the bag and the probe, a
+    spherical bag of radius R (centre on the axis) holding the same gas, with
+    <artificial_damping_coeff> `damping` (1/s): its equilibrium has
+    sigma_tt = sigma_hh = p R / (2 h)."""
     sp = spacing or dx / 16.0
     E, nu = FABRIC["E"], FABRIC["nu"]
     if sphere is None:

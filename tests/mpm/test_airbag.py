@@ -105,3 +105,19 @@ def test_axisymmetric_membrane_errors(tmp_path, edit, match):
     assert edit[0] in text
     with pytest.raises(InputError, match=match):
         run(text.replace(*edit, 1), tmp_path, name="bad")
+
+
+def test_airbag_patches_bitwise(tmp_path):
+    """Four patches (membrane tangents from neighbours across patch edges, ring volumes per
+    patch) give bitwise the one-patch answer."""
+    out = []
+    for n in (1, 2):
+        text = airbag_deck(t_end=0.002, out=0.002).replace("<patches>[1,1,1]</patches>",
+                                                           f"<patches>[{n},{n},1]</patches>")
+        ctl, da = run(text, tmp_path, name=f"p{n}")
+        out.append([da.particles(m, -1) for m in (0, 1, 2)])
+    for a, b in zip(*out):
+        oa, ob = np.argsort(a["p.particleID"]), np.argsort(b["p.particleID"])
+        assert len(oa) == len(ob) > 50
+        for key in ("p.x", "p.velocity", "p.stress", "p.tangent", "p.thickness", "p.volume"):
+            assert np.array_equal(a[key][oa], b[key][ob]), key
