@@ -354,10 +354,26 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 f"contact type {self.contact.type} is not implemented with <axisymmetric>true (its normals are "
                 "planar); accepted there: null, single_velocity, rigid, friction")
         for m in self.materials:
-            if m.is_membrane or getattr(m.params, "density_from_grid", False):
+            if getattr(m.params, "density_from_grid", False):
                 raise m.node.child("constitutive_model").error(
-                    f"{m.model_name}{' with <density_from_grid>' if not m.is_membrane else ''} is not "
-                    "implemented with <axisymmetric>true")
+                    f"{m.model_name} with <density_from_grid> is not implemented with <axisymmetric>true")
+            if m.is_membrane:
+                self._check_axisymmetric_membrane(m)
+
+    @staticmethod
+    def _check_axisymmetric_membrane(m):
+        """A membrane of revolution: biaxial ('plane') only, and every point off the axis (its
+        ring would have no mass); the model then carries the hoop stress (membrane.py)."""
+        if m.params.formulation != "plane":
+            raise m.node.child("constitutive_model").child("formulation").error(
+                f"membrane formulation {m.params.formulation} is not implemented with <axisymmetric>true; "
+                "accepted: plane (a membrane of revolution carries meridional and hoop stress)")
+        for obj in m.objects:
+            if obj["chain"][:, 0].min() <= 0.0:
+                raise obj["node"].error(
+                    f"with <axisymmetric>true a membrane point at r = {obj['chain'][:, 0].min():g} has no ring "
+                    "(r is x); start and end the <membrane_polygon> off the axis, e.g. half a <spacing> from it")
+        m.hoop = True
 
     def _carried(self):
         """(final, pre-relocation) particle labels this deck carries, besides p.x."""

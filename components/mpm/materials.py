@@ -289,7 +289,7 @@ class Material:
         out = []
         for k, obj in enumerate(self.objects):
             if "chain" in obj:
-                out.append(membrane_points(obj, patch, obj_base + k))
+                out.append(membrane_points(obj, patch, obj_base + k, axisymmetric))
                 if surface:
                     out[-1]["surf"] = np.ones(len(out[-1]["x"]))      # a membrane is all surface
                 continue
@@ -414,7 +414,7 @@ def read_membrane_object(g, with_color):
     chain_tangents(x, spec["closed"], t)
     if g.has("res"):          # not used by membranes
         g.child("res").mark_used()
-    return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"], closed=spec["closed"],
+    return dict(chain=x, tangent=t, ds=ds, thickness=spec["thickness"], closed=spec["closed"], node=mp,
                 velocity=g.get("velocity", "vector", (0.0, 0.0, 0.0)),
                 temperature=g.get("temperature", "float", 294.0, at_least=0.0),
                 color=g.get("color", "float", 0.0) if with_color else None)
@@ -464,10 +464,11 @@ def on_surface(x, piece, dxpp, active):
     return surface
 
 
-def membrane_points(obj, patch, obj_id):
+def membrane_points(obj, patch, obj_id, axisymmetric=False):
     """The membrane points of one polygon that lie in the patch's cells (IDs: obj_id * 2^40 +
     the index along the chain); volume = spacing * thickness * the cell depth in a collapsed
-    direction (2D: the membrane is a surface extruded out of the plane)."""
+    direction (2D: the membrane is a surface extruded out of the plane); axisymmetric: the
+    polygon is a meridian and the volume is that of its ring per radian, r * spacing * thickness."""
     lv = patch.level
     x = obj["chain"]
     cell = np.floor((x - lv.anchor) / lv.dx).astype(np.int64)
@@ -477,9 +478,12 @@ def membrane_points(obj, patch, obj_id):
             inp &= (cell[:, d] >= patch.lo[d]) & (cell[:, d] < patch.hi[d])
     idx = np.nonzero(inp)[0]
     n = len(idx)
-    depth = float(np.prod([lv.dx[d] for d in range(3) if lv.collapsed[d]])) if any(lv.collapsed) else 1.0
-    vol = obj["ds"] * obj["thickness"] * depth
-    return dict(x=x[idx], id=(obj_id * (1 << 40) + idx).astype(np.int64), vol=np.full(n, vol),
+    if axisymmetric:
+        vol = obj["ds"] * obj["thickness"] * x[idx, 0]
+    else:
+        depth = float(np.prod([lv.dx[d] for d in range(3) if lv.collapsed[d]])) if any(lv.collapsed) else 1.0
+        vol = np.full(n, obj["ds"] * obj["thickness"] * depth)
+    return dict(x=x[idx], id=(obj_id * (1 << 40) + idx).astype(np.int64), vol=vol,
                 temp=np.full(n, obj["temperature"]), lcid=np.zeros((n, 3)),
                 vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
                 size=np.tile(0.5 * lv.dx / 2, (n, 1)),

@@ -122,7 +122,7 @@ class MPMTasks:
         if mat.is_membrane:
             (t_old, h_old, v_old), (t_new, h_new, v_new) = old, new
             return mat.model.update(mat.params, Lg, F_old, F_new, v_old, mass, vel, dt, s_old, s_new,
-                                    energy, t_old, t_new, h_old, h_new, v_new)
+                                    energy, t_old, t_new, h_old, h_new, v_new, getattr(mat, "hoop", False))
         if scale is not None:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new, scale)

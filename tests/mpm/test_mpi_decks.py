@@ -23,6 +23,7 @@ CASES = {
     "rigid_piston": {"maxTime": "0.2"},
     "sod_fluid_points": {"maxTime": "0.03"},
     "piston_container": {"maxTime": "0.001", "patches": "[2,1,1]"},
+    "airbag": {"maxTime": "0.002", "patches": "[2,2,1]"},
 }
 
 

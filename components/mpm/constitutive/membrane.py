@@ -9,6 +9,13 @@ incremental deformation, t <- F_inc t / |F_inc t|, F_inc = F_new F_old^-1;
 the thickness h follows the lateral strain (-nu or -nu/(1-nu) times
 d_eps_tt), and the particle volume V_new = V |F_inc t| h_new/h.
 
+Axisymmetric (``hoop``; the polygon is a meridian in (r, z), 'plane' formulation): the
+membrane of revolution is in biaxial plane stress, its second in-surface direction the hoop
+one, with the hoop strain increment d_eps_hh = L_thth dt = dr / r:
+    sigma_tt += E' (d_eps_tt + nu d_eps_hh),   sigma_hh += E' (d_eps_hh + nu d_eps_tt),
+    sigma = sigma_tt t (x) t + sigma_hh e_th (x) e_th,
+the thickness follows -nu/(1-nu) (d_eps_tt + d_eps_hh) and V_new = V |F_inc t| (r_new/r) h_new/h.
+
 Tags (Uintah ``type="membrane"``): ``bulk_modulus``, ``shear_modulus``
 (E, nu derived), optional ``formulation`` ('uniaxial' | 'plane').
 ``energy`` receives the stress-work INCREMENT.  c = sqrt(E' V/m).
@@ -62,7 +69,7 @@ class Params:
 
 
 @njit(cache=True)
-def kernel(Eeff, lat, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
+def kernel(Eeff, lat, nu, hoop, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
            t_old, t_new, h_old, h_new, vol_new, energy):
     ws = np.zeros(3)
     Fi = np.empty((3, 3))
@@ -77,7 +84,13 @@ def kernel(Eeff, lat, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_ne
                 deps += ti * 0.5 * (L[p, i, j] + L[p, j, i]) * t_old[p, j]
                 stt += ti * stress_old[p, i, j] * t_old[p, j]
         deps *= dt
-        snew = stt + Eeff * deps  # tangential Hooke's law on projected eq. 13 strain
+        if hoop:      # membrane of revolution: biaxial plane stress with the hoop strain dr/r
+            deph = L[p, 2, 2] * dt
+            shh = stress_old[p, 2, 2]
+            snew = stt + Eeff * (deps + nu * deph)
+            shh_new = shh + Eeff * (deph + nu * deps)
+        else:
+            snew = stt + Eeff * deps  # tangential Hooke's law on projected eq. 13 strain
         inv3(F_old[p], Fi)
         for i in range(3):
             for j in range(3):
@@ -93,9 +106,15 @@ def kernel(Eeff, lat, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_ne
         for i in range(3):
             for j in range(3):
                 stress_new[p, i, j] = snew * t_new[p, i] * t_new[p, j]
-        h_new[p] = h_old[p] * (1.0 - lat * deps)
-        vol_new[p] = vol[p] * lam * (1.0 - lat * deps)
-        energy[p] = 0.5 * (stt + snew) * deps * vol[p]
+        if hoop:
+            stress_new[p, 2, 2] += shh_new
+            h_new[p] = h_old[p] * (1.0 - lat * (deps + deph))
+            vol_new[p] = vol[p] * lam * Finc[2, 2] * (1.0 - lat * (deps + deph))
+            energy[p] = 0.5 * ((stt + snew) * deps + (shh + shh_new) * deph) * vol[p]
+        else:
+            h_new[p] = h_old[p] * (1.0 - lat * deps)
+            vol_new[p] = vol[p] * lam * (1.0 - lat * deps)
+            energy[p] = 0.5 * (stt + snew) * deps * vol[p]
         max_wavespeed(ws, np.sqrt(Eeff * vol[p] / mass[p]), vel, p)
     return ws
 
@@ -124,8 +143,9 @@ def chain_tangents(px, closed, t):
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy,
-           t_old, t_new, h_old, h_new, vol_new):
-    """Update stress, tangent, thickness and volume; returns wave speed (3,)."""
+           t_old, t_new, h_old, h_new, vol_new, hoop=False):
+    """Update stress, tangent, thickness and volume; returns wave speed (3,). hoop: the
+    axisymmetric membrane of revolution (biaxial, 'plane' formulation)."""
     Eeff, lat = params.moduli()
-    return kernel(Eeff, lat, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
-                  t_old, t_new, h_old, h_new, vol_new, energy)
+    return kernel(Eeff, lat, params.poisson, bool(hoop), L, F_old, F_new, vol, mass, vel, dt,
+                  stress_old, stress_new, t_old, t_new, h_old, h_new, vol_new, energy)
