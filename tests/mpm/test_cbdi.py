@@ -17,6 +17,7 @@ import pytest
 
 from components.mpm.cbdi import NO_CORNER, cells_size, corner_loads
 from components.mpm.constitutive.damage import threshold_kernel
+from framework.problemspec import InputError
 
 from .helpers import run
 
@@ -147,3 +148,20 @@ def test_press_smooth_cyl_cbdi_equals_uintahs_sus(tmp_path, ref):
     localized = np.array([[np.sum(da.particles(0, s)["p.localizedMPM"] == v) for v in (1, 2)] for s in range(1, 9)])
     assert np.array_equal(localized, ref["cyl_localized"])
     assert localized[-1, 1] > 0
+
+
+def _refused(tmp_path, text, *words):
+    with pytest.raises(InputError) as e:
+        run(text, tmp_path)
+    for w in words:
+        assert w in str(e.value), str(e.value)
+
+
+def test_cbdi_needs_outward_normal_and_a_pressure(tmp_path):
+    """As Uintah: with CBDI a <pressure> or <torque> must say <outward_normal>; CBDI without a
+    <pressure> load (Uintah would read a p.loadCurveID it never made) is refused."""
+    text = (HERE / "press_smooth_cyl_cbdi.ups").read_text()
+    _refused(tmp_path, text.replace("<outward_normal>false</outward_normal>", ""), "outward_normal", "<pressure>")
+    plain = text.replace("<use_load_curves> true </use_load_curves>", "<use_load_curves> false </use_load_curves>")
+    start, end = plain.index("<PhysicalBC>"), plain.index("</PhysicalBC>") + len("</PhysicalBC>")
+    _refused(tmp_path, plain[:start] + plain[end:], "use_CBDI_boundary_condition", "accepted: false")
