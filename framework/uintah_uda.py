@@ -85,7 +85,7 @@ class UintahArchive:
         return (out if out.shape[3] == 3 else out[..., 0]), xyz
 
     def particles(self, label, matl=0, timestep=-1):
-        """One particle variable (double, int, long64, Point/Vector, Matrix3) of every patch, in patch
+        """One particle variable (double, int, long64, Point/Vector/IntVector, Matrix3) of every patch, in patch
         order: an (n,), (n, 3) or (n, 3, 3) array."""
         step = self.steps[timestep]
         ts = etree.parse(os.path.join(step, "timestep.xml"))
@@ -96,7 +96,7 @@ class UintahArchive:
                     continue
                 kind = var.get("type")
                 ncomp = 9 if "Matrix3" in kind else 3 if ("Point" in kind or "Vector" in kind) else 1
-                dtype = "<i8" if "long64" in kind else "<i4" if "<int>" in kind else "<f8"
+                dtype = "<i8" if "long64" in kind else "<i4" if ("<int>" in kind or "IntVector" in kind) else "<f8"
                 start, end = int(var.findtext("start")), int(var.findtext("end"))
                 with open(os.path.join(step, os.path.dirname(href), var.findtext("filename").strip()), "rb") as f:
                     f.seek(start)

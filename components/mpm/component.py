@@ -95,6 +95,8 @@ FLAGS = {
     "XPIC2": Param("bool", False, doc="particle velocity and position from XPIC(2) (Hammerquist & Nairn 2017) "
                    "instead of FLIP, as Uintah's SerialMPM; not for rigid materials"),
     "use_load_curves": Param("bool", False, doc="pressure and torque BCs follow <PhysicalBC> load curves"),
+    "use_CBDI_boundary_condition": Param("bool", False, doc="pressure loads act on the loaded face of each "
+                                         "particle's deformed domain, spread from its corners (cbdi.py)"),
     "boundary_traction_faces": Param("str", "[]", doc="[xminus, ..., zplus]: the BndyForce_, BndyTraction_ and "
                                      "BndyContactArea_<face> reductions there, computed when saved "
                                      "(boundary_tractions.py)"),
@@ -266,6 +268,14 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             sv.attr("label", default="") == "p.temperature" for sv in da.children("save"))
         self.thermal_setup()
         self._read_physical_bc(root)      # <PhysicalBC><MPM><pressure>, <torque>, <heat_flux> (pressure.py)
+        self.cbdi = self.flags["use_CBDI_boundary_condition"]
+        if self.cbdi:
+            tag = mpm.child("use_CBDI_boundary_condition")
+            if not self.pressure_bcs or not any(b.kind == "pressure" for b in self.pressure_bcs.bcs):
+                raise tag.error("CBDI acts on <PhysicalBC><MPM><pressure> loads: it needs one, with "
+                                "<use_load_curves>true (Uintah reads p.loadCurveID then); accepted: false")
+            if self.axisymmetric:
+                raise tag.error("CBDI is not implemented with <axisymmetric>true; accepted: false")
         self.mms = None
         if self.flags["RunMMSProblem"]:
             from .mms import ManufacturedSolution
@@ -380,7 +390,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         c = [(L.pVelocity, L.pVelocityPre), (L.pMass, L.pMassPre), (L.pVolume, L.pVolumePre),
              (L.pStress, L.pStressPre), (L.pF, L.pFPre), (L.pID, L.pIDPre)]
         # GIMP, CPDI; friction_LR: the particle faces; p.scalefactor
-        if self.kind != "linear" or self.contact.needs_lr or self.saves_scale:
+        if self.kind != "linear" or self.contact.needs_lr or self.saves_scale or self.cbdi:
             c.append((L.pSize, L.pSizePre))
         if self.size_matrix:
             c.append((L.pSizeMatrix, L.pSizeMatrixPre))
@@ -647,6 +657,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         labs += self.size_labels()
         if self.pressure_bcs:
             labs.append(L.pLoadCurveID)
+        if self.cbdi:                       # the loaded faces (cbdi.py)
+            labs += [lab for lab in (L.pF, self._size_label) if lab not in labs]
         if self.mms:
             labs.append(L.pDisp)
         if self.av:

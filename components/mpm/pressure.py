@@ -86,6 +86,8 @@ class PressureBC:
             if self.cylinder_end and self.kind != "pressure":
                 raise cyl.child("cylinder_end").error(f"a {self.kind} acts on the side of a cylinder; accepted: false")
         self.end = self.cylinder_end or self.axisymmetric_end         # a cylinder's end is loaded
+        # CBDI (cbdi.py): false flips n when the loaded face of a particle's domain is sought
+        self.outward_normal = node.get("outward_normal", "bool", True)
         if self.axisymmetric_end:
             self.dr = level.dx[0] / node.get("res", "ivector", at_least=1)[0]     # the particles' r spacing
         lc = node.child("load_curve", required=True)
@@ -245,6 +247,7 @@ class PressureBCs:
         self.bcs = bcs
         self.by_id = {b.id: b for b in bcs}
         self.dims = np.array(mpm.dims, bool)
+        self.cbdi = mpm.flags.get("use_CBDI_boundary_condition", False)
 
     def __bool__(self):
         return bool(self.bcs)
@@ -270,6 +273,11 @@ class PressureBCs:
                                     "(without it Uintah applies no load)")
         if len(items) > MAX_BCS:
             raise items[MAX_BCS][1].error(f"at most {MAX_BCS} load-curve BCs")
+        if mpm.flags.get("use_CBDI_boundary_condition", False):
+            for cls_, it in items:
+                if cls_ is not HeatFluxBC and not it.has("outward_normal"):
+                    raise it.error(f"with <use_CBDI_boundary_condition>true a <{cls_.kind}> needs "
+                                   "<outward_normal> (true or false; Uintah requires it)")
         geom = getattr(root, "_geometry_reader", None)
         if geom is None:
             from framework.geometry import GeometryReader
@@ -317,6 +325,25 @@ class PressureBCs:
             if len(sel) and totals[k] > 0 and b.kind != "heat_flux":
                 f[sel] += b.load(x[sel], t, totals[k])
         return f
+
+    def cbdi_forces(self, x, ids, t, totals, F, psize, dx):
+        """p.externalforce at time t and the loaded-face corners (n, 4, 3) of particles x with
+        p.loadCurveID ids under CBDI (cbdi.py): F and psize (Uintah's p.size in cells) of the
+        step's start."""
+        from .cbdi import NO_CORNER, corner_loads
+        f = np.zeros((len(x), 3))
+        corners = np.full((len(x), 4, 3), NO_CORNER)
+        for k, b in enumerate(self.bcs):
+            sel = np.flatnonzero(np.any(ids == b.id, axis=1))
+            if not len(sel) or totals[k] <= 0 or b.kind == "heat_flux":
+                continue
+            if b.kind == "pressure":
+                xs = x[sel]
+                corner_loads(sel, x, b.load(xs, t, totals[k]), np.ascontiguousarray(b.normals(xs)),
+                             b.outward_normal, F, psize, np.asarray(dx, float), f, corners)
+            else:
+                f[sel] += b.load(x[sel], t, totals[k])
+        return f, corners
 
     @property
     def heat_flux(self):

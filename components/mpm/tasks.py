@@ -15,6 +15,7 @@ from framework.variables import VarType
 from . import kernels, shape, transfer
 from . import labels as L
 from .artificial_viscosity import stress_less_q
+from .cbdi import cells_size, corners_to_grid
 from .thermal import divide_by_mass, p2g_heat
 
 NC = VarType.NC
@@ -223,11 +224,15 @@ class MPMTasks:
         has_f = bool(self.pressure_bcs) or bool(self.mms)
         labs = [L.pX, L.pMass, L.pVelocity, L.pVolume, L.pStress]
         labs += [L.pLoadCurveID] if self.pressure_bcs else [L.pDisp] if self.mms else []
+        labs += [L.pF, self._size_label] if self.cbdi else []
         labs += [L.pQ] if self.av else []
         for m in matls:
             own, ghost, runs = self._parts(old_dw, m, patch, labs)
             if self.av:                 # the internal force's stress: sigma - q I
                 own, ghost = [a[:4] + [self._stress_less_q(a[4], a[-2])] + a[5:] for a in (own, ghost)]
+            if self.cbdi:               # fext from the loaded faces' corners, after p2g (cbdi.py)
+                loads = [(a[5],) + self._cbdi_forces(old_dw, a[0], a[5], a[6], a[7]) for a in (own, ghost)]
+                has_f = False
             own, ghost = [tuple(a[:5] + [self._body_forces(old_dw, a) if has_f else _NOF, a[-1]])
                           for a in (own, ghost)]
             gm = new_dw.allocate(L.gMass, m, patch, 0.0)
@@ -236,9 +241,11 @@ class MPMTasks:
             grads = _split(old_dw, L.pVelGradLast, m, patch)[:2] if self.projection else ()
             if self.projection and not self.grid_volume:
                 gvol = np.zeros_like(gm)      # the projected p2g computes the volume anyway
+            gfe = new_dw.allocate(L.gExtForce, m, patch, 0.0)
             self.p2g_runs(own, ghost, runs, has_f, self.grid_volume, lv.anchor, lv.dx, low, gm, gv, gvol,
-                          new_dw.allocate(L.gExtForce, m, patch, 0.0), new_dw.allocate(L.gIntForce, m, patch, 0.0),
-                          *grads)
+                          gfe, new_dw.allocate(L.gIntForce, m, patch, 0.0), *grads)
+            if self.cbdi:
+                corners_to_grid(self.act, loads[0], loads[1], runs, lv.anchor, lv.dx, low, gfe)
             kernels.divide_by_mass(gm, gv, gv)
             self.bcs.apply_symmetric(patch, m, gv)             # as Uintah (bc.py)
 
@@ -275,7 +282,17 @@ class MPMTasks:
 
     def _ext_force(self, old_dw, m, patch, px):
         """p.externalforce of the pressure BCs at the time this step starts (pressure.py)."""
+        if self.cbdi:
+            return self._cbdi_forces(old_dw, px, old_dw.get(L.pLoadCurveID, m, patch), old_dw.get(L.pF, m, patch),
+                                     old_dw.get(self._size_label, m, patch))[0]
         return self._forces(old_dw, px, old_dw.get(L.pLoadCurveID, m, patch))
+
+    def _cbdi_forces(self, old_dw, px, lcid, F, size):
+        """(p.externalforce, loaded-face corners) under CBDI (cbdi.py), with F and p.size of the
+        step's start."""
+        return self.pressure_bcs.cbdi_forces(px, lcid, old_dw.get_reduction(FL.simTime),
+                                             old_dw.get_reduction(L.PressureBCParticles), F,
+                                             cells_size(size, self.level.dx), self.level.dx)
 
     def _forces(self, old_dw, px, lcid):
         return self.pressure_bcs.forces(px, lcid, old_dw.get_reduction(FL.simTime),

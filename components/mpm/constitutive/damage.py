@@ -45,7 +45,11 @@ materials.uintah_creation_order), so that p.epsf is sus's on the same patch layo
 
 (Uintah's models also have a "uniform" draw and a volume ``<scaling>``, which its input
 specification refuses, and so does pysus).  ``failure_criteria`` MaximumPrincipalStress (the largest eigenvalue of p.stress+ above
-p.epsf) or MaximumPrincipalStrain (of the Almansi strain (I - (F F^T)^-1)/2),
+p.epsf) or MaximumPrincipalStrain (of the Almansi strain (I - (F F^T)^-1)/2) or MohrCoulomb
+(p.epsf is the cohesion c, with ``friction_angle`` phi (degrees) and
+``tensile_cutoff_fraction_of_cohesion`` f: in tension when sigma_1 > f c, p.localizedMPM = 1; in
+shear when (sigma_1 - sigma_3)/2 > c cos phi - (sigma_1 + sigma_3) sin phi / 2, p.localizedMPM = 2,
+sigma_1 and sigma_3 the largest and smallest principal stresses),
 ``LocalizeParticles`` (true).  A particle that meets it is localized (p.localizedMPM = 1, for good).  The erosion
 then acts on the localized particles (Uintah's ErosionModel), with p.timeofloc the step-start
 time at which it localized and D = exp(-(t - p.timeofloc)/char_time) (<char_time>, 1e-99: 1
@@ -72,7 +76,7 @@ from .uintah_random import STATE_SIZE, gauss, musil_start, patch_seed, weibull
 
 TYPES = ("Brittle", "Threshold", "ThresholdVar")
 EROSION = {"none": 0, "AllowNoTension": 1, "ZeroStress": 2, "AllowNoShear": 3, "PreserveStress": 4}
-CRITERIA = {"MaximumPrincipalStress": 0, "MaximumPrincipalStrain": 1}
+CRITERIA = {"MaximumPrincipalStress": 0, "MaximumPrincipalStrain": 1, "MohrCoulomb": 2}
 DISTRIBUTIONS = {"constant": 0, "gauss": 1, "weibull": 2}
 
 
@@ -112,6 +116,8 @@ class ThresholdVar:
     distribution: int = 0          # DISTRIBUTIONS code
     seed: int = 0                  # <failure_seed>
     by_color: bool = True          # ThresholdVar (draws per particle), else Threshold (per patch)
+    friction_angle: float = 0.0    # MohrCoulomb: phi (degrees)
+    tensile_cutoff: float = 0.0    # MohrCoulomb: the tensile strength over the cohesion
 
     STATE = ("p.epsf", "p.localizedMPM", "p.timeofloc")
 
@@ -154,7 +160,8 @@ class ThresholdVar:
         p.timeofloc) old -> new."""
         (eps_old, loc_old, tl_old), (eps_new, loc_new, tl_new) = old, new
         threshold_kernel(self.criterion, self.localize, self.erosion, self.char_time, time, F_new, stress_new,
-                         eps_old, loc_old, tl_old, eps_new, loc_new, tl_new)
+                         eps_old, loc_old, tl_old, eps_new, loc_new, tl_new, self.friction_angle,
+                         self.tensile_cutoff)
 
 
 @njit(cache=True)
@@ -252,13 +259,24 @@ def almansi_max(F, p):
 
 @njit(cache=True)
 def threshold_kernel(criterion, localize, erosion, char_time, time, F, stress, eps_old, loc_old, tl_old, eps_new,
-                     loc_new, tl_new):
+                     loc_new, tl_new, friction_angle=0.0, tensile_cutoff=0.0):
     """ThresholdVar's localization, then the erosion of the stress (module docstring)."""
+    phi = friction_angle * (np.pi / 180.0)
     for p in range(F.shape[0]):
         eps_new[p] = eps_old[p]
         loc_new[p] = loc_old[p]
         tl_new[p] = tl_old[p]
-        if localize and loc_old[p] == 0.0:
+        if localize and loc_old[p] == 0.0 and criterion == 2:      # Mohr-Coulomb: tension, then shear
+            s1, s3 = extreme_eigenvalues_sym(stress[p, 0, 0], stress[p, 1, 1], stress[p, 2, 2],
+                                             0.5 * (stress[p, 0, 1] + stress[p, 1, 0]),
+                                             0.5 * (stress[p, 0, 2] + stress[p, 2, 0]),
+                                             0.5 * (stress[p, 1, 2] + stress[p, 2, 1]))
+            c = eps_old[p]
+            if s1 > tensile_cutoff * c:
+                loc_new[p] = 1.0
+            if (s1 - s3) / 2.0 > c * np.cos(phi) - (s1 + s3) * np.sin(phi) / 2.0:
+                loc_new[p] = 2.0
+        elif localize and loc_old[p] == 0.0:
             if criterion == 0:
                 m = max_eigenvalue_sym(stress[p, 0, 0], stress[p, 1, 1], stress[p, 2, 2],
                                        0.5 * (stress[p, 0, 1] + stress[p, 1, 0]),
@@ -327,10 +345,9 @@ def read_erosion(er):
 def read_threshold_var(dm, erosion, char_time, by_color):
     """<damage_model type="ThresholdVar"> (the entries) or "Threshold" (one <failure_mean>): the
     criterion and the distribution of the thresholds."""
-    crit = dm.get("failure_criteria", "str", choices=tuple(CRITERIA) + ("MohrCoulomb",))
-    if crit == "MohrCoulomb":
-        raise dm.child("failure_criteria").error("MohrCoulomb is not implemented; accepted: "
-                                                 + ", ".join(CRITERIA))
+    crit = dm.get("failure_criteria", "str", choices=tuple(CRITERIA))
+    mohr = (dm.get("friction_angle", "float"), dm.get("tensile_cutoff_fraction_of_cohesion", "float")) \
+        if crit == "MohrCoulomb" else (0.0, 0.0)
     dist = dm.get("failure_distrib", "str", "constant", choices=tuple(DISTRIBUTIONS) + ("uniform",))
     for tag, what in (("failure_distrib", "uniform"), ("scaling", None), ("reference_volume", None),
                       ("exponent", None)):
@@ -354,7 +371,7 @@ def read_threshold_var(dm, erosion, char_time, by_color):
             "a weibull draw needs a positive Weibull modulus (<std>, <failure_std>)")
     return ThresholdVar(tuple(r[0] for r in rows), tuple(r[1] for r in rows), CRITERIA[crit],
                         dm.get("LocalizeParticles", "bool", True), erosion, char_time, tuple(r[2] for r in rows),
-                        DISTRIBUTIONS[dist], seed, by_color)
+                        DISTRIBUTIONS[dist], seed, by_color, *mohr)
 
 
 @njit(cache=True, inline="always")
@@ -372,6 +389,24 @@ def max_eigenvalue_sym(a00, a11, a22, a01, a02, a12):
     r = 0.5 * (c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) + c02 * (c01 * c12 - c11 * c02))
     r = min(1.0, max(-1.0, r))
     return q + 2.0 * p * np.cos(np.arccos(r) / 3.0)
+
+
+@njit(cache=True, inline="always")
+def extreme_eigenvalues_sym(a00, a11, a22, a01, a02, a12):
+    """The largest and the smallest eigenvalue of a symmetric 3x3 matrix (as max_eigenvalue_sym)."""
+    q = (a00 + a11 + a22) / 3.0
+    p1 = a01 * a01 + a02 * a02 + a12 * a12
+    b00, b11, b22 = a00 - q, a11 - q, a22 - q
+    p2 = b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * p1
+    if p2 <= 1e-300:
+        return q, q
+    p = np.sqrt(p2 / 6.0)
+    ip = 1.0 / p
+    c00, c11, c22, c01, c02, c12 = b00 * ip, b11 * ip, b22 * ip, a01 * ip, a02 * ip, a12 * ip
+    r = 0.5 * (c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) + c02 * (c01 * c12 - c11 * c02))
+    r = min(1.0, max(-1.0, r))
+    a = np.arccos(r) / 3.0
+    return q + 2.0 * p * np.cos(a), q + 2.0 * p * np.cos(a + 2.0 * np.pi / 3.0)
 
 
 @njit(cache=True)
