@@ -205,7 +205,7 @@ class Controller:
             raise root.child("Grid").child("Level").error(
                 f"the <Box>es of this level do not fill one rectangular box (an L-shaped level), which "
                 f'component "{self.component_name}" does not support; accepted: such a level with <SimulationComponent '
-                'type="mpm">, or boxes that tile one rectangular box')
+                'type="mpm" or "ice">, or boxes that tile one rectangular box')
         lbn = root.child("LoadBalancer")
         self.lb_interval = 0
         if lbn is not None:

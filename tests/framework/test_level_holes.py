@@ -137,8 +137,8 @@ def test_holes_refused_where_not_supported(tmp_path):
         level_from_spec(ProblemSpec.load(str(tmp_path / "p.ups")))
     assert "periodic" in str(e.value) and "\n" not in str(e.value)
     with pytest.raises(InputError) as e:
-        run_deck(L_DECK.format(steps=1, every=1, bcs="", v=1).replace('type="mpm"', 'type="ice"'), tmp_path)
-    assert 'component "ice" does not support' in str(e.value) and "\n" not in str(e.value)
+        run_deck(L_DECK.format(steps=1, every=1, bcs="", v=1).replace('type="mpm"', 'type="mpmice"'), tmp_path)
+    assert 'component "mpmice" does not support' in str(e.value) and "\n" not in str(e.value)
 
 
 L_DECK = """<?xml version="1.0"?>
