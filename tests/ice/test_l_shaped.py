@@ -28,7 +28,8 @@ def _deck(level):
     a, b = text.index("<Level>"), text.index("</Level>") + len("</Level>")
     text = text[:a] + level + text[b:]
     text = text.replace("<maxTime> 0.25 </maxTime>", "<maxTime> 0.25 </maxTime><max_Timesteps>40</max_Timesteps>")
-    return text.replace("<outputInterval> 0.05 </outputInterval>", "<outputTimestepInterval>20</outputTimestepInterval>")
+    return text.replace("<outputInterval> 0.05 </outputInterval>",
+                        "<outputTimestepInterval>20</outputTimestepInterval>")
 
 
 def test_explosion_on_the_l_is_the_box_restricted(tmp_path):
@@ -52,17 +53,17 @@ def test_explosion_on_the_l_is_the_box_restricted(tmp_path):
 @pytest.mark.parametrize("extra, what", [
     ("<ImplicitSolver>", "<ImplicitSolver>"),
     ('<Face circle="x-" origin="0 0.5 0.005" radius="0.1"><BCType id="all" label="Velocity" var="Dirichlet">'
-     '<value>[0,0,0]</value></BCType>' + "".join(f'<BCType id="all" label="{v}" var="Neumann"><value>0</value></BCType>'
-                                                 for v in ("Pressure", "Density", "Temperature")) + '</Face>',
-     "sub-faces"),
+     '<value>[0,0,0]</value></BCType>'
+     + "".join(f'<BCType id="all" label="{v}" var="Neumann"><value>0</value></BCType>'
+               for v in ("Pressure", "Density", "Temperature")) + '</Face>', "sub-faces"),
 ])
 def test_what_an_l_shaped_level_refuses(tmp_path, extra, what):
     text = _deck(L)
     if what == "<ImplicitSolver>":
         text = text.replace("<ICE><advection", "<ICE><ImplicitSolver><max_outer_iterations>5</max_outer_iterations>"
                             "<outer_iteration_tolerance>1e-8</outer_iteration_tolerance><iters_before_timestep_restart>"
-                            "5</iters_before_timestep_restart><Parameters variable=\"implicitPressure\"><tolerance>1e-12"
-                            "</tolerance><solver>cg</solver><preconditioner>none</preconditioner><maxiterations>200"
+                            "5</iters_before_timestep_restart><Parameters variable=\"implicitPressure\">"
+                            "<tolerance>1e-12</tolerance><solver>cg</solver><preconditioner>none</preconditioner><maxiterations>200"
                             "</maxiterations></Parameters></ImplicitSolver><advection")
     else:
         text = text.replace("</BoundaryConditions>", extra + "</BoundaryConditions>")
