@@ -63,8 +63,8 @@ def test_what_an_l_shaped_level_refuses(tmp_path, extra, what):
         text = text.replace("<ICE><advection", "<ICE><ImplicitSolver><max_outer_iterations>5</max_outer_iterations>"
                             "<outer_iteration_tolerance>1e-8</outer_iteration_tolerance><iters_before_timestep_restart>"
                             "5</iters_before_timestep_restart><Parameters variable=\"implicitPressure\">"
-                            "<tolerance>1e-12</tolerance><solver>cg</solver><preconditioner>none</preconditioner><maxiterations>200"
-                            "</maxiterations></Parameters></ImplicitSolver><advection")
+                            "<tolerance>1e-12</tolerance><solver>cg</solver><preconditioner>none</preconditioner>"
+                            "<maxiterations>200</maxiterations></Parameters></ImplicitSolver><advection")
     else:
         text = text.replace("</BoundaryConditions>", extra + "</BoundaryConditions>")
     with pytest.raises(InputError) as e:
