@@ -67,7 +67,7 @@ def _write_dw(h5, dw, level, patches, names, region):
                 continue
             label = label_registry.find(name)
             vt = label.vartype
-            box = p.owned(vt) if region == "owned" else box_intersect(p.owned(vt), level.interior_box(vt))
+            box = p.owned(vt) if region == "owned" else p.interior_box(vt)
             if box is None:
                 continue
             data = arr[p.slices(vt, box)]

@@ -60,6 +60,7 @@ class Component:
     """Base class: the null component. Subclasses override what they need."""
 
     names: tuple = ()
+    holes_ok = False       # runs on a level whose <Box>es do not fill one box (boundary faces on holes)
 
     def __init__(self):
         self.materials: list = []

@@ -201,6 +201,11 @@ class Controller:
         if self.time["delt_min"] > self.time["delt_max"]:
             raise t.child("delt_min").error("delt_min exceeds delt_max")
         self.level = level_from_spec(root)
+        if self.level.holes and not cls.holes_ok:
+            raise root.child("Grid").child("Level").error(
+                f"the <Box>es of this level do not fill one rectangular box (an L-shaped level), which "
+                f'component "{self.component_name}" does not support; accepted: such a level with <SimulationComponent '
+                'type="mpm" or "ice">, or boxes that tile one rectangular box')
         lbn = root.child("LoadBalancer")
         self.lb_interval = 0
         if lbn is not None:

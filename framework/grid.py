@@ -6,6 +6,13 @@ or ghost cells and one node layer, so 1D and 2D scenes pay nothing for the unuse
 directions. Each cell, node and face is owned by exactly one patch: a patch owns the
 nodes and faces at the low corners of its cells, plus the upper ones on the domain's
 upper boundary.
+
+A level read from several <Box>es whose union is not one box (an L-shaped level) is the
+box that holds them, cut by every box's edges and patch boundaries into a tensor layout of
+slots; only the slots inside a box are patches. Each face of a patch then borders one other
+patch or none: a face with none is a boundary face (extra cells, conditions), as on the
+domain's outer faces. On a re-entrant edge two patches own the same extra cells or nodes;
+each keeps its own values there, and the ghost copies of other patches take one of them.
 """
 from __future__ import annotations
 
@@ -34,18 +41,35 @@ def box_cells(box) -> int:
     return int(np.prod([h - l for l, h in zip(*box)]))
 
 
+def box_minus(a, b):
+    """The part of box a outside box b, as disjoint boxes (none when b covers a)."""
+    if box_intersect(a, b) is None:
+        return [a]
+    out, lo, hi = [], list(a[0]), list(a[1])
+    for d in range(3):
+        if lo[d] < b[0][d]:
+            out.append((tuple(lo), tuple(hi[:d] + [b[0][d]] + hi[d + 1:])))
+            lo[d] = b[0][d]
+        if hi[d] > b[1][d]:
+            out.append((tuple(lo[:d] + [b[1][d]] + lo[d + 1:]), tuple(hi)))
+            hi[d] = b[1][d]
+    return out
+
+
 def split_points(n, p):
     """Cut n cells into p nearly equal parts."""
     return [n * i // p for i in range(p + 1)]
 
 
 class Level:
-    """A box of cells split into a tensor layout of patches."""
+    """A box of cells split into a tensor layout of patches (slots without a patch: holes)."""
 
     def __init__(self, lower, upper, ncells, patches=(1, 1, 1), extra=(0, 0, 0),
-                 periodic=(False, False, False), index=0, splits=None):
+                 periodic=(False, False, False), index=0, splits=None, present=None):
         """splits: the patch boundaries (cell indices from 0 to ncells) in each direction, in
-        place of `patches` nearly equal parts (a level read from several <Box>es)."""
+        place of `patches` nearly equal parts (a level read from several <Box>es). present:
+        a boolean array over the layout, False at the slots that are no patch (the cells
+        outside every <Box> of a level that is not one box); None: every slot is a patch."""
         self.index = index
         self.ncells = tuple(int(n) for n in ncells)
         self.anchor = np.asarray(lower, dtype=np.float64)
@@ -68,10 +92,19 @@ class Level:
         for d, sp in enumerate(self.splits):
             if sp[0] != 0 or sp[-1] != self.ncells[d] or any(b <= a for a, b in zip(sp, sp[1:])):
                 raise ValueError(f"patch boundaries {sp} along {'xyz'[d]} must rise from 0 to {self.ncells[d]}")
+        self.holes = present is not None and not np.all(present)
+        if self.holes and any(self.periodic):
+            raise ValueError("a periodic direction on a level that is not one box")
+        self.present = np.asarray(present, dtype=bool) if self.holes else None
         self.halo = {vt: 0 for vt in GRID_TYPES}
         self.patches: list[Patch] = []
+        self._slot = np.full(self.layout, -1, dtype=np.int64) if self.holes else None
         for k, j, i in itertools.product(range(self.layout[2]), range(self.layout[1]), range(self.layout[0])):
             idx = (i, j, k)
+            if self.holes:
+                if not self.present[idx]:
+                    continue
+                self._slot[idx] = len(self.patches)
             lo = tuple(self.splits[d][idx[d]] for d in range(3))
             hi = tuple(self.splits[d][idx[d] + 1] for d in range(3))
             self.patches.append(Patch(len(self.patches), self, idx, lo, hi))
@@ -117,8 +150,18 @@ class Level:
 
     # -- patch lookup ----------------------------------------------------------------
     def patch_at(self, idx):
+        """The patch at layout index idx; None at a hole."""
         i, j, k = idx
+        if self.holes:
+            pid = self._slot[i, j, k]
+            return self.patches[pid] if pid >= 0 else None
         return self.patches[i + self.layout[0] * (j + self.layout[1] * k)]
+
+    def has_patch(self, idx):
+        """Whether layout index idx (possibly outside the layout) holds a patch."""
+        if not all(0 <= idx[d] < self.layout[d] for d in range(3)):
+            return False
+        return not self.holes or bool(self.present[tuple(idx)])
 
     def cells_of(self, x):
         """Cell indices (n,3) int64 of positions x (n,3); collapsed directions give 0."""
@@ -130,16 +173,21 @@ class Level:
         return c
 
     def patch_ids_of_cells(self, cells):
-        """Owning patch id of each interior cell index (n,3); -1 outside the domain."""
+        """Owning patch id of each interior cell index (n,3); -1 outside the domain (or in a hole)."""
         out = np.zeros(len(cells), dtype=np.int64)
         inside = np.ones(len(cells), dtype=bool)
         mult = 1
+        slots = []
         for d in range(3):
             c = cells[:, d]
             inside &= (c >= 0) & (c < self.ncells[d])
             pidx = np.searchsorted(np.asarray(self.splits[d][1:-1]), c, side="right")
             out += pidx * mult
             mult *= self.layout[d]
+            slots.append(pidx)
+        if self.holes:
+            s = [np.minimum(x, n - 1) for x, n in zip(slots, self.layout)]
+            out = self._slot[s[0], s[1], s[2]]
         out[~inside] = -1
         return out
 
@@ -164,7 +212,7 @@ class Level:
                     if self.periodic[d]:
                         v %= self.layout[d]
                     idx.append(v)
-                if all(0 <= idx[d] < self.layout[d] for d in range(3)):
+                if self.has_patch(idx):
                     q = self.patch_at(idx)
                     if q not in found:
                         found.append(q)
@@ -183,6 +231,9 @@ class Level:
         want = patch.window(vt, g)
         own = patch.owned(vt)
         out = []
+        if self.holes:
+            self._cache[key] = out = self._hole_ghost_sources(patch, vt, want, own)
+            return out
         for q in self.neighbours(patch):
             qown = q.owned(vt)
             for s in self.shifts():
@@ -193,6 +244,23 @@ class Level:
                     continue
                 out.append((q, s, ov))
         self._cache[key] = out
+        return out
+
+    def _hole_ghost_sources(self, patch, vt, want, own):
+        """ghost_sources on a level with holes: owned boxes overlap on re-entrant edges, so
+        each source gives only what neither `patch` nor an earlier source holds."""
+        out, taken = [], [own]
+        for q in self.neighbours(patch):
+            if q is patch:
+                continue
+            ov = box_intersect(want, q.owned(vt))
+            if ov is None:
+                continue
+            parts = [ov]
+            for t in taken:
+                parts = [r for b in parts for r in box_minus(b, t)]
+            out.extend((q, (0, 0, 0), b) for b in parts)
+            taken.append(ov)
         return out
 
     def particle_ghost_sources(self, patch, g: int):
@@ -232,6 +300,12 @@ class Patch:
         self.at_low = tuple(lo[d] == 0 and not level.periodic[d] and not level.collapsed[d] for d in range(3))
         self.at_high = tuple(hi[d] == level.ncells[d] and not level.periodic[d] and not level.collapsed[d]
                              for d in range(3))
+        if level.holes:                      # a face on a hole is a boundary face too
+            side = [tuple(index[c] + (s if c == d else 0) for c in range(3)) for d in range(3) for s in (-1, 1)]
+            self.at_low = tuple(self.at_low[d] or (not level.collapsed[d] and not level.has_patch(side[2 * d]))
+                                for d in range(3))
+            self.at_high = tuple(self.at_high[d] or (not level.collapsed[d] and not level.has_patch(side[2 * d + 1]))
+                                 for d in range(3))
         self.boundary_faces = [FACES[2 * d + s] for d in range(3) for s in (0, 1)
                                if (self.at_low, self.at_high)[s][d]]
         self._cache: dict = {}
@@ -307,10 +381,29 @@ class Patch:
 
         For NC/SFC types this is the owned part of the domain's nodes/faces.
         """
-        own = self.owned(vt)
-        inner = self.level.interior_box(vt)
-        box = box_intersect(own, inner)
-        return self.local(vt, box)
+        return self.local(vt, self.interior_box(vt))
+
+    def interior_box(self, vt: VarType = VarType.CC):
+        """Global (lo, hi) of the owned indices inside the physical domain: the owned box
+        without extra cells (on a level with holes two patches share the nodes of a
+        re-entrant edge)."""
+        key = ("inner", vt)
+        if key not in self._cache:
+            lv = self.level
+            lo, hi = [], []
+            for d in range(3):
+                if lv.collapsed[d]:
+                    lo.append(0), hi.append(1)
+                    continue
+                lo.append(self.lo[d])
+                hi.append(self.hi[d] + (1 if vt.node_like(d) and self.at_high[d] else 0))
+            self._cache[key] = (tuple(lo), tuple(hi))
+        return self._cache[key]
+
+    def face_index(self, d: int, s: int) -> int:
+        """Global index of the face nodes of side s (0 low, 1 high) in direction d (a
+        boundary face: at_low or at_high)."""
+        return self.hi[d] if s else self.lo[d]
 
     def owned_local(self, vt: VarType = VarType.CC):
         return self.local(vt, self.owned(vt))

@@ -19,10 +19,12 @@ BOX = {
 def level_from_spec(root):
     """The single level of `<Grid><Level>`; boundary conditions are left to components.
 
-    Several `<Box>`es (Uintah allows a level of any union of boxes) are one pysus level when
-    they tile one rectangular box of cells of one size and their patches line up into one
-    grid of patches: the level is that box, with the same cells and patches (extraCells the
-    largest of the boxes', as in Uintah). Any other union is refused, saying why.
+    Several `<Box>`es (Uintah allows a level of any union of boxes) of cells of one size
+    that tile one rectangular box, their patches lining up into one grid of patches, are
+    that box with the same cells and patches (extraCells the largest of the boxes', as in
+    Uintah). A union that is not one box (L-shaped, with gaps) is the box that holds it cut
+    along every box's edges and patch boundaries; the slots outside the boxes are holes of
+    the level (grid.Level, present), their faces domain boundaries.
     """
     grid = root.child("Grid", required=True)
     levels = grid.children("Level")
@@ -51,8 +53,11 @@ def level_from_spec(root):
             return Level(lower, upper, res, patches, extra, per)
         except ValueError as e:
             raise boxes[0].child("patches").error(str(e)) from None
-    lower, upper, res, splits = _tile(lv, boxes, read)
-    return Level(lower, upper, res, extra=extra, periodic=per, splits=splits)
+    lower, upper, res, splits, present = _tile(lv, boxes, read)
+    if present is not None and any(per):
+        raise lv.child("periodic").error("a periodic direction on a level whose <Box>es do not fill one "
+                                         "rectangular box is not supported; accepted: periodic 0 on such a level")
+    return Level(lower, upper, res, extra=extra, periodic=per, splits=splits, present=present)
 
 
 def _read_box(lv, box, spacing):
@@ -112,9 +117,7 @@ def _tile(lv, boxes, read):
                 raise boxes[j].error(f"this <Box> overlaps <Box> {labels[i]}; accepted: boxes that "
                                      "do not overlap")
     if sum(int(np.prod(h - l)) for l, h in cells) != int(np.prod(total)):
-        raise lv.error(f"the {len(boxes)} <Box>es ({names}) do not fill the rectangular box {_vec(lower)} .. "
-                       f"{_vec(upper)} that holds them (their union is L-shaped or has a gap), and a pysus level "
-                       "is one box of cells; accepted: boxes that tile one rectangular box")
+        return _with_holes(lower, upper, total, cells, read)
     splits = []
     for d in range(3):
         cuts = set()
@@ -125,7 +128,23 @@ def _tile(lv, boxes, read):
         raise lv.error(f"the patches of the {len(boxes)} <Box>es ({names}) do not line up into one grid of patches "
                        "across the level, which a pysus level is; accepted: <patches> whose boundaries continue "
                        "from box to box")
-    return lower, upper, tuple(int(t) for t in total), splits
+    return lower, upper, tuple(int(t) for t in total), splits, None
+
+
+def _with_holes(lower, upper, total, cells, read):
+    """_tile of boxes that do not fill the box holding them: the splits are every box's edges
+    and patch boundaries, and `present` marks the slots inside a box."""
+    splits = []
+    for d in range(3):
+        cuts = {0, int(total[d])}
+        for (l, h), (_, _, res, patches, _) in zip(cells, read):
+            cuts |= {int(l[d]) + res[d] * i // patches[d] for i in range(patches[d] + 1)}
+        splits.append(sorted(cuts))
+    present = np.zeros([len(s) - 1 for s in splits], dtype=bool)
+    for l, h in cells:
+        sel = [slice(splits[d].index(int(l[d])), splits[d].index(int(h[d]))) for d in range(3)]
+        present[tuple(sel)] = True
+    return lower, upper, tuple(int(t) for t in total), splits, present
 
 
 SUB_FACES = ("circle", "rectangle", "annulus")

@@ -98,6 +98,8 @@ def _rank():
 class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     """Uintah's ICE: equilibration pressure, face velocities, Lagrangian step, exchange, advection."""
 
+    holes_ok = True      # explicit ICE with side conditions only (_check_holes)
+
     # MPMICE hook: number of (MPM) materials before ICE's in the global material index
     # space; exchange coefficients and boundary-condition ids are read for all of them
     n_before = 0
@@ -213,6 +215,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.read_timestep_control(ice)
         # <ImplicitSolver>: semi-implicit pressure (implicit.py); absent = explicit ICE
         self.read_implicit(ice, root)
+        if level.holes:
+            self._check_holes(root)
         if self.lodi is not None:
             self._check_lodi(n)
         self.cv_matls = [m for m, mat in enumerate(self.materials) if mat.cv_model is not None]
@@ -235,6 +239,18 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             raise where.error("<SpecificHeatModel> is available with explicit ICE only (no <ImplicitSolver>)")
         if self.lodi is not None:
             raise where.error("<SpecificHeatModel> is not available with LODI boundaries")
+
+    def _check_holes(self, root):
+        """A level whose <Box>es do not fill one box: explicit ICE with the conditions of whole
+        sides (those are what was tested: tests/ice/test_l_shaped.py)."""
+        what = ("<ImplicitSolver>" if self.implicit else "LODI conditions" if self.lodi is not None
+                else "sub-faces (circle, rectangle, annulus)" if any(self.bcs.subfaces.values())
+                else "<turbulence>" if self.turbulence is not None
+                else "<Models>" if (self.scalars or self.source_models or self.tracers) else None)
+        if what is not None:
+            raise root.child("Grid").child("Level").error(
+                f"{what} on a level whose <Box>es do not fill one rectangular box is not supported; accepted "
+                "there: explicit ICE with <Face side> conditions")
 
     def _check_lodi(self, n):
         """LODI faces are available for explicit ICE alone with one material (Uintah's also with

@@ -169,26 +169,30 @@ class GridBCs:
             return
         lo_all, hi_all = (0, 0, 0), gvs.shape[:3]
         own_lo, own_hi = patch.owned_local(VarType.NC)
-        inner = patch.level.interior_box(VarType.NC)
         base = patch.low_index(VarType.NC)
         for d, s, comps, value, mats, where in self.items:
             if matl not in mats or not (patch.at_high if s else patch.at_low)[d]:
                 continue
             if symmetric_only and comps.all():          # a Dirichlet velocity (all components)
                 continue
+            if where is not None and not _on_level_face(patch, d, s):
+                if where[0] is not None:                  # a sub-face lies on the level's outer face
+                    continue
+                where = None
             lo = list(own_lo)
             hi = list(own_hi)
+            face = patch.face_index(d, s) - base[d]
             if s == 0:
-                hi[d] = inner[0][d] - base[d] + 1          # face node and the extra nodes below
+                hi[d] = face + 1                           # face node and the extra nodes below
             else:
-                lo[d] = inner[1][d] - 1 - base[d]          # face node and the extra nodes above
+                lo[d] = face                               # face node and the extra nodes above
             lo = np.maximum(lo, lo_all)
             hi = np.minimum(hi, hi_all)
             if where is None:
                 kernels.velocity_bc(gvs, gacc, gvel, dt, np.asarray(lo, np.int64), np.asarray(hi, np.int64),
                                     comps, value)
                 if self.mirror_extra and comps.sum() == 1 and not value.any():
-                    self._mirror(gvs, gacc, gvel, dt, d, s, lo, hi, inner[s][d] - base[d] - s)
+                    self._mirror(gvs, gacc, gvel, dt, d, s, lo, hi, face)
                 continue
             sl = tuple(slice(a, b) for a, b in zip(lo, hi))
             mask = self._where(patch, where, d, lo, hi)
@@ -217,13 +221,12 @@ class GridBCs:
         """The slices of a patch's node array on face (d, s): the face nodes and the extra
         nodes beyond them, within the patch's owned nodes."""
         own_lo, own_hi = patch.owned_local(VarType.NC)
-        inner = patch.level.interior_box(VarType.NC)
         base = patch.low_index(VarType.NC)
         lo, hi = list(own_lo), list(own_hi)
         if s == 0:
-            hi[d] = inner[0][d] - base[d] + 1
+            hi[d] = patch.face_index(d, s) - base[d] + 1
         else:
-            lo[d] = inner[1][d] - 1 - base[d]
+            lo[d] = patch.face_index(d, s) - base[d]
         lo = np.maximum(lo, 0)
         hi = np.minimum(hi, shape[:3])
         return tuple(slice(a, b) for a, b in zip(lo, hi))
@@ -231,6 +234,10 @@ class GridBCs:
     def apply_temperature(self, patch, matl, temperature):
         """Set the Dirichlet temperatures of this material on the faces `patch` touches."""
         for d, s, value, mats, where in self.temperature_items:
+            if where is not None and not _on_level_face(patch, d, s):
+                if where[0] is not None:
+                    continue
+                where = None
             if matl in mats and (patch.at_high if s else patch.at_low)[d]:
                 sl = self._face_nodes(patch, d, s, temperature.shape)
                 if where is None:
@@ -245,6 +252,12 @@ class GridBCs:
             if 0 not in mats or comps.sum() != 1 or not (patch.at_high if s else patch.at_low)[d]:
                 continue
             normal[self._face_nodes(patch, d, s, normal.shape) + (d,)] = 0.0
+
+
+def _on_level_face(patch, d, s):
+    """Whether the boundary face (d, s) of a patch lies on the level's outer face (a sub-face's
+    plane); not so for a face on a hole of a level that is not one box."""
+    return patch.face_index(d, s) == (patch.level.ncells[d] if s else 0)
 
 
 def _materials(bc, ident, nmat, strict=True):

@@ -96,10 +96,8 @@ class BoundaryTractionTasks:
         d, upper = f // 2, f % 2
         if not (patch.at_high if upper else patch.at_low)[d]:
             return None
-        own, inner = patch.owned(NC), self.level.interior_box(NC)
-        lo = [max(a, b) for a, b in zip(own[0], inner[0])]
-        hi = [min(a, b) for a, b in zip(own[1], inner[1])]
-        lo[d] = inner[1][d] - 1 if upper else 0
+        lo, hi = (list(x) for x in patch.interior_box(NC))
+        lo[d] = patch.face_index(d, upper)
         hi[d] = lo[d] + 1
         return tuple(slice(l - b, h - b) for l, h, b in zip(lo, hi, base))
 

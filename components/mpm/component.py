@@ -113,12 +113,17 @@ FLAGS = {
     "minimum_subcycles_for_F": Param("int", 1, doc="F^{n+1} = exp(L dt) F^n: < 0 the Taylor series to that many "
                                      "terms, > 1 that many substeps (Uintah's); 1: I + L dt (USL only otherwise)"),
     "UseMomentumForm": Param("bool", False, (False,), "read (false only); sus's validation refuses the tag"),
+    "InsertParticles": Param("bool", False, doc="move particles of a colour into place at the times of "
+                             "<InsertParticlesFile> (insert_particles.py; needs <withColor>)"),
+    "InsertParticlesFile": Param("str", "", doc="its table: t colour dx dy dz vx vy vz a line"),
 }
 
 
 @register("mpm")
 class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
     """Explicit single-grid MPM with Uintah's deck tags and variable names."""
+
+    holes_ok = True
 
     analysis_modules = ("particleExtract",)    # <DataAnalysis> modules this component reads itself
     # MPMICE hooks: the <MPM> flag table, grid-BC reader, contact and material readers it may extend
@@ -181,6 +186,15 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 raise mpm.error("<UsePrescribedDeformation>true needs <PrescribedDeformationFile>")
             self.musl = False
             self.prescribed = prescribed.read(mpm.child("PrescribedDeformationFile"), mpm.filename)
+        self.insertion = None
+        if self.flags["InsertParticles"]:
+            from . import insert_particles
+            if not self.flags["withColor"]:
+                raise mpm.child("InsertParticles").error("particles are inserted by colour: accepted with "
+                                                         "<withColor>true</withColor>")
+            if not mpm.has("InsertParticlesFile"):
+                raise mpm.error("<InsertParticles>true needs <InsertParticlesFile>")
+            self.insertion = insert_particles.read(mpm.child("InsertParticlesFile"), mpm.filename)
         self.f_terms = self.flags["minimum_subcycles_for_F"]
         if self.f_terms == 0:
             raise mpm.child("minimum_subcycles_for_F").error("0 is not accepted: < 0 Taylor terms, > 0 substeps")
@@ -638,6 +652,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         schedule_acc_strain_energy(self, sched)
         if self.analysis.active:
             self.analysis.schedule(sched)
+        if self.insertion is not None:
+            from . import insert_particles
+            insert_particles.schedule(self, sched)
         carry = self.carry + self.carry_thermal + list(self.carry_models)
         sched.schedule_particle_relocation(L.pXpre, [pre for _, pre in carry], L.pX,
                                            [final for final, _ in carry], ms, id_label=L.pID,

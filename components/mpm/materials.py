@@ -5,7 +5,8 @@ A material has a density, a constitutive model (one of MODELS), thermal properti
 thermal.py) and geometry objects that fill it with
 particles: `res` particles per cell per direction (one in a collapsed direction),
 `velocity`, `temperature` and, with `<withColor>`, `color`. Where two objects of one
-material overlap, the first one listed owns the point.
+material overlap, each makes its particles there, as Uintah's ParticleCreator (Uintah's
+extrudeRT stacks its objects, to be moved in one colour at a time: insert_particles.py).
 """
 from __future__ import annotations
 
@@ -285,7 +286,6 @@ class Material:
         volume (and mass) is that of its ring per radian, r dx dy / (res_x res_y), as Uintah's
         ParticleCreator."""
         lv = patch.level
-        taken = None
         out = []
         for k, obj in enumerate(self.objects):
             if "chain" in obj:
@@ -310,8 +310,6 @@ class Material:
             sub = np.stack([I.ravel(order="F"), J.ravel(order="F"), K.ravel(order="F")], axis=1)
             x = lv.anchor + (sub + 0.5) / res * lv.dx
             inside = obj["piece"].inside(x)
-            if taken is not None:
-                inside &= ~taken.inside(x)
             x, sub = x[inside], sub[inside]
             std = np.diag(1.0 / res)                 # Uintah's p.size in cells
             if obj.get("affine") is not None:        # moved, kept where the patch owns them (as Uintah)
@@ -340,8 +338,6 @@ class Material:
                             color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))
             if surface:
                 out[-1]["surf"] = on_surface(x, obj["piece"], dxpp, ~np.asarray(lv.collapsed)).astype(float)
-            from framework.geometry import Union
-            taken = obj["piece"] if taken is None else Union([taken, obj["piece"]])
         if not out:
             out.append(dict(x=np.empty((0, 3)), id=np.empty(0, np.int64), vol=np.empty(0), temp=np.empty(0),
                             lcid=np.empty((0, 3)), vel=np.empty((0, 3)), size=np.empty((0, 3)),

@@ -522,6 +522,15 @@ class MPMTasks:
                            new_dw.get_modifiable(L.gAcceleration, m, patch),
                            new_dw.get(L.gVelocity, m, patch), dt)
 
+    def insert_particles(self, patch, matls, old_dw, new_dw):
+        """Uintah's insertParticles: the colours due in this step move and take their velocity."""
+        from . import insert_particles
+        time, dt = old_dw.get_reduction(FL.simTime), old_dw.get_reduction(FL.delT)
+        for m in matls:
+            insert_particles.insert(self.insertion, time, dt, old_dw.get(L.pColor, m, patch),
+                                    new_dw.get_modifiable(L.pXpre, m, patch),
+                                    new_dw.get_modifiable(L.pVelocityPre, m, patch))
+
     def set_prescribed_motion(self, patch, matls, old_dw, new_dw):
         """Uintah's setPrescribedMotion: v*_i = M x_i at the step's start time, a_i = 0 (prescribed.py)."""
         from . import prescribed
