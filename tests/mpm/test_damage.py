@@ -195,19 +195,23 @@ def test_erosion_algorithms_of_a_localized_particle():
 
 
 def test_threshold_reads_one_mean(tmp_path):
-    """type="Threshold": one <failure_mean> for every particle, as a one-entry ThresholdVar."""
+    """type="Threshold": one <failure_mean> for every particle, as a one-entry ThresholdVar. USL,
+    as every run of the deck here (one compiled CPDI 3D update, not two)."""
     text = re.sub(r'<damage_model type="Brittle">.*?</damage_model>',
                   '<erosion algorithm="ZeroStress"/><damage_model type="Threshold"><failure_criteria>'
                   'MaximumPrincipalStress</failure_criteria><failure_mean>1.5e6</failure_mean></damage_model>',
                   open(DECK).read(), flags=re.S)
     text = text.replace('<save label = "p.damage"/>', '<save label = "p.localizedMPM"/>')
+    text = text.replace("<time_integrator>explicit</time_integrator>",
+                        "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>")
+    assert "<stress_update>usl" in text
     text = text.replace("<maxTime>0.004</maxTime>", "<maxTime>0.004</maxTime><max_Timesteps>300</max_Timesteps>")
     text = text.replace("<outputInterval>1.0e-4</outputInterval>",
                         "<outputTimestepInterval>100</outputTimestepInterval>")
     _, da = run(text, tmp_path)
     loc = [da.particles(1, k)["p.localizedMPM"][0] for k in range(1, 4)]
     s = [da.particles(1, k)["p.stress"][0, 2, 2] for k in range(1, 4)]
-    assert loc == [0.0, 1.0, 1.0] and s[0] > 0 and s[1] == 0.0 and s[2] == 0.0    # sigma_zz passes 1.5e6 at ~step 155
+    assert loc == [0.0, 1.0, 1.0] and s[0] > 0 and s[1] == 0.0 and s[2] == 0.0    # sigma_zz passes 1.5e6 at step 156 (155 with MUSL)
 
 
 def test_strain_criterion_and_kinematics():
@@ -287,8 +291,11 @@ def test_disk_UCNHVar_threshold_as_sus(tmp_path):
 
 def test_erosion_without_damage_changes_nothing(tmp_path):
     """An <erosion> without a damage model (as in Uintah's TBurner_2dRT) is read and, as in
-    Uintah where then no particle localizes, changes nothing."""
+    Uintah where then no particle localizes, changes nothing. (USL, as the other runs of the deck here.)"""
     text = re.sub(r'<damage_model type="Brittle">.*?</damage_model>', "", open(DECK).read(), flags=re.S)
+    text = text.replace("<time_integrator>explicit</time_integrator>",
+                        "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>")
+    assert "<stress_update>usl" in text
     text = text.replace("<maxTime>0.004</maxTime>", "<maxTime>0.004</maxTime><max_Timesteps>20</max_Timesteps>")
     text = text.replace('<save label = "p.damage"/>', "").replace(
         "<outputInterval>1.0e-4</outputInterval>", "<outputTimestepInterval>20</outputTimestepInterval>")
