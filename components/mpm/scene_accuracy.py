@@ -119,12 +119,15 @@ def _mms_deck(kind, lower, upper, cells, extra, res, geom, mat, interpolator, up
 """
 
 
-def stretch_deck(n, interpolator="linear", update="musl", amplitude="1.0", ramp="1.0"):
-    """The bar 0 < X < 1 in the 1D domain -0.25 < x < 2.25 (n cells per metre)."""
+def stretch_deck(n, interpolator="linear", update="musl", amplitude="1.0", ramp="1.0", strip=False):
+    """The bar 0 < X < 1 in the 1D domain -0.25 < x < 2.25 (n cells per metre). strip: the bar
+    as a 2D strip two cells high, periodic in y (the same uniaxial strain, on the 2D kernels)."""
     n = int(n)
-    box = f'<box label="bar"><min>[0,0,0]</min><max>[1,{1.0 / n},{1.0 / n}]</max></box>'
-    return _mms_deck("StretchedBar", "[-0.25,0,0]", f"[2.25,{1.0 / n},{1.0 / n}]", f"[{int(2.5 * n)},1,1]",
-                     "[1,0,0]", "[2,1,1]", box, STRETCH, interpolator, update, float(amplitude), float(ramp))
+    rows = 2 if strip else 1
+    box = f'<box label="bar"><min>[0,0,0]</min><max>[1,{rows / n},{1.0 / n}]</max></box>'
+    text = _mms_deck("StretchedBar", "[-0.25,0,0]", f"[2.25,{rows / n},{1.0 / n}]", f"[{int(2.5 * n)},{rows},1]",
+                     "[1,0,0]", f"[2,{rows},1]", box, STRETCH, interpolator, update, float(amplitude), float(ramp))
+    return text.replace("</Box></Level>", "</Box><periodic>[0,1,0]</periodic></Level>") if strip else text
 
 
 def _mms_final(da, kind, mat):

@@ -195,19 +195,24 @@ def test_erosion_algorithms_of_a_localized_particle():
 
 
 def test_threshold_reads_one_mean(tmp_path):
-    """type="Threshold": one <failure_mean> for every particle, as a one-entry ThresholdVar."""
+    """type="Threshold": one <failure_mean> for every particle, as a one-entry ThresholdVar. USL,
+    as every run of the deck here (one compiled CPDI 3D update, not two)."""
     text = re.sub(r'<damage_model type="Brittle">.*?</damage_model>',
                   '<erosion algorithm="ZeroStress"/><damage_model type="Threshold"><failure_criteria>'
                   'MaximumPrincipalStress</failure_criteria><failure_mean>1.5e6</failure_mean></damage_model>',
                   open(DECK).read(), flags=re.S)
     text = text.replace('<save label = "p.damage"/>', '<save label = "p.localizedMPM"/>')
+    text = text.replace("<time_integrator>explicit</time_integrator>",
+                        "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>")
+    assert "<stress_update>usl" in text
     text = text.replace("<maxTime>0.004</maxTime>", "<maxTime>0.004</maxTime><max_Timesteps>300</max_Timesteps>")
     text = text.replace("<outputInterval>1.0e-4</outputInterval>",
                         "<outputTimestepInterval>100</outputTimestepInterval>")
     _, da = run(text, tmp_path)
     loc = [da.particles(1, k)["p.localizedMPM"][0] for k in range(1, 4)]
     s = [da.particles(1, k)["p.stress"][0, 2, 2] for k in range(1, 4)]
-    assert loc == [0.0, 1.0, 1.0] and s[0] > 0 and s[1] == 0.0 and s[2] == 0.0    # sigma_zz passes 1.5e6 at ~step 155
+    # sigma_zz passes 1.5e6 at step 156 (155 with MUSL)
+    assert loc == [0.0, 1.0, 1.0] and s[0] > 0 and s[1] == 0.0 and s[2] == 0.0
 
 
 def test_strain_criterion_and_kinematics():
@@ -253,13 +258,19 @@ def disk_with_threshold(steps=300, every=10):
     return text
 
 
-def test_disk_UCNHVar_threshold_as_sus(tmp_path):
+@pytest.fixture(scope="module")
+def disk_threshold(tmp_path_factory):
+    """disk_with_threshold() run here, 300 steps written every 10 (read by two tests)."""
+    return run(disk_with_threshold(), tmp_path_factory.mktemp("disk"))[1]
+
+
+def test_disk_UCNHVar_threshold_as_sus(disk_threshold):
     """UCNHVar with ThresholdVar damage and ZeroStress erosion, 300 steps: the particles sus
     localized (14 of 1612, from step 230, on its maximum principal stress criterion) and
     when, sus's count every 10 steps, p.stress of every tenth particle at steps 250 and 300
     (measured: 4e-7 of the largest) and StrainEnergy every step (7e-10, localized particles
     left out)."""
-    _, da = run(disk_with_threshold(), tmp_path)
+    da = disk_threshold
     sus = np.load(SUS_TV)
     steps = list(da.timesteps)
     p40 = da.particles(0, steps.index(40))
@@ -287,8 +298,11 @@ def test_disk_UCNHVar_threshold_as_sus(tmp_path):
 
 def test_erosion_without_damage_changes_nothing(tmp_path):
     """An <erosion> without a damage model (as in Uintah's TBurner_2dRT) is read and, as in
-    Uintah where then no particle localizes, changes nothing."""
+    Uintah where then no particle localizes, changes nothing. (USL, as the other runs of the deck here.)"""
     text = re.sub(r'<damage_model type="Brittle">.*?</damage_model>', "", open(DECK).read(), flags=re.S)
+    text = text.replace("<time_integrator>explicit</time_integrator>",
+                        "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>")
+    assert "<stress_update>usl" in text
     text = text.replace("<maxTime>0.004</maxTime>", "<maxTime>0.004</maxTime><max_Timesteps>20</max_Timesteps>")
     text = text.replace('<save label = "p.damage"/>', "").replace(
         "<outputInterval>1.0e-4</outputInterval>", "<outputTimestepInterval>20</outputTimestepInterval>")
@@ -303,17 +317,19 @@ def test_erosion_without_damage_changes_nothing(tmp_path):
     assert np.abs(plain.particles(1, -1)["p.stress"]).max() > 1e5
 
 
-def test_damage_state_on_two_ranks(tmp_path):
+def test_damage_state_on_two_ranks(tmp_path, disk_threshold):
     """The damage state travels with its particles: disk_UCNHVar with ThresholdVar (4 patches)
-    on 1 and 2 MPI ranks, 280 steps (12 localized), gives bitwise the same p.stress,
-    p.localizedMPM and p.timeofloc per particle."""
+    on 1 rank (the run of disk_threshold) and 2 MPI ranks, 280 steps (12 localized), gives
+    bitwise the same p.stress, p.localizedMPM and p.timeofloc per particle."""
     path = tmp_path / "disk.ups"
     path.write_text(disk_with_threshold(steps=280, every=140))
+    r = pysus(path, "--filebase", tmp_path / "disk_2.uda", np_=2, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    two = DataArchive(tmp_path / "disk_2.uda")
+    assert two.timesteps[-1] == 280
     out = {}
-    for n in (1, 2):
-        r = pysus(path, "--filebase", tmp_path / f"disk_{n}.uda", np_=n, timeout=300)
-        assert r.returncode == 0, r.stderr[-2000:]
-        p = DataArchive(tmp_path / f"disk_{n}.uda").particles(0, -1)
+    one = disk_threshold.particles(0, list(disk_threshold.timesteps).index(280))
+    for n, p in ((1, one), (2, two.particles(0, -1))):
         o = np.argsort(p["p.particleID"])
         out[n] = {k: p[k][o] for k in ("p.particleID", "p.stress", "p.localizedMPM", "p.timeofloc")}
     assert out[1]["p.localizedMPM"].sum() == 12

@@ -172,13 +172,19 @@ def disk_with_projection(steps=300, every=10):
     return text.replace("<velocity>[1.0,0.0,0]</velocity>", "<velocity>[10.0,0.0,0]</velocity>")
 
 
-def test_disk_with_projection_and_gauss_draws_as_sus(tmp_path):
+@pytest.fixture(scope="module")
+def run_a(tmp_path_factory):
+    """Run A run here, 300 steps written every 10 (read by two tests)."""
+    return run(disk_with_projection(), tmp_path_factory.mktemp("run_a"))[1]
+
+
+def test_disk_with_projection_and_gauss_draws_as_sus(run_a):
     """Run A (module docstring), 300 steps: sus's times; the localized-particle count every 10
     steps (0 to 23 from step 200), the particles localized at step 300 and when; p.stress of
     every tenth particle at steps 200, 250, 300 (measured: 1e-6 to 3e-6 of the largest, where
     the projection itself changes it by 8 to 87 %); StrainEnergy every step (9e-9); the times
     (5e-10)."""
-    _, da = run(disk_with_projection(), tmp_path)
+    da = run_a
     sus = np.load(SUS)
     steps = list(da.timesteps)
     p0 = da.particles(0, 0)
@@ -234,17 +240,18 @@ def test_bad_input_is_one_line(tmp_path, old, new, words):
         assert w in msg, msg
 
 
-def test_projection_and_draws_on_two_ranks(tmp_path):
+def test_projection_and_draws_on_two_ranks(tmp_path, run_a):
     """The carried velocity gradient reaches the ghost particles, and the draws are made per
-    patch: run A on 1 and 2 MPI ranks (4 patches), 250 steps (13 localized), gives bitwise the
-    same p.epsf, p.stress, p.localizedMPM per particle."""
+    patch: run A on 1 rank (run_a) and 2 MPI ranks (4 patches), 250 steps (13 localized), gives
+    bitwise the same p.epsf, p.stress, p.localizedMPM per particle."""
     path = tmp_path / "disk.ups"
     path.write_text(disk_with_projection(steps=250, every=250))
+    r = pysus(path, "--filebase", tmp_path / "disk_2.uda", np_=2, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    two = DataArchive(tmp_path / "disk_2.uda")
+    assert two.timesteps[-1] == 250
     out = {}
-    for n in (1, 2):
-        r = pysus(path, "--filebase", tmp_path / f"disk_{n}.uda", np_=n, timeout=300)
-        assert r.returncode == 0, r.stderr[-2000:]
-        p = DataArchive(tmp_path / f"disk_{n}.uda").particles(0, -1)
+    for n, p in ((1, run_a.particles(0, list(run_a.timesteps).index(250))), (2, two.particles(0, -1))):
         o = np.argsort(p["p.particleID"])
         out[n] = {k: p[k][o] for k in ("p.particleID", "p.epsf", "p.stress", "p.localizedMPM")}
     assert out[1]["p.localizedMPM"].sum() == 13
