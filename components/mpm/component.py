@@ -227,6 +227,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         if not self.materials:
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
+        if any(mt.draws for mt in self.materials):      # lay Uintah's particles for Uintah's draws
+            for mt in self.materials:
+                mt.collapsed_layers = True
         if self.projection:             # every material's L_p is kept for the next step's projection
             for mt in self.materials:
                 mt.uses_L = True

@@ -101,6 +101,8 @@ MODEL_RANGES = {"bulk_modulus": (0.0, None), "shear_modulus": (None, 0.0), "K": 
 class Material:
     """One MPM material: properties, constitutive model module + params, geometry."""
 
+    collapsed_layers = False    # <res> layers along a collapsed axis too (lattice_res)
+
     def __init__(self, node, index, geom_reader, with_color):
         self.index = index
         self.node = node
@@ -281,6 +283,21 @@ class Material:
         return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------
+    @property
+    def draws(self):
+        """Whether the particles get random values of their own (failure stresses, yield
+        stresses, porosities drawn in Uintah's order of creation)."""
+        return bool(getattr(self.params, "yield_uniform", False) or getattr(self.damage, "random", False)
+                    or getattr(self.params, "porosity_gauss", False))
+
+    def lattice_res(self, obj, lv):
+        """Particles per cell of a lattice object along each axis: its <res>, one along a
+        collapsed axis, where Uintah's res layers would be copies of each other (their summed
+        mass moves as one), unless collapsed_layers: a deck whose particles draw values of their
+        own gets Uintah's layers, whose draws differ (MPM.problem_setup)."""
+        return np.array([1 if lv.collapsed[d] and not self.collapsed_layers else obj.get("res", (1, 1, 1))[d]
+                         for d in range(3)])
+
     def create(self, patch, obj_base, pressure=None, surface=False, axisymmetric=False):
         """Particles of this material in one patch: dict of arrays sorted by ID.
 
@@ -303,7 +320,7 @@ class Material:
                 continue
             if isinstance(obj["piece"], Null):
                 continue              # Uintah: its box is a point, so no particles
-            res = np.array([1 if lv.collapsed[d] else obj["res"][d] for d in range(3)])
+            res = self.lattice_res(obj, lv)
             if obj.get("smooth"):
                 out.append(smooth_points(obj, patch, obj_base + k, res, pressure, self.index))
                 if surface:
@@ -383,7 +400,7 @@ class Material:
         for o in objs:
             sel = k == o
             obj = self.objects[o]
-            r = np.array([1 if lv.collapsed[a] else obj.get("res", (1, 1, 1))[a] for a in range(3)], np.int64)
+            r = self.lattice_res(obj, lv).astype(np.int64)
             nlev = max(abs(obj.get("numLevelsParticleFilling", 0)), 1)
             offsets = np.array([level_offset(lv.ncells, r, j) for j in range(nlev)], np.int64)
             level[sel] = np.searchsorted(offsets, lattice[sel], side="right") - 1
