@@ -235,6 +235,9 @@ class Material:
                 raise g.child("numLevelsParticleFilling").error(
                     "a <smoothcyl> lays its own particles: accepted numLevelsParticleFilling -1 .. 1 with it")
             spec["affine"] = _read_affine(g)
+            if spec["affine"] is not None and abs(spec["numLevelsParticleFilling"]) > 1:
+                raise g.child("numLevelsParticleFilling").error(
+                    "the filling of an affine-transformed object is not implemented; accepted: -1 .. 1")
             self.objects.append(spec)
         if not self.objects:
             raise node.error("a material needs at least one <geom_object>")
@@ -327,7 +330,7 @@ class Material:
                     out[-1]["surf"] = on_surface(out[-1]["x"], obj["piece"], lv.dx / res,
                                                  ~np.asarray(lv.collapsed)).astype(float)
                 continue
-            for level, sub, x in fill_levels(obj["piece"], patch, res, obj["numLevelsParticleFilling"]):
+            for level, sub, x in fill_levels(obj["piece"], patch, res, obj.get("numLevelsParticleFilling", 0)):
                 if taken is not None:
                     keep = ~taken.inside(x)
                     x, sub = x[keep], sub[keep]
@@ -422,6 +425,11 @@ def level_offset(ncells, res, level):
                for j in range(level))
 
 
+def _flat(sub, n):
+    """Linear indices of lattice indices sub (m, 3) on a lattice of n sub-cells, x fastest."""
+    return sub[:, 0] + n[0] * (sub[:, 1] + n[1] * sub[:, 2])
+
+
 def fill_levels(piece, patch, res, fill):
     """The lattice points of a patch inside `piece`, per fill level: [(level, sub-cell index (n, 3)
     on that level's lattice, position (n, 3))]. Level 0 is the <res> lattice. With |fill| > 1
@@ -449,10 +457,8 @@ def fill_levels(piece, patch, res, fill):
                     out[j] = (lev, s[keep], xs[keep])
             covered = np.zeros(len(sub), bool)
             for lev, s, _ in out:   # inside a coarser particle's domain
-                shift = 2 ** (level - lev)
-                nc = np.array(lv.ncells, np.int64) * res * 2 ** lev
-                key = lambda a: a[:, 0] + nc[0] * (a[:, 1] + nc[1] * a[:, 2])
-                covered |= np.isin(key(sub // shift), key(s))
+                n = np.array(lv.ncells, np.int64) * res * 2 ** lev
+                covered |= np.isin(_flat(sub // 2 ** (level - lev), n), _flat(s, n))
             sub, x = sub[~covered], x[~covered]
         out.append((level, sub, x))
     return out

@@ -12,8 +12,10 @@ framework.uintah_uda.UintahArchive.
 import pathlib
 
 import numpy as np
+import pytest
 
 from components.mpm.constitutive.comp_mooney_rivlin import viscosity_bulk_modulus
+from framework.problemspec import InputError
 
 from .helpers import run
 
@@ -110,3 +112,22 @@ def test_mooney_rivlin_artificial_viscosity_as_sus(tmp_path):
         r = ref[label]
         assert np.allclose(t[-5:], r[:, 0], rtol=1e-12)
         assert np.abs(v[-5:] - r[:, 1]).max() < 1e-9 * np.abs(r[:, 1]).max(), label
+
+
+@pytest.mark.parametrize("deck, words", [
+    ("disks_complex_small.ups", ("smoothcyl", "numLevelsParticleFilling")),
+    ("ColPlate_AffineTrans.ups", ("affine-transformed", "numLevelsParticleFilling")),
+])
+def test_filling_refused_where_not_implemented(deck, words):
+    """<numLevelsParticleFilling> with a <smoothcyl> (its own particles) or an affine
+    transformation is refused in one line."""
+    from framework.controller import Controller
+    text = (REF / deck).read_text()
+    fill = "<res>[2,2,1]</res><numLevelsParticleFilling>-2</numLevelsParticleFilling>"
+    text = text.replace("<res>[2,2,1]</res>", fill, 1)
+    with pytest.raises(InputError) as e:
+        Controller(str(REF / deck), deck_text=text, quiet=True)
+    msg = str(e.value)
+    assert "\n" not in msg and ".ups:" in msg
+    for w in words:
+        assert w in msg, msg
