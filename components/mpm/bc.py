@@ -9,6 +9,11 @@ Accepted per `<Face side="x-|x+|y-|y+|z-|z+">`:
       (with heat conduction, thermal.py: g.temperature takes T on those nodes after
       particles -> grid, and the nodal rate there becomes (T - the interpolated
       temperature)/dt, as Uintah's integrateTemperatureRate)
+  <BCType id="all|N" var="Neumann"   label="Temperature"><value>g</value></BCType>
+      (likewise, each node of the face and beyond takes the temperature of its inward
+      neighbour less g dx, as Uintah's MPMBoundCond)
+  <BCType label="Pressure|Density|SpecificVol">: ICE's conditions, read and not applied
+      (Uintah's MPM sets only Velocity, Symmetric and Temperature conditions), with a note
 They are applied to g.velocity_star on the face's nodes and on the extra-cell nodes
 beyond it, after the acceleration is integrated, and the acceleration there is
 recomputed as (v* - v)/dt, as Uintah's setGridBoundaryConditions. The symmetry
@@ -31,13 +36,20 @@ from framework.variables import VarType
 from . import kernels
 
 
+ICE_LABELS = ("Pressure", "Density", "SpecificVol")
+
+
+def _note(bc, text):
+    """A one-line note on a read <BCType> that is not applied (rank 0 prints it)."""
+    from mpi4py import MPI
+    if MPI.COMM_WORLD.Get_rank() == 0:
+        print(f"pysus: note: {bc.filename}:{bc.line}: {text}", file=sys.stderr)
+
+
 def _periodic_note(bc, side):
     """A <BCType> on a periodic face is read and not applied: Uintah applies conditions on faces
     without a neighbour only, and a periodic face has one."""
-    from mpi4py import MPI
-    if MPI.COMM_WORLD.Get_rank() == 0:
-        print(f"pysus: note: {bc.filename}:{bc.line}: face {side} is periodic; its <BCType> is not applied "
-              "(as in Uintah)", file=sys.stderr)
+    _note(bc, f"face {side} is periodic; its <BCType> is not applied (as in Uintah)")
 
 
 class GridBCs:
@@ -48,7 +60,7 @@ class GridBCs:
 
     def __init__(self, root, level, nmat):
         self.items = []          # (d, side, comps mask, value, materials, where)
-        self.temperature_items = []      # (d, side, value, materials, where)
+        self.temperature_items = []      # (d, side, neumann, value, materials, where)
         grid = root.child("Grid")
         bcs = grid.child("BoundaryConditions") if grid is not None else None
         if bcs is None:
@@ -60,7 +72,14 @@ class GridBCs:
             for bc in face.children("BCType"):
                 ident = bc.attr("id")
                 var = bc.attr("var", choices=("Dirichlet", "symmetry", "Neumann"))
-                label = bc.attr("label", choices=("Velocity", "Symmetric", "Temperature"))
+                label = bc.attr("label", choices=("Velocity", "Symmetric", "Temperature") + ICE_LABELS)
+                if label in ICE_LABELS:
+                    _materials(bc, ident, nmat, strict=False)
+                    if bc.has("value"):
+                        bc.get("value", "float")
+                    _note(bc, f'<BCType label="{label}"> is read and not applied: Uintah\'s MPM applies only '
+                              "Velocity, Symmetric and Temperature conditions")
+                    continue
                 mats = _materials(bc, ident, nmat)
                 kind = label                  # Uintah keeps a Velocity and a Symmetric condition apart
                 if given[kind] & set(mats):
@@ -68,15 +87,15 @@ class GridBCs:
                                    "face; accepted: one condition of each label per material on a face")
                 given[kind] |= set(mats)
                 if label == "Temperature":
-                    if var != "Dirichlet":
-                        raise bc.error(f'var="{var}" label="Temperature": accepted: var="Dirichlet"')
+                    if var not in ("Dirichlet", "Neumann"):
+                        raise bc.error(f'var="{var}" label="Temperature": accepted: var="Dirichlet" or "Neumann"')
                     value = bc.get("value", "float")
                     if level.periodic[d]:
                         _periodic_note(bc, side)
                         continue
                     self.temperature_node = bc
                     if not level.collapsed[d]:
-                        self.temperature_items.append((d, s, value, mats, geom))
+                        self.temperature_items.append((d, s, var == "Neumann", value, mats, geom))
                     continue
                 if (var == "symmetry") != (label == "Symmetric"):
                     raise bc.error('accepted: var="Dirichlet" or "Neumann" label="Velocity", '
@@ -137,7 +156,7 @@ class GridBCs:
             return out
 
         self.items = place(self.items, 4)
-        self.temperature_items = place(self.temperature_items, 3)
+        self.temperature_items = place(self.temperature_items, 4)
 
     def _where(self, patch, where, d, lo, hi):
         """Which nodes of the local box [lo, hi) (the face's nodes and the extra nodes beyond) `where`
@@ -232,18 +251,40 @@ class GridBCs:
         return tuple(slice(a, b) for a, b in zip(lo, hi))
 
     def apply_temperature(self, patch, matl, temperature):
-        """Set the Dirichlet temperatures of this material on the faces `patch` touches."""
-        for d, s, value, mats, where in self.temperature_items:
+        """Set the temperature conditions of this material on the faces `patch` touches."""
+        for d, s, neumann, value, mats, where in self.temperature_items:
             if where is not None and not _on_level_face(patch, d, s):
                 if where[0] is not None:
                     continue
                 where = None
             if matl in mats and (patch.at_high if s else patch.at_low)[d]:
                 sl = self._face_nodes(patch, d, s, temperature.shape)
-                if where is None:
-                    temperature[sl] = value
-                else:
-                    temperature[sl][self._where(patch, where, d, [x.start for x in sl], [x.stop for x in sl])] = value
+                mask = None if where is None else self._where(patch, where, d, [x.start for x in sl],
+                                                              [x.stop for x in sl])
+                if not neumann:
+                    if mask is None:
+                        temperature[sl] = value
+                    else:
+                        temperature[sl][mask] = value
+                    continue
+                self._neumann(temperature, sl, mask, d, s, value * patch.level.dx[d])
+
+    @staticmethod
+    def _neumann(T, sl, mask, d, s, drop):
+        """T = T(inward neighbour) - drop on the face's node layer, then on the extra node layer
+        beyond it (from the face node just set), as Uintah's MPMBoundCond."""
+        lo, hi = sl[d].start, sl[d].stop
+        face = hi - 1 if s == 0 else lo
+        inward = 1 if s == 0 else -1
+        for i in [face] + [i for i in range(lo, hi) if i != face]:
+            src = T[tuple(sl[:d]) + (i + inward,) + tuple(sl[d + 1:])]
+            dst = tuple(sl[:d]) + (i,) + tuple(sl[d + 1:])
+            new = src - drop
+            if mask is None:
+                T[dst] = new
+            else:
+                m = np.take(mask, i - lo, axis=d)
+                T[dst] = np.where(m, new, T[dst])
 
     def symmetric_normal(self, patch, normal):
         """Remove the component into the face from a nodal normal on every symmetry face of

@@ -243,6 +243,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
         if not self.materials:
             raise mp.error("no <material>")
         self.matls = list(range(len(self.materials)))
+        if any(mt.draws for mt in self.materials):      # lay Uintah's particles for Uintah's draws
+            for mt in self.materials:
+                mt.collapsed_layers = True
         if self.projection:             # every material's L_p is kept for the next step's projection
             for mt in self.materials:
                 mt.uses_L = True
@@ -310,6 +313,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                     f"artificial viscosity is not implemented {self.artificial_viscosity_refused}; accepted: false")
             from .artificial_viscosity import ArtificialViscosity
             self.av = ArtificialViscosity(mpm, self.flags, self.materials, level.dx)
+            for mt, bulk in zip(self.materials, self.av.bulk):
+                if bulk is not None:    # q reads tr D: L_p also of the models whose stress needs only F
+                    mt.uses_L = True
         elif self.flags["artificial_viscosity_heating"]:
             raise mpm.child("artificial_viscosity_heating").error(
                 "artificial_viscosity_heating needs <artificial_viscosity>true (as in Uintah)")

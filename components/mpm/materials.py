@@ -69,7 +69,12 @@ GEOM = {
     "velocity": Param("vector", (0.0, 0.0, 0.0)),
     "temperature": Param("float", 294.0, doc="K; initial p.temperature (thermal.py); 0 as Uintah allows",
                          at_least=0.0),
+    "numLevelsParticleFilling": Param("int", 0, doc="|n| > 1: Uintah's recursive filling of the object's "
+                                      "surface cells with particles of half the spacing, n - 1 times "
+                                      "(fill_levels); n < 0 first removes the particles that stick out"),
 }
+
+LATTICE_BITS = 40       # a lattice particle's ID: object number << 40, then its lattice index
 
 
 def _read_affine(g):
@@ -96,6 +101,8 @@ MODEL_RANGES = {"bulk_modulus": (0.0, None), "shear_modulus": (None, 0.0), "K": 
 
 class Material:
     """One MPM material: properties, constitutive model module + params, geometry."""
+
+    collapsed_layers = False    # <res> layers along a collapsed axis too (lattice_res)
 
     def __init__(self, node, index, geom_reader, with_color):
         self.index = index
@@ -225,7 +232,13 @@ class Material:
             spec["piece"] = piece
             spec["node"] = g
             spec["smooth"] = isinstance(piece, SmoothCylinder)
+            if spec["smooth"] and abs(spec["numLevelsParticleFilling"]) > 1:
+                raise g.child("numLevelsParticleFilling").error(
+                    "a <smoothcyl> lays its own particles: accepted numLevelsParticleFilling -1 .. 1 with it")
             spec["affine"] = _read_affine(g)
+            if spec["affine"] is not None and abs(spec["numLevelsParticleFilling"]) > 1:
+                raise g.child("numLevelsParticleFilling").error(
+                    "the filling of an affine-transformed object is not implemented; accepted: -1 .. 1")
             self.objects.append(spec)
         if not self.objects:
             raise node.error("a material needs at least one <geom_object>")
@@ -274,6 +287,21 @@ class Material:
         return np.zeros(len(d["id"]))
 
     # -- particles -------------------------------------------------------------------
+    @property
+    def draws(self):
+        """Whether the particles get random values of their own (failure stresses, yield
+        stresses, porosities drawn in Uintah's order of creation)."""
+        return bool(getattr(self.params, "yield_uniform", False) or getattr(self.damage, "random", False)
+                    or getattr(self.params, "porosity_gauss", False))
+
+    def lattice_res(self, obj, lv):
+        """Particles per cell of a lattice object along each axis: its <res>, one along a
+        collapsed axis, where Uintah's res layers would be copies of each other (their summed
+        mass moves as one), unless collapsed_layers: a deck whose particles draw values of their
+        own gets Uintah's layers, whose draws differ (MPM.problem_setup)."""
+        return np.array([1 if lv.collapsed[d] and not self.collapsed_layers else obj.get("res", (1, 1, 1))[d]
+                         for d in range(3)])
+
     def create(self, patch, obj_base, pressure=None, surface=False, axisymmetric=False):
         """Particles of this material in one patch: dict of arrays sorted by ID.
 
@@ -295,49 +323,16 @@ class Material:
                 continue
             if isinstance(obj["piece"], Null):
                 continue              # Uintah: its box is a point, so no particles
-            res = np.array([1 if lv.collapsed[d] else obj["res"][d] for d in range(3)])
+            res = self.lattice_res(obj, lv)
             if obj.get("smooth"):
                 out.append(smooth_points(obj, patch, obj_base + k, res, pressure, self.index))
                 if surface:
                     out[-1]["surf"] = on_surface(out[-1]["x"], obj["piece"], lv.dx / res,
                                                  ~np.asarray(lv.collapsed)).astype(float)
                 continue
-            axes = []
-            for d in range(3):
-                sub = np.arange(patch.lo[d] * res[d], patch.hi[d] * res[d])
-                axes.append(sub)
-            I, J, K = np.meshgrid(*axes, indexing="ij")
-            sub = np.stack([I.ravel(order="F"), J.ravel(order="F"), K.ravel(order="F")], axis=1)
-            x = lv.anchor + (sub + 0.5) / res * lv.dx
-            inside = obj["piece"].inside(x)
-            x, sub = x[inside], sub[inside]
-            std = np.diag(1.0 / res)                 # Uintah's p.size in cells
-            if obj.get("affine") is not None:        # moved, kept where the patch owns them (as Uintah)
-                A, b = obj["affine"]
-                x = x @ A.T + b
-                cell = np.floor((x - lv.anchor) / lv.dx).astype(np.int64)
-                mine = np.all((cell >= patch.lo) & (cell < patch.hi), axis=1)
-                x, sub, std = x[mine], sub[mine], A @ std
-            nsub = np.array(lv.ncells) * res
-            ids = (obj_base + k) * (1 << 40) + sub[:, 0] + nsub[0] * (sub[:, 1] + nsub[1] * sub[:, 2])
-            n = len(x)
-            dx = np.asarray(lv.dx, float)
-            if obj.get("affine") is None:
-                vol = (x[:, 0] * (lv.dx[0] / res[0]) * (lv.dx[1] / res[1]) if axisymmetric
-                       else np.full(n, float(np.prod(lv.dx / res))))
-            else:                                    # Uintah's volumes of the turned domains
-                vol = (x[:, 0] * (std[0, 0] * std[1, 1] - std[0, 1] * std[1, 0]) * dx[0] * dx[1] if axisymmetric
-                       else np.full(n, float(np.linalg.det(std) * np.prod(dx))))
-            dxpp = lv.dx / res
-            out.append(dict(x=x, id=ids.astype(np.int64), vol=vol, temp=np.full(n, obj["temperature"]),
-                            lcid=pressure.flag(x, obj["piece"], dxpp, self.index) if pressure
-                                 else np.zeros((n, 3)),
-                            vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
-                            size=np.tile(0.5 * lv.dx / res, (n, 1)),
-                            size_matrix=np.broadcast_to(0.5 * dx[:, None] * std, (n, 3, 3)).copy(),
-                            color=np.full(n, obj["color"] if obj["color"] is not None else 0.0)))
-            if surface:
-                out[-1]["surf"] = on_surface(x, obj["piece"], dxpp, ~np.asarray(lv.collapsed)).astype(float)
+            for level, sub, x in fill_levels(obj["piece"], patch, res, obj.get("numLevelsParticleFilling", 0)):
+                out.append(self._lattice_particles(obj, patch, obj_base + k, res, level, sub, x, pressure,
+                                                   surface, axisymmetric))
         if not out:
             out.append(dict(x=np.empty((0, 3)), id=np.empty(0, np.int64), vol=np.empty(0), temp=np.empty(0),
                             lcid=np.empty((0, 3)), vel=np.empty((0, 3)), size=np.empty((0, 3)),
@@ -352,21 +347,116 @@ class Material:
         data["patch"], data["obj_base"] = patch, obj_base
         return data
 
+    def _lattice_particles(self, obj, patch, obj_id, res, level, sub, x, pressure, surface, axisymmetric):
+        """The particles of one lattice object at fill level `level` (0: the <res> lattice; k > 0:
+        2^k times finer, Uintah's filling of the surface cells): IDs, volumes, sizes, the rest."""
+        lv = patch.level
+        fine = 0.5 ** level
+        std = np.diag(1.0 / res)                 # Uintah's p.size in cells
+        if obj.get("affine") is not None:        # moved, kept where the patch owns them (as Uintah)
+            A, b = obj["affine"]
+            x = x @ A.T + b
+            cell = np.floor((x - lv.anchor) / lv.dx).astype(np.int64)
+            mine = np.all((cell >= patch.lo) & (cell < patch.hi), axis=1)
+            x, sub, std = x[mine], sub[mine], A @ std
+        nsub = np.array(lv.ncells) * res * 2 ** level
+        ids = (obj_id << LATTICE_BITS) + level_offset(lv.ncells, res, level) + sub[:, 0] + nsub[0] * (
+            sub[:, 1] + nsub[1] * sub[:, 2])
+        n = len(x)
+        dx = np.asarray(lv.dx, float)
+        if obj.get("affine") is None:
+            vol = (x[:, 0] * (lv.dx[0] / res[0]) * (lv.dx[1] / res[1]) if axisymmetric
+                   else np.full(n, float(np.prod(lv.dx / res))))
+        else:                                    # Uintah's volumes of the turned domains
+            vol = (x[:, 0] * (std[0, 0] * std[1, 1] - std[0, 1] * std[1, 0]) * dx[0] * dx[1] if axisymmetric
+                   else np.full(n, float(np.linalg.det(std) * np.prod(dx))))
+        if level:                                # axisymmetric: per radian, fine in r and z only (Uintah's)
+            vol = vol * (fine ** 2 if axisymmetric else fine ** 3)
+        dxpp = lv.dx / res * fine
+        d = dict(x=x, id=ids.astype(np.int64), vol=vol, temp=np.full(n, obj["temperature"]),
+                 lcid=pressure.flag(x, obj["piece"], dxpp, self.index) if pressure else np.zeros((n, 3)),
+                 vel=np.tile(np.asarray(obj["velocity"], float), (n, 1)),
+                 size=np.tile(0.5 * lv.dx / res * fine, (n, 1)),
+                 size_matrix=np.broadcast_to(0.5 * fine * dx[:, None] * std, (n, 3, 3)).copy(),
+                 color=np.full(n, obj["color"] if obj["color"] is not None else 0.0))
+        if surface:
+            d["surf"] = on_surface(x, obj["piece"], dxpp, ~np.asarray(lv.collapsed)).astype(float)
+        return d
+
     def uintah_creation_order(self, d):
         """The indices of a patch's particles (create's dict d, sorted by ID) in the order
         Uintah's ParticleCreator makes them: object by object, the cells x fastest, then each
-        cell's particles with the z lattice index fastest (its loops ix, iy, iz)."""
+        cell's particles by fill level and, within one, with the z lattice index fastest (its
+        loops ix, iy, iz)."""
         lv = d["patch"].level
         ids = d["id"]
-        k = (ids >> 40) - d["obj_base"]
-        lattice = ids & ((1 << 40) - 1)
-        res = np.array([[1 if lv.collapsed[a] else o.get("res", (1, 1, 1))[a] for a in range(3)]
-                        for o in self.objects], np.int64)[k]
+        k = (ids >> LATTICE_BITS) - d["obj_base"]
+        lattice = ids & ((1 << LATTICE_BITS) - 1)
+        objs = np.unique(k)
+        level = np.zeros(len(ids), np.int64)
+        res = np.empty((len(ids), 3), np.int64)
+        for o in objs:
+            sel = k == o
+            obj = self.objects[o]
+            r = self.lattice_res(obj, lv).astype(np.int64)
+            nlev = max(abs(obj.get("numLevelsParticleFilling", 0)), 1)
+            offsets = np.array([level_offset(lv.ncells, r, j) for j in range(nlev)], np.int64)
+            level[sel] = np.searchsorted(offsets, lattice[sel], side="right") - 1
+            lattice[sel] -= offsets[level[sel]]
+            res[sel] = r
+        res = res << level[:, None]
         nsub = np.array(lv.ncells, np.int64) * res
         sub = np.stack([lattice % nsub[:, 0], (lattice // nsub[:, 0]) % nsub[:, 1],
                         lattice // (nsub[:, 0] * nsub[:, 1])], axis=1)
         cell, ip = sub // res, sub % res
-        return np.lexsort((ip[:, 2], ip[:, 1], ip[:, 0], cell[:, 0], cell[:, 1], cell[:, 2], k)).astype(np.int64)
+        return np.lexsort((ip[:, 2], ip[:, 1], ip[:, 0], level, cell[:, 0], cell[:, 1], cell[:, 2],
+                           k)).astype(np.int64)
+
+
+def level_offset(ncells, res, level):
+    """Where the lattice indices of fill level `level` start in an object's IDs: after those of
+    the coarser levels (level j has ncells * res * 2^j sub-cells)."""
+    return sum(int(np.prod(np.asarray(ncells, np.int64) * np.asarray(res, np.int64) * 2 ** j))
+               for j in range(level))
+
+
+def _flat(sub, n):
+    """Linear indices of lattice indices sub (m, 3) on a lattice of n sub-cells, x fastest."""
+    return sub[:, 0] + n[0] * (sub[:, 1] + n[1] * sub[:, 2])
+
+
+def fill_levels(piece, patch, res, fill):
+    """The lattice points of a patch inside `piece`, per fill level: [(level, sub-cell index (n, 3)
+    on that level's lattice, position (n, 3))]. Level 0 is the <res> lattice. With |fill| > 1
+    (Uintah's numLevelsParticleFilling), levels 1 .. |fill| - 1 each halve the spacing (in every
+    direction, a collapsed one too, as Uintah) and add the points inside the piece that no
+    particle of a coarser level covers; fill < 0 first removes, at each level, the particles a
+    corner of whose would-be children (+-dx/4 of the current spacing) lies outside the piece."""
+    lv = patch.level
+    out = []
+    for level in range(max(abs(fill), 1)):
+        r = res * 2 ** level
+        axes = [np.arange(patch.lo[d] * r[d], patch.hi[d] * r[d]) for d in range(3)]
+        I, J, K = np.meshgrid(*axes, indexing="ij")
+        sub = np.stack([I.ravel(order="F"), J.ravel(order="F"), K.ravel(order="F")], axis=1)
+        x = lv.anchor + (sub + 0.5) / r * lv.dx
+        inside = piece.inside(x)
+        sub, x = sub[inside], x[inside]
+        if level:
+            if fill < 0:            # the coarser particles that stick out go
+                h = lv.dx / (res * 2 ** (level - 1))
+                corners = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)], float)
+                for j, (lev, s, xs) in enumerate(out):
+                    pts = xs[:, None, :] + 0.25 * corners[None, :, :] * h
+                    keep = piece.inside(pts.reshape(-1, 3)).reshape(len(xs), 8).all(axis=1)
+                    out[j] = (lev, s[keep], xs[keep])
+            covered = np.zeros(len(sub), bool)
+            for lev, s, _ in out:   # inside a coarser particle's domain
+                n = np.array(lv.ncells, np.int64) * res * 2 ** lev
+                covered |= np.isin(_flat(sub // 2 ** (level - lev), n), _flat(s, n))
+            sub, x = sub[~covered], x[~covered]
+        out.append((level, sub, x))
+    return out
 
 
 # -- membrane strings (004 sec. 3.2) ------------------------------------------------------

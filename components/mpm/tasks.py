@@ -832,7 +832,7 @@ class MPMTasks:
                                                      F_new.copy(), Lg)
                 new_dw.put(L.pVelGradLastPre, m, patch, Lg)
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
-                q = self.av.q(m, mat, Lg, F_new)
+                q = self.av.q(m, mat, Lg, F_new, pm, vol_new)
                 new_dw.put(L.pQPre, m, patch, q)
                 if mat.needs_temperature:
                     self.av.heat(mat, q, Lg, F_old, F_new, pm, vol_new, old[-1], dTdt, news["p.energy"])

@@ -136,9 +136,11 @@ def test_bulk_viscosity_formula():
 @pytest.mark.parametrize("edit, words", [
     (('<constitutive_model type="rigid">\n          <shear_modulus> 46.0e9  </shear_modulus>\n          '
       '<bulk_modulus>  129.0e9 </bulk_modulus>\n          <coeff_thermal_expansion> 0.00 </coeff_thermal_expansion>',
-      '<constitutive_model type="comp_mooney_rivlin"><he_constant_1>1e5</he_constant_1>'
-      '<he_constant_2>1e4</he_constant_2><he_PR>0.4</he_PR>'),
-     ("artificial viscosity", "comp_mooney_rivlin", "accepted models")),
+      '<constitutive_model type="jwlpp_mpm"><ignition_pressure>2.0e8</ignition_pressure>'
+      '<murnaghan_K>1.9342e-10</murnaghan_K><murnaghan_n>15.2</murnaghan_n><jwl_A>7.73037e11</jwl_A>'
+      '<jwl_B>21.629e9</jwl_B><jwl_C>1.339e9</jwl_C><jwl_R1>4.5</jwl_R1><jwl_R2>1.5</jwl_R2><jwl_om>0.33</jwl_om>'
+      '<jwl_rho0>1844.0</jwl_rho0><reaction_G>1.0</reaction_G><reaction_b>1.05</reaction_b>'),
+     ("artificial viscosity", "jwlpp_mpm", "accepted models")),
     (("<artificial_viscosity>         true", "<artificial_viscosity_heating>true</artificial_viscosity_heating>"
       "<artificial_viscosity>false"), ("artificial_viscosity_heating", "needs <artificial_viscosity>true")),
     (("<artificial_viscosity>         true", "<artificial_viscosity_coeff1>-1</artificial_viscosity_coeff1>"

@@ -259,30 +259,6 @@ def test_projection_and_draws_on_two_ranks(tmp_path, run_a):
         assert np.array_equal(out[1][k], out[2][k]), k
 
 
-def test_half_space_deck_is_refused_naming_what_is_missing(tmp_path):
-    """Uintah's halfSpaceUCNH_EP_JWLMPM.ups is refused in one line at the Pressure BC (which
-    Uintah's MPM does not read); with its BCs removed it sets up (its saved p.temperature turns
-    heat conduction on, Uintah's default without <DoExplicitHeatConduction>): its UCNH soil with
-    drawn yield stresses, Threshold gauss damage, jwlpp_mpm charge and pressure stabilization
-    are read."""
-    text = open(HERE / "uintah_reference" / "halfSpaceUCNH_EP_JWLMPM.ups").read()
-    bcs = re.compile(r'<BCType id = "0"   label = "Pressure".*?</BCType>|<BCType id = "all" label = "Density".*?'
-                     r'</BCType>|<BCType id = "all" label = "Temperature" var = "Neumann">.*?</BCType>', re.S)
-    steps = ((('label="Pressure"',), lambda t: bcs.sub("", t)),)
-    for words, fix in steps:
-        with pytest.raises(InputError) as e:
-            run(text, tmp_path)
-        msg = str(e.value)
-        assert "\n" not in msg and ".ups:" in msg
-        for w in words:
-            assert w in msg, msg
-        if fix:
-            text = fix(text)
-    from framework.controller import Controller
-    ctl = Controller(str(tmp_path / "h.ups"), deck_text=text, quiet=True, filebase=str(tmp_path / "h.uda"))
-    assert ctl.component.thermal
-
-
 SUS_STAB = HERE / "data" / "sus_disk_UCNHVar_stabilized.npz"
 
 
@@ -349,49 +325,3 @@ def test_ucnh_uniform_yield_as_sus(tmp_path):
         assert p["p.localizedMPM"].sum() == sus["count"][k]
         assert np.array_equal(p["p.yieldStress"][j], sus["yieldStress"][::10])      # carried unchanged
     assert sus["plasticStrain"][-1].max() > 3.0
-
-
-SUS_HALF = HERE / "data" / "sus_halfSpaceUCNH_EP_JWLMPM.npz"
-
-
-def half_space_edited():
-    """halfSpaceUCNH_EP_JWLMPM.ups with the Pressure, Density and Temperature-Neumann BCs (which
-    Uintah's MPM does not read) and the p.temperature save removed, res 1 along the collapsed z
-    (Uintah lays res_z layers in the one z cell, pysus one), and sus's USL update."""
-    text = open(HERE / "uintah_reference" / "halfSpaceUCNH_EP_JWLMPM.ups").read()
-    text = re.sub(r'<BCType id = "0"   label = "Pressure".*?</BCType>|<BCType id = "all" label = "Density".*?'
-                  r'</BCType>|<BCType id = "all" label = "Temperature" var = "Neumann">.*?</BCType>', "", text, flags=re.S)
-    return edit(text, ('<save label = "p.temperature"/>', ""), ("<res> [2,2,2] </res>", "<res> [2,2,1] </res>"),
-                ("<res> [4,4,4] </res>", "<res> [4,4,1] </res>"),
-                ("<time_integrator> explicit </time_integrator>",
-                 "<time_integrator> explicit </time_integrator><stress_update>usl</stress_update>"))
-
-
-def test_half_space_edited_as_sus(tmp_path):
-    """half_space_edited() (sus ran the same deck, 16 patches, its 6 steps written every 2:
-    sus_halfSpaceUCNH_EP_JWLMPM.npz): the soil's drawn p.epsf (Threshold gauss) and
-    p.yieldStress (UCNH uniform) of every 5th particle bitwise sus's; its p.stress (every 10th)
-    and the charge's p.stress and p.progressF (burned to 1 in the first step) within 1e-13 of
-    the largest (measured 1.4e-14); the same localized count (0, 2, 2, 3); sus's times."""
-    _, da = run(half_space_edited(), tmp_path)
-    sus = np.load(SUS_HALF)
-    assert list(da.timesteps) == list(sus["timestep"])
-    assert np.allclose(da.times, sus["time"], rtol=1e-13, atol=0)
-    p0 = da.particles(0, 0)
-    order = np.lexsort(np.round(p0["p.x"], 9).T[::-1])
-    assert np.abs(p0["p.x"][order][::5] - sus["soil_x0"]).max() < 1e-15
-    assert np.array_equal(p0["p.epsf"][order][::5], sus["epsf"])
-    assert np.array_equal(p0["p.yieldStress"][order][::5], sus["yieldStress"])
-    ids = p0["p.particleID"][order][::10]
-    for k in range(len(sus["timestep"])):
-        p = da.particles(0, k)
-        at = {v: i for i, v in enumerate(p["p.particleID"])}
-        s = p["p.stress"][[at[v] for v in ids]]
-        assert np.abs(s - sus["soil_stress"][k]).max() <= 1e-13 * np.abs(sus["soil_stress"][k]).max()
-        assert p["p.localizedMPM"].sum() == sus["localized"][k]
-        c = da.particles(1, k)
-        o = np.lexsort(np.round(c["p.x"], 9).T[::-1])
-        assert np.abs(c["p.x"][o] - sus["charge_x"][k]).max() < 1e-15
-        assert np.abs(c["p.progressF"][o] - sus["progressF"][k]).max() < 1e-13
-        assert np.abs(c["p.stress"][o] - sus["charge_stress"][k]).max() <= 1e-13 * np.abs(sus["charge_stress"][k]).max()
-    assert list(sus["localized"]) == [0, 2, 2, 3] and sus["progressF"][1].min() > 0.99

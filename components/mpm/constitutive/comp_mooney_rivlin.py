@@ -13,6 +13,7 @@ which is stress free at F = I with small-strain shear modulus 2 (C1 + C2)
 and Poisson ratio nu.  ``energy`` receives the TOTAL W * V/J.  Wave speed
 uses Uintah's expression
     c^2 = (4 (C1 + C2 I2)/J + 8 (2 C3 I3^-3 + C4 (2 I3 - 1)) - min_i sigma_ii/J) V/m.
+The artificial viscosity's sound speed takes K = 4 (C1 + C2 I2)/J (viscosity_bulk_modulus).
 """
 from dataclasses import dataclass
 
@@ -78,6 +79,24 @@ def kernel(C1, C2, PR, F_new, vol, mass, vel, stress_new, energy):
               - smin / J) * vol[p] / mass[p]
         max_wavespeed(ws, np.sqrt(max(c2, 0.0)), vel, p)
     return ws
+
+
+@njit(cache=True)
+def viscosity_bulk_modulus(C1, C2, F_new, out):
+    """The bulk modulus of the artificial viscosity's sound speed, 4 (C1 + C2 I2)/J of the
+    current B = F F^T (Uintah's CompMooneyRivlin, which calls its choice tentative)."""
+    for p in range(F_new.shape[0]):
+        F = F_new[p]
+        trB = 0.0
+        trBB = 0.0
+        for i in range(3):
+            trB += F[i, 0] * F[i, 0] + F[i, 1] * F[i, 1] + F[i, 2] * F[i, 2]
+        for i in range(3):
+            for j in range(3):
+                Bij = F[i, 0] * F[j, 0] + F[i, 1] * F[j, 1] + F[i, 2] * F[j, 2]
+                trBB += Bij * Bij
+        I2 = 0.5 * (trB * trB - trBB)
+        out[p] = 4.0 * (C1 + C2 * I2) / det3(F)
 
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy):
