@@ -59,7 +59,9 @@ in the step of localization, 0 after):
 The UCNH family (comp_neo_hook, UCNH, UCNHVar) leaves a particle localized at the step's
 start out of the strain energy, as Uintah's.  An ``<erosion>`` without a damage model is
 read and does nothing (in Uintah no particle localizes then), whatever the constitutive model
-(but elastic_plastic's own failure, elastic_plastic.py, and elastic_plastic_hp's refusal).
+(but elastic_plastic's own failure, elastic_plastic.py, and elastic_plastic_hp's own
+localization, elastic_plastic_hp.py, which use the erosion here). elastic_plastic_hp's
+``<damage_model type="johnson_cook">`` is johnson_cook_damage below.
 """
 from __future__ import annotations
 

@@ -21,11 +21,26 @@ Deck (``<constitutive_model type="elastic_plastic">`` with a ``<flow_model>``, o
 reference temperature of T-dependent sub-models), ``compute_specific_heat``,
 sub-models ``flow_model`` (FLOW), ``yield_condition`` (YIELD), ``equation_of_state``
 (EOS; none: Uintah's default hyperelastic K/2 (J - 1/J)), ``shear_modulus_model`` (SHEAR),
-``melting_temp_model`` (MELT), ``specific_heat_model`` (CP), ``stability_check`` (only
-used by Uintah's erosion, which pysus does not couple to this model: "none" is accepted).
-Tags Uintah's model reads and uses only in code pysus does not have (implicit MPM, MPMICE's
-modified EOS, the TEPLA erosion check) are accepted and recorded; a deck whose run would need
-them (erosion) is refused.
+``melting_temp_model`` (MELT), ``specific_heat_model`` (CP), ``stability_check`` (STABILITY,
+used with an erosion). Tags Uintah's model reads and uses only in code pysus does not have
+(implicit MPM, MPMICE's modified EOS) are accepted and recorded.
+With the material's ``<erosion algorithm="...">`` (not "none") the model localizes its
+particles itself, as Uintah's: p.localizedMPM = 1 (for good) where T > T_m, or, in a plastic
+step, where the porosity passes the TEPLA rule f^2/f_c^2 > 1 (``check_TEPLA_failure_criterion``,
+f_c = ``critical_porosity``), or where the ``stability_check`` finds a bifurcation of the
+material-frame stress with Uintah's von Mises elastic-plastic tangent C_ep = C_e - (C_e:r)
+(r:C_e)/(r:C_e:r - h dsigma_y/dep) (r = 3 dev sigma, h = sigma:r/sigma_y): Drucker's
+(C_ep:D):D <= 0, Becker's (Becker 2002) two non-negative roots of its quadratic in the
+extreme principal stresses, or a flow stress <= 0; a localized particle's porosity is set to
+0 and it adds no stress work to p.energy. With an erosion the porosity (p.porosity) is carried
+and evolves in plastic steps with the vonMises condition too. The erosion itself is Uintah's
+ErosionModel (damage.py): F and L of the particles localized at the step's start eroded before
+the stress, p.timeofloc and the stress of the localized after it.
+``<damage_model type="johnson_cook">`` (a sibling in the material): Uintah's JohnsonCookDamage,
+a p.damage that leaves the stress alone (damage.johnson_cook_damage; D1 .. D5,
+``initial_mean_scalar_damage``, ``initial_std_scalar_damage``, ``critical_scalar_damage``,
+``initial_scalar_damage_distrib`` constant or gauss: Uintah's seeded draws as the porosity's);
+``hancock_mackenzie`` is read and computes nothing.
 ``yield_condition type="gurson"`` (GursonYield, with ``plastic_convergence_algo`` biswajit as
 Uintah requires): the trial stress yields where sigma_eq^2 >= sigma_y^2 (1 + q3 f*^2 - 2 q1 f*
 cosh(q2 tr/(2 sigma_y))), tr Uintah's trial trace 3 p + 2 mu tr(D) dt; the biswajit return
@@ -379,9 +394,11 @@ def _linear_melt(node):
 
 def initial_state(params, n, temperature=None, creation_order=None):
     """Plastic strain, its rate, specific energy, strain rate and Maxwell element stresses of
-    new particles: zero (whatever their temperature); with gurson the localization flag 0 and
-    the porosity f_0, or with gauss |N(f_0, std)| drawn, as Uintah, in its order of particle
-    creation in the patch (`creation_order`: the particles' indices in that order)."""
+    new particles: zero (whatever their temperature); with gurson or an erosion the
+    localization flag 0 and the porosity f_0, or with gauss |N(f_0, std)| drawn, as Uintah, in
+    its order of particle creation in the patch (`creation_order`: the particles' indices in
+    that order); with an erosion p.timeofloc -1e99; with johnson_cook damage p.damage D_0 or
+    its gauss draws (a generator of its own, the same seed)."""
     names = state_of(params)
     out = tuple(np.zeros(n) for _ in STATE)
     order = np.arange(n) if creation_order is None else creation_order
