@@ -613,9 +613,9 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
              .requires(OLD, FL.delT).requires(OLD, L.pVelocity))
         if self.av_matls:
             t.requires(NEW, L.AVScale)
-        if any(mt.damage is not None for mt in self.materials):     # the erosion's time of localization
+        if any(mt.needs_time for mt in self.materials):     # the erosion's time of localization
             t.requires(OLD, FL.simTime)
-            if not self.musl and any(getattr(mt.damage, "erodes_F", False) for mt in self.materials):
+            if not self.musl and any(mt.erodes_F for mt in self.materials):
                 t.modifies(L.pFPre)                 # F of localized particles (damage.py)
         if self.has_membrane:
             t.requires(NEW, L.pTangentNbr)

@@ -60,12 +60,12 @@ STATE = {"p.plasticStrain": (pPlasticStrain, pPlasticStrainPre),   # per-model s
          "p.plasticStrainRate": (pPlasticStrainRate, pPlasticStrainRatePre),
          "p.energy": (pEnergy, pEnergyPre),
          "p.strainRate": (pStrainRate, pStrainRatePre),
-         "p.porosity": _pair("p.porosity"),              # elastic_plastic_hp with gurson: void fraction
+         "p.porosity": _pair("p.porosity"),              # elastic_plastic_hp with gurson or erosion: void fraction
          "p.bElBar": (pBElBar, pBElBarPre),                              # comp_neo_hook_plastic, UCNH
          "p.epsf": _pair("p.epsf"),                      # damage.py: Brittle's energy threshold, ThresholdVar's
                                                          # failure stress or strain
-         "p.damage": _pair("p.damage"),                  # damage.py: Brittle's damage
-         "p.localizedMPM": _pair("p.localizedMPM"),      # damage.py: 1 once ThresholdVar localized it
+         "p.damage": _pair("p.damage"),                  # damage.py: Brittle's, Johnson-Cook's damage
+         "p.localizedMPM": _pair("p.localizedMPM"),      # 1 once ThresholdVar or elastic_plastic_hp localized it
          "p.timeofloc": _pair("p.timeofloc"),            # damage.py: when it localized (erosion)
          "p.yieldStress": _pair("p.yieldStress"),        # UCNH with yield_distrib uniform: drawn yield stress
          "p.progressF": _pair("p.progressF"),            # jwlpp_mpm: burned fraction

@@ -204,6 +204,14 @@ class Material:
                                         kind in damage.NO_ENERGY_WHEN_LOCALIZED)
             self.state_names += self.damage.STATE
             self.state = self.state_names
+        # the erosion (damage.EROSION code) of a damage model, or of a model that localizes its
+        # particles itself (elastic_plastic_hp); it needs the step's start time, and most erode F
+        if self.damage is not None:
+            self.erosion = getattr(self.damage, "erosion", 0)
+        else:
+            self.erosion = getattr(self.params, "erosion", 0) if getattr(self.model, "LOCALIZES", False) else 0
+        self.erodes_F = self.erosion in (1, 2, 3)
+        self.needs_time = self.damage is not None or self.erosion != 0
         self.uses_temperature = getattr(self.model, "USES_TEMPERATURE", False)     # p.temperature as an argument
         self.needs_temperature = getattr(self.model, "NEEDS_TEMPERATURE", False)   # p.temperature / p.dTdt in the state
         self.max_delT = getattr(self.model, "MAX_DELT", np.inf)
@@ -273,7 +281,7 @@ class Material:
             draw = (self.uintah_creation_order(d), uintah_patch_id(d["patch"]))
         if self.damage is not None:
             return self.model.initial_state(self.params, len(d["id"]), d["temp"], color=d["color"], draw=draw)
-        if getattr(self.params, "porosity_gauss", False):
+        if getattr(self.params, "draws_initial_state", False):
             return self.model.initial_state(self.params, len(d["id"]), d["temp"],
                                             creation_order=self.uintah_creation_order(d))
         if self.state_names and hasattr(self.model, "initial_state"):

@@ -342,9 +342,12 @@ def _inv_dx(dx):
 @njit(cache=True, fastmath=FM)
 def cpdi_domains(act, F, lp, dx, lcrit, out):
     """CPDI's domain array of each particle, out (n, 18): r_1, r_2, r_3 (physical units), then the
-    rows of J^-1, J = [r_k] on the active axes (identity on the others). r_k = F e_k l_k is half
-    of Uintah's (F p.size)(:, k); with a size matrix lp (n, 3, 3), whose columns are the
-    undeformed half-vectors H e_k (a <smoothcyl>'s turned sectors), r_k = F H e_k. Where a corner
+    rows of J^-1, J = [r_k] on the active axes (identity on the others). As Uintah, the domain
+    in cells is half of (F p.size)(:, k) with p.size in cells: F acts on the cell-scaled size, so
+    r_k = h_d sum_m F_dm l_mk / h_m on axis d (h the cell spacing; where the cells are not cubes a
+    shear F_dm, d != m, weighs l_mk by h_d/h_m, unlike F l of the physical domain); l_k e_k the
+    undeformed half-vectors, or with a size matrix lp (n, 3, 3) its columns H e_k (a
+    <smoothcyl>'s turned sectors). Where a corner
     r_3 +- r_1 +- r_2 reaches beyond lcrit cells it is scaled back to lcrit and the r_k are
     rebuilt from those corners (Uintah's cpdi_lcrit)."""
     ih0, ih1, ih2 = _inv_dx(dx)
@@ -353,11 +356,14 @@ def cpdi_domains(act, F, lp, dx, lcrit, out):
         r = np.empty((3, 3))        # r[k, d]: component d of r_k, in cells
         for k in range(3):
             for d in range(3):
-                if lp.ndim == 2:
-                    r[k, d] = F[p, d, k] * lp[p, k] * ih[d] if dx[d] != 0.0 else 0.0
+                if dx[d] == 0.0:
+                    r[k, d] = 0.0
+                elif lp.ndim == 2:
+                    r[k, d] = F[p, d, k] * lp[p, k] * ih[k]
                 else:
-                    FH = F[p, d, 0] * lp[p, 0, k] + F[p, d, 1] * lp[p, 1, k] + F[p, d, 2] * lp[p, 2, k]
-                    r[k, d] = FH * ih[d] if dx[d] != 0.0 else 0.0
+                    FH = (F[p, d, 0] * lp[p, 0, k] * (ih[0] / ih[d]) + F[p, d, 1] * lp[p, 1, k] * (ih[1] / ih[d])
+                          + F[p, d, 2] * lp[p, 2, k] * (ih[2] / ih[d]))
+                    r[k, d] = FH * ih[d]
         # the corners r_3 + a r_1 + b r_2 (Uintah's la, lb, lc, ld: a, b = ++, +-, -+, --)
         c = np.empty((4, 3))
         scaled = False

@@ -14,6 +14,7 @@ from framework.variables import VarType
 
 from . import kernels, shape, transfer
 from . import labels as L
+from .constitutive import damage
 from .artificial_viscosity import stress_less_q
 from .cbdi import cells_size, corners_to_grid
 from .thermal import divide_by_mass, p2g_heat
@@ -117,6 +118,9 @@ class MPMTasks:
         if mat.damage is not None:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new, time=time, color=color)
+        if mat.erosion:             # a model with its own localization (elastic_plastic_hp)
+            return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
+                                    energy, old, new, time=time)
         if getattr(mat.model, "USES_COLOR", False):
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new, color=color)
@@ -770,7 +774,7 @@ class MPMTasks:
                 Lg = new_dw.get(L.pVelGrad, m, patch)
                 F_new = new_dw.get(L.pFPre, m, patch)
                 vol_new = new_dw.get(L.pVolumePre, m, patch)
-                if getattr(mat.damage, "erodes_F", False):     # the erosion sets F of localized particles
+                if mat.erodes_F:            # the erosion sets F of localized particles
                     F_new = F_new.copy()
                     new_dw.replace(L.pFPre, m, patch, F_new)
             if getattr(mat.params, "density_from_grid", False):    # fluid points (ideal_gas_fluid)
@@ -824,12 +828,12 @@ class MPMTasks:
                                                        new, scale, temp,
                                                        old_dw.get(L.pColor, m, patch) if self.flags["withColor"]
                                                        else None,
-                                                       old_dw.get_reduction(FL.simTime) if mat.damage is not None
+                                                       old_dw.get_reduction(FL.simTime) if mat.needs_time
                                                        else 0.0))
             if self.projection:         # L_p for the next step's projection, eroded as Uintah's
-                if getattr(mat.damage, "erodes_F", False):
-                    Lg = mat.damage.erode_kinematics(old_dw.get(L.STATE["p.localizedMPM"][0], m, patch), F_old,
-                                                     F_new.copy(), Lg)
+                if mat.erodes_F:
+                    Lg = damage.erode_kinematics(mat.erosion, old_dw.get(L.STATE["p.localizedMPM"][0], m, patch),
+                                                 F_old, F_new.copy(), Lg)
                 new_dw.put(L.pVelGradLastPre, m, patch, Lg)
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
                 q = self.av.q(m, mat, Lg, F_new, pm, vol_new)

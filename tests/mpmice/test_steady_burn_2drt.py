@@ -3,13 +3,16 @@ steel ring (elastic_plastic with steel_Cp, Johnson-Cook flow, Mie-Gruneisen EOS)
 (visco_scram) in its TST product gas, approach contact with <computeColinearNormals> false,
 Steady_Burn, semi-implicit ICE.
 
-Every part of the deck is read except the steel's <erosion algorithm="ZeroStress">: erosion of an
-elastic_plastic material with sub-models (localization by melting, the TEPLA porosity rule and
-the drucker_becker stability check) is not implemented, and the deck is refused at that tag in one
-line. With <erosion algorithm="none"> in a copy the deck runs; against sus on the same copy (sus
-with <Solver type="CGSolver"/>, 5 steps from delt_init 1e-10): the steps' delT equal, vol_frac_CC
-within 3.1e-6, press_CC 36 % apart after 5 steps and the product's temperature in the trace cells
-(sus up to 6352 K after step 1, pysus 560 K), not yet looked into; not a test here.
+Every part of the deck is read, the steel's <erosion algorithm="ZeroStress"> with
+elastic_plastic's own localization (melting, the TEPLA porosity rule, the drucker_becker stability
+check; tests/mpm/test_elastic_plastic_hp_failure.py) and its Johnson-Cook damage model. Against
+sus on a copy (sus with <Solver type="CGSolver"/>, 5 steps from delt_init 1e-10, output every step):
+the steps' times equal, the steel's p.x to 1.5e-13 of its extent, no particle localized in either;
+the steel's stress (under 4 Pa) differs as the gas next to it does (press_CC 36 % apart after 5
+steps, the product's temperature in the trace cells: sus up to 6352 K after step 1, pysus 560 K),
+not yet looked into; p.porosity and p.damage are Uintah's seeded gauss draws, but pysus makes one
+particle layer along the one-cell z direction where sus makes two (<res> [2,2,2]), so the draws
+fall on other particles. Not a comparison test here.
 """
 import pathlib
 
@@ -27,20 +30,15 @@ def _validate(text, tmp_path, capsys):
     return rc, capsys.readouterr().err
 
 
-def test_steady_burn_2drt_is_refused_only_at_its_erosion(tmp_path, capsys):
-    text = DECK.read_text(encoding="latin-1")
-    rc, err = _validate(text, tmp_path, capsys)
-    assert rc != 0 and "<erosion>" in err and "elastic_plastic" in err
-    assert len([ln for ln in err.splitlines() if "error" in ln]) == 1
-    rc, err = _validate(text.replace('<erosion algorithm="ZeroStress"/>', '<erosion algorithm="none"/>'),
-                        tmp_path, capsys)
+def test_steady_burn_2drt_is_read_unchanged(tmp_path, capsys):
+    rc, err = _validate(DECK.read_text(encoding="latin-1"), tmp_path, capsys)
     assert rc == 0, err
 
 
 @pytest.mark.parametrize("flag", ["true", "false"])
 def test_colinear_normals_flag_is_read(tmp_path, capsys, flag):
     """<computeColinearNormals> (Uintah's MPM flag, default true) is read either way."""
-    text = DECK.read_text(encoding="latin-1").replace('<erosion algorithm="ZeroStress"/>', '<erosion algorithm="none"/>')
+    text = DECK.read_text(encoding="latin-1")
     text = text.replace("<computeColinearNormals>        false      </computeColinearNormals>",
                         f"<computeColinearNormals> {flag} </computeColinearNormals>")
     assert f"<computeColinearNormals> {flag} </computeColinearNormals>" in text

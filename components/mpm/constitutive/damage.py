@@ -63,7 +63,9 @@ in the step of localization, 0 after):
 The UCNH family (comp_neo_hook, UCNH, UCNHVar) leaves a particle localized at the step's
 start out of the strain energy, as Uintah's.  An ``<erosion>`` without a damage model is
 read and does nothing (in Uintah no particle localizes then), whatever the constitutive model
-(but elastic_plastic's own failure, elastic_plastic.py, and elastic_plastic_hp's refusal).
+(but elastic_plastic's own failure, elastic_plastic.py, and elastic_plastic_hp's own
+localization, elastic_plastic_hp.py, which use the erosion here). elastic_plastic_hp's
+``<damage_model type="johnson_cook">`` is johnson_cook_damage below.
 """
 from __future__ import annotations
 
@@ -147,13 +149,7 @@ class ThresholdVar:
     def erode_kinematics(self, loc_old, F_old, F_new, L):
         """Uintah's updateVariables_Erosion on the particles localized at the step's start (F in
         place); returns the L the model then reads (a changed copy when one is eroded)."""
-        if self.erosion not in (1, 2, 3) or not loc_old.any():
-            return L
-        has_L = L is not None and len(L) == len(F_new)
-        if has_L:
-            L = L.copy()
-        erosion_kinematics(self.erosion, loc_old, F_old, F_new, L if has_L else F_new, has_L)   # F_new: no L
-        return L
+        return erode_kinematics(self.erosion, loc_old, F_old, F_new, L)
 
     def apply(self, F_new, vol_new, stress_new, old, new, color=None, time=0.0):
         """Localize by the criterion, then erode the stress; (p.epsf, p.localizedMPM,
@@ -286,19 +282,71 @@ def threshold_kernel(criterion, localize, erosion, char_time, time, F, stress, e
                 m = almansi_max(F, p)
             if m > eps_old[p]:
                 loc_new[p] = 1.0
-        if erosion == 0:
-            continue
-        if loc_old[p] != loc_new[p]:
-            tl_new[p] = time
-        if loc_new[p] == 0.0 or erosion == 4:     # PreserveStress keeps the stress
-            continue
-        pr = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
-        D = np.exp(-(time - tl_new[p]) / char_time)
-        if erosion == 2 or (erosion == 1 and pr > 0.0):
-            stress[p] *= D
-        else:
-            stress[p] = 0.0
-            stress[p, 0, 0] = stress[p, 1, 1] = stress[p, 2, 2] = pr
+        if erosion != 0:
+            erode_stress_of(p, erosion, char_time, time, stress, loc_old, loc_new, tl_new)
+
+
+@njit(cache=True, inline="always")
+def erode_stress_of(p, erosion, char_time, time, stress, loc_old, loc_new, tl_new):
+    """Uintah's updateStress_Erosion for particle p: the time of localization, then the stress
+    of a localized particle scaled by D = exp(-(t - p.timeofloc)/char_time) (ZeroStress; and
+    AllowNoTension in tension) or made its pressure (AllowNoShear; AllowNoTension in
+    compression)."""
+    if loc_old[p] != loc_new[p]:
+        tl_new[p] = time
+    if loc_new[p] == 0.0 or erosion == 4:     # PreserveStress keeps the stress
+        return
+    pr = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
+    D = np.exp(-(time - tl_new[p]) / char_time)
+    if erosion == 2 or (erosion == 1 and pr > 0.0):
+        stress[p] *= D
+    else:
+        stress[p] = 0.0
+        stress[p, 0, 0] = stress[p, 1, 1] = stress[p, 2, 2] = pr
+
+
+@njit(cache=True)
+def erode_stress(erosion, char_time, time, stress, loc_old, loc_new, tl_old, tl_new):
+    """The erosion of the stress of every particle (erode_stress_of), for a constitutive model
+    that localizes its particles itself (elastic_plastic_hp)."""
+    for p in range(stress.shape[0]):
+        tl_new[p] = tl_old[p]
+        erode_stress_of(p, erosion, char_time, time, stress, loc_old, loc_new, tl_new)
+
+
+def erode_kinematics(code, loc_old, F_old, F_new, L):
+    """Uintah's updateVariables_Erosion on the particles localized at the step's start (F in
+    place); returns the L the model then reads (a changed copy when one is eroded)."""
+    if code not in (1, 2, 3) or not loc_old.any():
+        return L
+    has_L = L is not None and len(L) == len(F_new)
+    if has_L:
+        L = L.copy()
+    erosion_kinematics(code, loc_old, F_old, F_new, L if has_L else F_new, has_L)   # F_new: no L
+    return L
+
+
+@njit(cache=True, error_model="numpy")
+def johnson_cook_damage(jc, Tr, Tm, dt, stress, epdot, T, d_old, d_new):
+    """Uintah's JohnsonCookDamage (Johnson and Cook 1985), a diagnostic p.damage that leaves the
+    stress alone: D += epdot dt / eps_f, eps_f = (D1 + D2 exp(D3 sigma*)) (1 + D4 ln epdot)
+    (or (1 + epdot)^D4 below 1) (1 + D5 T*), sigma* = p/sigma_eq within [-1.5, 1.5],
+    T* = (T - T_room)/(T_melt - T_room); a damage under the critical <critical_scalar_damage>
+    is set to 0. jc = D1, D2, D3, D4, D5, the critical damage."""
+    for p in range(stress.shape[0]):
+        mean = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
+        ss = 0.0
+        for i in range(3):
+            for j in range(3):
+                s = stress[p, i, j] - (mean if i == j else 0.0)
+                ss += s * s
+        eq = np.sqrt(ss * 1.5)
+        star = mean / eq if eq != 0.0 else 0.0
+        star = min(1.5, max(-1.5, star))
+        rate = (1.0 + epdot[p]) ** jc[3] if epdot[p] < 1.0 else 1.0 + jc[3] * np.log(epdot[p])
+        eps_f = (jc[0] + jc[1] * np.exp(jc[2] * star)) * rate * (1.0 + jc[4] * ((T[p] - Tr) / (Tm - Tr)))
+        d = d_old[p] + epdot[p] * dt / eps_f
+        d_new[p] = 0.0 if d < jc[5] else d
 
 
 BRITTLE_TAGS = {"brittle_damage_initial_threshold": 57.0, "brittle_damage_fracture_energy": 11.2,

@@ -21,11 +21,26 @@ Deck (``<constitutive_model type="elastic_plastic">`` with a ``<flow_model>``, o
 reference temperature of T-dependent sub-models), ``compute_specific_heat``,
 sub-models ``flow_model`` (FLOW), ``yield_condition`` (YIELD), ``equation_of_state``
 (EOS; none: Uintah's default hyperelastic K/2 (J - 1/J)), ``shear_modulus_model`` (SHEAR),
-``melting_temp_model`` (MELT), ``specific_heat_model`` (CP), ``stability_check`` (only
-used by Uintah's erosion, which pysus does not couple to this model: "none" is accepted).
-Tags Uintah's model reads and uses only in code pysus does not have (implicit MPM, MPMICE's
-modified EOS, the TEPLA erosion check) are accepted and recorded; a deck whose run would need
-them (erosion) is refused.
+``melting_temp_model`` (MELT), ``specific_heat_model`` (CP), ``stability_check`` (STABILITY,
+used with an erosion). Tags Uintah's model reads and uses only in code pysus does not have
+(implicit MPM, MPMICE's modified EOS) are accepted and recorded.
+With the material's ``<erosion algorithm="...">`` (not "none") the model localizes its
+particles itself, as Uintah's: p.localizedMPM = 1 (for good) where T > T_m, or, in a plastic
+step, where the porosity passes the TEPLA rule f^2/f_c^2 > 1 (``check_TEPLA_failure_criterion``,
+f_c = ``critical_porosity``), or where the ``stability_check`` finds a bifurcation of the
+material-frame stress with Uintah's von Mises elastic-plastic tangent C_ep = C_e - (C_e:r)
+(r:C_e)/(r:C_e:r - h dsigma_y/dep) (r = 3 dev sigma, h = sigma:r/sigma_y): Drucker's
+(C_ep:D):D <= 0, Becker's (Becker 2002) two non-negative roots of its quadratic in the
+extreme principal stresses, or a flow stress <= 0; a localized particle's porosity is set to
+0 and it adds no stress work to p.energy. With an erosion the porosity (p.porosity) is carried
+and evolves in plastic steps with the vonMises condition too. The erosion itself is Uintah's
+ErosionModel (damage.py): F and L of the particles localized at the step's start eroded before
+the stress, p.timeofloc and the stress of the localized after it.
+``<damage_model type="johnson_cook">`` (a sibling in the material): Uintah's JohnsonCookDamage,
+a p.damage that leaves the stress alone (damage.johnson_cook_damage; D1 .. D5,
+``initial_mean_scalar_damage``, ``initial_std_scalar_damage``, ``critical_scalar_damage``,
+``initial_scalar_damage_distrib`` constant or gauss: Uintah's seeded draws as the porosity's);
+``hancock_mackenzie`` is read and computes nothing.
 ``yield_condition type="gurson"`` (GursonYield, with ``plastic_convergence_algo`` biswajit as
 Uintah requires): the trial stress yields where sigma_eq^2 >= sigma_y^2 (1 + q3 f*^2 - 2 q1 f*
 cosh(q2 tr/(2 sigma_y))), tr Uintah's trial trace 3 p + 2 mu tr(D) dt; the biswajit return
@@ -61,6 +76,7 @@ from numba import njit
 from framework.errors import RunStopped
 from framework.problemspec import Param
 
+from . import damage
 from . import plasticity_kernels as pk
 from ._common import det3, inv3, max_wavespeed
 from .uintah_random import STATE_SIZE, gauss, musil_start
@@ -69,11 +85,15 @@ ENERGY_IS_INCREMENT = True
 # carried per-particle state (labels.STATE names), in the order of `old`/`new` in update();
 # hypoViscoElastic adds the Maxwell element stresses sigmaDev0, sigmaDev1, ... (state_of)
 STATE = ("p.plasticStrain", "p.plasticStrainRate", "p.energy", "p.strainRate")
-# with the gurson yield condition also the void fraction and Uintah's localization flag (never
-# set: erosion is refused)
+# with the gurson yield condition or an erosion also the void fraction and Uintah's localization
+# flag (set only with an erosion); with an erosion the time of localization; with a johnson_cook
+# damage model its p.damage
 GURSON_STATE = ("p.porosity", "p.localizedMPM")
+EROSION_STATE = ("p.timeofloc",)
+DAMAGE_STATE = ("p.damage",)
 MAX_MAXWELL_ELEMENTS = 8          # labels.MAX_MAXWELL_ELEMENTS
 NEEDS_TEMPERATURE = True
+LOCALIZES = True                  # with an <erosion> it localizes its particles itself (materials.py)
 
 def _F(doc=""):
     """A required float tag."""
@@ -138,8 +158,17 @@ YIELD = {"vonMises": (pk.VON_MISES, {}),
 ALGO = {"radialReturn": False, "biswajit": True}
 HYPO_ELASTIC, HYPO_VISCO_ELASTIC = 0, 1
 DEV = {"hypoElastic": HYPO_ELASTIC, "hypoViscoElastic": HYPO_VISCO_ELASTIC}
-# <stability_check> types: Uintah consults them only for erosion, which this model refuses
+# <stability_check> types (consulted only with an erosion): index = kernel code
 STABILITY = ("none", "drucker", "becker", "drucker_becker")
+NO_CHECK, DRUCKER, BECKER, DRUCKER_BECKER = range(4)
+# <damage_model type="johnson_cook"> (Uintah's JohnsonCookDamage, a diagnostic p.damage)
+JC_DAMAGE = {"D1": _F(), "D2": _F(), "D3": _F(), "D4": _F(), "D5": _F(),
+             "initial_mean_scalar_damage": _opt(0.0, "D_0"),
+             "initial_std_scalar_damage": _opt(0.0, "its std with gauss"),
+             "critical_scalar_damage": _opt(1.0e-10, "a damage below it is set to 0"),
+             "initial_scalar_damage_distrib": Param("str", "constant", ("constant", "gauss"),
+                                                    "D_0 everywhere, or |N(D_0, std)| from Uintah's seeded "
+                                                    "generator")}
 
 TOP = {
     "shear_modulus": Param("float", doc="mu at the reference state (Pa)", above=0.0),
@@ -151,7 +180,7 @@ TOP = {
     "plastic_convergence_algo": Param("str", "radialReturn", tuple(ALGO),
                                       "radialReturn, or biswajit (needed by gurson)"),
     "evolve_porosity": Param("bool", True, doc="porosity grows and nucleates in plastic steps (gurson)"),
-    "check_TEPLA_failure_criterion": Param("bool", True, doc="with erosion only"),
+    "check_TEPLA_failure_criterion": Param("bool", True, doc="with erosion: localize where f > f_c"),
     "do_melting": Param("bool", True, doc="read; Uintah's model does not use it"),
     "useModifiedEOS": Param("bool", False, doc="MPMICE's rho(p) only"),
     "coeff_thermal_expansion": Param("float", 0.0, doc="implicit MPM only"),
@@ -163,7 +192,7 @@ TOP = {
 TOP.update({
     "initial_mean_porosity": Param("float", 0.002, doc="f_0"),
     "initial_std_porosity": Param("float", 0.002, doc="std of f_0 with gauss"),
-    "critical_porosity": Param("float", 0.5, doc="TEPLA erosion only (not implemented)"),
+    "critical_porosity": Param("float", 0.5, doc="f_c of the TEPLA rule (with erosion)", above=0.0),
     "frac_nucleation": Param("float", 0.1, doc="f_n, volume fraction of void-nucleating particles"),
     "meanstrain_nucleation": Param("float", 0.3, doc="e_n, mean plastic strain of nucleation"),
     "stddevstrain_nucleation": Param("float", 0.1, doc="s_n, its standard deviation (> 0 with gurson)"),
@@ -195,12 +224,32 @@ class Params:
     biswajit: bool = False           # <plastic_convergence_algo>biswajit
     porosity: np.ndarray = None      # f_n, e_n, s_n, evolve (1/0), f_0, std f_0
     porosity_gauss: bool = False
+    erosion: int = 0                 # damage.EROSION code of the material's <erosion> (0: none)
+    char_time: float = 1.0e-99       # its <char_time>
+    stability: int = NO_CHECK        # <stability_check> (with an erosion)
+    tepla: bool = False              # <check_TEPLA_failure_criterion> (with an erosion)
+    critical_porosity: float = 0.5
+    jc_damage: np.ndarray = None     # johnson_cook damage: D1 .. D5, critical damage
+    damage_temps: tuple = (294.0, 1.0e30)    # its T_room, T_melt (the material's)
+    damage_init: tuple = (0.0, 0.0, False)   # its D_0, std, gauss
+
+    @property
+    def draws_initial_state(self):
+        """The initial porosity or damage is drawn (it needs Uintah's order of particle creation)."""
+        return ((self.porosity_gauss and (self.yield_code == pk.GURSON or self.erosion != 0))
+                or (self.jc_damage is not None and self.damage_init[2]))
+
+    @property
+    def has_porosity(self):
+        """p.porosity and p.localizedMPM are carried (gurson, or an erosion's TEPLA rule)."""
+        return self.yield_code == pk.GURSON or self.erosion != 0
 
 
 def state_of(params):
     """The carried state names of this deck's model: STATE, GURSON_STATE with gurson, and one
     sigmaDevj per Maxwell element."""
-    st = STATE + (GURSON_STATE if params.yield_code == pk.GURSON else ())
+    st = (STATE + (GURSON_STATE if params.has_porosity else ()) + (EROSION_STATE if params.erosion else ())
+          + (DAMAGE_STATE if params.jc_damage is not None else ()))
     if params.dev != HYPO_VISCO_ELASTIC:
         return st
     return st + tuple(f"sigmaDev{j}" for j in range(len(params.maxwell_mu)))
@@ -273,16 +322,22 @@ def read_params(cm, material, props):
                          1.0 if top["evolve_porosity"] else 0.0, top["initial_mean_porosity"],
                          top["initial_std_porosity"]])
     st = cm.child("stability_check")
-    if st is not None:
-        st.attr("type", choices=STABILITY)
+    stability = STABILITY.index(st.attr("type", choices=STABILITY)) if st is not None else NO_CHECK
+    jc, damage_init = None, (0.0, 0.0, False)
     dm = material.child("damage_model")      # Uintah: deprecated, "does not influence the stress state"
-    if dm is not None:
-        dm.attr("type", choices=("hancock_mackenzie", "johnson_cook"))
+    if dm is not None and dm.attr("type", choices=("hancock_mackenzie", "johnson_cook")) == "johnson_cook":
+        d = dm.read(JC_DAMAGE)
+        jc = np.array([d["D1"], d["D2"], d["D3"], d["D4"], d["D5"], d["critical_scalar_damage"]])
+        damage_init = (d["initial_mean_scalar_damage"], d["initial_std_scalar_damage"],
+                       d["initial_scalar_damage_distrib"] == "gauss")
+    elif dm is not None:
         dm.mark_used()
     er = material.child("erosion")
-    if er is not None and er.attr("algorithm") != "none":
-        raise er.error("<erosion> of an elastic_plastic material with sub-models (melting, TEPLA, stability "
-                       "failure) is not implemented; accepted: no <erosion> or algorithm=\"none\"")
+    erosion, char_time = damage.read_erosion(er) if er is not None else (0, 1.0e-99)
+    if erosion and yc.attr("type") == "gurson" and stability != NO_CHECK:
+        raise st.error(f'<stability_check type="{STABILITY[stability]}"> with the gurson yield condition and an '
+                       '<erosion> is not implemented (its elastic-plastic tangent); accepted: type="none", or '
+                       'the vonMises yield condition')
     node = cm.child("flow_model", required=True)
     kind = node.attr("type", choices=tuple(FLOW))
     code, table = FLOW[kind]
@@ -317,7 +372,9 @@ def read_params(cm, material, props):
                   props["specific_heat"], top["taylor_quinney_coeff"], top["initial_material_temperature"],
                   (code, shear_code, melt_code, eos_code, cp_code), flow, shear, melt, eos, cp,
                   dev, maxwell_mu, maxwell_tau, yield_code, yield_params, ALGO[top["plastic_convergence_algo"]],
-                  porosity, top["initial_porosity_distrib"] == "gauss")
+                  porosity, top["initial_porosity_distrib"] == "gauss", erosion, char_time, stability,
+                  top["check_TEPLA_failure_criterion"], top["critical_porosity"], jc,
+                  (props["room_temp"], props["melt_temp"]), damage_init)
 
 
 def _linear_melt(node):
@@ -337,18 +394,28 @@ def _linear_melt(node):
 
 def initial_state(params, n, temperature=None, creation_order=None):
     """Plastic strain, its rate, specific energy, strain rate and Maxwell element stresses of
-    new particles: zero (whatever their temperature); with gurson the localization flag 0 and
-    the porosity f_0, or with gauss |N(f_0, std)| drawn, as Uintah, in its order of particle
-    creation in the patch (`creation_order`: the particles' indices in that order)."""
+    new particles: zero (whatever their temperature); with gurson or an erosion the
+    localization flag 0 and the porosity f_0, or with gauss |N(f_0, std)| drawn, as Uintah, in
+    its order of particle creation in the patch (`creation_order`: the particles' indices in
+    that order); with an erosion p.timeofloc -1e99; with johnson_cook damage p.damage D_0 or
+    its gauss draws (a generator of its own, the same seed)."""
     names = state_of(params)
     out = tuple(np.zeros(n) for _ in STATE)
-    if params.yield_code == pk.GURSON:
+    order = np.arange(n) if creation_order is None else creation_order
+    if params.has_porosity:
         f0, std = params.porosity[4], params.porosity[5]
         f = np.full(n, f0)
         if params.porosity_gauss and n:
-            order = np.arange(n) if creation_order is None else creation_order
             f[order] = initial_porosity(n, f0, std)
         out += (f, np.zeros(n))
+    if params.erosion:
+        out += (np.full(n, -1.0e99),)
+    if params.jc_damage is not None:
+        d0, std, gauss_ = params.damage_init
+        d = np.full(n, d0)
+        if gauss_ and n:              # JohnsonCookDamage's own generator, also seed 0 per patch
+            d[order] = initial_porosity(n, d0, std)
+        out += (d,)
     return out + tuple(np.zeros((n, 3, 3)) for _ in names[len(out):])
 
 
@@ -399,27 +466,117 @@ def _rotate(R, A, out, forward, B):
             out[i, j] = s
 
 
+@njit(cache=True, inline="always")
+def _principal_extremes(a00, a11, a22, a01, a02, a12):
+    """The largest and smallest eigenvalues of a symmetric 3x3 matrix (its upper triangle; the
+    trigonometric solution of the characteristic cubic)."""
+    q = (a00 + a11 + a22) / 3.0
+    p1 = a01 * a01 + a02 * a02 + a12 * a12
+    b00, b11, b22 = a00 - q, a11 - q, a22 - q
+    p2 = b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * p1
+    if p2 <= 1e-300:
+        return q, q
+    p = math.sqrt(p2 / 6.0)
+    c00, c11, c22, c01, c02, c12 = b00 / p, b11 / p, b22 / p, a01 / p, a02 / p, a12 / p
+    r = 0.5 * (c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) + c02 * (c01 * c12 - c11 * c02))
+    phi = math.acos(min(1.0, max(-1.0, r))) / 3.0
+    return q + 2.0 * p * math.cos(phi), q + 2.0 * p * math.cos(phi + 2.0 * math.pi / 3.0)
+
+
+@njit(cache=True, error_model="numpy")
+def _unstable(check, K, mu, sig, D, sy, dsy_dep):
+    """Uintah's stability checks of a plastic particle (stress sig and rate of deformation D in
+    the material frame): with the von Mises elastic-plastic tangent C_ep = C_e - (C_e:r)(r:C_e)/
+    (r:C_e:r - h dsigma_y/dep), r = 3 dev(sig), h = sig:r/sigma_y (VonMisesYield), Drucker's
+    (C_ep:D):D <= 0, or Becker's: the quadratic in x^2 of the principal stresses s1 >= s3 and
+    C_ep has two non-negative roots (Becker 2002)."""
+    E = 9.0 * K * mu / (3.0 * K + mu)
+    nu = E / (2.0 * mu) - 1.0
+    fac = E / ((1.0 + nu) * (1.0 - 2.0 * nu))
+    c11, c12 = fac * (1.0 - nu), fac * nu
+    Ce = np.zeros((3, 3, 3, 3))
+    for i in range(3):
+        for k in range(3):
+            Ce[i, i, k, k] = c11 if i == k else c12
+            if i != k:
+                Ce[i, k, i, k] = Ce[i, k, k, i] = mu
+    tr = (sig[0, 0] + sig[1, 1] + sig[2, 2]) / 3.0
+    r = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            r[i, j] = (sig[i, j] - (tr if i == j else 0.0)) * 3.0
+    sr = 0.0
+    for i in range(3):
+        for j in range(3):
+            sr += sig[i, j] * r[i, j]
+    fqhq = dsy_dep * (sr / sy)
+    Cr, rC = np.zeros((3, 3)), np.zeros((3, 3))
+    rCr = 0.0
+    for i in range(3):
+        for j in range(3):
+            for k in range(3):
+                for m in range(3):
+                    Cr[i, j] += Ce[i, j, k, m] * r[k, m]
+                    rC[i, j] += r[k, m] * Ce[k, m, i, j]
+            rCr += rC[i, j] * r[i, j]
+    M = np.empty((3, 3, 3, 3))
+    for i in range(3):
+        for j in range(3):
+            for k in range(3):
+                for m in range(3):
+                    M[i, j, k, m] = Ce[i, j, k, m] - Cr[i, j] * rC[k, m] / (-fqhq + rCr)
+    if check != BECKER:                         # Drucker: (C_ep:D):D <= 0
+        val = 0.0
+        for i in range(3):
+            for j in range(3):
+                rate = 0.0
+                for k in range(3):
+                    for m in range(3):
+                        rate += M[i, j, k, m] * D[k, m]
+                val += rate * D[i, j]
+        if val <= 0.0:
+            return True
+        if check == DRUCKER:
+            return False
+    s0, s2 = _principal_extremes(sig[0, 0], sig[1, 1], sig[2, 2], sig[0, 1], sig[0, 2], sig[1, 2])
+    A = M[2, 0, 2, 0] * (-s2 + 2.0 * M[2, 2, 2, 2])
+    C = M[2, 0, 2, 0] * (-s0 + 2.0 * M[0, 0, 0, 0])
+    B = (M[2, 0, 2, 0] * (s2 - 2.0 * M[0, 0, 2, 2] + s0 - 2.0 * M[2, 2, 0, 0]) + s0 * (M[2, 2, 0, 0] - M[2, 2, 2, 2])
+         + s2 * (M[0, 0, 2, 2] - M[0, 0, 0, 0]) + 2.0 * (-M[0, 0, 2, 2] * M[2, 2, 0, 0] + M[0, 0, 0, 0] * M[2, 2, 2, 2]))
+    disc = B * B - 4.0 * A * C
+    if disc < 0.0:
+        return False
+    a2 = 2.0 * (A + 1.0e-20) if check == DRUCKER_BECKER else 2.0 * A
+    y_plus, y_minus = (-B + math.sqrt(disc)) / a2, (-B - math.sqrt(disc)) / a2
+    return not (y_plus < 0.0 or y_minus < 0.0)
+
+
 _KERNELS = {}
 
 
-def kernel_for(codes, dev=HYPO_ELASTIC, yield_code=pk.VON_MISES, biswajit=False):
+def kernel_for(codes, dev=HYPO_ELASTIC, yield_code=pk.VON_MISES, biswajit=False, erode=False, stability=NO_CHECK,
+               tepla=False):
     """The stress kernel of one choice of sub-models (flow, shear, melt, eos, cp), deviatoric
     model `dev`, yield condition and return algorithm: the codes are compile-time constants
     of the closure, so each choice compiles (and caches) its own. mw_mu, mw_inv_tau (mu_j,
     1/tau_j) and sd_old, sd_new (n, elements, 3, 3) are the Maxwell elements' (empty with
     hypoElastic); gp, pp the yield condition's and porosity's parameters, f_old, f_new the
-    porosity (empty without gurson); edot_old the strain rate of the previous step."""
-    key = (codes, dev, yield_code, biswajit)
+    porosity (empty without gurson or erosion); edot_old the strain rate of the previous step.
+    With `erode` (an erosion) a particle localizes (loc_old -> loc_new) when melted, or in a
+    plastic step by the TEPLA rule f > f_c (`tepla`, f_c = fc) or the `stability` check."""
+    key = (codes, dev, yield_code, biswajit, erode, stability, tepla)
     if key in _KERNELS:
         return _KERNELS[key]
     FLOW_C, SHEAR_C, MELT_C, EOS_C, CP_C = codes
     VISCO = dev == HYPO_VISCO_ELASTIC
     GURSON = yield_code == pk.GURSON
     BISWAJIT = biswajit
+    ERODE, STAB, TEPLA = erode, stability, tepla
+    POROUS = GURSON or ERODE
 
     def kernel(G0, K, rho0, Tm0, cp0, chi, L, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                fp, sp, mp, qp, cpp, T_p, ep_old, epdot_old, e_old, ep_new, epdot_new, e_new, edot_new, dTdt,
-               work, mw_mu, mw_inv_tau, sd_old, sd_new, gp, pp, f_old, f_new, edot_old):
+               work, mw_mu, mw_inv_tau, sd_old, sd_new, gp, pp, f_old, f_new, edot_old, loc_old, loc_new, fc):
         ws = np.zeros(3)
         R, Rinv = np.empty((3, 3)), np.empty((3, 3))
         D, sig, tmp, B = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
@@ -559,16 +716,30 @@ def kernel_for(codes, dev=HYPO_ELASTIC, yield_code=pk.VON_MISES, biswajit=False)
             if plastic:
                 ep_new[p], epdot_new[p] = ep, epdot
                 rate += sy * epdot * chi / (rho * cp)        # plastic work to heat
-                if GURSON:
+                if POROUS:
                     f_new[p] = pk.porosity_update(pp, f_old[p], D, dt, ep) if pp[3] != 0.0 else f_old[p]
             else:
                 ep_new[p], epdot_new[p] = ep_old[p], 0.0
-                if GURSON:
+                if POROUS:
                     f_new[p] = f_old[p]
             dTdt[p] = rate
             for i in range(3):
                 for j in range(3):
                     sig[i, j] = fac * tmp[i, j] + (p_new if i == j else 0.0)
+            localized = False
+            if ERODE:       # Uintah's checks: melted; in a plastic step TEPLA, then the stability check
+                localized = loc_old[p] != 0.0
+                if T > Tm:
+                    localized = True
+                elif plastic:
+                    if TEPLA and f_new[p] * f_new[p] / (fc * fc) > 1.0:
+                        localized = True
+                    if STAB != NO_CHECK and not localized:
+                        sy, dsy_dep, _ = pk.flow_stress(FLOW_C, fp, ep, epdot, edot, T, mu, Tm, rho)
+                        localized = not sy > 0.0 or _unstable(STAB, K, mu, sig, D, sy, dsy_dep)
+                if localized:
+                    f_new[p] = 0.0
+                loc_new[p] = 1.0 if localized else 0.0
             polar_rotation(F_new[p], R, Rinv)
             _rotate(R, sig, s_new[p], True, B)
             for k in range(n_mw):
@@ -580,6 +751,8 @@ def kernel_for(codes, dev=HYPO_ELASTIC, yield_code=pk.VON_MISES, biswajit=False)
                 for j in range(3):
                     w += tmp[i, j] * 0.5 * (s_new[p, i, j] + s_old[p, i, j])
             w *= 0.5 * (vol[p] + vol_old) * dt              # stress work of the step
+            if localized:                                   # none for a localized particle
+                w = 0.0
             work[p] = w
             e_new[p] = e_old[p] + w / mass[p]
             max_wavespeed(ws, c, vel, p)
@@ -589,7 +762,8 @@ def kernel_for(codes, dev=HYPO_ELASTIC, yield_code=pk.VON_MISES, biswajit=False)
     # cached closures of one name clash when both are loaded in a process)
     kernel.__name__ = kernel.__qualname__ = ("elastic_plastic_kernel_" + "_".join(map(str, codes))
                                              + ("_visco" if VISCO else "") + ("_gurson" if GURSON else "")
-                                             + ("_biswajit" if BISWAJIT else ""))
+                                             + ("_biswajit" if BISWAJIT else "")
+                                             + (f"_erode{STAB}{int(TEPLA)}" if ERODE else ""))
     _KERNELS[key] = njit(cache=True)(kernel)
     return _KERNELS[key]
 
@@ -598,19 +772,28 @@ _NO_MAXWELL = np.zeros(0)
 _NO_POROSITY = np.array([0.1, 0.3, 0.1, 0.0, 0.002, 0.002])     # Uintah's defaults, not evolved
 
 
-def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new):
+def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new, time=0.0):
     """Stress, state and temperature rate of one material's particles; returns the wave speed.
-    old = (p.plasticStrain, p.plasticStrainRate, p.energy, p.strainRate, [p.porosity,] [sigmaDevj ...,]
-    p.temperature); new = the same updated, with p.dTdt last; `energy` receives the stress-work increment."""
+    old = (the state of state_of(params) ..., p.temperature); new = the same updated, with p.dTdt
+    last; `energy` receives the stress-work increment; `time`: the step's start (an erosion's
+    time of localization). With an erosion, the particles localized at the step's start have
+    their F and L eroded first (F_new in place) and the localized their stress after; with a
+    johnson_cook damage model p.damage follows from the new stress."""
+    at = {name: k for k, name in enumerate(state_of(params))}
     ep, epdot, e, edot_o = old[:4]
     ep_n, epdot_n, e_n, edot_n = new[:4]
     T, dTdt = old[-1], new[-1]
-    gurson = params.yield_code == pk.GURSON
-    f_o, f_n = (old[4], new[4]) if gurson else (_NO_MAXWELL, _NO_MAXWELL)
-    if gurson:
-        new[5][:] = old[5]                # p.localizedMPM: no erosion, so never set
-    k0 = len(STATE) + (len(GURSON_STATE) if gurson else 0)     # the first Maxwell element stress
-    kern = kernel_for(params.codes, params.dev, params.yield_code, params.biswajit)
+    f_o = f_n = loc_o = loc_n = _NO_MAXWELL
+    if params.has_porosity:
+        f_o, f_n = old[at["p.porosity"]], new[at["p.porosity"]]
+        loc_o, loc_n = old[at["p.localizedMPM"]], new[at["p.localizedMPM"]]
+        if not params.erosion:
+            loc_n[:] = loc_o              # gurson without an erosion: never set
+    if params.erosion:
+        L = damage.erode_kinematics(params.erosion, loc_o, F_old, F_new, L)
+    k0 = len(at) - (len(params.maxwell_mu) if params.dev == HYPO_VISCO_ELASTIC else 0)    # first Maxwell stress
+    kern = kernel_for(params.codes, params.dev, params.yield_code, params.biswajit, params.erosion != 0,
+                      params.stability, params.tepla)
     n = len(L)
     if params.dev == HYPO_VISCO_ELASTIC:
         if dt > params.maxwell_tau.min():
@@ -624,13 +807,21 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
         mw_mu = mw_inv_tau = _NO_MAXWELL
         sd_old = sd_new = np.zeros((0, 0, 3, 3))
     ws = kern(params.shear_modulus, params.bulk_modulus, params.density, params.melt_temp, params.specific_heat,
-                params.taylor_quinney, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
-                params.flow, params.shear, params.melt, params.eos, params.cp, T, ep, epdot, e,
-                ep_n, epdot_n, e_n, edot_n, dTdt, energy, mw_mu, mw_inv_tau, sd_old, sd_new,
-                _NO_MAXWELL if params.yield_params is None else params.yield_params,
-                _NO_POROSITY if params.porosity is None else params.porosity, f_o, f_n, edot_o)
+              params.taylor_quinney, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
+              params.flow, params.shear, params.melt, params.eos, params.cp, T, ep, epdot, e,
+              ep_n, epdot_n, e_n, edot_n, dTdt, energy, mw_mu, mw_inv_tau, sd_old, sd_new,
+              _NO_MAXWELL if params.yield_params is None else params.yield_params,
+              _NO_POROSITY if params.porosity is None else params.porosity, f_o, f_n, edot_o, loc_o, loc_n,
+              params.critical_porosity)
     for k, out in enumerate(new[k0:-1]):
         out[:] = sd_new[:, k]
+    if params.jc_damage is not None:    # Uintah's damage models, then its erosion (updateStress_DamageErosionModels)
+        i = at["p.damage"]
+        damage.johnson_cook_damage(params.jc_damage, params.damage_temps[0], params.damage_temps[1], dt,
+                                   stress_new, epdot_n, T, old[i], new[i])
+    if params.erosion:
+        i = at["p.timeofloc"]
+        damage.erode_stress(params.erosion, params.char_time, time, stress_new, loc_o, loc_n, old[i], new[i])
     if dt == 0.0 and len(vel):      # the first step's: with <shear_modulus>, not the shear model's mu
         c = math.sqrt((params.bulk_modulus + 4.0 * params.shear_modulus / 3.0) / params.density)
         ws = np.max(c + np.abs(vel), axis=0)
