@@ -61,8 +61,8 @@ rotated into the material frame with R^n and back with R^{n+1} as sigma (Uintah 
 unrotated into the step and rotates them with R^{n+1 T} ... R^{n+1} after it: the same without
 rotation); melted, they are set to zero (Uintah leaves them unset). A step longer than the
 smallest tau stops the run (Uintah's InternalError).
-Uintah's artificial bulk viscosity of this model is not implemented (refused with <MPM>
-<artificial_viscosity> by the component). The kernel for a deck's choice of sub-models
+With <MPM><artificial_viscosity> the model's bulk modulus sets the viscosity and the viscous
+work heats the particle (artificial_viscosity.py). The kernel for a deck's choice of sub-models
 is made by `kernel_for` (one compiled kernel per choice, cached).
 """
 from __future__ import annotations
