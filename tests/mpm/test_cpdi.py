@@ -59,6 +59,25 @@ def test_partition_of_unity_and_linear_fields(act, F):
     assert (S > 0).sum() > (9 if act == 3 else 27)      # the domain spans more nodes than a linear stencil
 
 
+def test_1d_gradients_partition_of_unity_and_linear_field():
+    """CPDI's 1D stencil (act = 1), the bar stretched 1.7 times: sum grad S_i = 0 and
+    sum x_i grad S_i = 1 exactly (d/dx of sum S_i = 1 and of sum S_i x_i = x), over more nodes
+    than a linear stencil has. mass_gradient takes kind and act at run time, so this compiles
+    no 1D transfer kernel (large-deformation runs use the 2D strip)."""
+    F = np.diag([1.7, 1.0, 1.0])
+    px = np.array([[1.13, 0.0, 0.0]])
+    dom = np.empty((1, 18))
+    cpdi_domains(1, F[None], np.array([[0.05, 0.05, 0.05]]), DX, 1e10, dom)
+    dS = np.zeros((N, 1, 1, 3))
+    mass_gradient(CPDI, 1, px, np.ones(1), dom, np.zeros(3), DX, np.zeros(3, np.int64), dS)
+    x = np.arange(N) * DX[0]
+    g = dS[:, 0, 0, 0]
+    assert abs(g.sum()) < 1e-11
+    assert abs(x @ g - 1.0) < 1e-12
+    assert (g != 0).sum() > 2
+    assert np.abs(dS[..., 1:]).max() == 0.0
+
+
 def _uintah_alpha(r1, r2, r3):
     """cpdiInterpolator.cc's alpha vectors of its 8 corners (signs of r1, r2, r3 in its order)."""
     V = np.linalg.det(np.stack([r1, r2, r3], axis=1))

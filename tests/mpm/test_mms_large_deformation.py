@@ -100,13 +100,14 @@ def test_stretch_linear_breaks_cpdi_follows(tmp_path, update):
     """25 cells per metre, 2 particles per cell, to twice the length. Measured (musl / usl):
     linear stress error 0.86 / 0.74 with particles up to 7.5 / 14 cells apart; GIMP 1.1 / 0.86;
     CPDI 3.1e-3 / 2.1e-3 with the exact gap of 1.5 cells. A linear or GIMP particle may also
-    turn its volume negative, which stops the run when a health check sees it. Linear and GIMP
-    run the bar as the periodic strip (stretch_deck's strip: the same uniaxial strain on the 2D
-    kernels that other runs compile, not four 1D ones; measured linear 0.81 / 0.76, 17 / 13
-    cells apart; GIMP 1.1 / 0.83, 7.1 / 8.4 cells; CPDI on the strip 3.1e-3 / 2.1e-3, as in 1D)."""
+    turn its volume negative, which stops the run when a health check sees it. All three run the
+    bar as the periodic strip (stretch_deck's strip: the same uniaxial strain on the 2D kernels
+    that other runs compile, not six 1D ones; measured linear 0.81 / 0.76, 17 / 13 cells apart;
+    GIMP 1.1 / 0.83, 7.1 / 8.4 cells; CPDI on the strip 3.1e-3 / 2.1e-3, as in 1D). CPDI's 1D
+    stencil is test_cpdi's."""
     assert _broken(_stretch(tmp_path, "linear", update, strip=True))
     assert _broken(_stretch(tmp_path, "gimp", update, strip=True))
-    cpdi = _stretch(tmp_path, "cpdi", update)
+    cpdi = _stretch(tmp_path, "cpdi", update, strip=True)
     assert cpdi["stress"] < 5e-3 and abs(cpdi["gap"] - 1.5) < 0.01
     assert cpdi["x"] < 0.015
 
