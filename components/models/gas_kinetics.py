@@ -14,21 +14,44 @@ from numba import njit
 
 from .gas_mechanism import FALLOFF, ELEMENTARY, P_ATM, RU, T_REF
 
+LN10 = np.log(10.0)
+
 Kinetics = namedtuple("Kinetics", "mw r_gas t_mid h_coef g_coef nasa h_ref rxn_type reactants products "
-                                  "arrhenius efficiencies troe troe_t2 closure visc_fit cond_fit diff_fit "
-                                  "mw_ratio phi_denom")
+                                  "n_reac n_prod dn log_a beta ea_r sign_a troe troe_t2 tb_ptr tb_species tb_eff "
+                                  "tb_default closure visc_fit cond_fit diff_fit mw_ratio phi_denom")
 
 # chemistry step status codes (the task turns them into an error naming the cell)
 OK, NEG_DENSITY, HARD_T, NEG_Y, BAD_SUM, NO_CONVERGENCE, NEWTON_FAILED = 0, 1, 2, 3, 4, 5, 6
 
 
 def kinetics(mech) -> Kinetics:
-    """The kernels' view of a Mechanism, with the Wilke rule's tables of molecular weight ratios."""
+    """The kernels' view of a Mechanism: each reaction's Arrhenius constants as log|A|, b, Ea/Ru
+    (column 0 the rate, column 1 a falloff's low-pressure limit), its species counts and mole
+    change, the third-body efficiencies as a sparse list of the species that differ from the
+    default, and the Wilke rule's tables of molecular weight ratios."""
     mw = mech.mw
     ratio = (mw[None, :] / mw[:, None]) ** 0.25
     phi = np.sqrt(8.0 + 8.0 * mw[:, None] / mw[None, :])
+    n_reac = np.count_nonzero(mech.reactants >= 0, axis=1)
+    n_prod = np.count_nonzero(mech.products >= 0, axis=1)
+    a = mech.arrhenius.reshape(-1, 2, 3)
+    with np.errstate(divide="ignore"):
+        log_a = np.log(np.abs(a[:, :, 0]))
+    tb_ptr, tb_species, tb_eff = [0], [], []
+    tb_default = np.ones(len(mech.rxn_type))
+    for r, kind in enumerate(mech.rxn_type):
+        if kind != ELEMENTARY:
+            eff, default = mech.efficiencies[r], mech.eff_default[r]
+            tb_default[r] = default
+            for k in np.flatnonzero(eff != default):
+                tb_species.append(k)
+                tb_eff.append(eff[k] - default)
+        tb_ptr.append(len(tb_species))
     return Kinetics(mw, mech.r_gas, mech.t_mid, mech.h_coef, mech.g_coef, mech.nasa, mech.h_ref, mech.rxn_type,
-                    mech.reactants, mech.products, mech.arrhenius, mech.efficiencies, mech.troe, mech.troe_t2,
+                    mech.reactants, mech.products, n_reac, n_prod, (n_prod - n_reac).astype(float),
+                    np.ascontiguousarray(log_a), np.ascontiguousarray(a[:, :, 1]),
+                    np.ascontiguousarray(a[:, :, 2] / RU), np.sign(a[:, :, 0]), mech.troe, mech.troe_t2,
+                    np.array(tb_ptr, np.int64), np.array(tb_species, np.int64), np.array(tb_eff, float), tb_default,
                     mech.closure, mech.visc_fit, mech.cond_fit, mech.diff_fit, ratio, phi)
 
 
@@ -45,17 +68,6 @@ def cp_over_r(mech, k, t):
     tcube = tsqr * t
     tquad = tcube * t
     return a[i, k, 0] + a[i, k, 1] * t + a[i, k, 2] * tsqr + a[i, k, 3] * tcube + a[i, k, 4] * tquad
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def gibbs_rt(mech, k, t, tlog):
-    """g_k / (Ru T); tlog = 1 - ln T (one logarithm for all species)."""
-    g, i = mech.g_coef, _range(t, mech.t_mid)
-    tsqr = t * t
-    tcube = tsqr * t
-    tquad = tcube * t
-    return (g[i, k, 0] * tlog) - (g[i, k, 1] * t) - (g[i, k, 2] * tsqr) - (g[i, k, 3] * tcube) \
-        - (g[i, k, 4] * tquad) + (g[i, k, 5] / t) - g[i, k, 6]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -119,116 +131,120 @@ def temperature_from_energy(mech, e_s, y, t_guess, t_low, t_high):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _arrhenius(a, b, ea, t, rt):
-    """A T^b exp(-Ea / (Ru T)), skipping the powers and exponentials that are exactly 1 (the
-    same result as evaluating them)."""
-    k = a * t ** b if b != 0.0 else a * 1.0
-    return k * np.exp(-ea / rt) if ea != 0.0 else k * 1.0
+def _exp(x):
+    """exp(x), its underflow to 0 (Troe's T3 and T1 of 1e-30 K) without the library's slow path."""
+    return np.exp(x) if x > -746.0 else 0.0
+
+
+LOG_C0 = np.log(1e-6 * P_ATM / RU)     # ln of the standard concentration (mol/cm^3) times T
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _rates(mech, t, log_t, inv_t, t2, t3, t4, conc, g, q):
+    """Net rate of each reaction (mol/(cm^3 s)) with g = g_k / (Ru T) of every species: the forward
+    rate exp(ln A + b ln T - Ea / (Ru T)) (Troe's falloff between its low- and high-pressure
+    limits), the third bodies' concentration, and the reverse rate kf / Kc with
+    Kc = exp(sum_R g - sum_P g) (1e-6 P_ATM / (Ru T))^dn, as one exponential of the sum."""
+    i = _range(t, mech.t_mid)
+    gc = mech.g_coef          # the fields as locals: each mech.<field> in a loop costs a reference count
+    rxn_type, reactants, products, n_reac, n_prod, dn = (mech.rxn_type, mech.reactants, mech.products, mech.n_reac,
+                                                         mech.n_prod, mech.dn)
+    log_a, beta, ea_r, sign_a, troe, troe_t2 = mech.log_a, mech.beta, mech.ea_r, mech.sign_a, mech.troe, mech.troe_t2
+    tb_ptr, tb_species, tb_eff, tb_default = mech.tb_ptr, mech.tb_species, mech.tb_eff, mech.tb_default
+    tlog = 1.0 - log_t
+    n = conc.shape[0]
+    c_total = 0.0
+    for k in range(n):
+        g[k] = gc[i, k, 0] * tlog - gc[i, k, 1] * t - gc[i, k, 2] * t2 - gc[i, k, 3] * t3 - gc[i, k, 4] * t4 \
+            + gc[i, k, 5] * inv_t - gc[i, k, 6]
+        c_total += conc[k]
+    log_c0 = LOG_C0 - log_t
+    for r in range(rxn_type.shape[0]):
+        kf = sign_a[r, 0] * np.exp(log_a[r, 0] + beta[r, 0] * log_t - ea_r[r, 0] * inv_t)
+        kind = rxn_type[r]
+        m = 1.0
+        if kind != ELEMENTARY:
+            m = tb_default[r] * c_total
+            for p in range(tb_ptr[r], tb_ptr[r + 1]):
+                m += tb_eff[p] * conc[tb_species[p]]
+        if kind == FALLOFF:
+            k0 = sign_a[r, 1] * np.exp(log_a[r, 1] + beta[r, 1] * log_t - ea_r[r, 1] * inv_t)
+            pr = max(k0 * m / kf, 1e-300)
+            log10_pr = np.log10(pr)
+            fc = (1.0 - troe[r, 0]) * _exp(-t / troe[r, 1]) + troe[r, 0] * _exp(-t / troe[r, 2])
+            if troe_t2[r]:
+                fc += _exp(-troe[r, 3] * inv_t)
+            log10_fc = np.log10(fc)
+            cc = -0.4 - 0.67 * log10_fc
+            nn = 0.75 - 1.27 * log10_fc
+            sq = (log10_pr + cc) / (nn - 0.14 * (log10_pr + cc))
+            kf = kf * pr * np.exp(LN10 * log10_fc / (1.0 + sq * sq)) / (1.0 + pr)
+            m = 1.0
+        dg = -dn[r] * log_c0
+        fwd = kf
+        for s in range(n_reac[r]):
+            c = reactants[r, s]
+            dg -= g[c]
+            fwd *= conc[c]
+        rev = kf
+        for s in range(n_prod[r]):
+            c = products[r, s]
+            dg += g[c]
+            rev *= conc[c]
+        q[r] = m * (fwd - rev * np.exp(dg))
 
 
 @njit(cache=True, error_model="numpy")
 def rates_of_progress(mech, t, conc, g, q):
-    """Net rate of each reaction (mol/(cm^3 s)): Arrhenius forward rates (Troe falloff), third
-    bodies, the reverse rate from the equilibrium constant Kc = Kp (1e-6 P_ATM / (Ru T))^dn."""
-    rt = RU * t
-    n = conc.shape[0]
-    tlog = 1.0 - np.log(t)
-    for k in range(n):
-        g[k] = gibbs_rt(mech, k, t, tlog)
-    for r in range(mech.rxn_type.shape[0]):
-        a = mech.arrhenius
-        kf = _arrhenius(a[r, 0], a[r, 1], a[r, 2], t, rt)
-        m = 1.0
-        if mech.rxn_type[r] != ELEMENTARY:
-            m = 0.0
-            for k in range(n):
-                m += mech.efficiencies[r, k] * conc[k]
-        if mech.rxn_type[r] == FALLOFF:
-            k0 = _arrhenius(a[r, 3], a[r, 4], a[r, 5], t, rt)
-            kinf = kf
-            pr = max(k0 * m / kinf, 1e-300)
-            log10_pr = np.log10(pr)
-            tr = mech.troe
-            fc = (1.0 - tr[r, 0]) * np.exp(-t / tr[r, 1]) + tr[r, 0] * np.exp(-t / tr[r, 2])
-            if mech.troe_t2[r]:
-                fc += np.exp(-tr[r, 3] / t)
-            log10_fc = np.log10(fc)
-            c = -0.4 - 0.67 * log10_fc
-            nn = 0.75 - 1.27 * log10_fc
-            sq = (log10_pr + c) / (nn - 0.14 * (log10_pr + c))
-            log10_f = log10_fc / (1.0 + sq * sq)
-            f = 10.0 ** log10_f
-            kf = kinf * pr * f / (1.0 + pr)
-            m = 1.0
-        sum_g = 0.0
-        n_r = 0
-        n_p = 0
-        for s in range(mech.reactants.shape[1]):
-            if mech.reactants[r, s] >= 0:
-                sum_g += g[mech.reactants[r, s]]
-                n_r += 1
-        for s in range(mech.products.shape[1]):
-            if mech.products[r, s] >= 0:
-                sum_g -= g[mech.products[r, s]]
-                n_p += 1
-        kc = np.exp(sum_g)
-        dn = n_p - n_r
-        if dn == 1:             # pow(x, 1) and pow(x, -1) are x and 1 / x exactly
-            kc *= 1e-6 * P_ATM / rt
-        elif dn == -1:
-            kc *= 1.0 / (1e-6 * P_ATM / rt)
-        elif dn != 0:
-            kc *= (1e-6 * P_ATM / rt) ** float(dn)
-        kr = kf / kc
-        fwd = kf
-        for s in range(n_r):
-            fwd *= conc[mech.reactants[r, s]]
-        rev = kr
-        for s in range(n_p):
-            rev *= conc[mech.products[r, s]]
-        q[r] = m * (fwd - rev)
+    """Net rate of each reaction (mol/(cm^3 s)) at T and the concentrations conc (mol/cm^3);
+    g: scratch for the species' g_k / (Ru T)."""
+    t2 = t * t
+    _rates(mech, t, np.log(t), 1.0 / t, t2, t2 * t, t2 * t2, conc, g, q)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, inline="always", error_model="numpy")
 def chem_rhs(mech, t, y, rho, cell_vol, conc, g, q, u, sdot, rhs_mass):
     """Uintah's chemStep: dY_j/dt (rhs_mass, tracked order) and returns (dT/dt, q_dot V): the
-    constant-volume reactor's right-hand side at (T, Y, rho)."""
+    constant-volume reactor's right-hand side at (T, Y, rho). The heat release
+    sum_r q_r (sum_R u_k - sum_P u_k) is summed as -sum_k u_k sdot_k. Inlined where it is
+    called: a call would count references to each of the mechanism's arrays."""
     n = y.shape[0]
-    cp, r_mix = cv_cp_r(mech, t, y)
-    cv = cp - r_mix
+    i = _range(t, mech.t_mid)
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t3 * t
+    log_t = np.log(t)
+    inv_t = 1.0 / t
+    a, h, r_gas, mw = mech.nasa, mech.h_coef, mech.r_gas, mech.mw
+    reactants, products, n_reac, n_prod = mech.reactants, mech.products, mech.n_reac, mech.n_prod
+    cp = 0.0
+    r_mix = 0.0
+    c_scale = 1e-3 * rho
     for k in range(n):
-        conc[k] = 1e-3 * rho * y[k] / mech.mw[k]
-    rates_of_progress(mech, t, conc, g, q)
-    for k in range(n):
+        ry = y[k] * r_gas[k]
+        cp += ry * (a[i, k, 0] + a[i, k, 1] * t + a[i, k, 2] * t2 + a[i, k, 3] * t3 + a[i, k, 4] * t4)
+        r_mix += ry
+        conc[k] = c_scale * y[k] / mw[k]
+        u[k] = RU * (h[i, k, 0] * t + h[i, k, 1] * t2 + h[i, k, 2] * t3 + h[i, k, 3] * t4 + h[i, k, 4] * (t4 * t)
+                     + h[i, k, 5] - t)
         sdot[k] = 0.0
-    nr = mech.rxn_type.shape[0]
-    for r in range(nr):
-        for s in range(mech.reactants.shape[1]):
-            if mech.reactants[r, s] >= 0:
-                sdot[mech.reactants[r, s]] -= q[r]
-        for s in range(mech.products.shape[1]):
-            if mech.products[r, s] >= 0:
-                sdot[mech.products[r, s]] += q[r]
+    _rates(mech, t, log_t, inv_t, t2, t3, t4, conc, g, q)
+    for r in range(q.shape[0]):
+        for s in range(n_reac[r]):
+            sdot[reactants[r, s]] -= q[r]
+        for s in range(n_prod[r]):
+            sdot[products[r, s]] += q[r]
+    qdot = 0.0
     j = 0
+    inv_rho = 1e3 / rho
     for k in range(n):
+        qdot -= u[k] * sdot[k]
         if k == mech.closure:
             continue
-        rhs_mass[j] = mech.mw[k] * sdot[k] * 1e3 / rho
+        rhs_mass[j] = mw[k] * sdot[k] * inv_rho
         j += 1
-    for k in range(n):
-        u[k] = energy_molar(mech, k, t)
-    qdot = 0.0
-    for r in range(nr):
-        du = 0.0
-        for s in range(mech.reactants.shape[1]):
-            if mech.reactants[r, s] >= 0:
-                du += u[mech.reactants[r, s]]
-        for s in range(mech.products.shape[1]):
-            if mech.products[r, s] >= 0:
-                du -= u[mech.products[r, s]]
-        qdot += q[r] * du
     qdot *= 1e6
-    return qdot / (rho * cv), qdot * cell_vol
+    return qdot / (rho * (cp - r_mix)), qdot * cell_vol
 
 
 @njit(cache=True, inline="always", error_model="numpy")
