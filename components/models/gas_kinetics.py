@@ -395,103 +395,113 @@ def chemistry_cells(mech, y_old, temp, rho, y_src, eng_src, dt_chem, limiter, hr
     return OK, 0, 0, 0, 0.0, warned
 
 
-@njit(cache=True, error_model="numpy")
-def thermo_cells(mech, y_tr, temp, cv, gamma, lo, hi):
-    """cv and gamma of the mixture at (T, Y) over [lo, hi) (Uintah's modifyThermoTransportProperties);
-    returns the first cell with cv <= 0 as (i, j, k), or (-1, 0, 0)."""
-    n = mech.mw.shape[0]
-    y, yt = np.empty(n), np.empty(n - 1)
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
-                cp, r = cv_cp_r(mech, temp[i, j, k], y)
-                c = cp - r
-                if c < 0.0:
-                    return i, j, k
-                cv[i, j, k] = c
-                gamma[i, j, k] = cp / c
-    return -1, 0, 0
+def _over_cells(per_cell):
+    """A kernel kernel(mech, y_tr, lo, hi, fields) that calls per_cell(mech, y, i, j, k, fields,
+    work) in each cell (i, j, k) of [lo, hi), y the cell's mass fractions of all species and
+    work (n + 3, n) scratch; it returns the first cell where per_cell returns False as
+    (i, j, k), or (-1, 0, 0)."""
+    @njit(cache=True, error_model="numpy")
+    def kernel(mech, y_tr, lo, hi, fields):
+        n = mech.mw.shape[0]
+        y, yt = np.empty(n), np.empty(n - 1)
+        work = np.empty((n + 3, n))
+        for i in range(lo[0], hi[0]):
+            for j in range(lo[1], hi[1]):
+                for k in range(lo[2], hi[2]):
+                    _cell_y(y_tr, i, j, k, yt, y, mech.closure)
+                    if not per_cell(mech, y, i, j, k, fields, work):
+                        return i, j, k
+        return -1, 0, 0
+    return kernel
 
 
-@njit(cache=True, error_model="numpy")
-def transport_cells(mech, y_tr, temp, rho, mu, lam, diff, lo, hi):
+@njit(cache=True, inline="always", error_model="numpy")
+def _thermo_cell(mech, y, i, j, k, fields, work):
+    """cv and gamma of the mixture (Uintah's modifyThermoTransportProperties); False where cv < 0.
+    fields: (temp, cv, gamma)."""
+    temp, cv, gamma = fields
+    cp, r = cv_cp_r(mech, temp[i, j, k], y)
+    c = cp - r
+    if c < 0.0:
+        return False
+    cv[i, j, k] = c
+    gamma[i, j, k] = cp / c
+    return True
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _transport_cell(mech, y, i, j, k, fields, work):
     """The mixture's viscosity (Wilke's rule), thermal conductivity (the mean of the mole-fraction
-    weighted arithmetic and harmonic means) and mixture-averaged diffusion coefficients
-    D_k = (M - X_k M_k) / (P M sum_j!=k X_j / D_jk) over [lo, hi), from the species' fits."""
-    n = mech.mw.shape[0]
-    y, yt, x, sv, dk = np.empty(n), np.empty(n - 1), np.empty(n), np.empty(n), np.empty(n)
-    dbin = np.empty((n, n))
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
-                t = temp[i, j, k]
-                inv_mw = 0.0
-                for s in range(n):
-                    inv_mw += y[s] / mech.mw[s]
-                for s in range(n):
-                    x[s] = y[s] / (inv_mw * mech.mw[s])
-                ln_t = np.log(t)
-                ln_t2 = ln_t * ln_t
-                ln_t3 = ln_t * ln_t2
-                ln_t4 = ln_t * ln_t3
-                t14 = np.sqrt(np.sqrt(t))
-                for s in range(n):
-                    c = mech.visc_fit[s]
-                    sv[s] = t14 * (c[0] + c[1] * ln_t + c[2] * ln_t2 + c[3] * ln_t3 + c[4] * ln_t4)
-                m = 0.0
-                for a in range(n):
-                    den = 0.0
-                    for b in range(n):
-                        tmp = 1.0 + (sv[a] / sv[b]) * mech.mw_ratio[a, b]
-                        den += (tmp * tmp / mech.phi_denom[a, b]) * x[b]
-                    m += x[a] * (sv[a] * sv[a]) / den
-                mu[i, j, k] = m
-                t12 = np.sqrt(t)
-                arith = 0.0
-                harm = 0.0
-                for s in range(n):
-                    c = mech.cond_fit[s]
-                    la = t12 * (c[0] + c[1] * ln_t + c[2] * ln_t2 + c[3] * ln_t3 + c[4] * ln_t4)
-                    arith += x[s] * la
-                    harm += x[s] / la
-                lam[i, j, k] = 0.5 * (arith + 1.0 / harm)
-                if diff.shape[0] == 0:
-                    continue
-                _mixture_diffusion(mech, t, rho[i, j, k], y, x, dbin, dk)
-                for s in range(n):
-                    diff[s, i, j, k] = dk[s]
+    weighted arithmetic and harmonic means) and, where diff has species, the mixture-averaged
+    diffusion coefficients D_k = (M - X_k M_k) / (P M sum_j!=k X_j / D_jk), from the species'
+    fits. fields: (temp, rho, mu, lam, diff)."""
+    temp, rho, mu, lam, diff = fields
+    n = y.shape[0]
+    x, sv, dk, dbin = work[0], work[1], work[2], work[3:]
+    t = temp[i, j, k]
+    inv_mw = 0.0
+    for s in range(n):
+        inv_mw += y[s] / mech.mw[s]
+    for s in range(n):
+        x[s] = y[s] / (inv_mw * mech.mw[s])
+    ln_t = np.log(t)
+    ln_t2 = ln_t * ln_t
+    ln_t3 = ln_t * ln_t2
+    ln_t4 = ln_t * ln_t3
+    t14 = np.sqrt(np.sqrt(t))
+    visc_fit, cond_fit, mw_ratio, phi_denom = mech.visc_fit, mech.cond_fit, mech.mw_ratio, mech.phi_denom
+    for s in range(n):
+        sv[s] = t14 * (visc_fit[s, 0] + visc_fit[s, 1] * ln_t + visc_fit[s, 2] * ln_t2 + visc_fit[s, 3] * ln_t3
+                       + visc_fit[s, 4] * ln_t4)
+    m = 0.0
+    for a in range(n):
+        den = 0.0
+        for b in range(n):
+            tmp = 1.0 + (sv[a] / sv[b]) * mw_ratio[a, b]
+            den += (tmp * tmp / phi_denom[a, b]) * x[b]
+        m += x[a] * (sv[a] * sv[a]) / den
+    mu[i, j, k] = m
+    t12 = np.sqrt(t)
+    arith = 0.0
+    harm = 0.0
+    for s in range(n):
+        la = t12 * (cond_fit[s, 0] + cond_fit[s, 1] * ln_t + cond_fit[s, 2] * ln_t2 + cond_fit[s, 3] * ln_t3
+                    + cond_fit[s, 4] * ln_t4)
+        arith += x[s] * la
+        harm += x[s] / la
+    lam[i, j, k] = 0.5 * (arith + 1.0 / harm)
+    if diff.shape[0] > 0:
+        _mixture_diffusion(mech, t, rho[i, j, k], y, x, dbin, dk)
+        for s in range(n):
+            diff[s, i, j, k] = dk[s]
+    return True
 
 
-@njit(cache=True, error_model="numpy")
-def energy_cells(mech, y_tr, temp, es, lo, hi):
-    """e_s(T, Y) over [lo, hi): the specific energy ICE carries for the gas."""
-    n = mech.mw.shape[0]
-    y, yt = np.empty(n), np.empty(n - 1)
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
-                es[i, j, k] = sensible_energy(mech, temp[i, j, k], y)
+@njit(cache=True, inline="always", error_model="numpy")
+def _energy_cell(mech, y, i, j, k, fields, work):
+    """e_s(T, Y), the specific energy ICE carries for the gas. fields: (temp, es)."""
+    temp, es = fields
+    es[i, j, k] = sensible_energy(mech, temp[i, j, k], y)
+    return True
 
 
-@njit(cache=True, error_model="numpy")
-def temperature_cells(mech, y_tr, es, temp, lo, hi, t_low, t_high):
-    """T from e_s and Y over [lo, hi) (Uintah's computeTempFromSensibleEnergy, its guess
-    T_REF + e_s / 1000); returns the first cell whose Newton iteration fails, or (-1, 0, 0)."""
-    n = mech.mw.shape[0]
-    y, yt = np.empty(n), np.empty(n - 1)
-    for i in range(lo[0], hi[0]):
-        for j in range(lo[1], hi[1]):
-            for k in range(lo[2], hi[2]):
-                _cell_y(y_tr, i, j, k, yt, y, mech.closure)
-                e = es[i, j, k]
-                t, ok = temperature_from_energy(mech, e, y, T_REF + e / 1000.0, t_low, t_high)
-                if not ok:
-                    return i, j, k
-                temp[i, j, k] = t
-    return -1, 0, 0
+@njit(cache=True, inline="always", error_model="numpy")
+def _temperature_cell(mech, y, i, j, k, fields, work):
+    """T from e_s and Y (Uintah's computeTempFromSensibleEnergy, its guess T_REF + e_s / 1000);
+    False where Newton's iteration fails. fields: (es, temp, t_low, t_high)."""
+    es, temp, t_low, t_high = fields
+    e = es[i, j, k]
+    t, ok = temperature_from_energy(mech, e, y, T_REF + e / 1000.0, t_low, t_high)
+    if ok:
+        temp[i, j, k] = t
+    return ok
+
+
+# kernel(mech, y_tr, lo, hi, fields) over the cells [lo, hi) -> the first failing cell or (-1, 0, 0)
+thermo_cells = _over_cells(_thermo_cell)
+transport_cells = _over_cells(_transport_cell)
+energy_cells = _over_cells(_energy_cell)
+temperature_cells = _over_cells(_temperature_cell)
 
 
 @njit(cache=True, error_model="numpy")

@@ -74,13 +74,13 @@ def _one_cell(mech, t0, y0, rho, dt, steps):
         src, eng = np.zeros_like(y), np.zeros(shape)
         hrr, dtc, lim = np.zeros(shape), np.zeros(shape), np.zeros(shape)
         es = np.zeros(shape)
-        GK.energy_cells(kin, y, temp, es, lo, hi)
+        GK.energy_cells(kin, y, lo, hi, (temp, es))
         st = GK.chemistry_cells(kin, y, temp, rho_a, src, eng, dtc, lim, hrr, lo, hi, dt, 1.0, 1e-10, 1e-12,
                                 1e-12, 0.9, 2.0, 0.1, np.array([200.0, 3500.0]), np.array([120.0, 4900.0]), True)
         assert st[0] == GK.OK
         y = y + src
         es += eng / rho
-        GK.temperature_cells(kin, y, es, temp, lo, hi, 200.0, 3500.0)
+        GK.temperature_cells(kin, y, lo, hi, (es, temp, 200.0, 3500.0))
         out.append((float(temp[0, 0, 0]), y[:, 0, 0, 0].copy()))
     return out
 
