@@ -1,9 +1,14 @@
 """Numba kernels of the gasCombustion model: NASA-7 thermodynamics, reaction rates and the
 constant-volume chemistry sub-integration of one cell, and the mixture's transport properties.
 
-The operations follow Uintah's ReactionMech and gasCombustion::chemStep in the same order,
-so that a deck gives sus's numbers to round-off. `mech` is the Kinetics tuple of a Mechanism
-(gas_mechanism.py): index k over all species, j over the tracked ones (k without the closure).
+The sub-integration follows Uintah's gasCombustion::computeModelSources operation by operation
+(the same sub-steps, accepted and rejected, as sus). The rates are Uintah's ReactionMech's with
+fewer transcendental calls (one exponential per forward and per reverse rate, from constants
+that kinetics() makes once), so that a deck gives sus's numbers to round-off. `mech` is the
+Kinetics tuple of a Mechanism (gas_mechanism.py): index k over all species, j over the tracked
+ones (k without the closure). The hot kernels read its fields into locals and inline chem_rhs:
+a call, or a field read inside a loop, counts references to each of its arrays, which cost more
+than the rates themselves.
 """
 from __future__ import annotations
 
@@ -61,25 +66,24 @@ def _range(t, t_mid):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def cp_over_r(mech, k, t):
-    """cp_k / R_k, the NASA-7 polynomial."""
-    a, i = mech.nasa, _range(t, mech.t_mid)      # 2D indexing: no row views in the hot loops
-    tsqr = t * t
-    tcube = tsqr * t
-    tquad = tcube * t
-    return a[i, k, 0] + a[i, k, 1] * t + a[i, k, 2] * tsqr + a[i, k, 3] * tcube + a[i, k, 4] * tquad
+def _cp_poly(a, i, k, t, t2, t3, t4):
+    """cp_k / R_k, the NASA-7 polynomial of range i (a: Kinetics.nasa)."""
+    return a[i, k, 0] + a[i, k, 1] * t + a[i, k, 2] * t2 + a[i, k, 3] * t3 + a[i, k, 4] * t4
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _h_poly(h, i, k, t, t2, t3, t4, t5):
+    """h_k / R_k (K) of range i from the NASA-7 enthalpy coefficients a0, a1/2, .., a4/5, a5 (h: Kinetics.h_coef)."""
+    return (h[i, k, 0] * t) + (h[i, k, 1] * t2) + (h[i, k, 2] * t3) + (h[i, k, 3] * t4) + (h[i, k, 4] * t5) + h[i, k, 5]
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _h_over_r(mech, k, t):
-    """h_k / R_k (K) from the NASA-7 enthalpy coefficients a0, a1/2, .., a4/5, a5."""
-    h, i = mech.h_coef, _range(t, mech.t_mid)
-    tsqr = t * t
-    tcube = tsqr * t
-    tquad = tcube * t
-    tpent = tquad * t
-    return (h[i, k, 0] * t) + (h[i, k, 1] * tsqr) + (h[i, k, 2] * tcube) + (h[i, k, 3] * tquad) \
-        + (h[i, k, 4] * tpent) + h[i, k, 5]
+    """h_k / R_k (K)."""
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t3 * t
+    return _h_poly(mech.h_coef, _range(t, mech.t_mid), k, t, t2, t3, t4, t4 * t)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -88,41 +92,55 @@ def energy_molar(mech, k, t):
     return RU * (_h_over_r(mech, k, t) - t)
 
 
-@njit(cache=True, inline="always", error_model="numpy")
-def sensible_enthalpy(mech, k, t):
-    """h_s,k = h_k(T) - h_k(T_REF), J/kg."""
-    return mech.r_gas[k] * _h_over_r(mech, k, t) - mech.h_ref[k]
-
+# The loops below read the mechanism's fields into locals first: a field read (or a call with
+# mech) inside a loop counts a reference to each array it touches, every iteration.
 
 @njit(cache=True, inline="always", error_model="numpy")
 def sensible_energy(mech, t, y):
     """e_s(T, Y) = sum_k Y_k (h_s,k(T) - R_k (T - T_REF)), J/kg: the energy ICE carries for the gas."""
+    h, r_gas, h_ref = mech.h_coef, mech.r_gas, mech.h_ref
+    i = _range(t, mech.t_mid)
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t3 * t
+    t5 = t4 * t
     e = 0.0
     for k in range(y.shape[0]):
-        e += y[k] * (sensible_enthalpy(mech, k, t) - mech.r_gas[k] * (t - T_REF))
+        h_s = r_gas[k] * _h_poly(h, i, k, t, t2, t3, t4, t5) - h_ref[k]      # h_k(T) - h_k(T_REF), J/kg
+        e += y[k] * (h_s - r_gas[k] * (t - T_REF))
     return e
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def cv_cp_r(mech, t, y):
     """The mixture's cp, R = sum Y_k R_k (J/(kg K))."""
+    a, r_gas = mech.nasa, mech.r_gas
+    i = _range(t, mech.t_mid)
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t3 * t
     cp = 0.0
     r = 0.0
     for k in range(y.shape[0]):
-        cp += y[k] * mech.r_gas[k] * cp_over_r(mech, k, t)
-        r += y[k] * mech.r_gas[k]
+        cp += y[k] * r_gas[k] * _cp_poly(a, i, k, t, t2, t3, t4)
+        r += y[k] * r_gas[k]
     return cp, r
 
 
 @njit(cache=True, error_model="numpy")
 def temperature_from_energy(mech, e_s, y, t_guess, t_low, t_high):
     """T with e_s(T, Y) = e_s: Newton from the guess clamped to the polynomials' range; (T, ok)."""
+    a, r_gas = mech.nasa, mech.r_gas
     t = min(max(t_guess, t_low), t_high)
     for _ in range(50):
         f = sensible_energy(mech, t, y) - e_s
+        i = _range(t, mech.t_mid)
+        t2 = t * t
+        t3 = t2 * t
+        t4 = t3 * t
         cv = 0.0
         for k in range(y.shape[0]):
-            cv += y[k] * mech.r_gas[k] * (cp_over_r(mech, k, t) - 1.0)
+            cv += y[k] * r_gas[k] * (_cp_poly(a, i, k, t, t2, t3, t4) - 1.0)
         dt = f / cv
         t -= dt
         if abs(dt) < 1e-10 * t:
@@ -140,11 +158,12 @@ LOG_C0 = np.log(1e-6 * P_ATM / RU)     # ln of the standard concentration (mol/c
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _rates(mech, t, log_t, inv_t, t2, t3, t4, conc, g, q):
+def _rates(mech, t, log_t, inv_t, t2, t3, t4, conc, g, q, sdot):
     """Net rate of each reaction (mol/(cm^3 s)) with g = g_k / (Ru T) of every species: the forward
     rate exp(ln A + b ln T - Ea / (Ru T)) (Troe's falloff between its low- and high-pressure
     limits), the third bodies' concentration, and the reverse rate kf / Kc with
-    Kc = exp(sum_R g - sum_P g) (1e-6 P_ATM / (Ru T))^dn, as one exponential of the sum."""
+    Kc = exp(sum_R g - sum_P g) (1e-6 P_ATM / (Ru T))^dn, as one exponential of the sum; each
+    rate added to the species' production rates sdot (mol/(cm^3 s)) as it is made."""
     i = _range(t, mech.t_mid)
     gc = mech.g_coef          # the fields as locals: each mech.<field> in a loop costs a reference count
     rxn_type, reactants, products, n_reac, n_prod, dn = (mech.rxn_type, mech.reactants, mech.products, mech.n_reac,
@@ -191,7 +210,12 @@ def _rates(mech, t, log_t, inv_t, t2, t3, t4, conc, g, q):
             c = products[r, s]
             dg += g[c]
             rev *= conc[c]
-        q[r] = m * (fwd - rev * np.exp(dg))
+        qr = m * (fwd - rev * np.exp(dg))
+        q[r] = qr
+        for s in range(n_reac[r]):
+            sdot[reactants[r, s]] -= qr
+        for s in range(n_prod[r]):
+            sdot[products[r, s]] += qr
 
 
 @njit(cache=True, error_model="numpy")
@@ -199,7 +223,7 @@ def rates_of_progress(mech, t, conc, g, q):
     """Net rate of each reaction (mol/(cm^3 s)) at T and the concentrations conc (mol/cm^3);
     g: scratch for the species' g_k / (Ru T)."""
     t2 = t * t
-    _rates(mech, t, np.log(t), 1.0 / t, t2, t2 * t, t2 * t2, conc, g, q)
+    _rates(mech, t, np.log(t), 1.0 / t, t2, t2 * t, t2 * t2, conc, g, q, np.zeros(conc.shape[0]))
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -213,27 +237,21 @@ def chem_rhs(mech, t, y, rho, cell_vol, conc, g, q, u, sdot, rhs_mass):
     t2 = t * t
     t3 = t2 * t
     t4 = t3 * t
+    t5 = t4 * t
     log_t = np.log(t)
     inv_t = 1.0 / t
     a, h, r_gas, mw = mech.nasa, mech.h_coef, mech.r_gas, mech.mw
-    reactants, products, n_reac, n_prod = mech.reactants, mech.products, mech.n_reac, mech.n_prod
     cp = 0.0
     r_mix = 0.0
     c_scale = 1e-3 * rho
     for k in range(n):
         ry = y[k] * r_gas[k]
-        cp += ry * (a[i, k, 0] + a[i, k, 1] * t + a[i, k, 2] * t2 + a[i, k, 3] * t3 + a[i, k, 4] * t4)
+        cp += ry * _cp_poly(a, i, k, t, t2, t3, t4)
         r_mix += ry
         conc[k] = c_scale * y[k] / mw[k]
-        u[k] = RU * (h[i, k, 0] * t + h[i, k, 1] * t2 + h[i, k, 2] * t3 + h[i, k, 3] * t4 + h[i, k, 4] * (t4 * t)
-                     + h[i, k, 5] - t)
+        u[k] = RU * (_h_poly(h, i, k, t, t2, t3, t4, t5) - t)
         sdot[k] = 0.0
-    _rates(mech, t, log_t, inv_t, t2, t3, t4, conc, g, q)
-    for r in range(q.shape[0]):
-        for s in range(n_reac[r]):
-            sdot[reactants[r, s]] -= q[r]
-        for s in range(n_prod[r]):
-            sdot[products[r, s]] += q[r]
+    _rates(mech, t, log_t, inv_t, t2, t3, t4, conc, g, q, sdot)
     qdot = 0.0
     j = 0
     inv_rho = 1e3 / rho
@@ -438,12 +456,13 @@ def _transport_cell(mech, y, i, j, k, fields, work):
     temp, rho, mu, lam, diff = fields
     n = y.shape[0]
     x, sv, dk, dbin = work[0], work[1], work[2], work[3:]
+    mw = mech.mw
     t = temp[i, j, k]
     inv_mw = 0.0
     for s in range(n):
-        inv_mw += y[s] / mech.mw[s]
+        inv_mw += y[s] / mw[s]
     for s in range(n):
-        x[s] = y[s] / (inv_mw * mech.mw[s])
+        x[s] = y[s] / (inv_mw * mw[s])
     ln_t = np.log(t)
     ln_t2 = ln_t * ln_t
     ln_t3 = ln_t * ln_t2
@@ -471,7 +490,7 @@ def _transport_cell(mech, y, i, j, k, fields, work):
         harm += x[s] / la
     lam[i, j, k] = 0.5 * (arith + 1.0 / harm)
     if diff.shape[0] > 0:
-        _mixture_diffusion(mech, t, rho[i, j, k], y, x, dbin, dk)
+        _mixture_diffusion(mech.r_gas, mw, mech.diff_fit, t, rho[i, j, k], y, x, dbin, dk)
         for s in range(n):
             diff[s, i, j, k] = dk[s]
     return True
@@ -518,18 +537,25 @@ def diffusion_sources(mech, y_tr, temp, rho, y_src, eng_src, dims, lo, hi, dx, d
     hs = np.zeros((n,) + sh)
     inv_mw = np.zeros(sh)
     yt, yc = np.empty(n - 1), np.empty(n)
+    mw, r_gas, h_ref, h_coef, diff_fit = mech.mw, mech.r_gas, mech.h_ref, mech.h_coef, mech.diff_fit
     for i in range(sh[0]):
         for j in range(sh[1]):
             for k in range(sh[2]):
                 _cell_y(y_tr, i, j, k, yt, yc, mech.closure)
                 m = 0.0
                 for s in range(n):
-                    m += yc[s] / mech.mw[s]
+                    m += yc[s] / mw[s]
                 inv_mw[i, j, k] = m
+                t = temp[i, j, k]
+                ir = _range(t, mech.t_mid)
+                t2 = t * t
+                t3 = t2 * t
+                t4 = t3 * t
+                t5 = t4 * t
                 for s in range(n):
                     y_all[s, i, j, k] = yc[s]
-                    x[s, i, j, k] = yc[s] / (m * mech.mw[s])
-                    hs[s, i, j, k] = sensible_enthalpy(mech, s, temp[i, j, k])
+                    x[s, i, j, k] = yc[s] / (m * mw[s])
+                    hs[s, i, j, k] = r_gas[s] * _h_poly(h_coef, ir, s, t, t2, t3, t4, t5) - h_ref[s]
     jf = np.zeros((3, n) + sh)
     phi = np.zeros((3,) + sh)
     yf, dk, xf, dbin = np.empty(n), np.empty(n), np.empty(n), np.empty((n, n))
@@ -548,11 +574,11 @@ def diffusion_sources(mech, y_tr, temp, rho, y_src, eng_src, dims, lo, hi, dx, d
                     t_f = 0.5 * (temp[li, lj, lk] + temp[i, j, k])
                     for s in range(n):
                         yf[s] = 0.5 * (y_all[s, li, lj, lk] + y_all[s, i, j, k])
-                    _mixture_diffusion(mech, t_f, rho_f, yf, xf, dbin, dk)
+                    _mixture_diffusion(r_gas, mw, diff_fit, t_f, rho_f, yf, xf, dbin, dk)
                     tot = 0.0
                     for s in range(n):
                         grad = -(x[s, i, j, k] - x[s, li, lj, lk]) / dx[d]
-                        jstar[s] = rho_f * dk[s] * mech.mw[s] * inv_f * grad
+                        jstar[s] = rho_f * dk[s] * mw[s] * inv_f * grad
                         tot += jstar[s]
                     flux = 0.0
                     for s in range(n):
@@ -589,18 +615,19 @@ def diffusion_sources(mech, y_tr, temp, rho, y_src, eng_src, dims, lo, hi, dx, d
 
 
 @njit(cache=True, error_model="numpy")
-def _mixture_diffusion(mech, t, rho, y, x, dbin, dk):
+def _mixture_diffusion(r_gas, mw, diff_fit, t, rho, y, x, dbin, dk):
     """Mixture-averaged diffusion coefficients D_k (m^2/s) of a state (T, rho, Y) into dk
-    (Uintah's ReactionMech::mixtureAvgDiffCoeffs)."""
+    (Uintah's ReactionMech::mixtureAvgDiffCoeffs), from the mechanism's r_gas, mw and diff_fit
+    (three arrays, not the Kinetics tuple: a call counts a reference to each array it takes)."""
     n = y.shape[0]
     r_mix = 0.0
     for s in range(n):
-        r_mix += y[s] * mech.r_gas[s]
+        r_mix += y[s] * r_gas[s]
     inv_mw = 0.0
     for s in range(n):
-        inv_mw += y[s] / mech.mw[s]
+        inv_mw += y[s] / mw[s]
     for s in range(n):
-        x[s] = y[s] / (inv_mw * mech.mw[s])
+        x[s] = y[s] / (inv_mw * mw[s])
     m_mix = 1.0 / inv_mw
     p = rho * r_mix * t
     ln_t = np.log(t)
@@ -610,8 +637,8 @@ def _mixture_diffusion(mech, t, rho, y, x, dbin, dk):
     t12 = np.sqrt(t)
     for a in range(n):
         for b in range(a + 1, n):
-            c = mech.diff_fit[a, b]
-            v = t * t12 * (c[0] + c[1] * ln_t + c[2] * ln_t2 + c[3] * ln_t3 + c[4] * ln_t4)
+            v = t * t12 * (diff_fit[a, b, 0] + diff_fit[a, b, 1] * ln_t + diff_fit[a, b, 2] * ln_t2
+                           + diff_fit[a, b, 3] * ln_t3 + diff_fit[a, b, 4] * ln_t4)
             dbin[a, b] = v
             dbin[b, a] = v
     for a in range(n):
@@ -619,4 +646,4 @@ def _mixture_diffusion(mech, t, rho, y, x, dbin, dk):
         for b in range(n):
             if b != a:
                 s_ += x[b] / dbin[b, a]
-        dk[a] = (m_mix - x[a] * mech.mw[a]) / (p * m_mix * s_)
+        dk[a] = (m_mix - x[a] * mw[a]) / (p * m_mix * s_)
