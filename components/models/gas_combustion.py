@@ -178,7 +178,7 @@ class GasCombustion:
     def thermo(self, patch, temp, cv, gamma, dw, lo, hi):
         """cv and gamma of the mixture at (temp, Y of dw, or Y itself: an (nt, ...) array) over [lo, hi)."""
         y = dw if isinstance(dw, np.ndarray) else self._y_stack(dw, patch)
-        bad = GK.thermo_cells(self.kin, y, temp, cv, gamma, lo, hi)
+        bad = GK.thermo_cells(self.kin, y, lo, hi, (temp, cv, gamma))
         if bad[0] >= 0:
             raise RuntimeError(f"gasCombustion: the mixture's cv is negative in cell {self._cell(patch, bad)}")
 
@@ -186,7 +186,7 @@ class GasCombustion:
         """e_s(T, Y) / T over [lo, hi): the 'cv' with which ICE's m cv T is the carried energy m e_s."""
         y = self._y_stack(dw, patch, view)
         es = np.zeros(temp.shape)
-        GK.energy_cells(self.kin, y, temp, es, lo, hi)
+        GK.energy_cells(self.kin, y, lo, hi, (temp, es))
         sl = tuple(slice(a, b) for a, b in zip(lo, hi))
         out = np.ones(temp.shape)
         out[sl] = es[sl] / temp[sl]
@@ -194,7 +194,7 @@ class GasCombustion:
 
     def temperature(self, patch, es, y, temp, lo, hi):
         """temp = T(e_s, Y) over [lo, hi) (es and temp may be one array)."""
-        bad = GK.temperature_cells(self.kin, y, es, temp, lo, hi, self.mech.t_low, self.mech.t_high)
+        bad = GK.temperature_cells(self.kin, y, lo, hi, (es, temp, self.mech.t_low, self.mech.t_high))
         if bad[0] >= 0:
             raise RuntimeError(f"gasCombustion: no temperature for the sensible energy in cell {self._cell(patch, bad)} "
                                "(Newton's method did not converge)")
@@ -296,7 +296,7 @@ class GasCombustion:
         mu = new_dw.allocate(I.viscosity, m, patch)
         lam = new_dw.allocate(thermalCond, m, patch)
         diff = np.zeros((len(self.mech.names),) + temp.shape)
-        GK.transport_cells(self.kin, self._y_stack(old_dw, patch), temp, rho, mu, lam, diff, b.olo, b.ohi)
+        GK.transport_cells(self.kin, self._y_stack(old_dw, patch), b.olo, b.ohi, (temp, rho, mu, lam, diff))
         if not self.do_diffusion:
             mu[...] = 0.0
             lam[...] = 0.0

@@ -62,6 +62,7 @@ class Mechanism:
     products: np.ndarray
     arrhenius: np.ndarray   # (r, 6): A, b, Ea (J/mol) and the falloff's low limit A0, b0, Ea0
     efficiencies: np.ndarray  # (r, n): third-body efficiencies (unused for elementary ones)
+    eff_default: np.ndarray   # (r,): the efficiency of the species a reaction does not list
     troe: np.ndarray        # (r, 4): a, T3, T1, T2
     troe_t2: np.ndarray     # (r,) 1 where the 4-parameter form is given
     visc_fit: np.ndarray    # (n, 5): sqrt(mu) = T^0.25 poly(ln T)
@@ -191,7 +192,7 @@ def read_mechanism(filename, closure_name) -> Mechanism:
     rtype = np.zeros(nr, dtype=np.int64)
     reac, prod = np.full((nr, MAX_SIDE), -1, dtype=np.int64), np.full((nr, MAX_SIDE), -1, dtype=np.int64)
     arr = np.zeros((nr, 6))
-    eff = np.ones((nr, n))
+    eff, eff_default = np.ones((nr, n)), np.ones(nr)
     troe, troe_t2 = np.zeros((nr, 4)), np.zeros(nr, dtype=np.int64)
     for r, rx in enumerate(rxn_nodes):
         if rx.attr("reversible", default="yes") != "yes":
@@ -224,7 +225,8 @@ def read_mechanism(filename, closure_name) -> Mechanism:
         if rtype[r] != ELEMENTARY:
             e = rx.child("efficiencies")
             if e is not None:
-                eff[r, :] = e.attr("default", "float", 1.0)
+                eff_default[r] = e.attr("default", "float", 1.0)
+                eff[r, :] = eff_default[r]
                 for s, val in _tokens(rx, "efficiencies"):
                     if s not in index:
                         raise e.error(f"efficiency of unknown species {s}")
@@ -252,7 +254,7 @@ def read_mechanism(filename, closure_name) -> Mechanism:
     root.mark_used()
     return Mechanism(names, index[closure_name], mw, r_gas, float(t_mid), float(t_low), float(t_high), nasa,
                      np.ascontiguousarray(h_coef), np.ascontiguousarray(g_coef), h_ref,
-                     rtype, reac, prod, arr, eff, troe, troe_t2, visc, cond, diff)
+                     rtype, reac, prod, arr, eff, eff_default, troe, troe_t2, visc, cond, diff)
 
 
 __all__ = ["Mechanism", "read_mechanism", "find_mechanism_file", "InputError"]

@@ -44,7 +44,7 @@ def rhs_microseconds():
     y[-1] = 1.0 - y[:-1].sum()
     work = [np.empty(9) for _ in range(4)] + [np.empty(23), np.empty(8)]
 
-    @njit
+    @njit(error_model="numpy")          # as the chemistry kernel, into which chem_rhs is inlined
     def loop(kin, y, conc, g, u, sdot, q, k1, n):
         s = 0.0
         for i in range(n):
