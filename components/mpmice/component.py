@@ -357,7 +357,8 @@ class MPMICE(MPMICETasks, Component):
         if not self.rigid:
             sched.add_task(Task("MPMICE::computeCCVelAndTempRates", self.velocity_rates, ms)
                            .requires(OLD, FL.delT).requires(NEW, I.mom_L_ME_CC).requires(NEW, MI.mom_mpm_CC)
-                           .requires(NEW, I.mass_L_CC).computes(MI.dVdt_CC))
+                           .requires(NEW, I.mass_L_CC).requires(NEW, M.gMass).requires(NEW, M.gVolume)
+                           .requires(NEW, M.gVelocityStar).computes(MI.dVdt_CC))
             sched.add_task(Task("MPMICE::interpolateCCToNC", self.interpolate_cc_to_nc, ms)
                            .requires(OLD, FL.delT).requires(NEW, MI.dVdt_CC, G, 1)
                            .modifies(M.gVelocityStar).modifies(M.gAcceleration))

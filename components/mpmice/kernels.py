@@ -48,6 +48,23 @@ def velocity_rates(mom_me, mom_mpm, mass_L, dt, lo, hi, out):
 
 
 @njit(cache=True)
+def velocity_rates_extra(mom_me, mass_L, vstar, dt, lo, hi, olo, ohi, out):
+    """Step 10 -> 13 in the extra cells (computeCCVelAndTempRates over the extra cells):
+    dV/dt = (u_ME - v*) / dt, u_ME the exchanged velocity the face's condition put there and
+    v* the cell mean of the solid's nodal v* (the extra cell's own nodes, not the interior's)."""
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                if lo[0] <= i < hi[0] and lo[1] <= j < hi[1] and lo[2] <= k < hi[2]:
+                    continue
+                m = mass_L[i, j, k]
+                if m <= 0.0:
+                    continue
+                for c in range(3):
+                    out[i, j, k, c] = (mom_me[i, j, k, c] / m - vstar[i, j, k, c]) / dt
+
+
+@njit(cache=True)
 def cc_to_nc_increment(dvdt, cc_low, node_low, nlo, nhi, dims, dt, gvs, gacc):
     """Step 13 (interpolateCCToNC): every node [nlo, nhi) takes the mean dV/dt of the
     cells around it: v*_i += dt a_i, a_i += a_i(CC)."""

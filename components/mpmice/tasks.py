@@ -118,11 +118,14 @@ class MPMICETasks:
         K.nc_to_cc_scalar(gmass, gq, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
                           self.tiny * b.vol, self.solid_temp[m], out)
 
-    def _extra_vector(self, patch, q, m, b):
-        """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere."""
+    def _extra_vector(self, patch, q, m, b, only_symmetry=False):
+        """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere (unless
+        only_symmetry)."""
         for name in patch.boundary_faces:
             i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
             kind = SYMMETRY if self.ice.bcs.table[name]["Velocity"][m][0] == SYMMETRY else NEUMANN
+            if only_symmetry and kind != SYMMETRY:
+                continue
             bc_vector(q, i // 2, i % 2, kind, np.zeros(3), 0.0, b.lo, b.hi, b.olo, b.ohi)
 
     # -- initialization: the fluids from their geometry (or what the particles leave) -------
@@ -463,9 +466,21 @@ class MPMICETasks:
         dt = old_dw.get_reduction(FL.delT)
         for m in matls:
             out = new_dw.allocate(MI.dVdt_CC, m, patch)
-            K.velocity_rates(new_dw.get(I.mom_L_ME_CC, m, patch), new_dw.get(MI.mom_mpm_CC, m, patch),
-                             new_dw.get(I.mass_L_CC, m, patch), dt, b.lo, b.hi, out)
+            mom_me, mass_L = new_dw.get(I.mom_L_ME_CC, m, patch), new_dw.get(I.mass_L_CC, m, patch)
+            K.velocity_rates(mom_me, new_dw.get(MI.mom_mpm_CC, m, patch), mass_L, dt, b.lo, b.hi, out)
             self._extra_vector(patch, out, m, b)
+            open_faces = [f for f in patch.boundary_faces
+                          if self.ice.bcs.table[f]["Velocity"][m][0] != SYMMETRY]
+            if open_faces:      # Uintah: the rate of every extra cell, then set_if_sym_BC
+                vstar = np.zeros(out.shape)
+                bb, cc_low, node_low, dims, n_lo, n_hi = self._geom(patch)
+                sym_lo, sym_hi = self._sym(m)
+                K.nc_to_cc(new_dw.get(M.gMass, m, patch), new_dw.get(M.gVolume, m, patch),
+                           new_dw.get(M.gVelocityStar, m, patch), node_low, cc_low, b.olo, b.ohi, dims, sym_lo,
+                           sym_hi, n_lo, n_hi, self.tiny * b.vol, self.mpm.materials[m].density, b.vol,
+                           np.zeros(out.shape[:3]), _NO1, vstar, _NO1)
+                K.velocity_rates_extra(mom_me, mass_L, vstar, dt, b.lo, b.hi, b.olo, b.ohi, out)
+                self._extra_vector(patch, out, m, b, only_symmetry=True)
 
     def interpolate_cc_to_nc(self, patch, matls, old_dw, new_dw):
         """interpolateCCToNC: v*_i += dt <dV/dt>, a_i += <dV/dt> over the cells around node i."""
