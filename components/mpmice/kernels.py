@@ -487,4 +487,8 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
                     x = min((on / od - 1.0) * abs(us) * dt_dx, (md * on - mn * od) / (md * (od + on)), cap)
                     e[i, j, k] = x if us > 0.0 else -x
                     moved = True
+                elif on > od and mn * od > md * on:
+                    x = min((mn * od - md * on) / (mn * (od + on)), cap)
+                    e[i, j, k] = -x if us > 0.0 else x
+                    moved = True
     return moved
