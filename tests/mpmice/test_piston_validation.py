@@ -11,7 +11,7 @@ The bound 0.03 is about twice the largest of them, and far from what a wrong flo
 specific-volume evolution gives: an isothermal gas would be 21 % low at V1/V2 = 1.82.
 
 The deck's 200 cells up to t = 0.8 s (V1/V2 = 5.03, where Uintah's pistonValidation.ups
-stops the piston): the bottom pressure is 0.0007 off the adiabat and 0.08 % of the trapped
+stops the piston): the bottom pressure is 0.0002 off the adiabat and 0.08 % of the trapped
 gas is in cells the piston fills (solid volume fraction > 0.99). Before the fluid next to a
 moving solid crossed the faces as open as its neighbour (docs/MPMICE.md, step 12) 1.5 % of
 the gas was left there, carried with the piston, and the pressure was 0.025 low; Uintah's
