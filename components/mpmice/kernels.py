@@ -462,6 +462,11 @@ def open_fraction(solid_vf, fluid_vf, lo, hi, out):
                 out[i, j, k] = f
 
 
+# the open part below which the solid's cell takes no fluid from its neighbour (open_face_transfers):
+# fluid moved into a cell the solid nearly fills is squeezed there and carried with the solid
+OPEN_FILL_MIN = 0.01
+
+
 @njit(cache=True)
 def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e):
     """Step 12 next to a moving solid, per face [flo, fhi) along d (R cell = face + sh, L = R - e_d):
@@ -477,8 +482,11 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
     which lies against the face, as though the face were as open as the neighbour: u_s o_n
     dt/dx of the cell's volume, where ICE's flux at the fluid's mean density carries about
     u o_d dt/dx. |e| <= cap on each face (a face's own bound, the same on the patches either
-    side of it). Returns whether any face moves fluid so: never where the solids' particles
-    are at rest."""
+    side of it). Where instead the donor's fluid is the less dense per open volume (it rides
+    with the solid and is not compressed with the fluid ahead of it), the neighbour's fluid
+    moves in: e = the fraction (m_n o_d - m_d o_n) / (m_n (o_d + o_n)) of m_n that makes the
+    two equal, signed against u_s, |e| <= cap, and only where o_d >= OPEN_FILL_MIN. Returns
+    whether any face moves fluid so: never where the solids' particles are at rest."""
     moved = False
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     for i in range(flo[0], fhi[0]):
@@ -503,5 +511,9 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
                 if on > od and md * on > mn * od:
                     x = min((on / od - 1.0) * abs(us) * dt_dx, (md * on - mn * od) / (md * (od + on)), cap)
                     e[i, j, k] = x if us > 0.0 else -x
+                    moved = True
+                elif on > od and od >= OPEN_FILL_MIN and mn * od > md * on:
+                    x = min((mn * od - md * on) / (mn * (od + on)), cap)
+                    e[i, j, k] = -x if us > 0.0 else x
                     moved = True
     return moved

@@ -6,8 +6,9 @@ weighted by the solids' volume fractions in the two cells of a face), not the so
 exchanged face velocity: the momentum exchange gives a solid at rest the velocity of a gas
 flowing through its cells (on Uintah's slip deck below the copper's face velocity reaches the
 air's 10 m/s on the faces at its edge, and transfers following it moved the air after one step
-by 7.6e-3 of its largest velocity). A solid whose particles advance into a more open cell in
-which the fluid is less dense per open volume moves the fluid; one at rest in a stream, or
+by 7.6e-3 of its largest velocity). A solid whose particles advance into a more open cell moves
+fluid across the face until the densities per open volume of the two cells are equal (out of
+its cell where its fluid is denser, into it where less dense); one at rest in a stream, or
 retreating, moves none.
 """
 import pathlib
@@ -71,6 +72,27 @@ def test_the_cap_and_the_equal_densities_bound():
     K.open_face_transfers((vel,), (vf,), 1.0 - vf, mass, np.zeros(3, np.int64), 1, np.array([0, 3, 0], np.int64),
                           np.array([1, 4, 1], np.int64), 10.0, 1.0, e2)
     assert e2[0, 3, 0] == pytest.approx((1.0 - 0.3) / 1.3, rel=1e-12)
+
+
+def test_fluid_less_dense_in_the_solids_cell_is_filled_from_the_neighbour():
+    """The fluid in the advancing solid's cell less dense per open volume than its more open
+    neighbour's (it rides with the solid and is not compressed with the fluid ahead): the
+    neighbour's fluid moves in, the fraction (m_n o_d - m_d o_n) / (m_n (o_d + o_n)) of m_n that
+    makes the two densities per open volume equal, signed against the solid's motion."""
+    shape = (1, 6, 1)
+    vf = np.zeros(shape)
+    vf[0, :3, 0] = (1.0, 1.0, 0.7)
+    vel = np.zeros(shape + (3,))
+    vel[0, :3, 0, 1] = 1e-3
+    mass = np.ones(shape)
+    mass[0, :2, 0] = 0.0
+    mass[0, 2, 0] = 0.1                     # 0.33 per open volume in cell 2, 1 in cell 3
+    e = np.full(shape, np.nan)
+    for cap, want in ((1.0, (1.0 * 0.3 - 0.1 * 1.0) / (1.0 * 1.3)), (0.15, 0.15)):
+        assert K.open_face_transfers((vel,), (vf,), 1.0 - vf, mass, np.zeros(3, np.int64), 1,
+                                     np.array([0, 1, 0], np.int64), np.array([1, 6, 1], np.int64), 10.0, cap, e)
+        assert e[0, 3, 0] == pytest.approx(-want, rel=1e-12)           # cell 3 -> cell 2
+        assert np.count_nonzero(e[0, 1:, 0]) == 1
 
 
 def test_slip_deck_solid_at_rest_in_a_stream_moves_no_fluid(tmp_path):
