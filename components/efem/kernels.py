@@ -347,7 +347,8 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
     material's volume flux (upwind stress). u (X, Y, 2): element velocities, carried as
     momentum sum_m rho_m phi_m u (upwind u). Walls carry nothing; an inflow face brings its
     material (volume fraction 1) at its velocity, an outflow face takes the element's
-    content (first order at both).
+    content and, where the flow turns inward, brings the element's fluids back filled to
+    one (first order at both).
     """
     nm = phi.shape[0]
     t = 1 - d
@@ -387,6 +388,25 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
                         flux = ac * phi[m, iu, ju]
                         F[m, f] = flux if c > 0.0 else -flux
                         mom += rho_m[m] * flux
+                    for q in range(2):
+                        Pm[f, q] = (mom if c > 0.0 else -mom) * u[iu, ju, q]
+                elif walls[face] == WALL_NONE:
+                    # backflow through an outflow face: the outside holds the element's fluids,
+                    # full (zero gradient), so the volume the pressure equation lets in arrives
+                    ie = E - 1 if E >= N[d] else E
+                    iu, ju = (ie - c0[0], T - c0[1]) if d == 0 else (T - c0[0], ie - c0[1])
+                    wet = 0.0
+                    for m in range(nm):
+                        if solid_of[m] < 0:
+                            wet += phi[m, iu, ju]
+                    if wet < fill_min:
+                        continue
+                    mom = 0.0
+                    for m in range(nm):
+                        if solid_of[m] < 0:
+                            flux = ac * phi[m, iu, ju] / wet
+                            F[m, f] = flux if c > 0.0 else -flux
+                            mom += rho_m[m] * flux
                     for q in range(2):
                         Pm[f, q] = (mom if c > 0.0 else -mom) * u[iu, ju, q]
                 continue

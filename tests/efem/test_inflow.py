@@ -1,6 +1,8 @@
 """Inflow and outflow faces: water entering a full box through x- at 0.2 m/s and leaving
 through x+ (p = 0) between slip walls is uniform plug flow at once (the exact solution of
-the incompressible equations): u = 0.2 m/s everywhere, the box stays full."""
+the incompressible equations): u = 0.2 m/s everywhere, the box stays full. Drawn out
+through x- instead, the water enters through the outflow face: the same plug flow
+backwards, and the box stays full (the outflow face brings its element's fluid in)."""
 import numpy as np
 
 from framework.archiver import DataArchive
@@ -24,6 +26,16 @@ def test_plug_flow_through_inflow_and_outflow(tmp_path):
     a = DataArchive(ctl.archiver.dir)
     v, _ = a.read("g.velocity", 0, -1)
     np.testing.assert_allclose(v[..., 0], 0.2, atol=1e-9)
+    np.testing.assert_allclose(v[..., 1], 0.0, atol=1e-9)
+    f, _ = a.read("vol_frac_CC", 0, -1)
+    np.testing.assert_allclose(f, 1.0, atol=1e-12)
+
+
+def test_backflow_through_the_outflow_face_keeps_the_box_full(tmp_path):
+    ctl = run_deck(_deck().replace("[0.2, 0, 0]", "[-0.2, 0, 0]"), tmp_path)
+    a = DataArchive(ctl.archiver.dir)
+    v, _ = a.read("g.velocity", 0, -1)
+    np.testing.assert_allclose(v[..., 0], -0.2, atol=1e-9)
     np.testing.assert_allclose(v[..., 1], 0.0, atol=1e-9)
     f, _ = a.read("vol_frac_CC", 0, -1)
     np.testing.assert_allclose(f, 1.0, atol=1e-12)
