@@ -51,33 +51,49 @@ AXI = 8
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _gimp1(r, l, inv):
-    """uGIMP weight and d/dr (cell units) for node-particle offset r and
-    half-width l (inv = 0.5/l): the hat function averaged over [r-l, r+l] (Bardenhagen &
-    Kober 2004), written branch-free via the hat's antiderivative."""
-    c1 = min(max(r + l, -1.0), 1.0)
-    c0 = min(max(r - l, -1.0), 1.0)
-    S = (c1 - c0 - 0.5 * (c1 * abs(c1) - c0 * abs(c0))) * inv
-    dS = (max(0.0, 1.0 - abs(r + l)) - max(0.0, 1.0 - abs(r - l))) * inv
-    return S, dS
+def _gimp3(xi, lc):
+    """uGIMP weights and d/dxi (cell units) of the three nodes around a particle at xi (cell units)
+    with half-width lc: the hat function averaged over [xi - lc, xi + lc] (Bardenhagen & Kober
+    2004), in Uintah's GIMPInterpolator form: three pieces by where the particle sits in its cell,
+    so a node beyond the particle's reach gets exactly 0 (not a round-off square). Returns the base
+    node (nodes ix - 1 .. ix + 1 when xi - ix <= 1/2, else ix .. ix + 2) and the values ascending."""
+    ix = np.floor(xi)
+    p0 = xi - ix
+    p1 = xi - (ix + 1.0)
+    lo = p0 <= 0.5
+    p2 = xi - (ix - 1.0) if lo else xi - (ix + 2.0)
+    q = 0.25 / lc
+    near0 = p0 <= lc                # the particle reaches the node below ix
+    near1 = p0 > 1.0 - lc           # ... the node above ix + 1
+    a0 = 1.0 + lc - p0
+    a1 = 1.0 + lc + p1
+    a2 = 1.0 + lc - p2 if near0 else 1.0 + lc + p2
+    c0 = 1.0 - (p0 * p0 + lc * lc) * (2.0 * q)
+    c1 = 1.0 - (p1 * p1 + lc * lc) * (2.0 * q)
+    f0 = c0 if near0 else (a0 * a0 * q if near1 else 1.0 - p0)
+    f1 = a1 * a1 * q if near0 else (c1 if near1 else 1.0 + p1)
+    f2 = a2 * a2 * q if near0 or near1 else 0.0
+    d0 = -p0 * (4.0 * q) if near0 else (-a0 * (2.0 * q) if near1 else -1.0)
+    d1 = a1 * (2.0 * q) if near0 else (-p1 * (4.0 * q) if near1 else 1.0)
+    d2 = -a2 * (2.0 * q) if near0 else (a2 * (2.0 * q) if near1 else 0.0)
+    if lo:
+        return int(ix) - 1, f2, f0, f1, d2, d0, d1
+    return int(ix), f0, f1, f2, d0, d1, d2
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _ax(kind, active, x, a0, ih, l):
-    """Base node (global index) and weights / d/dx of one axis: (i, w0, w1, w2, g0, g1, g2)."""
+def _ax(kind, active, x, a0, ih, l, h):
+    """Base node (global index) and weights / d/dx of one axis: (i, w0, w1, w2, g0, g1, g2).
+    h is the spacing, 1 / ih: GIMP places the particle at (x - a0) / h cells as Uintah's
+    Level::positionToIndex does, so its pieces and zeros fall where Uintah's do."""
     if not active:
         return 0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    xi = (x - a0) * ih
     if kind == LINEAR:
+        xi = (x - a0) * ih
         i = int(np.floor(xi))
         f = xi - i
         return i, 1.0 - f, f, 0.0, -ih, ih, 0.0
-    i = int(np.floor(xi + 0.5)) - 1
-    lc = l * ih
-    inv = 0.5 / lc
-    s0, d0 = _gimp1(xi - i, lc, inv)
-    s1, d1 = _gimp1(xi - (i + 1), lc, inv)
-    s2, d2 = _gimp1(xi - (i + 2), lc, inv)
+    i, s0, s1, s2, d0, d1, d2 = _gimp3((x - a0) / h, l / h)
     return i, s0, s1, s2, d0 * ih, d1 * ih, d2 * ih
 
 
@@ -108,7 +124,7 @@ def _ax_axi(kind, x, a0, ih, l):
     GIMP: the averages of the hat over the particle's r extent [r - l, r + l] (cut at the
     axis) weighted by r (Uintah's AxiGIMP, Nairn's axisymmetric GIMP), base node as GIMP."""
     if kind == LINEAR:
-        i, w0, w1, w2, g0, g1, g2 = _ax(kind, True, x, a0, ih, l)
+        i, w0, w1, w2, g0, g1, g2 = _ax(kind, True, x, a0, ih, l, 1.0)
         rinv = 1.0 / x
         return i, w0, w1, w2, g0, g1, g2, w0 * rinv, w1 * rinv, 0.0
     h = 1.0 / ih
@@ -189,7 +205,7 @@ def _axis_r(kind, act, px, lp, p, q, anchor, ih):
 def _axis(kind, act, d, px, lp, p, q, anchor, ih):
     if kind == CPDI:
         return _cpdi_ax(act, d, px[p, d], lp, p, q, anchor[d], ih[d])
-    return _ax(kind, act & (1 << d) != 0, px[p, d], anchor[d], ih[d], lp[p, d])
+    return _ax(kind, act & (1 << d) != 0, px[p, d], anchor[d], ih[d], lp[p, d], ih[3 + d])
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -265,7 +281,7 @@ def _ax_put(kind, act, d, px, lp, p, c, anchor, ih, q, sw):
     if kind == CPDI:
         i, w0, w1, w2, g0, g1, g2 = _cpdi_ax(act, d, px[p, d], lp, p, c, anchor[d], ih[d])
     else:
-        i, w0, w1, w2, g0, g1, g2 = _ax(kind, True, px[p, d], anchor[d], ih[d], lp[p, d])
+        i, w0, w1, w2, g0, g1, g2 = _ax(kind, True, px[p, d], anchor[d], ih[d], lp[p, d], ih[3 + d])
     sw[d, 0, q] = w1
     if kind != LINEAR:
         sw[d, 1, q] = w0
@@ -333,10 +349,11 @@ def _counts(kind, act):
 
 @njit(cache=True, inline="always")
 def _inv_dx(dx):
+    """The inverse spacings, then the spacings (GIMP places particles by dividing by them)."""
     ih = np.empty(3)
     for d in range(3):
         ih[d] = 1.0 / dx[d] if dx[d] != 0.0 else 0.0
-    return ih[0], ih[1], ih[2]
+    return ih[0], ih[1], ih[2], float(dx[0]), float(dx[1]), float(dx[2])
 
 
 @njit(cache=True, fastmath=FM)
@@ -350,7 +367,7 @@ def cpdi_domains(act, F, lp, dx, lcrit, out):
     <smoothcyl>'s turned sectors). Where a corner
     r_3 +- r_1 +- r_2 reaches beyond lcrit cells it is scaled back to lcrit and the r_k are
     rebuilt from those corners (Uintah's cpdi_lcrit)."""
-    ih0, ih1, ih2 = _inv_dx(dx)
+    ih0, ih1, ih2 = _inv_dx(dx)[:3]
     ih = (ih0, ih1, ih2)
     for p in range(F.shape[0]):
         r = np.empty((3, 3))        # r[k, d]: component d of r_k, in cells

@@ -45,7 +45,9 @@ NC = VarType.NC
 
 @njit(cache=True, inline="always")
 def _inv(dx, act):
-    return (1.0 / dx[0] if act & 1 else 0.0), (1.0 / dx[1] if act & 2 else 0.0), (1.0 / dx[2] if act & 4 else 0.0)
+    """The inverse spacings of the active axes, then the spacings (as shape._inv_dx)."""
+    return ((1.0 / dx[0] if act & 1 else 0.0), (1.0 / dx[1] if act & 2 else 0.0), (1.0 / dx[2] if act & 4 else 0.0),
+            float(dx[0]), float(dx[1]), float(dx[2]))
 
 
 @njit(cache=True, fastmath=FM)

@@ -8,10 +8,10 @@ Mie-Gruneisen EOS, Gurson yield with a Gaussian initial porosity) hits a rigid w
 - against sus: the deck with the cylinder's <res>[2,2,2]</res> (3013 particles, not 27 per
   cell), <max_Timesteps>30</max_Timesteps>, output every 10 steps, p.porosity saved,
   <stress_update>usl</stress_update> (Uintah's) and the linear interpolator (with
-  <extraCells>[0,0,0]</extraCells>, as Uintah requires for it). With GIMP the contact's
-  prominences (friction_LR's, which specified_friction uses) take in particles exactly at the
-  edge of a node's GIMP support when sus's round-off gives them a weight of 1e-31 and pysus's
-  exactly 0: at two nodes of the first step, and the runs part from there. With linear
+  <extraCells>[0,0,0]</extraCells>, as Uintah requires for it). With GIMP (and usl) the copy
+  parts from sus in the first step at four particles by the wall (two mirrored pairs; velocity
+  4.4e-2 of the largest), the same with GIMP weights in Uintah's own form: the cause lies in
+  the contact, not in the weights. With linear
   weights there is no such edge; both codes run the copy stably for 30 steps (the impact
   end goes unstable in both around step 32). tests/mpm/data/sus_gurson.npz holds, from
   sus's run of it with output every step, the times of steps 10, 20, 30 and there p.stress,
