@@ -113,7 +113,7 @@ class SimpleBurn(IceSources):
             .modifies(I.sp_vol_L_CC)
 
     name = "Simple_Burn"
-    volume_of_solid = False     # the product's new volume: at (p, T_product); True: burned * v_solid
+    volume_of_solid = True      # the product's new volume: burned * v_solid (Uintah's); False: at (p, T_product)
     cell_ghost = ()             # Steady_Burn reads the cell state of the 26 neighbours too
     solid_temp_dw = NEW         # the solids' temp_CC: this step's (Unsteady_Burn: last step's, OLD)
 
@@ -126,6 +126,8 @@ class SimpleBurn(IceSources):
             .computes(ML.pBurnFraction, matls=r) \
             .computes(ML.modelMass_src, matls=g).computes(ML.modelMom_src, matls=g) \
             .computes(ML.modelEng_src, matls=g).computes(ML.modelVol_src, matls=g).computes(ML.totalMassBurned).computes(ML.totalHeatReleased)
+        if self.volume_of_solid:
+            t.requires(NEW, I.sp_vol_CC, matls=r)
         if self.solid_temp_dw is OLD:
             t.requires(OLD, I.temp_CC, *gh, matls=c.all_matls)
         else:
@@ -236,7 +238,11 @@ class SimpleBurn(IceSources):
         b = c.ice.boxes(patch)
         get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
         press = new_dw.get_modifiable(I.press_CC, 0, patch)
-        K.pressure_source(new_dw.get(ML.modelMass_src, self.prod, patch), new_dw.get(ML.modelVol_src, self.prod, patch),
+        ms = new_dw.get(ML.modelMass_src, self.prod, patch)
+        # Uintah's delP_MassX: the new mass counted at the product's equilibrated specific volume
+        created = ms * new_dw.get(I.sp_vol_CC, self.prod, patch) if self.volume_of_solid \
+            else new_dw.get(ML.modelVol_src, self.prod, patch)
+        K.pressure_source(ms, created,
                           new_dw.get(I.sp_vol_CC, self.react, patch), get(I.vol_frac_CC), get(I.sp_vol_CC),
                           get(I.speedSound_CC), b.lo, b.hi, b.vol, press)
         c.ice.bcs.scalar(patch, press, "Pressure", 0, b)
