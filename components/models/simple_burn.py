@@ -15,19 +15,18 @@ Tasks, each added right after the MPMICE task named (models/__init__.py):
         particle's fraction (p.burnFraction) and the product's mass/momentum/energy sources;
         the reductions totalMassBurned and totalHeatReleased (this step; <save> them)
   ICE::computeDelPressAndUpdatePressCC -> Simple_Burn::addPressureSource
-        p += (V_created - m_burned v_reactant) / (V sum_m theta_m kappa_m) (001 eq. 9,
-        Uintah's delP_MassX, sum_m m_src,m v_m); with semi-implicit ICE instead eq. P's
-        right-hand side takes Uintah's massExchTerm m_burned (v_product - v_reactant) / V
-        (mass_exchange_term)
+        p += m_burned (v_product - v_reactant) / (V sum_m theta_m kappa_m) (001 eq. 9,
+        Uintah's delP_MassX, sum_m m_src,m v_m with the equilibrated v_m); with semi-implicit
+        ICE instead eq. P's right-hand side takes the same term (mass_exchange_term)
   ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
         the product's m^L, (m u)^L, (m e)^L += sources (eqs. 7-8)
   ICE::computeLagrangianSpecificVolume -> Simple_Burn::addVolumeSource
         the product's Lagrangian volume holds the new mass at V_created (modelVol_src)
   MPM::computeStressTensor -> Simple_Burn::burnParticles
         p.mass+, p.volume+ *= 1 - f; f = 1: p.x+ = NaN (removed at relocation)
-V_created is the burned mass at the product's density at the cell's equilibration
-pressure and the product's own temperature e_src / (m_src cv) (Uintah moves the volume
-burned * v_solid and lets the next equilibration expand it). Energy: the hand-over is exact; ICE's later evolution of
+V_created (modelVol_src) is the volume the burned solid held, burned * v_solid (Uintah's; the
+next equilibration expands it); volume_of_solid False makes it at the product's density at the
+cell's pressure and its own temperature e_src / (m_src cv). Energy: the hand-over is exact; ICE's later evolution of
 the hot, compressed product in mixed cells is not energy-conservative (tests/models:
 total energy -9 % by the end of the 1D burn, the same with the pressure source off).
 """
