@@ -9,9 +9,11 @@ Step 1 is sus's to round-off: the burned mass (Uintah's surface area V / (sum_d 
 max_d |n_d|^(-1/3)), the volume it makes (burned * v_solid) and the pressure it raises
 (Uintah's delP_MassX, sum_m m_src,m v_m / V / sum_m theta_m kappa_m, with each material's
 equilibrated v_m): 8.2e6 Pa where sus has 8.2e6 (before, 2.4e5; the product's volume made at its
-own temperature). What is left, not yet found: the temperatures after the exchange (in a burning
-cell sus's product is at 3025 K, pysus's at the solids' 600 K), so after step 2 press_CC is
-up to 74 % off and the burned mass 6 %.
+own temperature). In a burning cell the new product keeps the temperature the exchange gives it
+(3025 K; pysus's rule that gas slivers in solid-filled cells take the solid's temperature is
+not applied where a model feeds a fluid). Step 2: press_CC 0.13 %, press_equil_CC 0.44 %, the
+burned mass 0.34 % from sus's (the particles lose their burned mass one by one in pysus, through
+the nodes in Uintah); the steps' times 1.6e-5 apart.
 """
 import pathlib
 
@@ -49,8 +51,10 @@ def test_first_step_burn_as_uintah(runs):
     assert _rel(da.read("press_CC", 0, 1)[0], press) < 1e-9
 
 
-def test_second_step_as_far_as_known(runs):
-    """Step 2 (module doc): the equilibration pressure within 10 % of sus's, the burned mass 10 %."""
+def test_second_step_near_uintah(runs):
+    """Step 2 (module doc): pressures and the burned mass within 0.5 % of sus's."""
     da, sus = runs
-    assert _rel(da.read("press_equil_CC", 0, 2)[0], sus["press_equil_CC_0_1"]) < 0.1
-    assert _rel(da.read("modelMass_src", 2, 2)[0], sus["modelMass_src_2_1"]) < 0.1
+    assert sus["press_CC_0_1"].max() > 1e8
+    assert _rel(da.read("press_CC", 0, 2)[0], sus["press_CC_0_1"]) < 2e-3
+    assert _rel(da.read("press_equil_CC", 0, 2)[0], sus["press_equil_CC_0_1"]) < 5e-3
+    assert _rel(da.read("modelMass_src", 2, 2)[0], sus["modelMass_src_2_1"]) < 5e-3
