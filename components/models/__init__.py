@@ -65,6 +65,10 @@ class Models:
             if hasattr(m, "schedule_initialize"):
                 m.schedule_initialize(sched)
 
+    def products(self):
+        """The fluids the models feed (their modelMass_src)."""
+        return sorted({m.prod for m in self.models})
+
     # semi-implicit ICE's eq. P (components/ice/implicit.py: ImplicitICE.mass_exchange)
     def requires(self, task, dw):
         for m in self.models:

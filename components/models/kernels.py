@@ -70,8 +70,8 @@ def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, temps, vfs
     Surface cell: (max - min) / max of the reactant's node masses around the cell in
     (0.4, 1); a node on the domain boundary (first / last node n_lo / n_hi) counts
     twice per boundary it lies on (as Uintah's NC_CCweight), so a reactant touching a
-    symmetry plane or wall is not burning there. A: the area of a plane with the normal grad(m) through the cell,
-    V / sum_d |n_d| dx_d (dx_d for a face-aligned surface)."""
+    symmetry plane or wall is not burning there. A = V / ((sum_d |n_d| dx_d) max_d |n_d|^(-1/3)) with n
+    the unit gradient of the node masses (Uintah's computeSurfaceArea; dx_d for a face-aligned surface)."""
     s1, s2 = burned.shape[1], burned.shape[2]
     vol = dx[0] * dx[1] * dx[2]
     nm = len(temps)
@@ -87,7 +87,9 @@ def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, temps, vfs
                 nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
                 if nn <= 0.0:
                     continue
-                A = vol / ((n0 * dx[0] + n1 * dx[1] + n2 * dx[2]) / nn)
+                n0, n1, n2 = n0 / nn, n1 / nn, n2 / nn
+                shape_factor = (1.0 / max(n0, max(n1, n2))) ** (1.0 / 3.0)
+                A = vol / ((n0 * dx[0] + n1 * dx[1] + n2 * dx[2]) * shape_factor)
                 area[i, j, k] = A
                 T = 0.0
                 for m in range(nm):

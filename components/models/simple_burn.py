@@ -15,19 +15,18 @@ Tasks, each added right after the MPMICE task named (models/__init__.py):
         particle's fraction (p.burnFraction) and the product's mass/momentum/energy sources;
         the reductions totalMassBurned and totalHeatReleased (this step; <save> them)
   ICE::computeDelPressAndUpdatePressCC -> Simple_Burn::addPressureSource
-        p += (V_created - m_burned v_reactant) / (V sum_m theta_m kappa_m) (001 eq. 9,
-        Uintah's delP_MassX, sum_m m_src,m v_m); with semi-implicit ICE instead eq. P's
-        right-hand side takes Uintah's massExchTerm m_burned (v_product - v_reactant) / V
-        (mass_exchange_term)
+        p += m_burned (v_product - v_reactant) / (V sum_m theta_m kappa_m) (001 eq. 9,
+        Uintah's delP_MassX, sum_m m_src,m v_m with the equilibrated v_m); with semi-implicit
+        ICE instead eq. P's right-hand side takes the same term (mass_exchange_term)
   ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
         the product's m^L, (m u)^L, (m e)^L += sources (eqs. 7-8)
   ICE::computeLagrangianSpecificVolume -> Simple_Burn::addVolumeSource
         the product's Lagrangian volume holds the new mass at V_created (modelVol_src)
   MPM::computeStressTensor -> Simple_Burn::burnParticles
         p.mass+, p.volume+ *= 1 - f; f = 1: p.x+ = NaN (removed at relocation)
-V_created is the burned mass at the product's density at the cell's equilibration
-pressure and the product's own temperature e_src / (m_src cv) (Uintah moves the volume
-burned * v_solid and lets the next equilibration expand it). Energy: the hand-over is exact; ICE's later evolution of
+V_created (modelVol_src) is the volume the burned solid held, burned * v_solid (Uintah's; the
+next equilibration expands it); volume_of_solid False makes it at the product's density at the
+cell's pressure and its own temperature e_src / (m_src cv). Energy: the hand-over is exact; ICE's later evolution of
 the hot, compressed product in mixed cells is not energy-conservative (tests/models:
 total energy -9 % by the end of the 1D burn, the same with the pressure source off).
 """
@@ -113,7 +112,7 @@ class SimpleBurn(IceSources):
             .modifies(I.sp_vol_L_CC)
 
     name = "Simple_Burn"
-    volume_of_solid = False     # the product's new volume: at (p, T_product); True: burned * v_solid
+    volume_of_solid = True      # the product's new volume: burned * v_solid (Uintah's); False: at (p, T_product)
     cell_ghost = ()             # Steady_Burn reads the cell state of the 26 neighbours too
     solid_temp_dw = NEW         # the solids' temp_CC: this step's (Unsteady_Burn: last step's, OLD)
 
@@ -126,6 +125,8 @@ class SimpleBurn(IceSources):
             .computes(ML.pBurnFraction, matls=r) \
             .computes(ML.modelMass_src, matls=g).computes(ML.modelMom_src, matls=g) \
             .computes(ML.modelEng_src, matls=g).computes(ML.modelVol_src, matls=g).computes(ML.totalMassBurned).computes(ML.totalHeatReleased)
+        if self.volume_of_solid:
+            t.requires(NEW, I.sp_vol_CC, matls=r)
         if self.solid_temp_dw is OLD:
             t.requires(OLD, I.temp_CC, *gh, matls=c.all_matls)
         else:
@@ -236,7 +237,11 @@ class SimpleBurn(IceSources):
         b = c.ice.boxes(patch)
         get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
         press = new_dw.get_modifiable(I.press_CC, 0, patch)
-        K.pressure_source(new_dw.get(ML.modelMass_src, self.prod, patch), new_dw.get(ML.modelVol_src, self.prod, patch),
+        ms = new_dw.get(ML.modelMass_src, self.prod, patch)
+        # Uintah's delP_MassX: the new mass counted at the product's equilibrated specific volume
+        created = ms * new_dw.get(I.sp_vol_CC, self.prod, patch) if self.volume_of_solid \
+            else new_dw.get(ML.modelVol_src, self.prod, patch)
+        K.pressure_source(ms, created,
                           new_dw.get(I.sp_vol_CC, self.react, patch), get(I.vol_frac_CC), get(I.sp_vol_CC),
                           get(I.speedSound_CC), b.lo, b.hi, b.vol, press)
         c.ice.bcs.scalar(patch, press, "Pressure", 0, b)

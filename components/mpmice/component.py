@@ -339,6 +339,9 @@ class MPMICE(MPMICETasks, Component):
             .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC) \
             .requires(NEW, I.int_eng_L_CC).requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC) \
             .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+        if self.models is not None:         # where the models feed a fluid (MPMICE.exchange)
+            from components.models import labels as ML
+            t.requires(NEW, ML.modelMass_src, matls=self.models.products())
         if self.slip is not None:
             self.slip.cell_requires(t)
             self.slip.schedule_diagnostics(sched)

@@ -273,20 +273,25 @@ def cc_to_nc_scalar(q, cc_low, node_low, nlo, nhi, dims, out):
 
 
 @njit(cache=True)
-def trace_temperatures(masses, engs, vfs, cvs, role, theta_trace, lo, hi):
+def trace_temperatures(masses, engs, vfs, cvs, role, theta_trace, fed, lo, hi):
     """After the exchange (eq. 39), in the cells the solids fill (every fluid's volume
     fraction below theta_trace): the fluids (role 1) take the m cv-weighted temperature of
     the solids whose temperature evolves (role 2), which give or take that heat in
-    proportion to their m cv (energy conserved exactly); role 0: left out.
+    proportion to their m cv (energy conserved exactly); role 0: left out. Not in the cells
+    where a reaction model feeds a fluid this step (fed nonzero; an empty fed: none): there
+    the new product keeps its own temperature, as in Uintah.
 
     Such a gas sliver has no temperature of its own: its Lagrangian energy follows the p dV
     work of the solid's pressure swings, linearised over steps whose relative pressure
     change is large, and the exchange with a solid of large m cv cannot hold it when the
     swing is large (thousands of K)."""
     n = len(masses)
+    any_fed = fed.shape[0] > 0
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
+                if any_fed and fed[i, j, k]:
+                    continue
                 mc_solid = 0.0
                 e_solid = 0.0
                 filled = True

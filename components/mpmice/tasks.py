@@ -361,7 +361,8 @@ class MPMICETasks:
         cells where every fluid's volume fraction is below THETA_TRACE, the fluids take the
         temperature of the solids that exchange heat (kernels.trace_temperatures): those
         solids' temperature evolves, so the heat they give is carried to their particles.
-        A deck whose solids exchange no heat (<heat> 0) keeps its slivers adiabatic."""
+        A deck whose solids exchange no heat (<heat> 0) keeps its slivers adiabatic. A cell
+        where a reaction model adds mass to a fluid keeps the exchange's temperatures (Uintah's)."""
         keep = _KeepAllocated(new_dw)
         self.ice.exchange_cc(patch, matls, old_dw, keep)
         if not self.solid_heat:
@@ -369,8 +370,15 @@ class MPMICETasks:
         b = self.ice.boxes(patch)
         get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
         role = np.array([1 if m in self.ice.ice_matls else (2 if m in self.solid_heat else 0) for m in matls])
+        fed = np.zeros((0, 0, 0), np.bool_)
+        if self.models is not None:
+            from components.models import labels as ML
+            fed = np.zeros(new_dw.get(I.mass_L_CC, matls[0], patch).shape, np.bool_)
+            for m in self.models.products():
+                fed |= new_dw.get(ML.modelMass_src, m, patch) != 0.0
         K.trace_temperatures(get(I.mass_L_CC), tuple(keep.arrays[(I.int_eng_L_ME_CC.name, m)] for m in matls),
-                             get(I.vol_frac_CC), self.ice.cvs[np.array(matls)], role, THETA_TRACE, b.olo, b.ohi)
+                             get(I.vol_frac_CC), self.ice.cvs[np.array(matls)], role, THETA_TRACE, fed,
+                             b.olo, b.ohi)
 
     # -- steps 8-9: the solid's Lagrangian values at the cell centres --------------------------------
     def lagrangian_values_mpm(self, patch, matls, old_dw, new_dw):
