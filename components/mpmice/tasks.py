@@ -164,14 +164,22 @@ class MPMICETasks:
             tot = np.where(tot > 0, tot, 1.0)
         press = pw / tot
         outside_idiom = empty.any() and ice_mats[-1].first_object_outside
+        fr_last_none = geometric[-1] <= 0.0
         if outside_idiom:
             # Uintah's idiom (DDT.ups, PBX_array/oneCylinder.ups): the last fluid's first object
             # outside the domain; Uintah's ICE sets press_CC to each fluid's EOS pressure in turn,
             # so the cells no object covers, here those the solid fills, start at the last one's
             press[empty] = self._object_pressure(ice.ice_matls[-1], ice_mats[-1], 0)
+        press_start = press
+        if outside_idiom and self.gas_start == "geometry":
+            # Uintah's ICE::actuallyInitialize: press_CC is each fluid's EOS pressure in turn, so the
+            # last one's wherever its own objects leave it at its first object's state; the other
+            # fluids keep their objects' densities
+            press_start = press.copy()
+            press_start[fr_last_none] = self._object_pressure(ice.ice_matls[-1], ice_mats[-1], 0)
         free = np.clip(1.0 - ths[sl], 0.0, 1.0)
         p_arr = new_dw.allocate(I.press_CC, 0, patch)
-        p_arr[sl] = press
+        p_arr[sl] = press_start
         for m, mat, f, fs, f_geom in zip(ice.ice_matls, ice_mats, fr, obj_fr, geometric):
             g0 = mat.objects[0][1]
             temp = np.full(press.shape, g0["temperature"])
@@ -179,7 +187,8 @@ class MPMICETasks:
             for (_, g), fk in zip(mat.objects, fs):        # the last object covering a cell sets T, v (Uintah's)
                 hit = fk > 0.0
                 temp[hit], vel[hit] = g["temperature"], g["velocity"]
-            rho_micro = _rho_micro_array(press, temp, g0["density"], *ice._eos(m))
+            rho_micro = _rho_micro_array(press_start if mat is ice_mats[-1] else press, temp, g0["density"],
+                                         *ice._eos(m))
             if outside_idiom and mat is not ice_mats[-1]:
                 rho_micro[empty] = g0["density"]        # Uintah's: the first object's, at any pressure
             arrs = [new_dw.allocate(lab, m, patch) for lab in (I.rho_CC, I.vel_CC, I.temp_CC, I.sp_vol_CC,

@@ -7,10 +7,12 @@ is sus's output on that deck (one rank, `sus jwlpp1d.ups`, read with framework.u
 the times, totalMassBurned.dat, totalHeatReleased.dat and, after each of the 5 steps, press_CC,
 F and delF (reactant), modelMass_src (product) and both temperatures over the 40 cells.
 
-Measured, in the cells 8..39 away from the copper (next to a solid pysus's MPMICE starts the gas
-differently: docs/MPMICE.md): step 1 burned mass per cell 4e-11 relative to sus, pressure
-3e-11, temperatures 7e-9; the step after it is 3.4e-5 shorter than sus's (the CFL speed next to
-the copper), so steps 2-5 burn 3e-5 .. 3e-4 apart (dF = dt G p^b (1 - F)), the pressure 6e-6.
+Measured, in the cells 8..39 away from the copper: step 1 burned mass per cell 5e-15 relative to
+sus, pressure 4e-15; the steps' times 1.2e-8 apart, steps 2-5 burn 2.3e-8 apart, the pressure
+7e-10; next to the copper (cell 4, copper volume fraction 0.2) press_CC 1.3e-5 of the maximum
+after step 1, 1.9e-4 after step 5. The start's press_CC is Uintah's (ICE's initialization leaves
+the last fluid's EOS pressure, here the products' 1 atm, where its objects do not reach), which
+the solid's start density in the first equilibration depends on.
 Uintah's updateVolumeFraction (components/models/__init__.py) is what makes step 1 agree: without
 it the heat exchange sees the product's start-of-step volume fraction (temperatures 1e-4 apart).
 """
@@ -79,15 +81,14 @@ def test_first_step_burns_as_uintah(runs):
 
 @pytest.mark.parametrize("step", [2, 3, 5])
 def test_later_steps_as_uintah(runs, step):
-    """The steps follow sus's (their lengths 3.4e-5 apart, set next to the copper), and the burn
-    per cell with them."""
+    """The steps follow sus's (their lengths set next to the copper), and the burn per cell with them."""
     da, sus = runs
-    assert da.times[step] == pytest.approx(sus["times"][step - 1], rel=3e-4)
+    assert da.times[step] == pytest.approx(sus["times"][step - 1], rel=1e-7)
     dt_ratio = (da.times[step] - da.times[step - 1]) / (sus["times"][step - 1] - sus["times"][step - 2])
     rate = _cc(da, "delF", 1, step)[FAR] / dt_ratio       # sus's step length
-    assert np.allclose(rate, sus[f"delF_{step}"][FAR], rtol=1e-5, atol=0)
-    assert np.allclose(_cc(da, "press_CC", 0, step)[FAR], sus[f"press_CC_{step}"][FAR], rtol=1e-5, atol=0)
-    assert np.allclose(_cc(da, "F", 1, step)[FAR], sus[f"F_{step}"][FAR], rtol=5e-4, atol=0)
+    assert np.allclose(rate, sus[f"delF_{step}"][FAR], rtol=1e-7, atol=0)
+    assert np.allclose(_cc(da, "press_CC", 0, step)[FAR], sus[f"press_CC_{step}"][FAR], rtol=1e-8, atol=0)
+    assert np.allclose(_cc(da, "F", 1, step)[FAR], sus[f"F_{step}"][FAR], rtol=1e-7, atol=0)
 
 
 def test_mass_and_energy_move_between_the_fluids(runs):
@@ -97,7 +98,7 @@ def test_mass_and_energy_move_between_the_fluids(runs):
     _, burned = da.reduction("totalMassBurned")
     _, heat = da.reduction("totalHeatReleased")
     assert np.allclose(heat, burned * E0, rtol=1e-14)
-    assert np.allclose(burned, sus["totalMassBurned"], rtol=2e-3, atol=0)
+    assert np.allclose(burned, sus["totalMassBurned"], rtol=1e-5, atol=0)
     for step in range(1, len(da.times)):
         assert _cc(da, "modelMass_src", 2, step).sum() == pytest.approx(burned[step - 1], rel=1e-13)
     mass = [sum(_cc(da, "rho_CC", m, i).sum() * V for m in (1, 2)) for i in range(len(da.times))]
