@@ -174,6 +174,17 @@ def test_bad_values_refused(tmp_path, tag, value, words):
     assert "const_test_vs" in str(e.value) or ".ups:" in str(e.value)
 
 
+def test_zero_specific_heat_refused(tmp_path):
+    """The heating divides by rho c_v: a visco_scram material without <specific_heat> is refused."""
+    with pytest.raises(InputError) as e:
+        text = DECK.read_text()
+        i = text.index('type="visco_scram"')         # its material's, not the piston's
+        rest = text[i:].replace("<specific_heat>5<", "<specific_heat>0<", 1).replace(
+            "<thermal_conductivity>1.0<", "<thermal_conductivity>0<", 1)
+        run(text[:i] + rest, tmp_path)
+    assert "visco_scram" in str(e.value) and "<specific_heat> > 0" in str(e.value), str(e.value)
+
+
 def test_not_implemented_options_refused(tmp_path):
     text = open(DECK).read().replace("<CrackGrowthRate>12.</CrackGrowthRate>",
                                      "<CrackGrowthRate>12.</CrackGrowthRate><randomize_parameters>true"
