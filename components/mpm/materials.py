@@ -164,6 +164,11 @@ class Material:
             self.params = self.model.Params.from_ups(values)
         except KeyError as e:
             raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
+        if hasattr(self.model, "MATERIAL_PROPERTIES"):    # visco_scram: rho c_v of its heating
+            self.params = dataclasses.replace(self.params, **{k: props[k] for k in self.model.MATERIAL_PROPERTIES})
+            if props["specific_heat"] <= 0.0:
+                raise node.error(f'constitutive_model type="{kind}" heats the particles by its dissipation over '
+                                 "rho c_v: it needs the material's <specific_heat> > 0")
         if uniform_yield and self.params.usePlasticity:
             self.params = dataclasses.replace(self.params, yield_uniform=True, yield_range=uniform_yield[0],
                                               yield_seed=uniform_yield[1])

@@ -838,7 +838,7 @@ class MPMTasks:
             if self.av:                 # p.q for the next step's internal force (artificial_viscosity.py)
                 q = self.av.q(m, mat, Lg, F_new, pm, vol_new)
                 new_dw.put(L.pQPre, m, patch, q)
-                if mat.needs_temperature:
+                if mat.needs_temperature and "p.energy" in news:     # elastic_plastic_hp's viscous heating
                     self.av.heat(mat, q, Lg, F_old, F_new, pm, vol_new, old[-1], dTdt, news["p.energy"])
             if mat.needs_temperature:   # Uintah's finalParticleUpdate: T += dT/dt dt
                 new_dw.put(L.pdTdt, m, patch, dTdt)

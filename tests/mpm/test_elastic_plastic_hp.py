@@ -299,3 +299,38 @@ def test_steel_cp_is_uintahs(T):
     assert pk.specific_heat(pk.STEEL_CP, P.cp, 414.0, T) == pytest.approx(_steel_cp_uintah(T), rel=1e-14)
     Q = params("JC", (old, new.format("<T_transition>900</T_transition>")))
     assert pk.specific_heat(pk.STEEL_CP, Q.cp, 414.0, T) == pytest.approx(_steel_cp_uintah(T, 900.0), rel=1e-14)
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_hancock_mackenzie_damage_is_uintahs_formula(sign):
+    """<damage_model type="hancock_mackenzie"> (Uintah's HancockMacKenzieDamage): p.damage starts
+    at initial_mean_scalar_damage and grows by epdot dt exp(1.5 p / sigma_eq) / 1.65 with the new
+    stress (sigma_eq von Mises in mean tension; in compression 1 Pa, so exp(-1.5 |p|) = 0 for any
+    real pressure and the damage stays); the stress is the model's without it."""
+    dm = ("</material>", '<damage_model type="hancock_mackenzie"><initial_mean_scalar_damage>0.01'
+                         '</initial_mean_scalar_damage><critical_scalar_damage>0.5</critical_scalar_damage>'
+                         '</damage_model></material>')
+    P, P0 = params("JC", dm), params("JC")
+    assert P.damage_kind == "hancock_mackenzie" and hp.state_of(P)[-1] == "p.damage"
+    dt, L = 1e-6, np.diag([sign * 4000.0, 0.0, 0.0])[None]
+    F_old, F_new = np.eye(3)[None], (np.eye(3) + L[0] * dt)[None]
+    vol, mass = np.array([1e-9 * np.linalg.det(F_new[0])]), np.array([RHO * 1e-9])
+    out = {}
+    for par in (P, P0):
+        old = hp.initial_state(par, 1, np.array([T0]))
+        new = tuple(np.empty_like(a) for a in old) + (np.empty(1),)
+        s = np.empty((1, 3, 3))
+        hp.update(par, L, F_old, F_new, vol, mass, np.zeros((1, 3)), dt, np.zeros((1, 3, 3)), s, np.empty(1),
+                  old + (np.array([T0]),), new)
+        out[par is P] = s[0], new
+    (s, new), (s0, _) = out[True], out[False]
+    assert np.array_equal(s, s0)
+    d_old = hp.initial_state(P, 1, np.array([T0]))[-1][0]
+    assert d_old == 0.01
+    epdot, damage = new[1][0], new[len(hp.state_of(P)) - 1][0]
+    assert epdot > 0.0
+    p = np.trace(s) / 3.0
+    seq = math.sqrt(1.5 * ((s - p * np.eye(3)) ** 2).sum()) if p > 0.0 else 1.0
+    assert (p > 0.0) == (sign > 0.0)
+    assert damage == pytest.approx(0.01 + epdot * dt * math.exp(1.5 * p / seq) / 1.65, rel=1e-14)
+    assert (damage > 0.01) == (sign > 0.0)

@@ -4,6 +4,7 @@ against Uintah's sus on its regression deck const_test_vs.
 sus values: tests/mpm/data/sus_const_test_vs.txt (sus on const_test_vs.ups with 400 steps
 written, p.velGrad saved, partextract of the visco_scram particle; header says the columns).
 """
+import dataclasses
 import math
 from pathlib import Path
 
@@ -26,20 +27,24 @@ PBX9501 = {"PR": "0.3", "CrackParameterA": "1e-3", "CrackPowerValue": "10", "Cra
            "DCp_DTemperature": "3.30773"}
 
 
-def _drive(params, Ls, dt, vols=None):
-    """One particle driven by the velocity gradients Ls (one per step): stresses and crack radii."""
-    st = vs.initial_state(params, 1, [12.0])
+def _drive(params, Ls, dt, vols=None, T=12.0, heat=False):
+    """One particle driven by the velocity gradients Ls (one per step) at a constant temperature
+    T: stresses and crack radii (heat: also the last state and heating rate p.dTdt)."""
+    params = dataclasses.replace(params, density=1828.0, specific_heat=996.0)
+    st = vs.initial_state(params, 1, [T])
     s = np.zeros((1, 3, 3))
     out, crack = [], []
     for n, L in enumerate(Ls):
-        new = (np.empty((1, 5, 3, 3)), np.empty(1), np.empty(1))
+        new = (np.empty((1, 5, 3, 3)), np.empty(1), np.empty(1), np.empty(1))
         s_new = np.empty((1, 3, 3))
         vol = np.array([vols[n] if vols is not None else 1e-6])
-        vs.update(params, np.ascontiguousarray(L[None]), None, None, vol, np.array([1.828e-3]), np.zeros((1, 3)),
-                  dt, s, s_new, np.empty(1), st, new)
-        st, s = new, s_new
+        vs.update(params, np.ascontiguousarray(L[None]), None, np.eye(3)[None], vol, np.array([1.828e-3]),
+                  np.zeros((1, 3)), dt, s, s_new, np.empty(1), st + (np.array([T]),), new)
+        st, s, dTdt = new[:3], s_new, new[3][0]
         out.append(s[0].copy())
         crack.append(st[1][0])
+    if heat:
+        return np.array(out), np.array(crack), st, dTdt
     return np.array(out), np.array(crack)
 
 
@@ -55,6 +60,38 @@ def test_driven_by_sus_velocity_gradient_matches_sus_stress():
     assert err.max() < 5e-8, err.max()
     assert crack[-1] > 1.1 * 3e-5
     assert ref[:, 0].min() < 0 < ref[-1, 0]
+
+
+def test_heating_rate_is_uintahs_formula():
+    """p.dTdt (Uintah's ViscoScram heating, module docstring): after 20 isochoric steps with
+    shear (the crack grows 3e-5 -> 4e-5 m) the viscoelastic plus crack growth work over rho c_v,
+    evaluated here from the returned S_k and c and the last step's crack speed; under pure
+    compression (no deviatoric stress) -Gamma T tr D exactly."""
+    P = vs.Params.from_ups(PBX9501)
+    L = np.array([[-200.0, 150.0, 0.0], [0.0, 120.0, 0.0], [0.0, 0.0, 80.0]])
+    dt, a, m, K0 = 3e-7, 1e-3, 10.0, 500.0
+    s, crack, (S, c, _), dTdt = _drive(P, np.tile(L, (20, 1, 1)), dt, T=350.0, heat=True)
+    D = 0.5 * (L + L.T)
+    G_k = np.array([float(PBX9501[f"G{k}"]) for k in range(1, 6)])
+    R_k = np.array([float(PBX9501[f"RTau{k}"]) for k in range(1, 6)])
+    G = G_k.sum()
+    # the last step's crack speed from the stress and c before it: mean stress 0 up to round-off
+    # (no friction), whose sign picks the tension factor CrackGrowthRate = 12 as in the model
+    vres = min(math.exp(0.90564746 * math.log(math.sqrt(1.5) * np.linalg.norm(D)) - 2.90178468), 300.0)
+    vres *= 12.0 if np.trace(s[-2]) > 0.0 else 1.0
+    KI = math.sqrt(1.5 * math.pi * crack[-2]) * np.linalg.norm(s[-2])
+    Kp = K0 * math.sqrt(1 + 2 / m)
+    cdot = vres * (KI / (Kp * (1 + m / 2) ** (1 / m))) ** m if KI < Kp else vres * (1 - K0 * K0 / (KI * KI))
+    Sk, Ssum = S[0], S[0].sum(0)
+    wve = sum((Sk[k] * Sk[k]).sum() / (2 * G_k[k]) * R_k[k] for k in range(5))
+    coa3 = (c[0] / a) ** 3
+    topc = 3 * coa3 / c[0] * cdot
+    Sdot = (2 * G * D - Ssum * topc - sum(Sk[k] * R_k[k] for k in range(5))) / (1 + coa3)
+    wcr = ((Ssum * Ssum).sum() * topc + coa3 * (Ssum * Sdot).sum()) / (2 * G)
+    assert crack[-1] > 1.3 * 3e-5 and wcr > 0.05 * wve > 0.0
+    np.testing.assert_allclose(dTdt, (wve + wcr) / (1828.0 * 996.0), rtol=1e-12)
+    _, _, _, dTdt = _drive(P, np.tile(-50.0 * np.eye(3), (3, 1, 1)), dt, T=350.0, heat=True)
+    assert dTdt == -1.0 * 350.0 * -150.0
 
 
 # -- independent ODE: isochoric extension D = r diag(1/2, 1/2, -1) (mean stress 0, crack open) --
@@ -135,6 +172,17 @@ def test_bad_values_refused(tmp_path, tag, value, words):
     for w in words:
         assert w in str(e.value), str(e.value)
     assert "const_test_vs" in str(e.value) or ".ups:" in str(e.value)
+
+
+def test_zero_specific_heat_refused(tmp_path):
+    """The heating divides by rho c_v: a visco_scram material without <specific_heat> is refused."""
+    with pytest.raises(InputError) as e:
+        text = DECK.read_text()
+        i = text.index('type="visco_scram"')         # its material's, not the piston's
+        rest = text[i:].replace("<specific_heat>5<", "<specific_heat>0<", 1).replace(
+            "<thermal_conductivity>1.0<", "<thermal_conductivity>0<", 1)
+        run(text[:i] + rest, tmp_path)
+    assert "visco_scram" in str(e.value) and "<specific_heat> > 0" in str(e.value), str(e.value)
 
 
 def test_not_implemented_options_refused(tmp_path):

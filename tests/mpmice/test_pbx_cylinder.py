@@ -27,8 +27,14 @@ The loaded particles' velocity within 2.1e-6 of the largest particle speed after
 dV/dt in the extra cells (MPMICE's computeCCVelAndTempRates) comes from the extra cell's own
 nodes (before that fix, 23 % after 1 step and 31 % after 5). The trace air in the cylinder's
 cells differs more at the cylinder's rim (its temperature by 27 K of 330 K after 3 steps; with
-constant coefficients 176 K, so the test sees the model): Uintah's ViscoSCRAM heats the solid by
-its own dissipation (p.dTdt, not in pysus), which the exchange passes on.
+constant coefficients 176 K, so the test sees the model).
+The solid's own heating (ViscoSCRAM's p.dTdt): after 1 step the loaded particles' temperature
+rise per mean stress is sus's within 0.5 % (sus's own spread; the volume term -Gamma T tr D
+dominates); after 5 steps p.temperature within 0.20 K of sus's (sus's rise up to 0.53 K), the
+interior's unchanged in both. The rise differs as the rim particles' stress does (by up to 50 %
+after 1 step: pysus stresses 760 particles, sus 560), not by the heating.
+data/sus_oneCylinder_small_heating.npz: sus's p.temperature after steps 1 and 5 and mean stress
+after step 1, one particle per (x, y) (key: p.x / 2.5e-5 rounded), from the deck as above.
 """
 import pathlib
 
@@ -168,3 +174,26 @@ def test_pbx_cylinder_conservation_sums_as_uintah(runs):
     gas = da.reduction("TotalMass", 1)[1] + da.reduction("TotalMass", 2)[1]
     assert np.allclose(total, particles + gas, rtol=1e-14, atol=0)
     assert np.all(gas > 1e-4 * total)            # the air counts (8.4e-8 kg of 4.6e-4)
+
+
+def test_pbx_cylinder_solid_heating_as_uintah(runs):
+    """ViscoSCRAM's heating of the solid against sus (module docstring): the temperature rise per
+    mean stress after 1 step, p.temperature after 5 steps, the unloaded interior unchanged."""
+    da, _ = runs
+    ref = np.load(HERE / "data" / "sus_oneCylinder_small_heating.npz")
+    for step in (1, 5):
+        p = da.particles(0, step)
+        at = {tuple(k): i for i, k in enumerate(ref[f"p_x_key_step{step}"])}
+        i = np.array([at[tuple(k)] for k in np.round(p["p.x"][:, :2] / 2.5e-5).astype(int)])
+        rise, rise_sus = p["p.temperature"] - 300.0, ref[f"p_temperature_step{step}"][i] - 300.0
+        r = np.hypot(p["p.x"][:, 0], p["p.x"][:, 1])
+        inner = r < 0.5 * r.max()
+        assert np.all(rise_sus[inner] == 0.0) and np.abs(rise[inner]).max() < 1e-9
+        if step == 1:
+            mean = np.trace(p["p.stress"], axis1=1, axis2=2) / 3.0
+            mean_sus = ref["p_mean_stress_step1"][i]
+            both = (np.abs(mean) > 1e3) & (np.abs(mean_sus) > 1e3)
+            assert both.sum() > 300
+            np.testing.assert_allclose(rise[both] / mean[both], rise_sus[both] / mean_sus[both], rtol=1e-2)
+        else:
+            assert rise_sus.max() > 0.5 and np.abs(rise - rise_sus).max() < 0.25

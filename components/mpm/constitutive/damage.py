@@ -349,6 +349,24 @@ def johnson_cook_damage(jc, Tr, Tm, dt, stress, epdot, T, d_old, d_new):
         d_new[p] = 0.0 if d < jc[5] else d
 
 
+@njit(cache=True, error_model="numpy")
+def hancock_mackenzie_damage(dt, stress, epdot, d_old, d_new):
+    """Uintah's HancockMacKenzieDamage (Hancock and MacKenzie 1976), a diagnostic p.damage that
+    leaves the stress alone: D += epdot dt exp(1.5 p / sigma_eq) / 1.65, p the mean stress,
+    sigma_eq the von Mises stress where p > 0 and 1 (Pa) otherwise, as Uintah's."""
+    for p in range(stress.shape[0]):
+        mean = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
+        eq = 1.0
+        if mean > 0.0:
+            ss = 0.0
+            for i in range(3):
+                for j in range(3):
+                    s = stress[p, i, j] - (mean if i == j else 0.0)
+                    ss += s * s
+            eq = np.sqrt(ss * 1.5)
+        d_new[p] = d_old[p] + epdot[p] * dt * np.exp(1.5 * mean / eq) / 1.65
+
+
 BRITTLE_TAGS = {"brittle_damage_initial_threshold": 57.0, "brittle_damage_fracture_energy": 11.2,
                 "brittle_damage_constant_D": 0.1, "brittle_damage_max_damage_increment": 0.1,
                 "brittle_damage_recoveryCoeff": 1.0}

@@ -40,7 +40,10 @@ the stress, p.timeofloc and the stress of the localized after it.
 a p.damage that leaves the stress alone (damage.johnson_cook_damage; D1 .. D5,
 ``initial_mean_scalar_damage``, ``initial_std_scalar_damage``, ``critical_scalar_damage``,
 ``initial_scalar_damage_distrib`` constant or gauss: Uintah's seeded draws as the porosity's);
-``hancock_mackenzie`` is read and computes nothing.
+``hancock_mackenzie``: Uintah's HancockMacKenzieDamage (Hancock and MacKenzie 1976), also a
+diagnostic p.damage, D += epdot dt exp(1.5 p / sigma_eq) / 1.65 with sigma_eq the von Mises
+stress in mean tension and 1 Pa otherwise, as Uintah (damage.hancock_mackenzie_damage; the same
+initial tags, ``critical_scalar_damage`` read and unused as in Uintah).
 ``yield_condition type="gurson"`` (GursonYield, with ``plastic_convergence_algo`` biswajit as
 Uintah requires): the trial stress yields where sigma_eq^2 >= sigma_y^2 (1 + q3 f*^2 - 2 q1 f*
 cosh(q2 tr/(2 sigma_y))), tr Uintah's trial trace 3 p + 2 mu tr(D) dt; the biswajit return
@@ -169,6 +172,10 @@ JC_DAMAGE = {"D1": _F(), "D2": _F(), "D3": _F(), "D4": _F(), "D5": _F(),
              "initial_scalar_damage_distrib": Param("str", "constant", ("constant", "gauss"),
                                                     "D_0 everywhere, or |N(D_0, std)| from Uintah's seeded "
                                                     "generator")}
+# <damage_model type="hancock_mackenzie"> (Uintah's HancockMacKenzieDamage, a diagnostic p.damage)
+HM_DAMAGE = {k: JC_DAMAGE[k] for k in ("initial_mean_scalar_damage", "initial_std_scalar_damage",
+                                       "initial_scalar_damage_distrib")}
+HM_DAMAGE["critical_scalar_damage"] = _opt(1.0, "read, unused (as Uintah)")
 
 TOP = {
     "shear_modulus": Param("float", doc="mu at the reference state (Pa)", above=0.0),
@@ -231,13 +238,14 @@ class Params:
     critical_porosity: float = 0.5
     jc_damage: np.ndarray = None     # johnson_cook damage: D1 .. D5, critical damage
     damage_temps: tuple = (294.0, 1.0e30)    # its T_room, T_melt (the material's)
-    damage_init: tuple = (0.0, 0.0, False)   # its D_0, std, gauss
+    damage_init: tuple = (0.0, 0.0, False)   # the damage's D_0, std, gauss
+    damage_kind: str = None          # <damage_model type>: johnson_cook, hancock_mackenzie (p.damage), or None
 
     @property
     def draws_initial_state(self):
         """The initial porosity or damage is drawn (it needs Uintah's order of particle creation)."""
         return ((self.porosity_gauss and (self.yield_code == pk.GURSON or self.erosion != 0))
-                or (self.jc_damage is not None and self.damage_init[2]))
+                or (self.damage_kind is not None and self.damage_init[2]))
 
     @property
     def has_porosity(self):
@@ -249,7 +257,7 @@ def state_of(params):
     """The carried state names of this deck's model: STATE, GURSON_STATE with gurson, and one
     sigmaDevj per Maxwell element."""
     st = (STATE + (GURSON_STATE if params.has_porosity else ()) + (EROSION_STATE if params.erosion else ())
-          + (DAMAGE_STATE if params.jc_damage is not None else ()))
+          + (DAMAGE_STATE if params.damage_kind is not None else ()))
     if params.dev != HYPO_VISCO_ELASTIC:
         return st
     return st + tuple(f"sigmaDev{j}" for j in range(len(params.maxwell_mu)))
@@ -323,15 +331,15 @@ def read_params(cm, material, props):
                          top["initial_std_porosity"]])
     st = cm.child("stability_check")
     stability = STABILITY.index(st.attr("type", choices=STABILITY)) if st is not None else NO_CHECK
-    jc, damage_init = None, (0.0, 0.0, False)
+    jc, damage_init, damage_kind = None, (0.0, 0.0, False), None
     dm = material.child("damage_model")      # Uintah: deprecated, "does not influence the stress state"
-    if dm is not None and dm.attr("type", choices=("hancock_mackenzie", "johnson_cook")) == "johnson_cook":
-        d = dm.read(JC_DAMAGE)
-        jc = np.array([d["D1"], d["D2"], d["D3"], d["D4"], d["D5"], d["critical_scalar_damage"]])
+    if dm is not None:
+        damage_kind = dm.attr("type", choices=("hancock_mackenzie", "johnson_cook"))
+        d = dm.read(JC_DAMAGE if damage_kind == "johnson_cook" else HM_DAMAGE)
+        if damage_kind == "johnson_cook":
+            jc = np.array([d["D1"], d["D2"], d["D3"], d["D4"], d["D5"], d["critical_scalar_damage"]])
         damage_init = (d["initial_mean_scalar_damage"], d["initial_std_scalar_damage"],
                        d["initial_scalar_damage_distrib"] == "gauss")
-    elif dm is not None:
-        dm.mark_used()
     er = material.child("erosion")
     erosion, char_time = damage.read_erosion(er) if er is not None else (0, 1.0e-99)
     if erosion and yc.attr("type") == "gurson" and stability != NO_CHECK:
@@ -374,7 +382,7 @@ def read_params(cm, material, props):
                   dev, maxwell_mu, maxwell_tau, yield_code, yield_params, ALGO[top["plastic_convergence_algo"]],
                   porosity, top["initial_porosity_distrib"] == "gauss", erosion, char_time, stability,
                   top["check_TEPLA_failure_criterion"], top["critical_porosity"], jc,
-                  (props["room_temp"], props["melt_temp"]), damage_init)
+                  (props["room_temp"], props["melt_temp"]), damage_init, damage_kind)
 
 
 def _linear_melt(node):
@@ -410,7 +418,7 @@ def initial_state(params, n, temperature=None, creation_order=None):
         out += (f, np.zeros(n))
     if params.erosion:
         out += (np.full(n, -1.0e99),)
-    if params.jc_damage is not None:
+    if params.damage_kind is not None:
         d0, std, gauss_ = params.damage_init
         d = np.full(n, d0)
         if gauss_ and n:              # JohnsonCookDamage's own generator, also seed 0 per patch
@@ -815,10 +823,13 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
               params.critical_porosity)
     for k, out in enumerate(new[k0:-1]):
         out[:] = sd_new[:, k]
-    if params.jc_damage is not None:    # Uintah's damage models, then its erosion (updateStress_DamageErosionModels)
-        i = at["p.damage"]
+    if params.damage_kind == "johnson_cook":     # Uintah's damage models, then its erosion
+        i = at["p.damage"]                        # (updateStress_DamageErosionModels)
         damage.johnson_cook_damage(params.jc_damage, params.damage_temps[0], params.damage_temps[1], dt,
                                    stress_new, epdot_n, T, old[i], new[i])
+    elif params.damage_kind == "hancock_mackenzie":
+        i = at["p.damage"]
+        damage.hancock_mackenzie_damage(dt, stress_new, epdot_n, old[i], new[i])
     if params.erosion:
         i = at["p.timeofloc"]
         damage.erode_stress(params.erosion, params.char_time, time, stress_new, loc_o, loc_n, old[i], new[i])

@@ -22,16 +22,27 @@ classical RK4 as Uintah does: element k's stages add its own increment to every 
 the elements are updated in order (element k sees the new S_j of j < k).
 
 State (carried): p.pStatedata_vs (the five S_k), p.crackRad, p.tempPrevious (the particle's
-temperature one step back, for alpha dT/dt; it stays constant without heat conduction).
+temperature one step back, for alpha dT/dt).
 ``energy`` receives the work increment D : (sigma^n + sigma^{n+1})/2 V dt. The step is at most
 1 microsecond (MAX_DELT, Uintah's: larger steps make the model unstable).
 
 Not implemented (refused): ``randomize_parameters`` (Uintah draws drand48), ``useObjectiveRate``;
 the EOS options change only MPMICE's solid EOS: ``useJWLEOS`` is its JWL there
 (components/ice/eos.py SOLID_JWL), ``useJWLCEOS``, ``useMurnahanEOS``, ``useBirchMurnaghanEOS``
-are refused (components/mpmice). The internal heating
-Uintah derives from the model (p.dTdt) is not added to the particle temperature. ``Beta``,
-``Gamma``, ``DCp_DTemperature`` and the reaction tags the PBX decks carry (``Chi``, ``delH``,
+are refused (components/mpmice).
+
+Internal heating (Uintah's p.dTdt, Hackett and Bennett 2000), added to p.temperature at the
+step's end as Uintah's finalParticleUpdate does, with rho = rho_0 / det F^{n+1} and c_v the
+material's <specific_heat>:
+
+    dT/dt = [sum_k S_k:S_k / (2 G_k tau_k)                             (viscoelastic work)
+             + (S:S 3 c^2 c'/a^3 + (c/a)^3 S:Sdot_c) / (2G)] / (rho c_v)   (crack growth work)
+            - Gamma T tr(D)                                            (volume change)
+
+with S, the S_k and c at the step's end, c' the step's crack speed, Sdot_c = (2G D - S 3 c^2 c'/a^3
+- sum_k S_k / tau_k) / (1 + (c/a)^3) and T the step's starting temperature (elements with G_k = 0
+carry no stress and add nothing). ``Beta``,
+``DCp_DTemperature`` and the reaction tags the PBX decks carry (``Chi``, ``delH``,
 ``Z``, ``EoverR``, ``dynamic_coeff_friction``, ``volfracHE``, ``rho0``) are read and not used
 (Uintah's stress update does not use them either).
 """
@@ -44,8 +55,10 @@ from numba import njit
 
 ENERGY_IS_INCREMENT = True
 USES_TEMPERATURE = True
+NEEDS_TEMPERATURE = True            # p.temperature and p.dTdt follow the state (old[-1], new[-1])
 MAX_DELT = 1.0e-6
 STATE = ("p.pStatedata_vs", "p.crackRad", "p.tempPrevious")
+MATERIAL_PROPERTIES = ("density", "specific_heat")     # the material's, for rho c_v of the heating
 
 VRES_A, VRES_B = 0.90564746, -2.90178468        # PBX 9501 baseline crack-speed fit
 NOT_IMPLEMENTED = ("randomize_parameters", "useObjectiveRate")
@@ -108,6 +121,8 @@ class Params:
     dynamic_coeff_friction: float = 0.0
     volfracHE: float = 0.0
     rho0: float = 0.0
+    density: float = 0.0            # the material's <density> and <specific_heat> (MATERIAL_PROPERTIES)
+    specific_heat: float = 0.0
 
     @classmethod
     def from_ups(cls, d):
@@ -187,10 +202,50 @@ def _stage(S, p, k, inc, scale, Dp, Gm, Rt, G, c, cdot, a3, Ssum, Stau, Sk, out,
             out[i, j] *= dt
 
 
+@njit(cache=True, inline="always")
+def _det(F, p):
+    return (F[p, 0, 0] * (F[p, 1, 1] * F[p, 2, 2] - F[p, 1, 2] * F[p, 2, 1])
+            - F[p, 0, 1] * (F[p, 1, 0] * F[p, 2, 2] - F[p, 1, 2] * F[p, 2, 0])
+            + F[p, 0, 2] * (F[p, 1, 0] * F[p, 2, 1] - F[p, 1, 1] * F[p, 2, 0]))
+
+
+@njit(cache=True, inline="always")
+def _heating_rate(S, p, Gm, Rt, G, c, cdot, a3, D, trD, gamma_v, T, rho_cv, Ssum, Stau):
+    """dT/dt of the module docstring (Hackett and Bennett 2000): viscoelastic and crack growth
+    work over rho c_v, less the volume change term."""
+    wve = 0.0
+    for i in range(3):
+        for j in range(3):
+            Ssum[i, j] = 0.0
+            Stau[i, j] = 0.0
+    for k in range(5):
+        s2 = 0.0
+        for i in range(3):
+            for j in range(3):
+                s = S[p, k, i, j]
+                s2 += s * s
+                Ssum[i, j] += s
+                Stau[i, j] += s * Rt[k]
+        if Gm[k] > 0.0:
+            wve += s2 / (2.0 * Gm[k]) * Rt[k]
+    coa3 = c * c * c / a3
+    topc = 3.0 * coa3 / c * cdot
+    ss = 0.0
+    srate = 0.0
+    for i in range(3):
+        for j in range(3):
+            ss += Ssum[i, j] * Ssum[i, j]
+            srate += Ssum[i, j] * (2.0 * G * D[i, j] - Ssum[i, j] * topc - Stau[i, j]) / (1.0 + coa3)
+    wcr = (ss * topc + srate * coa3) / (2.0 * G)
+    return (wve + wcr) / rho_cv - gamma_v * T * trD
+
+
 @njit(cache=True)
-def kernel(nu, alpha, cdot0, K0, mm, arad, vmax, cf, Gm, Rt0, time_temp, T0, C1, C2, L, vol, mass, vel,
-           dt, stress_old, stress_new, S_old, S_new, c_old, c_new, T, T_prev_old, T_prev_new, energy):
-    """Every particle's stress, Maxwell stresses and crack radius; returns the wave speed (3,)."""
+def kernel(nu, alpha, cdot0, K0, mm, arad, vmax, cf, Gm, Rt0, time_temp, T0, C1, C2, gamma_v, rho0, cv, L, F_new,
+           vol, mass, vel, dt, stress_old, stress_new, S_old, S_new, c_old, c_new, T, T_prev_old, T_prev_new,
+           energy, dTdt_heat):
+    """Every particle's stress, Maxwell stresses, crack radius and heating rate dT/dt; returns the
+    wave speed (3,)."""
     ws = np.zeros(3)
     G = Gm.sum()
     bulk = 2.0 * G * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu))
@@ -282,6 +337,8 @@ def kernel(nu, alpha, cdot0, K0, mm, arad, vmax, cf, Gm, Rt0, time_temp, T0, C1,
                 e += D[i, j] * 0.5 * (s + stress_old[p, i, j])
         c_new[p] = crad + (rk1c + rk4c) / 6.0 + (rk2c + rk3c) / 3.0
         energy[p] = e * vol[p] * dt
+        dTdt_heat[p] = _heating_rate(S_new, p, Gm, Rt, G, c_new[p], cdot, a3, D, trD, gamma_v, T[p],
+                                     rho0 * cv / _det(F_new, p), Ssum, Stau)
         cs = np.sqrt((bulk + 4.0 * G / 3.0) * vol[p] / mass[p])
         for d in range(3):
             ws[d] = max(ws[d], cs + abs(vel[p, d]))
@@ -290,15 +347,16 @@ def kernel(nu, alpha, cdot0, K0, mm, arad, vmax, cf, Gm, Rt0, time_temp, T0, C1,
 
 def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new, temperature=None):
     """Stress, Maxwell stresses, crack radius and previous temperature (old -> new tuples of
-    STATE's arrays); `temperature`: p.temperature (None: the previous one, no thermal expansion
-    rate). Returns the wave speed (3,)."""
-    S_old, c_old, Tp_old = old
-    S_new, c_new, Tp_new = new
-    T = Tp_old if temperature is None else temperature
+    STATE's arrays, then p.temperature -> p.dTdt, the heating rate); `temperature`: p.temperature
+    (None: the one in `old`). Returns the wave speed (3,)."""
+    S_old, c_old, Tp_old, T_old = old
+    S_new, c_new, Tp_new, dTdt = new
+    T = T_old if temperature is None else temperature
     pr = params
     Gm = np.array([pr.G1, pr.G2, pr.G3, pr.G4, pr.G5])
     Rt = np.array([pr.RTau1, pr.RTau2, pr.RTau3, pr.RTau4, pr.RTau5])
     return kernel(pr.PR, pr.CoeffThermalExpansion, pr.CrackGrowthRate, pr.StressIntensityF, pr.CrackPowerValue,
                   pr.CrackParameterA, pr.CrackMaxGrowthRate, pr.CrackFriction, Gm, Rt,
-                  pr.use_time_temperature_equation, pr.T0, pr.C1, pr.C2, L, vol, mass, vel, dt,
-                  stress_old, stress_new, S_old, S_new, c_old, c_new, T, Tp_old, Tp_new, energy)
+                  pr.use_time_temperature_equation, pr.T0, pr.C1, pr.C2, pr.Gamma, pr.density, pr.specific_heat,
+                  L, F_new, vol, mass, vel, dt, stress_old, stress_new, S_old, S_new, c_old, c_new, T, Tp_old,
+                  Tp_new, energy, dTdt)
