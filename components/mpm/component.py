@@ -300,10 +300,6 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 raise mpm.child("RunMMSProblem").error("a manufactured solution's body force and <PhysicalBC> "
                                                        "loads cannot be combined")
             self.mms = ManufacturedSolution(mpm, self.flags, self.materials, level)
-        if (self.conducting or self.thermal_contact or self.temperature_bcs) and self.kind not in ("linear", "gimp"):
-            raise mpm.child("interpolator").error(
-                f"{self.kind} with heat conduction is not implemented; accepted there: linear, gimp (or "
-                "<DoExplicitHeatConduction>false: the particles' own heating is kept)")
         if self.axisymmetric:
             self._check_axisymmetric_physics(mpm, mp)
         self.av = None

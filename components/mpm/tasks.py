@@ -115,9 +115,13 @@ class MPMTasks:
         model sets the volume); `temperature`: p.temperature for the models that read it;
         `color`: p.color for those that read it (UCNHVar); `time`: the step's start, for the
         erosion of a damage model (damage.py)."""
+        # Uintah's UCNH takes a pressure-stabilized particle's wave speed from J/rho0 (its V follows
+        # the unstabilized J)
+        stab = ({"rho0": mat.density} if self.flags["DoPressureStabilization"]
+                and getattr(mat.model, "STABILIZED_WAVE_SPEED", False) else {})
         if mat.damage is not None:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
-                                    energy, old, new, time=time, color=color)
+                                    energy, old, new, time=time, color=color, **stab)
         if mat.erosion:             # a model with its own localization (elastic_plastic_hp)
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
                                     energy, old, new, time=time)
@@ -136,8 +140,8 @@ class MPMTasks:
                                     energy, old, new, temperature)
         if mat.state:
             return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new,
-                                    energy, old, new)
-        return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy)
+                                    energy, old, new, **stab)
+        return mat.model.update(mat.params, Lg, F_old, F_new, vol, mass, vel, dt, s_old, s_new, energy, **stab)
 
     def _obj_base(self, m):
         return sum(len(self.materials[k].objects) for k in range(m))

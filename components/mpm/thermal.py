@@ -37,7 +37,7 @@ from framework.variables import Ghost, VarType
 from . import labels as L
 from .shape import _counts as _sizes
 from .shape import _sel as _pick
-from .shape import AXI, _stencil
+from .shape import AXI, CPDI, GIMP, LINEAR, _corners, _stencil
 
 FM = {'contract'}
 NC = VarType.NC
@@ -58,17 +58,18 @@ def p2g_heat(kind, act, px, particle_mass, particle_temperature, lp, anchor, dx,
     ih = _inv(dx, act)
     f = grid_mass_temperature.reshape(-1)
     for p in range(px.shape[0]):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
         mT = particle_mass[p] * particle_temperature[p]
-        for a in range(na):
-            wa = _pick(a, wx0, wx1, wx2)
-            for b in range(nb):
-                wb = _pick(b, wy0, wy1, wy2)
-                for c in range(nc):
-                    if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
-                        continue
-                    f[((i + a) * sh1 + j + b) * sh2 + k + c] += mT * wa * wb * _pick(c, wz0, wz1, wz2)
+        for q in range(_corners(kind, act)):
+            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            for a in range(na):
+                wa = _pick(a, wx0, wx1, wx2)
+                for b in range(nb):
+                    wb = _pick(b, wy0, wy1, wy2)
+                    for c in range(nc):
+                        if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
+                            continue
+                        f[((i + a) * sh1 + j + b) * sh2 + k + c] += mT * wa * wb * _pick(c, wz0, wz1, wz2)
 
 
 @njit(cache=True, fastmath=FM)
@@ -82,36 +83,40 @@ def heat_rate(kind, act, px, particle_volume, lp, anchor, dx, node_low, grid_tem
     ft = grid_temperature.reshape(-1)
     fa = grid_heat_rate.reshape(-1)
     for p in range(px.shape[0]):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
-            raise IndexError("particle's nodes lie outside the patch node arrays")
         t0 = t1 = t2 = 0.0
-        for a in range(na):
-            wa = _pick(a, wx0, wx1, wx2)
-            ga = _pick(a, gx0, gx1, gx2)
-            for b in range(nb):
-                wb = _pick(b, wy0, wy1, wy2)
-                gb = _pick(b, gy0, gy1, gy2)
-                for c in range(nc):
-                    wc = _pick(c, wz0, wz1, wz2)
-                    gc = _pick(c, gz0, gz1, gz2)
-                    T = ft[((i + a) * sh1 + j + b) * sh2 + k + c]
-                    t0 += T * ga * wb * wc
-                    t1 += T * wa * gb * wc
-                    t2 += T * wa * wb * gc
+        for q in range(_corners(kind, act)):
+            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+                raise IndexError("particle's nodes lie outside the patch node arrays")
+            for a in range(na):
+                wa = _pick(a, wx0, wx1, wx2)
+                ga = _pick(a, gx0, gx1, gx2)
+                for b in range(nb):
+                    wb = _pick(b, wy0, wy1, wy2)
+                    gb = _pick(b, gy0, gy1, gy2)
+                    for c in range(nc):
+                        wc = _pick(c, wz0, wz1, wz2)
+                        gc = _pick(c, gz0, gz1, gz2)
+                        T = ft[((i + a) * sh1 + j + b) * sh2 + k + c]
+                        t0 += T * ga * wb * wc
+                        t1 += T * wa * gb * wc
+                        t2 += T * wa * wb * gc
         s = conductivity_over_cv * particle_volume[p]
-        for a in range(na):
-            wa = _pick(a, wx0, wx1, wx2)
-            ga = _pick(a, gx0, gx1, gx2)
-            for b in range(nb):
-                wb = _pick(b, wy0, wy1, wy2)
-                gb = _pick(b, gy0, gy1, gy2)
-                for c in range(nc):
-                    wc = _pick(c, wz0, wz1, wz2)
-                    gc = _pick(c, gz0, gz1, gz2)
-                    q = ga * wb * wc * t0 + wa * gb * wc * t1 + wa * wb * gc * t2
-                    fa[((i + a) * sh1 + j + b) * sh2 + k + c] -= s * q
+        for q in range(_corners(kind, act)):
+            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            for a in range(na):
+                wa = _pick(a, wx0, wx1, wx2)
+                ga = _pick(a, gx0, gx1, gx2)
+                for b in range(nb):
+                    wb = _pick(b, wy0, wy1, wy2)
+                    gb = _pick(b, gy0, gy1, gy2)
+                    for c in range(nc):
+                        wc = _pick(c, wz0, wz1, wz2)
+                        gc = _pick(c, gz0, gz1, gz2)
+                        h = ga * wb * wc * t0 + wa * gb * wc * t1 + wa * wb * gc * t2
+                        fa[((i + a) * sh1 + j + b) * sh2 + k + c] -= s * h
 
 
 @njit(cache=True, fastmath=FM)
@@ -124,17 +129,18 @@ def g2p_heat(kind, act, px, particle_temperature, particle_mass, lp, anchor, dx,
     fr = grid_temperature_rate.reshape(-1)
     e = 0.0
     for p in range(px.shape[0]):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-        if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
-            raise IndexError("particle's nodes lie outside the patch node arrays")
         r = 0.0
-        for a in range(na):
-            wa = _pick(a, wx0, wx1, wx2)
-            for b in range(nb):
-                wb = _pick(b, wy0, wy1, wy2)
-                for c in range(nc):
-                    r += wa * wb * _pick(c, wz0, wz1, wz2) * fr[((i + a) * sh1 + j + b) * sh2 + k + c]
+        for q in range(_corners(kind, act)):
+            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
+             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+                raise IndexError("particle's nodes lie outside the patch node arrays")
+            for a in range(na):
+                wa = _pick(a, wx0, wx1, wx2)
+                for b in range(nb):
+                    wb = _pick(b, wy0, wy1, wy2)
+                    for c in range(nc):
+                        r += wa * wb * _pick(c, wz0, wz1, wz2) * fr[((i + a) * sh1 + j + b) * sh2 + k + c]
         T = particle_temperature[p] + dt * r
         T_out[p] = T
         e += particle_mass[p] * specific_heat * T
@@ -246,7 +252,7 @@ class ThermalTasks:
         if not self.thermal:
             return
         ms, g, ng = self.matls, Ghost.AROUND_NODES, self.ng
-        lp = [L.pSize] if self.kind == "gimp" else []
+        lp = self.size_labels()
         t = Task("MPM::interpolateTemperatureToGrid", self.interpolate_temperature, ms).requires(NEW, L.gMass)
         for lab in [L.pX, L.pMass, L.pTemperature] + lp:
             t.requires(OLD, lab, g, ng)
@@ -272,7 +278,7 @@ class ThermalTasks:
             return
         t = Task("MPM::updateParticleTemperature", self.update_particle_temperature, self.matls)
         t.requires(OLD, FL.delT)
-        for lab in [L.pX, L.pMass, L.pTemperature] + ([L.pSize] if self.kind == "gimp" else []):
+        for lab in [L.pX, L.pMass, L.pTemperature] + self.size_labels():
             t.requires(OLD, lab)
         if self.conducting:
             t.requires(NEW, L.gTemperatureRate, Ghost.AROUND_CELLS, self.ng, matls=self.conducting)
@@ -298,12 +304,9 @@ class ThermalTasks:
         new_dw.put_reduction(L.ThermalEnergy, e)
 
     def _heat_stencil(self):
-        """The heat kernels' weights: GIMP's with p.size, else linear ones. CPDI runs them only
-        without conduction (refused with it), where the nodal rates are zero and the particles
-        keep their own heating: there g.temperature is the linear interpolation."""
-        if self.kind == "gimp":
-            return 1, self._lp
-        return 0, lambda dw, m, patch, n: self._lp(dw, m, patch, n) if self.kind == "linear" else np.zeros((n, 3))
+        """The heat kernels' weights: the run's interpolator (shape.LINEAR, GIMP or CPDI, whose
+        particles visit their domain's corners) and what its weights read of each particle."""
+        return {"linear": LINEAR, "gimp": GIMP}.get(self.kind, CPDI), self._lp
 
     def interpolate_temperature(self, patch, matls, old_dw, new_dw):
         """g.temperature = sum S m T / m_i from the owned and ghost particles."""

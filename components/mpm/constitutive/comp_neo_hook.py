@@ -6,7 +6,8 @@ Uintah ``<constitutive_model type="comp_neo_hook">`` tags: ``bulk_modulus``
     sigma = K/2 (J - 1/J) I + mu/J dev(bbar)   (= mu J^(-5/3) dev(b))
     W     = K/2 (1/2 (J^2 - 1) - ln J) + mu/2 (tr bbar - 3)   per unit
             reference volume; ``energy`` receives the TOTAL W * V/J.
-    c     = sqrt((K + 4 mu/3) V/m)
+    c     = sqrt((K + 4 mu/3) V/m), or sqrt((K + 4 mu/3) J/rho0) under <DoPressureStabilization>
+            (Uintah's UCNH: J of the stabilized F, whose volume follows the unstabilized J)
 """
 from dataclasses import dataclass
 
@@ -16,6 +17,7 @@ from numba import njit
 from ._common import _get
 
 ENERGY_IS_INCREMENT = False
+STABILIZED_WAVE_SPEED = True      # update takes rho0 (tasks._constitutive)
 
 
 @dataclass(frozen=True)
@@ -60,21 +62,28 @@ def point(K, mu, cK, F00, F01, F02, F10, F11, F12, F20, F21, F22, vol, mass, p, 
 
 
 @njit(cache=True, fastmath={'contract'})
-def kernel(K, mu, F_new, vol, mass, vel, stress_new, energy):
-    """Every particle's stress, energy and the wave speed (3,)."""
+def kernel(K, mu, F_new, vol, mass, vel, stress_new, energy, rho0=0.0):
+    """Every particle's stress, energy and the wave speed (3,); rho0 > 0: c from J/rho0
+    (pressure stabilization), else from V/m."""
     w0 = w1 = w2 = 0.0
     cK = K + 4.0 * mu / 3.0
     for p in range(F_new.shape[0]):
         energy[p], cs = point(K, mu, cK, F_new[p, 0, 0], F_new[p, 0, 1], F_new[p, 0, 2], F_new[p, 1, 0],
                               F_new[p, 1, 1], F_new[p, 1, 2], F_new[p, 2, 0], F_new[p, 2, 1], F_new[p, 2, 2],
                               vol[p], mass[p], p, stress_new)
+        if rho0 > 0.0:
+            J = (F_new[p, 0, 0] * (F_new[p, 1, 1] * F_new[p, 2, 2] - F_new[p, 1, 2] * F_new[p, 2, 1])
+                 - F_new[p, 0, 1] * (F_new[p, 1, 0] * F_new[p, 2, 2] - F_new[p, 1, 2] * F_new[p, 2, 0])
+                 + F_new[p, 0, 2] * (F_new[p, 1, 0] * F_new[p, 2, 1] - F_new[p, 1, 1] * F_new[p, 2, 0]))
+            cs = np.sqrt(cK * J / rho0)
         w0 = max(w0, cs + abs(vel[p, 0]))
         w1 = max(w1, cs + abs(vel[p, 1]))
         w2 = max(w2, cs + abs(vel[p, 2]))
     return np.array([w0, w1, w2])
 
 
-def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy):
-    """Stress from F_new (L, F_old, dt, stress_old unused); returns wave speed (3,)."""
+def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, rho0=0.0):
+    """Stress from F_new (L, F_old, dt, stress_old unused); returns wave speed (3,); rho0 > 0:
+    the wave speed of a pressure-stabilized F (kernel)."""
     return kernel(params.bulk_modulus, params.shear_modulus, F_new, vol, mass, vel,
-                  stress_new, energy)
+                  stress_new, energy, rho0)

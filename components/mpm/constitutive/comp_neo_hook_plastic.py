@@ -16,7 +16,7 @@ elastic left Cauchy-Green tensor, I at the start).  One step, with f = F_new F_o
         bbar = s/mu + I_e I
     sigma = K/2 (J - 1/J) I + s/J
     W = K/2 (1/2 (J^2 - 1) - ln J) + mu/2 (tr bbar - 3); ``energy`` gets W V/J
-    c = sqrt((K + 4 mu/3) V/m)
+    c = sqrt((K + 4 mu/3) V/m), or sqrt((K + 4 mu/3) J/rho0) under <DoPressureStabilization> (as Uintah's UCNH)
 
 The yield stress is the same for every particle (``yield_distrib`` "constant"), or, with
 ``yield_distrib`` "uniform", ``yield_range`` r and ``yield_seed`` (0), each particle's
@@ -36,6 +36,7 @@ from ._common import _get, max_wavespeed
 from .uintah_random import STATE_SIZE, musil_next, musil_start, patch_seed
 
 ENERGY_IS_INCREMENT = False
+STABILIZED_WAVE_SPEED = True      # update takes rho0 (tasks._constitutive)
 UINTAH_UNREAD = ("strain_limit", "reduction_factor")     # in Uintah's decks, read by no Uintah model
 SQ23 = np.sqrt(2.0 / 3.0)
 
@@ -126,9 +127,10 @@ def _abt(a, b):
 
 @njit(cache=True, fastmath={'contract'})
 def kernel(K, mu, sy, H, F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_new, be_new,
-           stress_new, energy, yields):
+           stress_new, energy, yields, rho0=0.0):
     """Every particle's stress, plastic strain, bElBar and energy; the wave speed (3,).
-    Scalar locals (9-tuples) only. yields: each particle's yield stress (empty: sy)."""
+    Scalar locals (9-tuples) only. yields: each particle's yield stress (empty: sy); rho0 > 0:
+    c from J/rho0 (pressure stabilization, comp_neo_hook.kernel), else from V/m."""
     ws = np.zeros(3)
     cK = K + 4.0 * mu / 3.0
     for p in range(F_new.shape[0]):
@@ -172,16 +174,17 @@ def kernel(K, mu, sy, H, F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_
         U = 0.5 * K * (0.5 * (J * J - 1.0) - np.log(J))
         W = 0.5 * mu * (bt[0] + bt[4] + bt[8] - 3.0)
         energy[p] = (U + W) * vol[p] * iJ
-        max_wavespeed(ws, np.sqrt(cK * vol[p] / mass[p]), vel, p)
+        max_wavespeed(ws, np.sqrt(cK * J / rho0) if rho0 > 0.0 else np.sqrt(cK * vol[p] / mass[p]), vel, p)
     return ws
 
 
-def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old=None, new=None):
+def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old=None, new=None,
+           rho0=0.0):
     """Stress from F_old, F_new and the state, old = (alpha, bElBar) -> new; returns the wave
-    speed (3,). L, dt, stress_old unused."""
+    speed (3,). L, dt, stress_old unused; rho0 > 0: pressure stabilization's wave speed (kernel)."""
     if not params.usePlasticity:
         return comp_neo_hook.update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new,
-                                    energy)
+                                    energy, rho0)
     if params.yield_uniform:
         (alpha_old, be_old, yields), (alpha_new, be_new, y_new) = old, new
         y_new[:] = yields
@@ -189,4 +192,5 @@ def update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, 
         (alpha_old, be_old), (alpha_new, be_new) = old, new
         yields = np.empty(0)
     return kernel(params.bulk_modulus, params.shear_modulus, params.yield_stress, params.hardening_modulus,
-                  F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_new, be_new, stress_new, energy, yields)
+                  F_old, F_new, vol, mass, vel, alpha_old, be_old, alpha_new, be_new, stress_new, energy, yields,
+                  rho0)

@@ -546,12 +546,12 @@ class Damaged:
         return own + self.damage.initial_state(n, color)
 
     def update(self, params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy, old, new,
-               time=0.0, color=None):
+               time=0.0, color=None, **stabilized):
         k = self.n_model
         dold, dnew = old[k:], new[k:]
         if isinstance(self.damage, ThresholdVar):
             L = self.damage.erode_kinematics(dold[1], F_old, F_new, L)
-        extra = {"color": color} if getattr(self.model, "USES_COLOR", False) else {}
+        extra = dict({"color": color} if getattr(self.model, "USES_COLOR", False) else {}, **stabilized)
         if k == 0:
             ws = self.model.update(params, L, F_old, F_new, vol, mass, vel, dt, stress_old, stress_new, energy,
                                    **extra)

@@ -5,8 +5,8 @@ differ only in the default of ``usePlasticity`` (false here).  Elastic, it is co
 """
 from dataclasses import dataclass
 
-from .comp_neo_hook_plastic import (ENERGY_IS_INCREMENT, Params as _PlasticParams, initial_state, state_of,  # noqa: F401
-                                    update)
+from .comp_neo_hook_plastic import (ENERGY_IS_INCREMENT, STABILIZED_WAVE_SPEED, Params as _PlasticParams,  # noqa: F401
+                                    initial_state, state_of, update)
 
 
 @dataclass(frozen=True)
