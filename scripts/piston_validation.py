@@ -12,7 +12,7 @@ highest compression; writes a PNG of P and the exact curve against t.
     ./pysus inputs/MPMICE/piston_validation.ups                  # ~3 min, one core
     .venv/bin/python scripts/piston_validation.py piston_validation.uda --png piston.png
 
-    ./pysus /work/shared/uintah-inputs/MPMICE/pistonValidation.ups     # Uintah's deck, ratio 5.0
+    ./pysus UINTAH_SRC/StandAlone/inputs/MPMICE/pistonValidation.ups   # Uintah's deck, ratio 5.0
     .venv/bin/python scripts/piston_validation.py imp_pistonVal_cgs.uda
 """
 from __future__ import annotations
