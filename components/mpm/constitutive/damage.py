@@ -441,25 +441,9 @@ def read_threshold_var(dm, erosion, char_time, by_color):
 
 
 @njit(cache=True, inline="always")
-def max_eigenvalue_sym(a00, a11, a22, a01, a02, a12):
-    """The largest eigenvalue of a symmetric 3x3 matrix (the trigonometric solution of its cubic)."""
-    q = (a00 + a11 + a22) / 3.0
-    p1 = a01 * a01 + a02 * a02 + a12 * a12
-    b00, b11, b22 = a00 - q, a11 - q, a22 - q
-    p2 = b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * p1
-    if p2 <= 1e-300:
-        return q
-    p = np.sqrt(p2 / 6.0)
-    ip = 1.0 / p
-    c00, c11, c22, c01, c02, c12 = b00 * ip, b11 * ip, b22 * ip, a01 * ip, a02 * ip, a12 * ip
-    r = 0.5 * (c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) + c02 * (c01 * c12 - c11 * c02))
-    r = min(1.0, max(-1.0, r))
-    return q + 2.0 * p * np.cos(np.arccos(r) / 3.0)
-
-
-@njit(cache=True, inline="always")
 def extreme_eigenvalues_sym(a00, a11, a22, a01, a02, a12):
-    """The largest and the smallest eigenvalue of a symmetric 3x3 matrix (as max_eigenvalue_sym)."""
+    """The largest and the smallest eigenvalue of a symmetric 3x3 matrix (the trigonometric solution of its
+    cubic)."""
     q = (a00 + a11 + a22) / 3.0
     p1 = a01 * a01 + a02 * a02 + a12 * a12
     b00, b11, b22 = a00 - q, a11 - q, a22 - q
@@ -473,6 +457,12 @@ def extreme_eigenvalues_sym(a00, a11, a22, a01, a02, a12):
     r = min(1.0, max(-1.0, r))
     a = np.arccos(r) / 3.0
     return q + 2.0 * p * np.cos(a), q + 2.0 * p * np.cos(a + 2.0 * np.pi / 3.0)
+
+
+@njit(cache=True, inline="always")
+def max_eigenvalue_sym(a00, a11, a22, a01, a02, a12):
+    """The largest eigenvalue of a symmetric 3x3 matrix."""
+    return extreme_eigenvalues_sym(a00, a11, a22, a01, a02, a12)[0]
 
 
 @njit(cache=True)
