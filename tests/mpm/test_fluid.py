@@ -109,6 +109,17 @@ def test_piston_container_period(tmp_path, m, table_period, t_end):
     assert abs(T / T_exact - 1) < 0.02, (T, T_exact)
 
 
+def _row_nodal_sums(x, m, v, dx, nodes):
+    """The nodal masses and volumes (linear weights) of points along a row of cells in x."""
+    gm, gv = np.zeros((nodes, 1, 1)), np.zeros((nodes, 1, 1))
+    for p in range(len(x)):
+        i, f = int(x[p, 0] // dx), x[p, 0] / dx - int(x[p, 0] // dx)
+        for node, w in ((i, 1 - f), (i + 1, f)):
+            gm[node, 0, 0] += w * m[p]
+            gv[node, 0, 0] += w * v[p]
+    return gm, gv
+
+
 def test_density_from_grid():
     """ideal_gas_fluid <density_from_grid> on a 1D row of 4 cells (dx 0.25, unit section),
     2 points per cell of mass 0.125 (density 1): volumes that drifted to 1.5 times their
@@ -121,12 +132,7 @@ def test_density_from_grid():
     m = np.full(8, 0.125)
     for scale, expect in ((1.5, 0.125), (0.5, 0.0625)):
         v = np.full(8, 0.125 * scale)
-        gm, gv = np.zeros((5, 1, 1)), np.zeros((5, 1, 1))
-        for p in range(8):
-            i, f = int(x[p, 0] // 0.25), x[p, 0] / 0.25 - int(x[p, 0] // 0.25)
-            for node, w in ((i, 1 - f), (i + 1, f)):
-                gm[node, 0, 0] += w * m[p]
-                gv[node, 0, 0] += w * v[p]
+        gm, gv = _row_nodal_sums(x, m, v, 0.25, 5)
         grid_volumes(x, np.zeros(3), dx, ncells, np.zeros(3, np.bool_), np.zeros(3, np.int64),
                      gm, gv, gv, m, v)
         assert np.allclose(v, expect, rtol=1e-12), (scale, v)
@@ -145,12 +151,7 @@ def test_density_from_grid_axisymmetric():
     exact = x[:, 0] * 0.0625
     m = exact.copy()
     v = exact * np.random.default_rng(3).uniform(1.2, 1.8, 16)
-    gm, gv = np.zeros((5, 1, 1)), np.zeros((5, 1, 1))
-    for p in range(16):
-        i, f = int(x[p, 0] // 0.25), x[p, 0] / 0.25 - int(x[p, 0] // 0.25)
-        for node, w in ((i, 1 - f), (i + 1, f)):
-            gm[node, 0, 0] += w * m[p]
-            gv[node, 0, 0] += w * v[p]
+    gm, gv = _row_nodal_sums(x, m, v, 0.25, 5)
     grid_volumes(x, np.zeros(3), dx, ncells, np.zeros(3, np.bool_), np.zeros(3, np.int64),
                  gm, gv, gv, m, v, True)
     assert np.allclose(v[:12], exact[:12], rtol=1e-12), v / exact
