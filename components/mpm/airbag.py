@@ -48,12 +48,13 @@ def meridian(a, c, y0, r0, n=400):
 
 
 def airbag_deck(dx=0.025, t_end=0.1, out=2.0e-3, every_step=False, cfl=0.5, gas_ppc=4,
-                spacing=None, mu=GAS["mu"], sphere=None, damping=0.0):
+                spacing=None, mu=GAS["mu"], sphere=None, damping=0.0, grid_density=True):
     """Deck text: cells dx, membrane points `spacing` apart (default dx/16), gas_ppc^2 gas
     points per cell, output every `out` s (every step with every_step; the nodal masses and
-    forces are saved for probe_force). sphere=R: instead of the bag and the probe, a
-    spherical bag of radius R (centre on the axis) holding the same gas, with
-    <artificial_damping_coeff> `damping` (1/s): its equilibrium has
+    forces are saved for probe_force), the gas points' volumes from the nodal mass
+    (ideal_gas_fluid <density_from_grid>) unless grid_density=False. sphere=R: instead of
+    the bag and the probe, a spherical bag of radius R (centre on the axis) holding the same
+    gas, with <artificial_damping_coeff> `damping` (1/s): its equilibrium has
     sigma_tt = sigma_hh = p R / (2 h)."""
     sp = spacing or dx / 16.0
     E, nu = FABRIC["E"], FABRIC["nu"]
@@ -123,7 +124,8 @@ def airbag_deck(dx=0.025, t_end=0.1, out=2.0e-3, every_step=False, cfl=0.5, gas_
   <MaterialProperties><MPM>
     <material name="gas"><density>{GAS["rho"]}</density>
       <constitutive_model type="ideal_gas_fluid"><gamma>{GAS["gamma"]}</gamma>
-        <viscosity>{mu}</viscosity><specific_heat>1.0</specific_heat></constitutive_model>
+        <viscosity>{mu}</viscosity><specific_heat>1.0</specific_heat>
+        <density_from_grid>{str(grid_density).lower()}</density_from_grid></constitutive_model>
       <geom_object>{gas}<res>[{gas_ppc},{gas_ppc},1]</res><velocity>[0,0,0]</velocity>
         <temperature>{GAS["e"]}</temperature></geom_object>
     </material>

@@ -380,9 +380,6 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
                 f"contact type {self.contact.type} is not implemented with <axisymmetric>true (its normals are "
                 "planar); accepted there: null, single_velocity, rigid, friction")
         for m in self.materials:
-            if getattr(m.params, "density_from_grid", False):
-                raise m.node.child("constitutive_model").error(
-                    f"{m.model_name} with <density_from_grid> is not implemented with <axisymmetric>true")
             if m.is_membrane:
                 self._check_axisymmetric_membrane(m)
 

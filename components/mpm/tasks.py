@@ -787,7 +787,8 @@ class MPMTasks:
                         if k == m or not self.materials[k].is_membrane}
                 mat.model.grid_volumes(old_dw.get(L.pX, m, patch), lv.anchor, lv.dx, np.array(lv.ncells),
                                        np.array(lv.periodic), np.array(patch.low_index(NC), np.int64),
-                                       new_dw.get(L.gMass, m, patch), gvol[m], sum(gvol.values()), pm, vol_new)
+                                       new_dw.get(L.gMass, m, patch), gvol[m], sum(gvol.values()), pm, vol_new,
+                                       self.axisymmetric)
             old = new = None
             olds, news = {}, {}
             for final, pre in self.carry:

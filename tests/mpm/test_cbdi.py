@@ -37,6 +37,20 @@ def _match(x, rx):
     return k
 
 
+def _equals_sus(p, ref, case, tols):
+    """The sample particles' (matched by position to sus's `case`_x) p.x, p.velocity, p.stress
+    within `tols` (label, relative to sus's largest value) and the loaded particles'
+    p.externalforce within 1e-12 of sus's; returns the loaded particles' indices."""
+    k = _match(p["p.x"], ref[f"{case}_x"])
+    for lab, tol in tols:
+        r = ref[f"{case}_{lab}"]
+        assert np.abs(p[f"p.{lab}"][k] - r).max() <= tol * max(np.abs(r).max(), 1.0), lab
+    k = _match(p["p.x"], ref[f"{case}_loaded_x"])
+    r = ref[f"{case}_loaded_fext"]
+    assert np.abs(p["p.externalforce"][k] - r).max() <= 1e-12 * np.abs(r).max()
+    return k
+
+
 def test_one_particle_loaded_face():
     """A particle of half-widths (0.1, 0.2, 0.3) m, dx 1 m, normal +z: the face centre is x +
     0.3 z, its corners +-0.1 x +-0.2 y; with F stretching x by 2 the force doubles (the face's
@@ -85,13 +99,7 @@ def test_load_curve_cbdi_linear_equals_uintahs_sus(tmp_path, ref):
     assert np.allclose(da.times[1:], ref["linear_time"], rtol=1e-13, atol=0)
     p = da.particles(0, 4)
     assert len(p["p.x"]) == 800
-    k = _match(p["p.x"], ref["linear_x"])
-    for lab, tol in (("x", 1e-14), ("velocity", 1e-12), ("stress", 1e-10)):
-        r = ref[f"linear_{lab}"]
-        assert np.abs(p[f"p.{lab}"][k] - r).max() <= tol * max(np.abs(r).max(), 1.0), lab
-    k = _match(p["p.x"], ref["linear_loaded_x"])
-    r = ref["linear_loaded_fext"]
-    assert np.abs(p["p.externalforce"][k] - r).max() <= 1e-12 * np.abs(r).max()
+    k = _equals_sus(p, ref, "linear", (("x", 1e-14), ("velocity", 1e-12), ("stress", 1e-10)))
     assert np.all(p["p.loadCurveID"][k, 0] > 0)
 
 
@@ -139,13 +147,7 @@ def test_press_smooth_cyl_cbdi_equals_uintahs_sus(tmp_path, ref):
     assert np.allclose(da.times[1:9], ref["cyl_time"], rtol=1e-13, atol=0)
     p = da.particles(0, 4)
     assert len(p["p.x"]) == 3140
-    k = _match(p["p.x"], ref["cyl_x"])
-    for lab, tol in (("x", 1e-14), ("velocity", 1e-11), ("stress", 1e-10)):
-        r = ref[f"cyl_{lab}"]
-        assert np.abs(p[f"p.{lab}"][k] - r).max() <= tol * max(np.abs(r).max(), 1.0), lab
-    k = _match(p["p.x"], ref["cyl_loaded_x"])
-    r = ref["cyl_loaded_fext"]
-    assert np.abs(p["p.externalforce"][k] - r).max() <= 1e-12 * np.abs(r).max()
+    _equals_sus(p, ref, "cyl", (("x", 1e-14), ("velocity", 1e-11), ("stress", 1e-10)))
     localized = np.array([[np.sum(da.particles(0, s)["p.localizedMPM"] == v) for v in (1, 2)] for s in range(1, 9)])
     assert np.array_equal(localized, ref["cyl_localized"])
     assert localized[-1, 1] > 0

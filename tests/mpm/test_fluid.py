@@ -109,6 +109,17 @@ def test_piston_container_period(tmp_path, m, table_period, t_end):
     assert abs(T / T_exact - 1) < 0.02, (T, T_exact)
 
 
+def _row_nodal_sums(x, m, v, dx, nodes):
+    """The nodal masses and volumes (linear weights) of points along a row of cells in x."""
+    gm, gv = np.zeros((nodes, 1, 1)), np.zeros((nodes, 1, 1))
+    for p in range(len(x)):
+        i, f = int(x[p, 0] // dx), x[p, 0] / dx - int(x[p, 0] // dx)
+        for node, w in ((i, 1 - f), (i + 1, f)):
+            gm[node, 0, 0] += w * m[p]
+            gv[node, 0, 0] += w * v[p]
+    return gm, gv
+
+
 def test_density_from_grid():
     """ideal_gas_fluid <density_from_grid> on a 1D row of 4 cells (dx 0.25, unit section),
     2 points per cell of mass 0.125 (density 1): volumes that drifted to 1.5 times their
@@ -121,12 +132,27 @@ def test_density_from_grid():
     m = np.full(8, 0.125)
     for scale, expect in ((1.5, 0.125), (0.5, 0.0625)):
         v = np.full(8, 0.125 * scale)
-        gm, gv = np.zeros((5, 1, 1)), np.zeros((5, 1, 1))
-        for p in range(8):
-            i, f = int(x[p, 0] // 0.25), x[p, 0] / 0.25 - int(x[p, 0] // 0.25)
-            for node, w in ((i, 1 - f), (i + 1, f)):
-                gm[node, 0, 0] += w * m[p]
-                gv[node, 0, 0] += w * v[p]
+        gm, gv = _row_nodal_sums(x, m, v, 0.25, 5)
         grid_volumes(x, np.zeros(3), dx, ncells, np.zeros(3, np.bool_), np.zeros(3, np.int64),
                      gm, gv, gv, m, v)
         assert np.allclose(v, expect, rtol=1e-12), (scale, v)
+
+
+def test_density_from_grid_axisymmetric():
+    """The same in axisymmetry (x = r, per radian): a row of 4 cells (dx 0.25, dy 1) from the
+    axis, 4 points per cell in r, V_p = r_p dr dy, density 1; volumes drifted by 1.2-1.8 times
+    come back to r_p dr dy: exactly in the first three cells (their nodes' sums S_ip m_p equal
+    the integrals of S_i r dr dy; the axis node is skipped), in the last within the midpoint
+    sum's error at the outer face's node (0.3 %)."""
+    from components.mpm.constitutive.ideal_gas_fluid import grid_volumes
+    dx, ncells = np.array([0.25, 1.0, 1.0]), np.array([4, 1, 1])
+    x = np.zeros((16, 3))
+    x[:, 0] = (np.arange(16) + 0.5) * 0.0625
+    exact = x[:, 0] * 0.0625
+    m = exact.copy()
+    v = exact * np.random.default_rng(3).uniform(1.2, 1.8, 16)
+    gm, gv = _row_nodal_sums(x, m, v, 0.25, 5)
+    grid_volumes(x, np.zeros(3), dx, ncells, np.zeros(3, np.bool_), np.zeros(3, np.int64),
+                 gm, gv, gv, m, v, True)
+    assert np.allclose(v[:12], exact[:12], rtol=1e-12), v / exact
+    assert np.allclose(v[12:], exact[12:], rtol=4e-3), v / exact

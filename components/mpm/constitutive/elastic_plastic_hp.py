@@ -474,23 +474,6 @@ def _rotate(R, A, out, forward, B):
             out[i, j] = s
 
 
-@njit(cache=True, inline="always")
-def _principal_extremes(a00, a11, a22, a01, a02, a12):
-    """The largest and smallest eigenvalues of a symmetric 3x3 matrix (its upper triangle; the
-    trigonometric solution of the characteristic cubic)."""
-    q = (a00 + a11 + a22) / 3.0
-    p1 = a01 * a01 + a02 * a02 + a12 * a12
-    b00, b11, b22 = a00 - q, a11 - q, a22 - q
-    p2 = b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * p1
-    if p2 <= 1e-300:
-        return q, q
-    p = math.sqrt(p2 / 6.0)
-    c00, c11, c22, c01, c02, c12 = b00 / p, b11 / p, b22 / p, a01 / p, a02 / p, a12 / p
-    r = 0.5 * (c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) + c02 * (c01 * c12 - c11 * c02))
-    phi = math.acos(min(1.0, max(-1.0, r))) / 3.0
-    return q + 2.0 * p * math.cos(phi), q + 2.0 * p * math.cos(phi + 2.0 * math.pi / 3.0)
-
-
 @njit(cache=True, error_model="numpy")
 def _unstable(check, K, mu, sig, D, sy, dsy_dep):
     """Uintah's stability checks of a plastic particle (stress sig and rate of deformation D in
@@ -546,7 +529,7 @@ def _unstable(check, K, mu, sig, D, sy, dsy_dep):
             return True
         if check == DRUCKER:
             return False
-    s0, s2 = _principal_extremes(sig[0, 0], sig[1, 1], sig[2, 2], sig[0, 1], sig[0, 2], sig[1, 2])
+    s0, s2 = damage.extreme_eigenvalues_sym(sig[0, 0], sig[1, 1], sig[2, 2], sig[0, 1], sig[0, 2], sig[1, 2])
     A = M[2, 0, 2, 0] * (-s2 + 2.0 * M[2, 2, 2, 2])
     C = M[2, 0, 2, 0] * (-s0 + 2.0 * M[0, 0, 0, 0])
     B = (M[2, 0, 2, 0] * (s2 - 2.0 * M[0, 0, 2, 2] + s0 - 2.0 * M[2, 2, 0, 0]) + s0 * (M[2, 2, 0, 0] - M[2, 2, 2, 2])

@@ -112,7 +112,7 @@ FULL = 0.9   # a node whose support the points claim to >= 90 % counts as full
 
 
 @njit(cache=True)
-def grid_volumes(px, anchor, dx, ncells, periodic, node_low, gmass, gvol, gvol_all, mass, vol):
+def grid_volumes(px, anchor, dx, ncells, periodic, node_low, gmass, gvol, gvol_all, mass, vol, axi=False):
     """Fluid point volumes V_p = m_p / rho_p from the nodal densities (linear shape
     functions), in place: rho_p = sum_i S_ip rho_i over the nodes that carry this fluid.
     rho_i = m_i / (V_i f_i) at a node whose support is full (the points of all materials
@@ -124,7 +124,12 @@ def grid_volumes(px, anchor, dx, ncells, periodic, node_low, gmass, gvol, gvol_a
     split among the points nor by how much their sum exceeds it), so Sigma V outgrows the
     region the fluid fills; the nodal mass says where the points are, as the density of
     PIC/FLIP. For an ideal gas V p = (gamma-1) m e is unchanged, so are the step's forces.
-    Collapsed directions (ncells 1) carry one node layer of weight 1."""
+    Collapsed directions (ncells 1) carry one node layer of weight 1.
+    axi (axisymmetric, x = r, volumes and masses per radian): V_i = the integral of S_i r dr dy,
+    r_i dx dy, and r_i dx/2 +- dx^2/6 (times dy) on the lower / upper r face; no z factor. A node
+    on the axis is skipped (its ring has no volume, and the points' sum S_ip m_p over-weights it
+    by 1/(2 n^2) for n points per cell in r, where elsewhere the sum is exact for a uniform
+    fill): the points of the first cell take the density of the nodes at r = dx."""
     idx = np.zeros(3, np.int64)
     frac = np.zeros(3)
     node = np.zeros(3, np.int64)
@@ -145,12 +150,23 @@ def grid_volumes(px, anchor, dx, ncells, periodic, node_low, gmass, gvol, gvol_a
                 if ncells[d] == 1:
                     if hi:
                         skip = True
-                    vi *= dx[d]
+                    if not (axi and d == 2):
+                        vi *= dx[d]
                     continue
                 node[d] = idx[d] + hi
                 w *= frac[d] if hi else 1.0 - frac[d]
-                half = not periodic[d] and (node[d] == 0 or node[d] == ncells[d])
-                vi *= 0.5 * dx[d] if half else dx[d]
+                lower = not periodic[d] and node[d] == 0
+                upper = not periodic[d] and node[d] == ncells[d]
+                if axi and d == 0:
+                    r = anchor[0] + node[0] * dx[0]
+                    if r <= 0.5 * dx[0]:            # on the axis
+                        skip = True
+                    elif lower or upper:
+                        vi *= 0.5 * r * dx[0] + (dx[0] * dx[0] / 6.0 if lower else -dx[0] * dx[0] / 6.0)
+                    else:
+                        vi *= r * dx[0]
+                else:
+                    vi *= 0.5 * dx[d] if lower or upper else dx[d]
             if skip or w <= 0.0:
                 continue
             a, b, k = node[0] - node_low[0], node[1] - node_low[1], node[2] - node_low[2]
