@@ -101,6 +101,7 @@ class MPMinMPMICE(MPM):
 
 # constitutive model -> the EOS code of Uintah's model (ice/eos.py); its bulk modulus (Pa) from params
 SOLID_EOS = {"comp_neo_hook": SOLID_UCNH, "comp_neo_hook_plastic": SOLID_UCNH, "UCNH": SOLID_UCNH,
+             "UCNHVar": SOLID_UCNH,
              "elastic_plastic": SOLID_HYPER, "elastic_plastic_hp": SOLID_HYPER, "visco_scram": SOLID_HYPER,
              "hypo_elastic": SOLID_HYPO, "rigid": SOLID_RIGID}
 RIGID_BULK = 1.0e200      # Uintah's RigidMaterial without <bulk_modulus>
@@ -126,11 +127,13 @@ def solid_eos(mat, p_ref, prescribed):
         row[:4] = (1.0 / _bulk(mat), 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
         return MURNAGHAN, row
     cm = mat.node.child("constitutive_model")
-    modified = cm.get("useModifiedEOS", "bool", False)
+    modified = cm.get("useModifiedEOS", "bool", False) and mat.model_name != "UCNHVar"   # UCNHVar never reads it
     if code == SOLID_HYPO:
         K = q.K
     elif code == SOLID_RIGID:
         K = q.bulk_modulus if q.bulk_modulus > 0.0 else RIGID_BULK
+    elif mat.model_name == "UCNHVar":             # Uintah's UCNHVar: the largest entry's
+        K = float(max(q.bulk_modulus))
     else:
         K = q.bulk_modulus
     row[:5] = (K, mat.density, p_ref, float(modified), float(mat.model_name == "visco_scram"))

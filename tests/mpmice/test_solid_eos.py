@@ -127,3 +127,16 @@ def test_deck_model_selects_its_eos(kind, tags, code, K):
         if code in (SOLID_UCNH, SOLID_HYPER):
             assert row[3] == float(modified)
         assert solid_eos(mat, P_REF, True)[0] == MURNAGHAN
+
+
+def test_ucnhvar_takes_its_largest_bulk_modulus():
+    """Uintah's UCNHVar: UCNH's EOS with the largest of its entries' bulk moduli; it never reads
+    <useModifiedEOS>."""
+    from components.mpmice.setup import solid_eos
+    from framework.problemspec import ProblemSpec
+    node = ProblemSpec.from_string('<material><constitutive_model type="UCNHVar"><useModifiedEOS>true'
+                                   '</useModifiedEOS></constitutive_model></material>')
+    params = types.SimpleNamespace(bulk_modulus=(60e9, 117e9, 80e9))
+    mat = types.SimpleNamespace(node=node, model_name="UCNHVar", density=8930.0, params=params)
+    code, row = solid_eos(mat, P_REF, False)
+    assert code == SOLID_UCNH and row[0] == 117e9 and row[3] == 0.0
