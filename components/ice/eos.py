@@ -35,6 +35,23 @@ Codes and parameter layouts (Uintah deck tags in brackets):
                      (Uintah's ViscoScram computePressEOSCM); dp_de = 0, c^2 = dp/drho. p_ref > 0
                      (<useModifiedEOS>): below the density rho_ref(T) where p = p_ref, the
                      threshold curve p_ref (rho/rho_ref)^(K0/p_ref), K0 = rho dp/drho there.
+  SOLID_UCNH = 8     (MPMICE: comp_neo_hook, comp_neo_hook_plastic, UCNH) [K, rho0, p_ref, modified]
+                     Uintah's UCNH computePressEOSCM: p = p_ref + K/2 (x - 1/x), x = rho/rho0
+                     (J = 1/x), dp/drho = K (1 + J^2) / (2 rho0), c^2 = K/rho; rho(p) =
+                     rho0/K (p_g + sqrt(K^2 + p_g^2)), p_g = p - p_ref. modified = 1
+                     (<useModifiedEOS>): below rho0 the threshold curve p_ref x^(K/p_ref),
+                     c^2 = dp/drho (as SOLID_HYPER's).
+  SOLID_HYPER = 9    (MPMICE: elastic_plastic(_hp), visco_scram without <useJWLEOS>)
+                     [K, rho0, p_ref, modified, viscoscram]: Uintah's ElasticPlasticHP and
+                     ViscoScram computePressEOSCM, SOLID_UCNH's curves in their own arithmetic
+                     (x = rho (1/rho0), rho(p) = rho0 (g + sqrt(g^2 + 1)), g = p_g/K; viscoscram = 1:
+                     ViscoScram's rho (1/rho0) in the threshold curve, ElasticPlasticHP's rho/rho0).
+  SOLID_HYPO = 10    (MPMICE: hypo_elastic) [K, rho0, p_ref]: Uintah's HypoElastic,
+                     p = p_ref + K (1 - rho0/rho), dp/drho = K rho0/rho^2, c^2 = K/rho.
+  SOLID_RIGID = 11   (MPMICE: rigid) [K, rho0, p_ref]: Uintah's RigidMaterial, rho = rho0 at any
+                     pressure, p = p_ref, dp/drho = c^2 = K/rho0.
+                     The solid codes' dp_de is 0 and eos_sound_speed2 is the model's own c^2
+                     (solid_cm_press_eos), which MPMICE's equilibration takes as Uintah's.
   THOMSEN_HARTKA = 5 ``Thomsen_Hartka_water`` [a, b, co, ko, To, L, vo]
                      v = vo (1 - ko p + L (a p + T - To)^2) (Uintah Thomsen_Hartka_water.cc:
                      p(rho, T) the root of that quadratic, dp_drho, dp_de and alpha its
@@ -84,6 +101,10 @@ STIFFENED_GAS = 4
 THOMSEN_HARTKA = 5
 SOLID_JWL = 6
 TST = 7
+SOLID_UCNH = 8
+SOLID_HYPER = 9
+SOLID_HYPO = 10
+SOLID_RIGID = 11
 RHO_REF_TOL = 1e-10       # SOLID_JWL: relative tolerance of rho_ref (Uintah's computeRhoRef)
 MAX_PARAMS = 8
 
@@ -265,6 +286,91 @@ def solid_jwl_rho_micro(press, temp, A, B, R1, R2, om, Cv, rho0, p_ref, rho_gues
 
 
 # ----------------------------------------------------------------------------
+# an MPM solid's own EOS in MPMICE (Uintah's constitutive models' computePressEOSCM and
+# computeRhoMicroCM), each in its model's arithmetic; (p, dp/drho, c^2)
+@njit(cache=True)
+def solid_modified_press_eos(rho, K, rho0, p_ref, viscoscram):
+    """<useModifiedEOS> below rho0: p = p_ref x^n, n = K/p_ref, dp/drho = c^2 = (K/rho) x^n
+    (paper 000 sec. 3.1's threshold curve at p_th = p_ref)."""
+    n = K / p_ref
+    x_n = (rho * (1.0 / rho0)) ** n if viscoscram else (rho / rho0) ** n
+    dp = (K / rho) * x_n
+    return p_ref * x_n, dp, dp
+
+
+@njit(cache=True)
+def solid_modified_rho_micro(press, K, rho0, p_ref):
+    """The inverse of solid_modified_press_eos: rho0 (p/p_ref)^(p_ref/K)."""
+    return rho0 * (press / p_ref) ** (p_ref / K)
+
+
+@njit(cache=True)
+def ucnh_press_eos(rho, K, rho0, p_ref, modified):
+    """Uintah's UCNH: p = p_ref - K/2 (J - 1/J), J = rho0/rho; c^2 = K (1 + (1/J) J) / (2 rho)."""
+    if modified and rho < rho0:
+        return solid_modified_press_eos(rho, K, rho0, p_ref, False)
+    J = rho0 / rho
+    p_cm = 0.5 * K * (J - 1.0 / J)
+    return p_ref - p_cm, 0.5 * K * (1.0 + J * J) / rho0, 0.5 * K * (1.0 + 1.0 / J * J) / rho
+
+
+@njit(cache=True)
+def ucnh_rho_micro(press, K, rho0, p_ref, modified):
+    """Uintah's UCNH computeRhoMicroCM (computeDensity of -p_g)."""
+    p_g = press - p_ref
+    if modified and p_g < 0.0:
+        return solid_modified_rho_micro(press, K, rho0, p_ref)
+    return rho0 / K * (p_g + math.sqrt(K * K + p_g * p_g))
+
+
+@njit(cache=True)
+def hyper_press_eos(rho, K, rho0, p_ref, modified, viscoscram):
+    """Uintah's ElasticPlasticHP / ViscoScram: p = p_ref + K/2 (rho/rho0 - rho0/rho), c^2 = K/rho."""
+    if modified and rho < rho0:
+        return solid_modified_press_eos(rho, K, rho0, p_ref, viscoscram)
+    inv_rho0 = 1.0 / rho0
+    p = p_ref + 0.5 * K * (rho * inv_rho0 - rho0 / rho)
+    return p, 0.5 * K * (rho0 / (rho * rho) + inv_rho0), K / rho
+
+
+@njit(cache=True)
+def hyper_rho_micro(press, K, rho0, p_ref, modified):
+    """Uintah's ElasticPlasticHP / ViscoScram computeRhoMicroCM."""
+    p_g = press - p_ref
+    if modified and p_g < 0.0:
+        return solid_modified_rho_micro(press, K, rho0, p_ref)
+    g = p_g / K
+    return rho0 * (g + math.sqrt(g * g + 1.0))
+
+
+@njit(cache=True)
+def solid_cm_press_eos(code, params, rho):
+    """(p, dp/drho, c^2) of the solid codes (SOLID_UCNH .. SOLID_RIGID)."""
+    K, rho0, p_ref = params[0], params[1], params[2]
+    if code == SOLID_UCNH:
+        return ucnh_press_eos(rho, K, rho0, p_ref, params[3] != 0.0)
+    elif code == SOLID_HYPER:
+        return hyper_press_eos(rho, K, rho0, p_ref, params[3] != 0.0, params[4] != 0.0)
+    elif code == SOLID_HYPO:
+        return p_ref + K * (1.0 - rho0 / rho), K * rho0 / (rho * rho), K / rho
+    dp = K / rho0
+    return p_ref, dp, dp
+
+
+@njit(cache=True)
+def solid_cm_rho_micro(code, params, press):
+    """rho_micro(p) of the solid codes (Uintah's computeRhoMicroCM)."""
+    K, rho0, p_ref = params[0], params[1], params[2]
+    if code == SOLID_UCNH:
+        return ucnh_rho_micro(press, K, rho0, p_ref, params[3] != 0.0)
+    elif code == SOLID_HYPER:
+        return hyper_rho_micro(press, K, rho0, p_ref, params[3] != 0.0)
+    elif code == SOLID_HYPO:
+        return rho0 / (1.0 - (press - p_ref) / K)
+    return rho0
+
+
+# ----------------------------------------------------------------------------
 # Thomsen-Hartka water (Thomsen_Hartka_water.cc)
 @njit(cache=True)
 def thomsen_hartka_press_eos(rho, temp, a, b, co, ko, To, L, vo):
@@ -346,6 +452,9 @@ def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
                                    params[5], params[6], params[7])
     elif code == TST:
         return tst_press_eos(rho_micro, temp, cv, params[0], params[1], params[2], params[3], params[4])
+    elif code >= SOLID_UCNH:
+        p, dp, _c2 = solid_cm_press_eos(code, params, rho_micro)
+        return p, dp, 0.0
     return math.nan, math.nan, math.nan
 
 
@@ -371,7 +480,7 @@ def eos_cold_energy(code, params, rho_micro):
     so that e = cv T + e_c(rho) is the energy whose conservation the Euler equations state.
     Ideal gas 0; stiffened gas Pinf/rho; JWL/JWLC A/(R1 rho0) exp(-R1 V) + B/(R2 rho0) exp(-R2 V)
     (+ C rho^om / (om rho0^(1+om)) for JWLC); Murnaghan the integral of p/rho^2 from rho0."""
-    if code == IDEAL_GAS or code == SOLID_JWL:     # a solid's energy is its particles'
+    if code == IDEAL_GAS or code == SOLID_JWL or code >= SOLID_UCNH:     # a solid's energy is its particles'
         return 0.0
     elif code == STIFFENED_GAS:
         return params[0] / rho_micro
@@ -460,6 +569,8 @@ def eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess):
                                    params[6], params[7], rho_guess)
     elif code == TST:
         return tst_rho_micro(press, temp, cv, gamma, params[0], params[1], params[2], params[3])
+    elif code >= SOLID_UCNH:
+        return solid_cm_rho_micro(code, params, press)
     return math.nan
 
 
@@ -501,7 +612,10 @@ def eos_alpha(code, params, rho_micro, temp, cv, gamma):
 @njit(cache=True)
 def eos_sound_speed2(code, params, rho_micro, temp, cv, gamma):
     """Adiabatic c^2 = (dp/drho)_T + T (dp/dT)_rho^2 / (rho^2 cv); Thomsen_Hartka_water:
-    Uintah's c^2 = dp_drho + dp_de p / rho^2 (its dp_de is not (dp/dT)_rho / cv)."""
+    Uintah's c^2 = dp_drho + dp_de p / rho^2 (its dp_de is not (dp/dT)_rho / cv); the solid
+    codes: their model's c^2 (solid_cm_press_eos)."""
+    if code >= SOLID_UCNH:
+        return solid_cm_press_eos(code, params, rho_micro)[2]
     if code == THOMSEN_HARTKA:
         p, dp_drho, dp_de = eos_press_eos(code, params, rho_micro, temp, cv, gamma)
         return sound_speed2_uintah(p, rho_micro, dp_drho, dp_de)

@@ -1,7 +1,8 @@
 """Eq. 13 of paper 000 for several materials of any EOS: the equilibration pressure by Newton
-per cell (ICE's computeEquilibrationPressure; MPMICE's step 2 over solids and fluids, the solids
-with the sec. 3.1 threshold EOS, ICE's Murnaghan with n = 1, or a visco_scram solid's JWL, eos.py's
-SOLID_JWL: mpmice/setup.py).
+per cell (ICE's computeEquilibrationPressure; MPMICE's step 2 over solids and fluids, each solid
+with its constitutive model's EOS as Uintah's computePressEOSCM: eos.py's SOLID_UCNH .. SOLID_RIGID,
+a visco_scram solid's JWL SOLID_JWL, or ICE's Murnaghan with n = 1 for models Uintah gives none:
+mpmice/setup.py).
 
 The first Newton iteration runs a row of cells at a time in loops that vectorize; the
 Murnaghan n = 1 EOS skips its powers of 1 and 0; the round-off cycle of a cell full of a stiff
@@ -13,8 +14,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from components.ice.eos import (IDEAL_GAS, MURNAGHAN, THOMSEN_HARTKA, _dp_dtemp, eos_press_eos, eos_rho_micro,
-                                eos_sound_speed2, ideal_gas_press_eos, ideal_gas_rho_micro, murnaghan_press_eos)
+from components.ice.eos import (IDEAL_GAS, MURNAGHAN, SOLID_HYPER, SOLID_UCNH, THOMSEN_HARTKA, _dp_dtemp, eos_press_eos,
+                                eos_rho_micro, eos_sound_speed2, ideal_gas_press_eos, ideal_gas_rho_micro,
+                                murnaghan_press_eos)
 from components.ice.kernels import TINY
 
 
@@ -46,8 +48,9 @@ def _rho_micro(code, params, m, press, temp, cv, gamma, rho_guess):
 
 @njit(cache=True, error_model="numpy")
 def _eos_row(code, params, m, rm, t, cv, gamma, pe, dpr):
-    """_press_eos of material m over a row of cells: the ideal gas, and Murnaghan n = 1 at
-    rho >= rho0, in loops that vectorize; the rest (the low branch's powers) per cell."""
+    """_press_eos of material m over a row of cells: the ideal gas, Murnaghan n = 1 at rho >= rho0
+    and the solids' SOLID_UCNH / SOLID_HYPER curves (eos.py, the same operations) in loops that
+    vectorize; the rest (the low branches' powers) per cell."""
     nk = rm.shape[0]
     if code == IDEAL_GAS:
         for c in range(nk):
@@ -63,6 +66,25 @@ def _eos_row(code, params, m, rm, t, cv, gamma, pe, dpr):
             for c in range(nk):
                 if not rm[c] >= rho0:
                     pe[c], dpr[c], _ = murnaghan_press_eos(rm[c], K, 1.0, rho0, P0)
+    elif code == SOLID_UCNH or code == SOLID_HYPER:
+        K, rho0, p_ref, modified = params[m, 0], params[m, 1], params[m, 2], params[m, 3] != 0.0
+        low = 0
+        if code == SOLID_UCNH:
+            for c in range(nk):
+                J = rho0 / rm[c]
+                pe[c] = p_ref - 0.5 * K * (J - 1.0 / J)
+                dpr[c] = 0.5 * K * (1.0 + J * J) / rho0
+                low += rm[c] < rho0
+        else:
+            inv_rho0 = 1.0 / rho0
+            for c in range(nk):
+                pe[c] = p_ref + 0.5 * K * (rm[c] * inv_rho0 - rho0 / rm[c])
+                dpr[c] = 0.5 * K * (rho0 / (rm[c] * rm[c]) + inv_rho0)
+                low += rm[c] < rho0
+        if modified and low:
+            for c in range(nk):
+                if rm[c] < rho0:
+                    pe[c], dpr[c], _ = eos_press_eos(code, params[m], rm[c], t[c], cv, gamma)
     else:
         for c in range(nk):
             pe[c], dpr[c], _ = eos_press_eos(code, params[m], rm[c], t[c], cv, gamma)
@@ -85,6 +107,23 @@ def _rho_micro_row(code, params, m, p, t, cv, gamma, rm):
         if low:
             for c in range(nk):
                 if not p[c] >= P0:
+                    rm[c] = eos_rho_micro(code, params[m], p[c], t[c], cv, gamma, rm[c])
+    elif code == SOLID_UCNH or code == SOLID_HYPER:
+        K, rho0, p_ref, modified = params[m, 0], params[m, 1], params[m, 2], params[m, 3] != 0.0
+        low = 0
+        if code == SOLID_UCNH:
+            for c in range(nk):
+                p_g = p[c] - p_ref
+                rm[c] = rho0 / K * (p_g + np.sqrt(K * K + p_g * p_g))
+                low += p_g < 0.0
+        else:
+            for c in range(nk):
+                g = (p[c] - p_ref) / K
+                rm[c] = rho0 * (g + np.sqrt(g * g + 1.0))
+                low += g < 0.0
+        if modified and low:
+            for c in range(nk):
+                if p[c] - p_ref < 0.0:
                     rm[c] = eos_rho_micro(code, params[m], p[c], t[c], cv, gamma, rm[c])
     else:
         for c in range(nk):
@@ -158,7 +197,8 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
     that repeats the one two iterations back (cells full of a stiff solid, where dp never
     drops below tol p: one ulp of the solid's rho_micro moves p by ~1e-10 p) is known to
     alternate to max_iter, so the state it ends on is taken at once. The sound speed reuses
-    the last (dp/drho)_T (Thomsen_Hartka_water: Uintah's c^2, as eos_sound_speed2). Every
+    the last (dp/drho)_T (Thomsen_Hartka_water and the MPM solids' codes: Uintah's c^2, as
+    eos_sound_speed2). Every
     cell does the plain per-cell iteration's operations in its order: bitwise its results.
     Returns the largest iteration count (max_iter where a cell cycles)."""
     n = len(rhos)
@@ -228,7 +268,7 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
                 for c in range(nk):
                     v_[c] = 1.0 / rm[c]
                     f_[c] = r[c] / rm[c]
-                    if code == THOMSEN_HARTKA:      # Uintah's c^2 (eos_sound_speed2)
+                    if code == THOMSEN_HARTKA or code >= SOLID_UCNH:      # Uintah's c^2 (eos_sound_speed2)
                         s_[c] = np.sqrt(max(eos_sound_speed2(code, prm, rm[c], t[c], cv, g), TINY))
                         continue
                     dpdt = _dp_dtemp(code, prm, rm[c], t[c], cv, g)

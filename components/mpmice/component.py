@@ -112,7 +112,7 @@ class MPMICE(MPMICETasks, Component):
         for cm in root.child("MaterialProperties").child("MPM").children("material"):
             c = cm.child("constitutive_model")
             if c is not None and c.has("useModifiedEOS"):
-                c.get("useModifiedEOS", "bool")        # the sec. 3.1 threshold is always applied
+                c.get("useModifiedEOS", "bool")        # the solid's EOS below rho0 (setup.solid_eos)
         self.mpm = MPMinMPMICE(n_all)
         if self.rigid:
             self.mpm.material_class = RigidSolid
@@ -141,17 +141,16 @@ class MPMICE(MPMICETasks, Component):
                     raise cm.error(f"<useJWLEOS> true needs <{'>, <'.join(missing)}> (the solid's JWL EOS)")
             elif flag:
                 raise cm.child(flag).error(
-                    f"<{flag}> true is not implemented in MPMICE (the solid's EOS is the bulk modulus "
-                    "with the low-pressure threshold, or <useJWLEOS>'s JWL); accepted: false")
+                    f"<{flag}> true is not implemented in MPMICE (the solid's EOS is ViscoScram's standard "
+                    "one, or <useJWLEOS>'s JWL); accepted: false")
         self.mpm_matls = list(range(nm))
         for m in self.mpm.materials:
             if m.model_name == "ArenaSoil":
                 raise m.node.child("constitutive_model").error(
                     "ArenaSoil in MPMICE (its Murnaghan EOS of <K0_Murnaghan_EOS>, <n_Murnaghan_EOS>) is not "
                     "implemented; accepted there: the other MPM models")
-        bulk = [_bulk(m) for m in self.mpm.materials]
         cv = [_specific_heat(m) for m in self.mpm.materials]
-        self.ice = ICEinMPMICE(self.mpm.materials, cv, bulk)
+        self.ice = ICEinMPMICE(self.mpm.materials, cv, self.rigid)
         self.ice.problem_setup(root, level)
         self.ice.coupling = self          # the fluids' advection next to the solids (tasks.open_faces)
         if self.ice.implicit:
@@ -479,12 +478,6 @@ def _read_add_heat(node, ice_matls):
                               "(global indices, MPM materials first)")
     t0, t1 = node.get("add_heat_t_start", "float"), node.get("add_heat_t_final", "float")
     return dict(zip(matls, coeffs)), t0, t1
-
-
-def _bulk(mat):
-    """The solid's bulk modulus for its EOS in the equilibration (rigid: effectively incompressible)."""
-    K = getattr(mat.params, "bulk_modulus", 0.0) or 0.0
-    return K if K > 0 else 1e12
 
 
 def _specific_heat(mat):

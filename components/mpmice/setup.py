@@ -8,18 +8,23 @@ MPM materials come first (indices 0..nm-1), then ICE's (nm..N-1), as in Uintah.
   ICEinMPMICE  ICE whose per-material arrays (EOS code and parameters, cv, gamma,
                exchange coefficients, boundary conditions, material list) cover all N
                materials, so ICE's multi-material task bodies and kernels run over the
-               global indices unchanged. A solid enters the ICE kernels with the
-               condensed-phase EOS of paper 000 sec. 3.1: its bulk response
-               p = p_ref + K (rho/rho0 - 1) above the threshold p_th = p_ref and
-               p = p_ref (rho/rho0)^(K/p_ref) below it (C1 at p_ref, -> 0 as v -> inf);
-               ICE's Murnaghan code with n = 1, P0 = p_ref is exactly that curve.
+               global indices unchanged. A solid enters the ICE kernels with its
+               constitutive model's EOS, as Uintah's MPMICE calls the model's
+               computePressEOSCM and computeRhoMicroCM (solid_eos: an EOS code and
+               parameter row per solid, ice/eos.py SOLID_UCNH .. SOLID_RIGID, SOLID_JWL);
+               with <useModifiedEOS> below rho0 the condensed-phase threshold curve of
+               paper 000 sec. 3.1, p = p_ref (rho/rho0)^(K/p_ref) (C1 at p_ref, -> 0 as
+               v -> inf). Models Uintah gives no such EOS, and rmpmice's prescribed solids,
+               take ICE's Murnaghan code with n = 1, P0 = p_ref: p_ref + K (rho/rho0 - 1)
+               above rho0 and that threshold curve below it.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from components.ice.component import ICE
-from components.ice.eos import MAX_PARAMS, MURNAGHAN, SOLID_JWL
+from components.ice.eos import (MAX_PARAMS, MURNAGHAN, SOLID_HYPER, SOLID_HYPO, SOLID_JWL, SOLID_RIGID,
+                                SOLID_UCNH)
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
@@ -94,6 +99,47 @@ class MPMinMPMICE(MPM):
         self.grid_bcs_class = GridBCsWithICE
 
 
+# constitutive model -> the EOS code of Uintah's model (ice/eos.py); its bulk modulus (Pa) from params
+SOLID_EOS = {"comp_neo_hook": SOLID_UCNH, "comp_neo_hook_plastic": SOLID_UCNH, "UCNH": SOLID_UCNH,
+             "UCNHVar": SOLID_UCNH,
+             "elastic_plastic": SOLID_HYPER, "elastic_plastic_hp": SOLID_HYPER, "visco_scram": SOLID_HYPER,
+             "hypo_elastic": SOLID_HYPO, "rigid": SOLID_RIGID}
+RIGID_BULK = 1.0e200      # Uintah's RigidMaterial without <bulk_modulus>
+
+
+def _bulk(mat):
+    """The solid's bulk modulus for the Murnaghan stand-in (none given: effectively incompressible)."""
+    K = getattr(mat.params, "bulk_modulus", 0.0) or 0.0
+    return K if K > 0 else 1e12
+
+
+def solid_eos(mat, p_ref, prescribed):
+    """(code, parameter row) of MPM material mat's EOS in the equilibration: its Uintah model's
+    computePressEOSCM (SOLID_EOS; visco_scram's <useJWLEOS> SOLID_JWL), else (models without
+    one in Uintah, prescribed rmpmice solids) Murnaghan n = 1 with the threshold at p_ref."""
+    row = np.zeros(MAX_PARAMS)
+    q = mat.params
+    code = None if prescribed else SOLID_EOS.get(mat.model_name)
+    if getattr(q, "useJWLEOS", False):                  # visco_scram's JWL (Uintah's ViscoScram)
+        row[:8] = (q.A, q.B, q.R1, q.R2, q.om, q.Cv, mat.density, p_ref if q.useModifiedEOS else 0.0)
+        return SOLID_JWL, row
+    if code is None:
+        row[:4] = (1.0 / _bulk(mat), 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
+        return MURNAGHAN, row
+    cm = mat.node.child("constitutive_model")
+    modified = cm.get("useModifiedEOS", "bool", False) and mat.model_name != "UCNHVar"   # UCNHVar never reads it
+    if code == SOLID_HYPO:
+        K = q.K
+    elif code == SOLID_RIGID:
+        K = q.bulk_modulus if q.bulk_modulus > 0.0 else RIGID_BULK
+    elif mat.model_name == "UCNHVar":             # Uintah's UCNHVar: the largest entry's
+        K = float(max(q.bulk_modulus))
+    else:
+        K = q.bulk_modulus
+    row[:5] = (K, mat.density, p_ref, float(modified), float(mat.model_name == "visco_scram"))
+    return code, row
+
+
 class _SolidStub:
     """What ICE's task bodies look up in self.materials[m] for an MPM material m."""
 
@@ -109,28 +155,22 @@ class ICEinMPMICE(ICE):
 
     press_floor = 1.0e-12       # Uintah's clamp of press_CC: solids in tension (tests/mpmice/test_hard_cases.py)
 
-    def __init__(self, mpm_materials, solid_cv, p_ref_bulk):
+    def __init__(self, mpm_materials, solid_cv, prescribed):
         super().__init__()
         self.n_before = len(mpm_materials)
         self._mpm_materials = mpm_materials
         self._solid_cv = solid_cv
-        self._solid_bulk = p_ref_bulk
+        self._prescribed = prescribed
 
     def problem_setup(self, root, level):
         super().problem_setup(root, level)
         nm, ice_mats = self.n_before, self.materials
         self.ice_matls = list(range(nm, nm + len(ice_mats)))
         p_ref = self.reference_pressure
-        rows, codes, cvs, gammas = [], [], [], []
-        for mat, K in zip(self._mpm_materials, self._solid_bulk):
-            row = np.zeros(MAX_PARAMS)
-            if getattr(mat.params, "useJWLEOS", False):        # visco_scram's JWL (Uintah's ViscoScram)
-                q = mat.params
-                row[:8] = (q.A, q.B, q.R1, q.R2, q.om, q.Cv, mat.density, p_ref if q.useModifiedEOS else 0.0)
-                codes.append(SOLID_JWL)
-            else:
-                row[:4] = (1.0 / K, 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
-                codes.append(MURNAGHAN)
+        rows, codes = [], []
+        for mat in self._mpm_materials:
+            code, row = solid_eos(mat, p_ref, self._prescribed)
+            codes.append(code)
             rows.append(row)
         cvs = list(self._solid_cv)
         gammas = [1.0] * nm

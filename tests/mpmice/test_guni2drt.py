@@ -11,9 +11,11 @@ max_d |n_d|^(-1/3)), the volume it makes (burned * v_solid) and the pressure it 
 equilibrated v_m): 8.2e6 Pa where sus has 8.2e6 (before, 2.4e5; the product's volume made at its
 own temperature). In a burning cell the new product keeps the temperature the exchange gives it
 (3025 K; pysus's rule that gas slivers in solid-filled cells take the solid's temperature is
-not applied where a model feeds a fluid). Step 2: press_CC 0.13 %, press_equil_CC 0.44 %, the
-burned mass 0.34 % from sus's (the particles lose their burned mass one by one in pysus, through
-the nodes in Uintah); the steps' times 1.6e-5 apart.
+not applied where a model feeds a fluid). Step 2: press_CC 0.038 %, press_equil_CC 0.43 %, the
+burned mass 0.33 % from sus's (the particles lose their burned mass one by one in pysus, through
+the nodes in Uintah); the steps' times 1.6e-5 apart. With the solids' Murnaghan n = 1 stand-in
+in place of their own EOS (ElasticPlasticHP's and ViscoScram's, components/mpmice/setup.py)
+press_CC was 0.13 % off.
 """
 import pathlib
 
@@ -55,6 +57,6 @@ def test_second_step_near_uintah(runs):
     """Step 2 (module doc): pressures and the burned mass within 0.5 % of sus's."""
     da, sus = runs
     assert sus["press_CC_0_1"].max() > 1e8
-    assert _rel(da.read("press_CC", 0, 2)[0], sus["press_CC_0_1"]) < 2e-3
+    assert _rel(da.read("press_CC", 0, 2)[0], sus["press_CC_0_1"]) < 6e-4
     assert _rel(da.read("press_equil_CC", 0, 2)[0], sus["press_equil_CC_0_1"]) < 5e-3
     assert _rel(da.read("modelMass_src", 2, 2)[0], sus["modelMass_src_2_1"]) < 5e-3

@@ -1,12 +1,14 @@
 """The fast kernels give bitwise the values of the plain ones they replace:
 ice.equilibration.equilibrate against the per-cell Newton loop equilibrate_many below (solid
 Murnaghan n = 1 + ideal gas, cells from empty to solid-filled, where the stiff solid's Newton
-iterate cycles at round-off, and a third, JWL material), and kernels.nc_to_cc against a direct sum over the nodes."""
+iterate cycles at round-off, and a third, JWL material; the solids' own EOS codes SOLID_UCNH and
+SOLID_HYPER, with and without the modified EOS below rho0, in place of Murnaghan), and
+kernels.nc_to_cc against a direct sum over the nodes."""
 import numpy as np
 from numba import njit
 
-from components.ice.eos import (IDEAL_GAS, JWL, MAX_PARAMS, MURNAGHAN, eos_press_eos, eos_rho_micro,
-                                eos_sound_speed2)
+from components.ice.eos import (IDEAL_GAS, JWL, MAX_PARAMS, MURNAGHAN, SOLID_HYPER, SOLID_UCNH, eos_press_eos,
+                                eos_rho_micro, eos_sound_speed2)
 from components.ice.equilibration import equilibrate
 from components.ice.kernels import TINY
 from components.mpmice.kernels import nc_to_cc
@@ -103,6 +105,25 @@ def _run(fn, case, shape):
 def test_equilibrate_is_bitwise_equilibrate_many():
     for nmat, seed, shape in ((2, 0, (1, 12, 9)), (2, 1, (3, 4, 9)), (3, 2, (1, 12, 9)), (2, 3, (12, 9, 1))):
         case = _case(nmat, shape, seed)
+        it_a, p_a, out_a = _run(equilibrate_many, case, shape)
+        it_b, p_b, out_b = _run(equilibrate, case, shape)
+        assert it_a == it_b
+        assert np.array_equal(p_a, p_b)
+        for qa, qb in zip(out_a, out_b):
+            for a, b in zip(qa, qb):
+                assert np.array_equal(a, b)
+
+
+def test_equilibrate_is_bitwise_for_the_solid_codes():
+    """The row loops of SOLID_UCNH and SOLID_HYPER (equilibration._eos_row, _rho_micro_row) are the
+    per-cell EOS's operations: bitwise equilibrate_many's results, cells above and below rho0."""
+    shape = (1, 12, 9)
+    for code, modified, viscoscram in ((SOLID_UCNH, 0.0, 0.0), (SOLID_UCNH, 1.0, 0.0), (SOLID_HYPER, 0.0, 0.0),
+                                       (SOLID_HYPER, 1.0, 1.0)):
+        case = list(_case(2, shape, 5))
+        case[4] = np.array([code, IDEAL_GAS], np.int64)
+        case[5] = case[5].copy()
+        case[5][0, :5] = (117e9, 8900.0, 101325.0, modified, viscoscram)
         it_a, p_a, out_a = _run(equilibrate_many, case, shape)
         it_b, p_b, out_b = _run(equilibrate, case, shape)
         assert it_a == it_b
