@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import sys
 import time
 
@@ -147,6 +148,11 @@ class Controller:
             if self.root.has_includes:   # the uda keeps the deck with its includes resolved, for restarts
                 self.deck_text = self.root.resolved_bytes()
         self._read_deck()
+        if filebase is None and restart is not None:
+            # beside the uda restarted from (run.uda -> run.uda.000, run.uda.000 -> run.uda.001), as
+            # Uintah run from the deck's directory; not the deck's filebase relative to wherever the
+            # restart is started (a batch job's directory), nor lost when the run used --filebase
+            filebase = re.sub(r"\.\d{3}$", "", os.path.normpath(restart))
         if filebase is not None and self.archive_spec is not None:
             self.archive_spec["filebase"] = filebase
             self.archive_spec["filebase_node"] = None

@@ -2,7 +2,8 @@
 wall time per step and the estimated time to the end.
 
 The time per step is measured wall time between redraws (tasks, output, exchanges and all), not a
-sum of task times. It redraws at most a few times a second and only on a terminal, so batch logs
+sum of task times. The ETA extrapolates the rate since the end of the first step, whose wall time
+(numba compiling the kernels on a first run: a minute or more) says nothing about the rest. It redraws at most a few times a second and only on a terminal, so batch logs
 stay clean; `--quiet` turns it off everywhere.
 """
 from __future__ import annotations
@@ -35,6 +36,7 @@ class Progress:
         self._step_wall = 0.0
         self._shown = False
         self._latest = None
+        self._ref = None        # (wall, fraction) at the end of the first step: where the ETA's rate starts
 
     def fraction(self, step, t) -> float:
         """How far the run is, by simulated time or by step count, whichever ends it first."""
@@ -47,7 +49,8 @@ class Progress:
 
     def line(self, step, t, delt, wall, step_wall):
         f = self.fraction(step, t)
-        eta = clock((wall - self.start_wall) * (1.0 - f) / f) if f > 0 else "?"
+        w0, f0 = self._ref or (self.start_wall, 0.0)
+        eta = clock(0.0) if f >= 1.0 else clock((wall - w0) * (1.0 - f) / (f - f0)) if f > f0 else "?"
         end = f" of {self.max_time:.4g}" if math.isfinite(self.max_time) else ""
         return (f"step {step:7d}  t = {t:.6e}{end} s ({100.0 * f:5.1f}%)  delT = {delt:.3e}  "
                 f"{1e3 * step_wall:8.2f} ms/step  wall {clock(wall)}  ETA {eta}")
@@ -57,6 +60,8 @@ class Progress:
         if not self.enabled:
             return
         self._latest = (step, t, delt, wall)
+        if self._ref is None and step > self.start_step:
+            self._ref = (wall, self.fraction(step, t))
         now = time.monotonic()
         if now - self._last < self.interval:
             return

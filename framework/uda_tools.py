@@ -2,7 +2,8 @@
 and partextract do, and draw it with matplotlib (an optional extra: pip install pysus[plot]).
 
     pysus info RUN.uda [-t N]                               labels, centring, materials, min/max
-    pysus extract RUN.uda --var press_CC --line X0 X1 [-o f.csv]   cells along a line (x,y,z points)
+    pysus extract RUN.uda --var press_CC --line X0 X1 [-o f.csv]   cells along a line ("x,y,z" points;
+                                                                  "x" or "x,y": the rest at the domain's centre)
     pysus extract RUN.uda --particles [--var p.mass ...] [-o f.csv] one row per particle
     pysus plot RUN.uda --var temp_CC [-t N] [-m M] -o out.png       1D profile or 2D field + particles
 """
@@ -37,9 +38,9 @@ def parser():
         s.add_argument("-m", "--mat", dest="mat", type=int, default=0, help="material (default 0)")
         if name != "info":
             s.add_argument("--var", nargs="+", default=[], help="label(s)")
-            s.add_argument("-o", dest="out", help="output file (extract: default stdout)")
+            s.add_argument("-o", dest="out", help="output file (extract: default stdout, also '-o -')")
         if name == "extract":
-            s.add_argument("--line", nargs=2, metavar=("X0", "X1"), help='end points "x,y,z"')
+            s.add_argument("--line", nargs=2, metavar=("X0", "X1"), help='end points "x,y,z" ("x" or "x,y": the other coordinates at the domain\'s centre)')
             s.add_argument("--particles", action="store_true", help="one CSV row per particle")
     return p
 
@@ -81,7 +82,7 @@ def info(da, args, out=None):
     print(f"timesteps: {len(t)} outputs, timestep {da.timesteps[0]} .. {da.timesteps[-1]}, "
           f"t = {t[0]:.6g} .. {t[-1]:.6g} s", file=out)
     print(f"values at output {args.t} (timestep {e['timestep']}, t = {float(e['time']):.6g} s):", file=out)
-    print(f"  {'label':24s} {'centring':9s} {'mat':>3s} {'min':>14s} {'max':>14s}  units", file=out)
+    print(f"  {'label':24s} {'centring':9s} {'type':8s} {'mat':>3s} {'min':>14s} {'max':>14s}  units", file=out)
     for name in da.labels:
         li = da.label_info(name)
         units = li["units"] or ""
@@ -89,7 +90,9 @@ def info(da, args, out=None):
             try:
                 _, v = da.reduction(name)
                 v = np.atleast_1d(v)
-                print(f"  {name:24s} {li['centring']:9s} {'-':>3s} {np.min(v):14.6g} {np.max(v):14.6g}  {units}", file=out)
+                kind = _type_name(v.dtype, li["shape"])
+                print(f"  {name:24s} {li['centring']:9s} {kind:8s} {'-':>3s} {np.min(v):14.6g} {np.max(v):14.6g}  {units}",
+                      file=out)
             except OSError:
                 print(f"  {name:24s} {li['centring']:9s}", file=out)
             continue
@@ -103,17 +106,28 @@ def info(da, args, out=None):
                     a = None
             if a is None or a.size == 0:
                 continue
-            print(f"  {name:24s} {li['centring']:9s} {m:3d} {a.min():14.6g} {a.max():14.6g}  {units}", file=out)
+            kind = _type_name(a.dtype, li["shape"])
+            print(f"  {name:24s} {li['centring']:9s} {kind:8s} {m:3d} {a.min():14.6g} {a.max():14.6g}  {units}", file=out)
 
 
-def _point(text):
+def _type_name(dtype, shape):
+    """Uintah's name for what one entry holds (puda's CCVariable<double>, ParticleVariable<Vector>)."""
+    if np.issubdtype(dtype, np.integer):
+        return "long64"
+    return {(): "double", (3,): "Vector", (3, 3): "Matrix3"}.get(tuple(shape), "x".join(map(str, shape)))
+
+
+def _point(text, da):
+    """A point "x,y,z"; "x" or "x,y" takes the other coordinates at the domain's centre (a 1D or
+    2D run's line)."""
     try:
         v = [float(x) for x in text.split(",")]
     except ValueError:
         v = []
-    if len(v) != 3:
-        raise ToolError(f'--line {text}: a point is "x,y,z" (three numbers)')
-    return np.array(v)
+    if not 1 <= len(v) <= 3 or not all(np.isfinite(v)):
+        raise ToolError(f'--line {text}: a point is "x,y,z" (or "x", "x,y": the rest at the domain\'s centre)')
+    centre = 0.5 * (np.asarray(da.anchor, float) + np.asarray(da.upper, float))
+    return np.concatenate([v, centre[len(v):]])
 
 
 def line_cells(da, vt, x0, x1):
@@ -135,21 +149,16 @@ def extract(da, args):
     if args.particles == bool(args.line):
         raise ToolError("extract: give --line X0 X1 or --particles")
     _check_labels(da, args.var)
-    f = open(args.out, "w", newline="") if args.out else sys.stdout
-    try:
-        w = csv.writer(f)
-        if args.particles:
-            table = da.particles_table(args.mat, args.t)
-            if not table:
-                raise ToolError(f"no particles of material {args.mat} at output {args.t}")
-            keep = [c for c in table if not args.var or c.split("[")[0] in args.var or c.startswith("p.x")]
-            w.writerow(keep)
-            for row in zip(*(table[c] for c in keep)):
-                w.writerow([repr(float(v)) for v in row])
-            return
+    to_file = args.out not in (None, "-")
+    if args.particles:
+        table = da.particles_table(args.mat, args.t)
+        if not table:
+            raise ToolError(f"no particles of material {args.mat} at output {args.t}")
+        keep = [c for c in table if not args.var or c.split("[")[0] in args.var or c.startswith("p.x")]
+    else:
         if not args.var:
             raise ToolError("extract --line: give --var LABEL")
-        x0, x1 = _point(args.line[0]), _point(args.line[1])
+        x0, x1 = _point(args.line[0], da), _point(args.line[1], da)
         fields, header = [], ["x", "y", "z"]
         for name in args.var:
             vt = VarType(da.index["labels"][name]["type"])
@@ -159,6 +168,15 @@ def extract(da, args):
             flat = data.reshape(data.shape[:3] + (-1,))
             header += [name] if flat.shape[3] == 1 else [f"{name}[{k}]" for k in range(flat.shape[3])]
             fields.append((vt, flat, coords))
+    # opened once the arguments are known good: an error leaves no empty file behind
+    f = open(args.out, "w", newline="") if to_file else sys.stdout
+    try:
+        w = csv.writer(f)
+        if args.particles:
+            w.writerow(keep)
+            for row in zip(*(table[c] for c in keep)):
+                w.writerow([_number(v) for v in row])
+            return
         w.writerow(header)
         vt0, _, coords0 = fields[0]
         lo = [int(np.rint((c[0] - a) / h - (0.0 if vt0.node_like(d) and da.ncells[d] > 1 else 0.5)))
@@ -170,10 +188,15 @@ def extract(da, args):
             row = [coords0[d][local[d]] for d in range(3)]
             for _, flat, _ in fields:
                 row += list(flat[tuple(local)])
-            w.writerow([repr(float(v)) for v in row])
+            w.writerow([_number(v) for v in row])
     finally:
-        if args.out:
+        if to_file:
             f.close()
+
+
+def _number(v):
+    """A CSV cell: integers (particle IDs) as integers, floats with all their digits."""
+    return str(int(v)) if isinstance(v, (int, np.integer)) else repr(float(v))
 
 
 def plot(da, args):

@@ -58,6 +58,27 @@ def test_fraction_and_eta():
     assert clock(3725) == "1:02:05" and clock(65) == "1:05"
 
 
+def test_eta_leaves_out_the_first_step():
+    """A first step that compiles for 100 s, then 0.1 s a step for 100 steps to maxTime: half way
+    the ETA is 5 s, not the 105 s that the average over all steps would give."""
+    class Tty:
+        def isatty(self):
+            return True
+
+        def write(self, text):
+            self.text = text
+
+        def flush(self):
+            pass
+
+    tty = Tty()
+    p = Progress(stream=tty, interval=0.0, max_time=1.0)
+    p.update(1, 0.0, 0.01, 100.0)
+    assert "ETA ?" in tty.text and "100000.00 ms/step" in tty.text
+    p.update(51, 0.5, 0.01, 105.0)
+    assert "( 50.0%)" in tty.text and "ETA 0:05" in tty.text and "100.00 ms/step" in tty.text
+
+
 def test_timing_rows_add_up_to_wall(tmp_path):
     r = _pysus(["--timing", _deck(tmp_path, maxTime=0.2)], tmp_path, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
