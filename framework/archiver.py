@@ -399,7 +399,7 @@ def load_checkpoint(uda, index=-1, notices=None):
     if not os.path.isdir(uda):
         raise FileNotFoundError(f"{uda}: no such .uda directory")
     if not os.path.isdir(cdir):
-        raise FileNotFoundError(f"{uda} has no checkpoints/ directory (none was due in its run); accepted: a uda "
+        raise FileNotFoundError(f"{uda} has no checkpoints/ directory (its run wrote none); accepted: a uda "
                                 'whose deck has <DataArchiver><checkpoint interval="..." cycle="2"/> and that ran '
                                 "past one, or one a restart made with -copy or -move (they take the old checkpoints)")
     cps = sorted(d for d in os.listdir(cdir) if CHECKPOINT_NAME.match(d))
