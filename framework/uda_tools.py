@@ -6,6 +6,7 @@ and partextract do, and draw it with matplotlib (an optional extra: pip install 
                                                                   "x" or "x,y": the rest at the domain's centre)
     pysus extract RUN.uda --particles [--var p.mass ...] [-o f.csv] one row per particle
     pysus plot RUN.uda --var temp_CC [-t N] [-m M] -o out.png       1D profile or 2D field + particles
+    pysus plot RUN.uda --var KineticEnergy TotalMass -o out.png      saved sums against time
 """
 from __future__ import annotations
 
@@ -213,6 +214,13 @@ def plot(da, args):
     if not args.out:
         raise ToolError("plot: give -o FILE.png")
     _check_labels(da, args.var)
+    kinds = {n: VarType(da.index["labels"][n]["type"]) for n in args.var}
+    sums = [n for n in args.var if kinds[n] == VarType.REDUCTION]
+    if sums:
+        if len(sums) < len(args.var):
+            raise ToolError(f"plot: {', '.join(sums)} are sums over time; plot them apart from the fields "
+                            f"({', '.join(n for n in args.var if n not in sums)})")
+        return _plot_sums(da, sums, args.out, plt)
     e = da.index["timesteps"][args.t]
     title = f"{os.path.basename(os.path.normpath(da.path))}  timestep {e['timestep']}, t = {float(e['time']):.4g} s"
     long_axes = [d for d in range(3) if da.ncells[d] > 1]
@@ -255,4 +263,24 @@ def plot(da, args):
         ax.set_title(title, fontsize=9)
     fig.tight_layout()
     fig.savefig(args.out, dpi=100)
+    plt.close(fig)
+
+
+def _plot_sums(da, names, out, plt):
+    """Saved sums (TotalMass, KineticEnergy, ...) against time, one panel each; a vector's
+    components as three lines."""
+    fig, axes = plt.subplots(len(names), 1, figsize=(6, 2.2 * len(names)), sharex=True, squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        t, v = da.reduction(name)
+        v = np.asarray(v).reshape(len(t), -1)
+        for k in range(v.shape[1]):
+            ax.plot(t, v[:, k], "-", label="xyz"[k] if v.shape[1] == 3 else None)
+        if v.shape[1] == 3:
+            ax.legend(fontsize=8)
+        units = da.label_info(name)["units"]
+        ax.set_ylabel(name + (f" [{units}]" if units else ""))
+    axes[-1, 0].set_xlabel("t [s]")
+    axes[0, 0].set_title(os.path.basename(os.path.normpath(da.path)), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=100)
     plt.close(fig)

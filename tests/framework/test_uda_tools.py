@@ -26,7 +26,7 @@ def gauss(x, y):
 def uda(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("tools")
     ctl = run_deck(decks.heat(n=N, patches="[2,2,1]", maxTime=0.02, particles=True,
-                              extra_save='<save label="p.x"/><save label="p.mass"/>'), tmp)
+                              extra_save='<save label="p.x"/><save label="p.mass"/><save label="TotalHeat"/>'), tmp)
     return ctl.archiver.dir
 
 
@@ -99,6 +99,11 @@ def test_plot_writes_png_or_says_matplotlib_is_missing(uda, capsys, tmp_path, mo
     code, _, err = tool(capsys, "plot", uda, "--var", "temp_CC", "-o", out)
     assert code == 0, err
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = tool(capsys, "plot", uda, "--var", "TotalHeat", "-o", out)      # a sum against time
+    assert code == 0, err
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = tool(capsys, "plot", uda, "--var", "TotalHeat", "temp_CC", "-o", out)
+    assert code == 2 and "apart from the fields" in err
     monkeypatch.setitem(sys.modules, "matplotlib", None)
     code, _, err = tool(capsys, "plot", uda, "--var", "temp_CC", "-o", out)
     assert code == 2 and "needs matplotlib" in err
