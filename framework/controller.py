@@ -406,6 +406,16 @@ class Controller:
 
     def run(self):
         """Initialize and step to maxTime or max_Timesteps; returns the final warehouse."""
+        progress = Progress(enabled=not self.quiet and self.comm.rank == 0, max_time=self.time["maxTime"],
+                            max_timesteps=self.time["max_Timesteps"])
+        # on a terminal, until the first step is drawn: a first run compiles for a minute or more
+        progress.note("setting up (a deck's first run compiles its kernels: a minute or more)")
+        try:
+            return self._run(progress)
+        finally:        # the line ends before any error message, which would otherwise join it
+            progress.close()
+
+    def _run(self, progress):
         wall0 = time.perf_counter()
         dw = self.initialize()
         self.output_wall = 0.0
@@ -413,9 +423,7 @@ class Controller:
         # set-up beyond its tasks (those have their rows in the scheduler's table)
         self.init_other_wall = self.init_wall - sum(t for _, t, _, _ in self.sched.timing_table())
         tm = self.time
-        progress = Progress(enabled=not self.quiet and self.comm.rank == 0, max_time=tm["maxTime"],
-                            max_timesteps=tm["max_Timesteps"], start_step=self.timestep, start_time=self.t,
-                            start_wall=self.init_wall)
+        progress.begin(self.timestep, self.t, self.init_wall)
         first = self.restart_info is None
         self._next_health_check, self._health_every, self._last_healthy = self.timestep + 1, 1, self.timestep
         step_wall = []
@@ -477,7 +485,6 @@ class Controller:
                                              self._state(), self.sched.local_patches)
                 self.output_wall += time.perf_counter() - o0
             progress.update(self.timestep, self.t, delt, time.perf_counter() - wall0)
-        progress.close()
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw

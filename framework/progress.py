@@ -38,6 +38,18 @@ class Progress:
         self._latest = None
         self._ref = None        # (wall, fraction) at the end of the first step: where the ETA's rate starts
 
+    def begin(self, start_step, start_time, start_wall):
+        """Where the stepping starts (after set-up, or at a restart's checkpoint)."""
+        self.start_step, self.start_time, self.start_wall = start_step, start_time, start_wall
+        self._last_step, self._last_wall = start_step, start_wall
+
+    def note(self, text):
+        """A line shown until the first redraw replaces it (only on a terminal)."""
+        if self.enabled:
+            self.stream.write("\r" + text + "\033[K")
+            self.stream.flush()
+            self._shown = True
+
     def fraction(self, step, t) -> float:
         """How far the run is, by simulated time or by step count, whichever ends it first."""
         f = 0.0

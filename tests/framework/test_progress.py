@@ -73,10 +73,16 @@ def test_eta_leaves_out_the_first_step():
 
     tty = Tty()
     p = Progress(stream=tty, interval=0.0, max_time=1.0)
+    p.note("setting up")
+    assert tty.text == "\rsetting up\033[K"
     p.update(1, 0.0, 0.01, 100.0)
     assert "ETA ?" in tty.text and "100000.00 ms/step" in tty.text
     p.update(51, 0.5, 0.01, 105.0)
     assert "( 50.0%)" in tty.text and "ETA 0:05" in tty.text and "100.00 ms/step" in tty.text
+    q = Progress(stream=tty, max_time=1.0)
+    q.note("setting up")
+    q.close()                   # set-up failed: the line ends before the error message
+    assert tty.text == "\n"
 
 
 def test_timing_rows_add_up_to_wall(tmp_path):
