@@ -91,6 +91,8 @@ def relaunch(args, argv):
             continue
         rest.append(a)
     cmd = [mpiexec, "-n", str(args.np), sys.executable, "-m", "framework.cli"] + rest
+    if sys.stdout.isatty():     # the ranks write into mpiexec's pipe: keep the progress line on
+        os.environ.setdefault("PYSUS_PROGRESS", "1")
     os.execv(cmd[0], cmd)
 
 

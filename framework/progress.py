@@ -4,11 +4,13 @@ wall time per step and the estimated time to the end.
 The time per step is measured wall time between redraws (tasks, output, exchanges and all), not a
 sum of task times. The ETA extrapolates the rate since the end of the first step, whose wall time
 (numba compiling the kernels on a first run: a minute or more) says nothing about the rest. It redraws at most a few times a second and only on a terminal, so batch logs
-stay clean; `--quiet` turns it off everywhere.
+stay clean; `--quiet` turns it off everywhere. Under mpiexec rank 0 writes into a pipe, not the
+terminal: `pysus --np N` (or PYSUS_PROGRESS=1) keeps the line on, PYSUS_PROGRESS=0 turns it off.
 """
 from __future__ import annotations
 
 import math
+import os
 import sys
 import time
 
@@ -25,7 +27,9 @@ class Progress:
     def __init__(self, enabled=True, stream=None, interval=0.25, max_time=math.inf,
                  max_timesteps=2**62, start_step=0, start_time=0.0, start_wall=0.0):
         self.stream = stream or sys.stdout
-        self.enabled = enabled and hasattr(self.stream, "isatty") and self.stream.isatty()
+        wanted = os.environ.get("PYSUS_PROGRESS", "")
+        tty = hasattr(self.stream, "isatty") and self.stream.isatty()
+        self.enabled = enabled and (wanted == "1" or (wanted != "0" and tty))
         self.interval = interval
         self.max_time = max_time
         self.max_timesteps = max_timesteps

@@ -107,3 +107,20 @@ def test_warm_leaves_no_output(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "compiled" in r.stdout and str(cache) in r.stdout
     assert sorted(os.listdir(tmp_path)) == ["cache", "heat.ups"]   # no .uda next to the deck
+
+
+def test_pysus_progress_overrides_the_terminal_test(monkeypatch):
+    """Under mpiexec rank 0's stdout is a pipe: PYSUS_PROGRESS=1 (set by `pysus --np N` from a
+    terminal) draws the line there; PYSUS_PROGRESS=0 keeps a terminal clean."""
+    import io
+    monkeypatch.setenv("PYSUS_PROGRESS", "1")
+    assert Progress(stream=io.StringIO()).enabled
+    assert not Progress(enabled=False, stream=io.StringIO()).enabled      # --quiet wins
+    monkeypatch.setenv("PYSUS_PROGRESS", "0")
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+    assert not Progress(stream=Tty()).enabled
+    monkeypatch.delenv("PYSUS_PROGRESS")
+    assert Progress(stream=Tty()).enabled and not Progress(stream=io.StringIO()).enabled
