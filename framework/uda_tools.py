@@ -83,14 +83,15 @@ def info(da, args, out=None):
     print(f"timesteps: {len(t)} outputs, timestep {da.timesteps[0]} .. {da.timesteps[-1]}, "
           f"t = {t[0]:.6g} .. {t[-1]:.6g} s", file=out)
     print(f"values at output {args.t} (timestep {e['timestep']}, t = {float(e['time']):.6g} s):", file=out)
-    print(f"  {'label':24s} {'centring':9s} {'type':8s} {'mat':>3s} {'min':>14s} {'max':>14s}  units", file=out)
+    print(f"  {'label':24s} {'centring':9s} {'type':8s} {'mat':>3s} {'min':>14s} {'max':>14s}  units"
+          "   (Vector, Matrix3: of the magnitude)", file=out)
     for name in da.labels:
         li = da.label_info(name)
         units = li["units"] or ""
         if li["centring"] == VarType.REDUCTION.value:
             try:
-                _, v = da.reduction(name)
-                v = np.atleast_1d(v)
+                t, v = da.reduction(name)
+                v = _magnitude(np.asarray(v).reshape((len(t),) + tuple(li["shape"])), li["shape"])
                 kind = _type_name(v.dtype, li["shape"])
                 print(f"  {name:24s} {li['centring']:9s} {kind:8s} {'-':>3s} {np.min(v):14.6g} {np.max(v):14.6g}  {units}",
                       file=out)
@@ -107,8 +108,17 @@ def info(da, args, out=None):
                     a = None
             if a is None or a.size == 0:
                 continue
+            a = _magnitude(a, li["shape"])
             kind = _type_name(a.dtype, li["shape"])
             print(f"  {name:24s} {li['centring']:9s} {kind:8s} {m:3d} {a.min():14.6g} {a.max():14.6g}  {units}", file=out)
+
+
+def _magnitude(a, shape):
+    """Scalars as they are; a Vector's length and a tensor's Frobenius norm per entry (puda's
+    -varsummary gives a Vector's min and max magnitude)."""
+    if not shape:
+        return a
+    return np.sqrt((np.asarray(a, float).reshape(a.shape[:a.ndim - len(shape)] + (-1,)) ** 2).sum(axis=-1))
 
 
 def _type_name(dtype, shape):

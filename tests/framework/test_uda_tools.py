@@ -47,6 +47,8 @@ def test_info_lists_labels_with_initial_min_max(uda, capsys):
     mass = H * H * DZ / 4                              # 2x2 particles per cell, density 1
     assert rows["p.mass"][1] == "Particle" and float(rows["p.mass"][4]) == pytest.approx(mass, rel=1e-5)
     assert rows["p.x"][1:3] == ["Particle", "Vector"]
+    r = np.linalg.norm(DataArchive(uda).particles(0, 0)["p.x"], axis=1)   # a Vector's magnitude, as puda's
+    assert [float(v) for v in rows["p.x"][4:6]] == pytest.approx([r.min(), r.max()], rel=1e-5)
 
 
 def test_extract_line_gives_the_cells_along_x(uda, capsys, tmp_path):
