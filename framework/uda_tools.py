@@ -255,16 +255,18 @@ def plot(da, args):
             mappable = ax.pcolormesh(coords[0], coords[1], field.T, shading="nearest", cmap="viridis")
             fig.colorbar(mappable, ax=ax, label=name)
         pvar = next((n for n in args.var if not VarType(da.index["labels"][n]["type"]).is_grid), None)
+        coloured = False
         for m in sorted({int(m) for pm in e["patches"].values() for m in pm["particles"]}):
             parts = da.particles(m, args.t)
             if "p.x" not in parts:
                 continue
-            c = parts[pvar] if pvar in parts and parts[pvar].ndim == 1 else None
+            shape = tuple(da.index["labels"][pvar]["shape"]) if pvar else ()
+            c = _magnitude(parts[pvar], shape) if pvar in parts else None     # |p.stress|, |p.velocity|
             sc = ax.scatter(parts["p.x"][:, 0], parts["p.x"][:, 1], s=2, c=c if c is not None else "k",
                             cmap="plasma" if c is not None else None, linewidths=0)
-            if c is not None and mappable is None:
-                mappable = sc
-                fig.colorbar(sc, ax=ax, label=pvar)
+            if c is not None and not coloured:
+                coloured = True
+                fig.colorbar(sc, ax=ax, label=f"|{pvar}|" if shape else pvar)
         ax.set_xlim(da.anchor[0], da.upper[0])
         ax.set_ylim(da.anchor[1], da.upper[1])
         ax.set_aspect("equal")

@@ -101,6 +101,8 @@ def test_plot_writes_png_or_says_matplotlib_is_missing(uda, capsys, tmp_path, mo
     code, _, err = tool(capsys, "plot", uda, "--var", "temp_CC", "-o", out)
     assert code == 0, err
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = tool(capsys, "plot", uda, "--var", "temp_CC", "p.x", "-o", out)  # particles by |p.x|
+    assert code == 0, err
     code, _, err = tool(capsys, "plot", uda, "--var", "TotalHeat", "-o", out)      # a sum against time
     assert code == 0, err
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
