@@ -179,6 +179,18 @@ def extract(da, args):
             flat = data.reshape(data.shape[:3] + (-1,))
             header += [name] if flat.shape[3] == 1 else [f"{name}[{k}]" for k in range(flat.shape[3])]
             fields.append((vt, flat, coords))
+        vt0, _, coords0 = fields[0]
+        lo = [int(np.rint((c[0] - a) / h - (0.0 if vt0.node_like(d) and da.ncells[d] > 1 else 0.5)))
+              for d, (c, a, h) in enumerate(zip(coords0, da.anchor, da.dx))]
+        rows = []
+        for ijk in line_cells(da, vt0, x0, x1):
+            local = [ijk[d] - lo[d] for d in range(3)]
+            if any(not 0 <= local[d] < len(coords0[d]) for d in range(3)):
+                continue
+            rows.append([coords0[d][local[d]] for d in range(3)] + [v for _, flat, _ in fields for v in flat[tuple(local)]])
+        if not rows:
+            raise ToolError(f"--line {args.line[0]} {args.line[1]} misses the domain "
+                            f"[{', '.join(f'{v:g}' for v in da.anchor)}] .. [{', '.join(f'{v:g}' for v in da.upper)}]")
     # opened once the arguments are known good: an error leaves no empty file behind
     f = open(args.out, "w", newline="") if to_file else sys.stdout
     try:
@@ -189,16 +201,7 @@ def extract(da, args):
                 w.writerow([_number(v) for v in row])
             return
         w.writerow(header)
-        vt0, _, coords0 = fields[0]
-        lo = [int(np.rint((c[0] - a) / h - (0.0 if vt0.node_like(d) and da.ncells[d] > 1 else 0.5)))
-              for d, (c, a, h) in enumerate(zip(coords0, da.anchor, da.dx))]
-        for ijk in line_cells(da, vt0, x0, x1):
-            local = [ijk[d] - lo[d] for d in range(3)]
-            if any(not 0 <= local[d] < len(coords0[d]) for d in range(3)):
-                continue
-            row = [coords0[d][local[d]] for d in range(3)]
-            for _, flat, _ in fields:
-                row += list(flat[tuple(local)])
+        for row in rows:
             w.writerow([_number(v) for v in row])
     finally:
         if to_file:

@@ -91,6 +91,8 @@ def test_bad_arguments_are_one_line(uda, capsys, tmp_path):
     code, _, err = tool(capsys, "extract", uda, "--var", "temp_CC", "--line", "0,0,0,0", "1,nan", "-o", tmp_path / "e.csv")
     assert code == 2 and "x,y,z" in err
     assert not (tmp_path / "e.csv").exists()            # an error leaves no empty file behind
+    code, _, err = tool(capsys, "extract", uda, "--var", "temp_CC", "--line", "2", "3")
+    assert code == 2 and "misses the domain" in err
     code, _, err = tool(capsys, "info", uda, "-t", 99)
     assert code == 2 and "-t 99" in err
 
