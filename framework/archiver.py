@@ -396,8 +396,12 @@ def load_checkpoint(uda, index=-1, notices=None):
     back to the newest intact one, and each damaged one skipped is described in `notices`;
     an explicitly chosen checkpoint that is damaged is an error."""
     cdir = os.path.join(uda, "checkpoints")
+    if not os.path.isdir(uda):
+        raise FileNotFoundError(f"{uda}: no such .uda directory")
     if not os.path.isdir(cdir):
-        raise FileNotFoundError(f"{uda} has no checkpoints/ directory")
+        raise FileNotFoundError(f"{uda} has no checkpoints/ directory (its run wrote none); accepted: a uda "
+                                'whose deck has <DataArchiver><checkpoint interval="..." cycle="2"/> and that ran '
+                                "past one, or one a restart made with -copy or -move (they take the old checkpoints)")
     cps = sorted(d for d in os.listdir(cdir) if CHECKPOINT_NAME.match(d))
     if not cps:
         raise FileNotFoundError(f"{uda}/checkpoints holds no complete checkpoint")

@@ -91,6 +91,8 @@ def relaunch(args, argv):
             continue
         rest.append(a)
     cmd = [mpiexec, "-n", str(args.np), sys.executable, "-m", "framework.cli"] + rest
+    if sys.stdout.isatty():     # the ranks write into mpiexec's pipe: keep the progress line on
+        os.environ.setdefault("PYSUS_PROGRESS", "1")
     os.execv(cmd[0], cmd)
 
 
@@ -142,8 +144,10 @@ def main(argv=None):
                   + (f"; output in {ctl.archiver.dir}" if ctl.archiver else ""))
         if args.timing and comm.rank == 0:
             for name, t, calls in ctl.timing_table():
-                print(f"  {name:40s} {t:9.3f} s {calls:7d} calls {100.0 * t / (ctl.wall or 1.0):5.1f}%")
-            print(f"  {'total (wall)':40s} {ctl.wall:9.3f} s")
+                counted = f"{calls:7d} calls" if calls else " " * 13      # rows that are not tasks have no count
+                print(f"  {name:40s} {t:9.3f} s {counted} {100.0 * t / (ctl.wall or 1.0):5.1f}%")
+            total = "total (wall)" if comm.size == 1 else f"total (wall, rank 0 of {comm.size})"
+            print(f"  {total:40s} {ctl.wall:9.3f} s")
         return 0
     except (InputError, FileNotFoundError) as e:
         # every rank reads the same deck and finds the same error: report once, exit together

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import sys
 import time
 
@@ -147,6 +148,11 @@ class Controller:
             if self.root.has_includes:   # the uda keeps the deck with its includes resolved, for restarts
                 self.deck_text = self.root.resolved_bytes()
         self._read_deck()
+        if filebase is None and restart is not None:
+            # beside the uda restarted from (run.uda -> run.uda.000, run.uda.000 -> run.uda.001), as
+            # Uintah run from the deck's directory; not the deck's filebase relative to wherever the
+            # restart is started (a batch job's directory), nor lost when the run used --filebase
+            filebase = re.sub(r"\.\d{3}$", "", os.path.normpath(restart))
         if filebase is not None and self.archive_spec is not None:
             self.archive_spec["filebase"] = filebase
             self.archive_spec["filebase_node"] = None
@@ -400,6 +406,16 @@ class Controller:
 
     def run(self):
         """Initialize and step to maxTime or max_Timesteps; returns the final warehouse."""
+        progress = Progress(enabled=not self.quiet and self.comm.rank == 0, max_time=self.time["maxTime"],
+                            max_timesteps=self.time["max_Timesteps"])
+        # on a terminal, until the first step is drawn: a first run compiles for a minute or more
+        progress.note("setting up (a deck's first run compiles its kernels: a minute or more)")
+        try:
+            return self._run(progress)
+        finally:        # the line ends before any error message, which would otherwise join it
+            progress.close()
+
+    def _run(self, progress):
         wall0 = time.perf_counter()
         dw = self.initialize()
         self.output_wall = 0.0
@@ -407,9 +423,7 @@ class Controller:
         # set-up beyond its tasks (those have their rows in the scheduler's table)
         self.init_other_wall = self.init_wall - sum(t for _, t, _, _ in self.sched.timing_table())
         tm = self.time
-        progress = Progress(enabled=not self.quiet and self.comm.rank == 0, max_time=tm["maxTime"],
-                            max_timesteps=tm["max_Timesteps"], start_step=self.timestep, start_time=self.t,
-                            start_wall=self.init_wall)
+        progress.begin(self.timestep, self.t, self.init_wall)
         first = self.restart_info is None
         self._next_health_check, self._health_every, self._last_healthy = self.timestep + 1, 1, self.timestep
         step_wall = []
@@ -471,7 +485,6 @@ class Controller:
                                              self._state(), self.sched.local_patches)
                 self.output_wall += time.perf_counter() - o0
             progress.update(self.timestep, self.t, delt, time.perf_counter() - wall0)
-        progress.close()
         self.wall = time.perf_counter() - wall0
         self.step_times = step_wall
         return dw

@@ -2,9 +2,11 @@
 and partextract do, and draw it with matplotlib (an optional extra: pip install pysus[plot]).
 
     pysus info RUN.uda [-t N]                               labels, centring, materials, min/max
-    pysus extract RUN.uda --var press_CC --line X0 X1 [-o f.csv]   cells along a line (x,y,z points)
+    pysus extract RUN.uda --var press_CC --line X0 X1 [-o f.csv]   cells along a line ("x,y,z" points;
+                                                                  "x" or "x,y": the rest at the domain's centre)
     pysus extract RUN.uda --particles [--var p.mass ...] [-o f.csv] one row per particle
     pysus plot RUN.uda --var temp_CC [-t N] [-m M] -o out.png       1D profile or 2D field + particles
+    pysus plot RUN.uda --var KineticEnergy TotalMass -o out.png      saved sums against time
 """
 from __future__ import annotations
 
@@ -37,9 +39,9 @@ def parser():
         s.add_argument("-m", "--mat", dest="mat", type=int, default=0, help="material (default 0)")
         if name != "info":
             s.add_argument("--var", nargs="+", default=[], help="label(s)")
-            s.add_argument("-o", dest="out", help="output file (extract: default stdout)")
+            s.add_argument("-o", dest="out", help="output file (extract: default stdout, also '-o -')")
         if name == "extract":
-            s.add_argument("--line", nargs=2, metavar=("X0", "X1"), help='end points "x,y,z"')
+            s.add_argument("--line", nargs=2, metavar=("X0", "X1"), help='end points "x,y,z" ("x" or "x,y": the other coordinates at the domain\'s centre)')
             s.add_argument("--particles", action="store_true", help="one CSV row per particle")
     return p
 
@@ -81,15 +83,18 @@ def info(da, args, out=None):
     print(f"timesteps: {len(t)} outputs, timestep {da.timesteps[0]} .. {da.timesteps[-1]}, "
           f"t = {t[0]:.6g} .. {t[-1]:.6g} s", file=out)
     print(f"values at output {args.t} (timestep {e['timestep']}, t = {float(e['time']):.6g} s):", file=out)
-    print(f"  {'label':24s} {'centring':9s} {'mat':>3s} {'min':>14s} {'max':>14s}  units", file=out)
+    print(f"  {'label':24s} {'centring':9s} {'type':8s} {'mat':>3s} {'min':>14s} {'max':>14s}  units"
+          "   (Vector, Matrix3: of the magnitude)", file=out)
     for name in da.labels:
         li = da.label_info(name)
         units = li["units"] or ""
         if li["centring"] == VarType.REDUCTION.value:
             try:
-                _, v = da.reduction(name)
-                v = np.atleast_1d(v)
-                print(f"  {name:24s} {li['centring']:9s} {'-':>3s} {np.min(v):14.6g} {np.max(v):14.6g}  {units}", file=out)
+                t, v = da.reduction(name)
+                v = _magnitude(np.asarray(v).reshape((len(t),) + tuple(li["shape"])), li["shape"])
+                kind = _type_name(v.dtype, li["shape"])
+                print(f"  {name:24s} {li['centring']:9s} {kind:8s} {'-':>3s} {np.min(v):14.6g} {np.max(v):14.6g}  {units}",
+                      file=out)
             except OSError:
                 print(f"  {name:24s} {li['centring']:9s}", file=out)
             continue
@@ -103,17 +108,37 @@ def info(da, args, out=None):
                     a = None
             if a is None or a.size == 0:
                 continue
-            print(f"  {name:24s} {li['centring']:9s} {m:3d} {a.min():14.6g} {a.max():14.6g}  {units}", file=out)
+            a = _magnitude(a, li["shape"])
+            kind = _type_name(a.dtype, li["shape"])
+            print(f"  {name:24s} {li['centring']:9s} {kind:8s} {m:3d} {a.min():14.6g} {a.max():14.6g}  {units}", file=out)
 
 
-def _point(text):
+def _magnitude(a, shape):
+    """Scalars as they are; a Vector's length and a tensor's Frobenius norm per entry (puda's
+    -varsummary gives a Vector's min and max magnitude)."""
+    if not shape:
+        return a
+    return np.sqrt((np.asarray(a, float).reshape(a.shape[:a.ndim - len(shape)] + (-1,)) ** 2).sum(axis=-1))
+
+
+def _type_name(dtype, shape):
+    """Uintah's name for what one entry holds (puda's CCVariable<double>, ParticleVariable<Vector>)."""
+    if np.issubdtype(dtype, np.integer):
+        return "long64"
+    return {(): "double", (3,): "Vector", (3, 3): "Matrix3"}.get(tuple(shape), "x".join(map(str, shape)))
+
+
+def _point(text, da):
+    """A point "x,y,z"; "x" or "x,y" takes the other coordinates at the domain's centre (a 1D or
+    2D run's line)."""
     try:
         v = [float(x) for x in text.split(",")]
     except ValueError:
         v = []
-    if len(v) != 3:
-        raise ToolError(f'--line {text}: a point is "x,y,z" (three numbers)')
-    return np.array(v)
+    if not 1 <= len(v) <= 3 or not all(np.isfinite(v)):
+        raise ToolError(f'--line {text}: a point is "x,y,z" (or "x", "x,y": the rest at the domain\'s centre)')
+    centre = 0.5 * (np.asarray(da.anchor, float) + np.asarray(da.upper, float))
+    return np.concatenate([v, centre[len(v):]])
 
 
 def line_cells(da, vt, x0, x1):
@@ -135,21 +160,16 @@ def extract(da, args):
     if args.particles == bool(args.line):
         raise ToolError("extract: give --line X0 X1 or --particles")
     _check_labels(da, args.var)
-    f = open(args.out, "w", newline="") if args.out else sys.stdout
-    try:
-        w = csv.writer(f)
-        if args.particles:
-            table = da.particles_table(args.mat, args.t)
-            if not table:
-                raise ToolError(f"no particles of material {args.mat} at output {args.t}")
-            keep = [c for c in table if not args.var or c.split("[")[0] in args.var or c.startswith("p.x")]
-            w.writerow(keep)
-            for row in zip(*(table[c] for c in keep)):
-                w.writerow([repr(float(v)) for v in row])
-            return
+    to_file = args.out not in (None, "-")
+    if args.particles:
+        table = da.particles_table(args.mat, args.t)
+        if not table:
+            raise ToolError(f"no particles of material {args.mat} at output {args.t}")
+        keep = [c for c in table if not args.var or c.split("[")[0] in args.var or c.startswith("p.x")]
+    else:
         if not args.var:
             raise ToolError("extract --line: give --var LABEL")
-        x0, x1 = _point(args.line[0]), _point(args.line[1])
+        x0, x1 = _point(args.line[0], da), _point(args.line[1], da)
         fields, header = [], ["x", "y", "z"]
         for name in args.var:
             vt = VarType(da.index["labels"][name]["type"])
@@ -159,21 +179,38 @@ def extract(da, args):
             flat = data.reshape(data.shape[:3] + (-1,))
             header += [name] if flat.shape[3] == 1 else [f"{name}[{k}]" for k in range(flat.shape[3])]
             fields.append((vt, flat, coords))
-        w.writerow(header)
         vt0, _, coords0 = fields[0]
         lo = [int(np.rint((c[0] - a) / h - (0.0 if vt0.node_like(d) and da.ncells[d] > 1 else 0.5)))
               for d, (c, a, h) in enumerate(zip(coords0, da.anchor, da.dx))]
+        rows = []
         for ijk in line_cells(da, vt0, x0, x1):
             local = [ijk[d] - lo[d] for d in range(3)]
             if any(not 0 <= local[d] < len(coords0[d]) for d in range(3)):
                 continue
-            row = [coords0[d][local[d]] for d in range(3)]
-            for _, flat, _ in fields:
-                row += list(flat[tuple(local)])
-            w.writerow([repr(float(v)) for v in row])
+            rows.append([coords0[d][local[d]] for d in range(3)] + [v for _, flat, _ in fields for v in flat[tuple(local)]])
+        if not rows:
+            raise ToolError(f"--line {args.line[0]} {args.line[1]} misses the domain "
+                            f"[{', '.join(f'{v:g}' for v in da.anchor)}] .. [{', '.join(f'{v:g}' for v in da.upper)}]")
+    # opened once the arguments are known good: an error leaves no empty file behind
+    f = open(args.out, "w", newline="") if to_file else sys.stdout
+    try:
+        w = csv.writer(f)
+        if args.particles:
+            w.writerow(keep)
+            for row in zip(*(table[c] for c in keep)):
+                w.writerow([_number(v) for v in row])
+            return
+        w.writerow(header)
+        for row in rows:
+            w.writerow([_number(v) for v in row])
     finally:
-        if args.out:
+        if to_file:
             f.close()
+
+
+def _number(v):
+    """A CSV cell: integers (particle IDs) as integers, floats with all their digits."""
+    return str(int(v)) if isinstance(v, (int, np.integer)) else repr(float(v))
 
 
 def plot(da, args):
@@ -190,6 +227,13 @@ def plot(da, args):
     if not args.out:
         raise ToolError("plot: give -o FILE.png")
     _check_labels(da, args.var)
+    kinds = {n: VarType(da.index["labels"][n]["type"]) for n in args.var}
+    sums = [n for n in args.var if kinds[n] == VarType.REDUCTION]
+    if sums:
+        if len(sums) < len(args.var):
+            raise ToolError(f"plot: {', '.join(sums)} are sums over time; plot them apart from the fields "
+                            f"({', '.join(n for n in args.var if n not in sums)})")
+        return _plot_sums(da, sums, args.out, plt)
     e = da.index["timesteps"][args.t]
     title = f"{os.path.basename(os.path.normpath(da.path))}  timestep {e['timestep']}, t = {float(e['time']):.4g} s"
     long_axes = [d for d in range(3) if da.ncells[d] > 1]
@@ -214,16 +258,18 @@ def plot(da, args):
             mappable = ax.pcolormesh(coords[0], coords[1], field.T, shading="nearest", cmap="viridis")
             fig.colorbar(mappable, ax=ax, label=name)
         pvar = next((n for n in args.var if not VarType(da.index["labels"][n]["type"]).is_grid), None)
+        coloured = False
         for m in sorted({int(m) for pm in e["patches"].values() for m in pm["particles"]}):
             parts = da.particles(m, args.t)
             if "p.x" not in parts:
                 continue
-            c = parts[pvar] if pvar in parts and parts[pvar].ndim == 1 else None
+            shape = tuple(da.index["labels"][pvar]["shape"]) if pvar else ()
+            c = _magnitude(parts[pvar], shape) if pvar in parts else None     # |p.stress|, |p.velocity|
             sc = ax.scatter(parts["p.x"][:, 0], parts["p.x"][:, 1], s=2, c=c if c is not None else "k",
                             cmap="plasma" if c is not None else None, linewidths=0)
-            if c is not None and mappable is None:
-                mappable = sc
-                fig.colorbar(sc, ax=ax, label=pvar)
+            if c is not None and not coloured:
+                coloured = True
+                fig.colorbar(sc, ax=ax, label=f"|{pvar}|" if shape else pvar)
         ax.set_xlim(da.anchor[0], da.upper[0])
         ax.set_ylim(da.anchor[1], da.upper[1])
         ax.set_aspect("equal")
@@ -232,4 +278,24 @@ def plot(da, args):
         ax.set_title(title, fontsize=9)
     fig.tight_layout()
     fig.savefig(args.out, dpi=100)
+    plt.close(fig)
+
+
+def _plot_sums(da, names, out, plt):
+    """Saved sums (TotalMass, KineticEnergy, ...) against time, one panel each; a vector's
+    components as three lines."""
+    fig, axes = plt.subplots(len(names), 1, figsize=(6, 2.2 * len(names)), sharex=True, squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        t, v = da.reduction(name)
+        v = np.asarray(v).reshape(len(t), -1)
+        for k in range(v.shape[1]):
+            ax.plot(t, v[:, k], "-", label="xyz"[k] if v.shape[1] == 3 else None)
+        if v.shape[1] == 3:
+            ax.legend(fontsize=8)
+        units = da.label_info(name)["units"]
+        ax.set_ylabel(name + (f" [{units}]" if units else ""))
+    axes[-1, 0].set_xlabel("t [s]")
+    axes[0, 0].set_title(os.path.basename(os.path.normpath(da.path)), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=100)
     plt.close(fig)

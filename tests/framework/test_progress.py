@@ -58,6 +58,33 @@ def test_fraction_and_eta():
     assert clock(3725) == "1:02:05" and clock(65) == "1:05"
 
 
+def test_eta_leaves_out_the_first_step():
+    """A first step that compiles for 100 s, then 0.1 s a step for 100 steps to maxTime: half way
+    the ETA is 5 s, not the 105 s that the average over all steps would give."""
+    class Tty:
+        def isatty(self):
+            return True
+
+        def write(self, text):
+            self.text = text
+
+        def flush(self):
+            pass
+
+    tty = Tty()
+    p = Progress(stream=tty, interval=0.0, max_time=1.0)
+    p.note("setting up")
+    assert tty.text == "\rsetting up\033[K"
+    p.update(1, 0.0, 0.01, 100.0)
+    assert "ETA ?" in tty.text and "100000.00 ms/step" in tty.text
+    p.update(51, 0.5, 0.01, 105.0)
+    assert "( 50.0%)" in tty.text and "ETA 0:05" in tty.text and "100.00 ms/step" in tty.text
+    q = Progress(stream=tty, max_time=1.0)
+    q.note("setting up")
+    q.close()                   # set-up failed: the line ends before the error message
+    assert tty.text == "\n"
+
+
 def test_timing_rows_add_up_to_wall(tmp_path):
     r = _pysus(["--timing", _deck(tmp_path, maxTime=0.2)], tmp_path, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
@@ -80,3 +107,20 @@ def test_warm_leaves_no_output(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "compiled" in r.stdout and str(cache) in r.stdout
     assert sorted(os.listdir(tmp_path)) == ["cache", "heat.ups"]   # no .uda next to the deck
+
+
+def test_pysus_progress_overrides_the_terminal_test(monkeypatch):
+    """Under mpiexec rank 0's stdout is a pipe: PYSUS_PROGRESS=1 (set by `pysus --np N` from a
+    terminal) draws the line there; PYSUS_PROGRESS=0 keeps a terminal clean."""
+    import io
+    monkeypatch.setenv("PYSUS_PROGRESS", "1")
+    assert Progress(stream=io.StringIO()).enabled
+    assert not Progress(enabled=False, stream=io.StringIO()).enabled      # --quiet wins
+    monkeypatch.setenv("PYSUS_PROGRESS", "0")
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+    assert not Progress(stream=Tty()).enabled
+    monkeypatch.delenv("PYSUS_PROGRESS")
+    assert Progress(stream=Tty()).enabled and not Progress(stream=io.StringIO()).enabled

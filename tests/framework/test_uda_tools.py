@@ -26,7 +26,7 @@ def gauss(x, y):
 def uda(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("tools")
     ctl = run_deck(decks.heat(n=N, patches="[2,2,1]", maxTime=0.02, particles=True,
-                              extra_save='<save label="p.x"/><save label="p.mass"/>'), tmp)
+                              extra_save='<save label="p.x"/><save label="p.mass"/><save label="TotalHeat"/>'), tmp)
     return ctl.archiver.dir
 
 
@@ -40,12 +40,15 @@ def test_info_lists_labels_with_initial_min_max(uda, capsys):
     code, out, _ = tool(capsys, "info", uda, "-t", 0)
     assert code == 0
     rows = {l.split()[0]: l.split() for l in out.splitlines() if l.startswith("  ") and "label" not in l}
-    assert rows["temp_CC"][1:3] == ["CC", "0"] and rows["temp_CC"][-1] == "K"
+    assert rows["temp_CC"][1:4] == ["CC", "double", "0"] and rows["temp_CC"][-1] == "K"
     c = np.arange(N) * H + H / 2                       # cell centres
-    assert float(rows["temp_CC"][3]) == pytest.approx(gauss(c[0], c[0]), rel=1e-5)
-    assert float(rows["temp_CC"][4]) == pytest.approx(gauss(c[N // 2], c[N // 2]), rel=1e-5)
+    assert float(rows["temp_CC"][4]) == pytest.approx(gauss(c[0], c[0]), rel=1e-5)
+    assert float(rows["temp_CC"][5]) == pytest.approx(gauss(c[N // 2], c[N // 2]), rel=1e-5)
     mass = H * H * DZ / 4                              # 2x2 particles per cell, density 1
-    assert rows["p.mass"][1] == "Particle" and float(rows["p.mass"][3]) == pytest.approx(mass, rel=1e-5)
+    assert rows["p.mass"][1] == "Particle" and float(rows["p.mass"][4]) == pytest.approx(mass, rel=1e-5)
+    assert rows["p.x"][1:3] == ["Particle", "Vector"]
+    r = np.linalg.norm(DataArchive(uda).particles(0, 0)["p.x"], axis=1)   # a Vector's magnitude, as puda's
+    assert [float(v) for v in rows["p.x"][4:6]] == pytest.approx([r.min(), r.max()], rel=1e-5)
 
 
 def test_extract_line_gives_the_cells_along_x(uda, capsys, tmp_path):
@@ -61,6 +64,17 @@ def test_extract_line_gives_the_cells_along_x(uda, capsys, tmp_path):
     assert np.allclose([float(r["temp_CC"]) for r in rows], gauss(x, y), rtol=1e-12, atol=0)
 
 
+def test_extract_line_short_points_and_stdout(uda, capsys, tmp_path, monkeypatch):
+    """--line 0 1 (or "x,y") runs through the domain's centre in the missing directions; -o - is stdout."""
+    monkeypatch.chdir(tmp_path)
+    code, out, _ = tool(capsys, "extract", uda, "--var", "temp_CC", "-t", 0, "--line", "0", "1", "-o", "-")
+    assert code == 0 and not (tmp_path / "-").exists()
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert len(rows) == N and float(rows[0]["y"]) == pytest.approx(0.5 + H / 2)   # the centre 0.5 is a face
+    code, out2, _ = tool(capsys, "extract", uda, "--var", "temp_CC", "-t", 0, "--line", "0,0.5", "1,0.5")
+    assert code == 0 and out2 == out
+
+
 def test_extract_particles_rows(uda, capsys):
     code, out, _ = tool(capsys, "extract", uda, "--particles", "-t", 0)
     assert code == 0
@@ -71,11 +85,14 @@ def test_extract_particles_rows(uda, capsys):
     assert np.allclose([float(r["p.mass"]) for r in rows], H * H * DZ / 4)
 
 
-def test_bad_arguments_are_one_line(uda, capsys):
+def test_bad_arguments_are_one_line(uda, capsys, tmp_path):
     code, _, err = tool(capsys, "extract", uda, "--var", "nope", "--line", "0,0,0", "1,1,0")
     assert code == 2 and err.startswith("pysus: error: --var nope: not saved") and err.count("\n") == 1
-    code, _, err = tool(capsys, "extract", uda, "--var", "temp_CC", "--line", "0,0", "1,1,0")
+    code, _, err = tool(capsys, "extract", uda, "--var", "temp_CC", "--line", "0,0,0,0", "1,nan", "-o", tmp_path / "e.csv")
     assert code == 2 and "x,y,z" in err
+    assert not (tmp_path / "e.csv").exists()            # an error leaves no empty file behind
+    code, _, err = tool(capsys, "extract", uda, "--var", "temp_CC", "--line", "2", "3")
+    assert code == 2 and "misses the domain" in err
     code, _, err = tool(capsys, "info", uda, "-t", 99)
     assert code == 2 and "-t 99" in err
 
@@ -86,6 +103,13 @@ def test_plot_writes_png_or_says_matplotlib_is_missing(uda, capsys, tmp_path, mo
     code, _, err = tool(capsys, "plot", uda, "--var", "temp_CC", "-o", out)
     assert code == 0, err
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = tool(capsys, "plot", uda, "--var", "temp_CC", "p.x", "-o", out)  # particles by |p.x|
+    assert code == 0, err
+    code, _, err = tool(capsys, "plot", uda, "--var", "TotalHeat", "-o", out)      # a sum against time
+    assert code == 0, err
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = tool(capsys, "plot", uda, "--var", "TotalHeat", "temp_CC", "-o", out)
+    assert code == 2 and "apart from the fields" in err
     monkeypatch.setitem(sys.modules, "matplotlib", None)
     code, _, err = tool(capsys, "plot", uda, "--var", "temp_CC", "-o", out)
     assert code == 2 and "needs matplotlib" in err
