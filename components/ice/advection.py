@@ -521,7 +521,8 @@ def advect(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey,
 
 @njit(cache=True, error_model="numpy")
 def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey, ez, press, shs, flo, fhi, lo,
-                   hi, dt, dxs, dims, compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
+                   hi, dt, dxs, dims, compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o,
+                   scal_o):
     """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
     grad, rc: scratch (3, nq, *mass.shape), (3, *mass.shape); compatible: Uintah's
     useCompatibleFluxes."""
