@@ -18,6 +18,7 @@ error vs cells and vs wall time when matplotlib is importable).
     .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 24 36 48 72 --json cylinder.json
     .venv/bin/python scripts/accuracy_cost.py piston --res 50 100 200 400 --opt heat=1,0 --json piston.json
     .venv/bin/python scripts/accuracy_cost.py piston --res 40 100 200 --opt gamma=1.4,1.67 --opt speed=0.001,0.002
+    .venv/bin/python scripts/accuracy_cost.py piston --res 100 200 --opt heat=0 --opt stroke=0.3,0.5,0.83
     .venv/bin/python scripts/accuracy_cost.py bar --res 25 50 100 200 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py lame --res 11 22 44 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py disks --res 20 50 --opt interpolator=linear,gimp --opt update=musl,usl
@@ -127,13 +128,16 @@ def _piston_scene():
 
     state = {"gamma": P.GAMMA}
 
-    def deck(n, heat=None, stop=None, gamma=None, speed=None, ratio=None, open=None):
+    def deck(n, heat=None, stop=None, gamma=None, speed=None, ratio=None, stroke=None, open=None):
         """n cells along the 2.5 mm column (dy = 2.5e-3 / n; the deck's 200 cells: n = 200);
         heat: the heat-exchange coefficient (the deck's 1); stop: the piston's stop_time;
         gamma: the gases' gamma (1.4); speed: the piston's speed in m/s (1e-3); ratio: V1/V2
-        where the piston stops (5.9); open: false for Uintah's advection next to the piston
-        (openFaceTransfers, docs/MPMICE.md)."""
+        where the piston stops (5.9); stroke: the piston's travel as a fraction of the trapped
+        gas's initial height (ratio = 1 / (1 - stroke); the deck's 0.83); open: false for
+        Uintah's advection next to the piston (openFaceTransfers, docs/MPMICE.md)."""
         state["gamma"] = P.GAMMA if gamma is None else float(gamma)
+        if stroke is not None:
+            ratio = 1.0 / (1.0 - float(stroke))
         return P.deck(n, heat=heat, stop=stop, gamma=gamma, speed=speed, ratio=ratio, open_faces=open)
 
     def error(da):

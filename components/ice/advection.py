@@ -445,12 +445,18 @@ def _transverse(q, uf, d, sh, i, j, k0, k1, dt, dxs, dims, comp, buf):
 
 
 @njit(cache=True, error_model="numpy")
-def _open_transfers(q, ex, ey, ez, shs, flo, fhi, lo, hi, dims, acc):
+def _open_transfers(q, ex, ey, ez, press, with_e, shs, flo, fhi, lo, hi, dims, acc):
     """MPMICE's open-face transfers (components/mpmice/kernels.open_face_transfers): across
     each face with e != 0 the fraction |e| of the donor's Lagrangian totals (q: m and the
     specific values) moves to the other cell, L -> R where e > 0: a first-order flux on
     top of the face velocity's, for the fluid a solid advancing through its cell displaces
-    into a more open neighbour. Nothing where e is a 1-element dummy (ICE alone)."""
+    into a more open neighbour. The energy moved is the parcel's enthalpy, its internal
+    (and total, with_e) energy plus the flow work p v (press: the donor's pressure): the
+    pressure equation does not see this volume cross, so the next equilibration, which
+    keeps each material's temperature, fits it into the receiver and the donor's remaining
+    fluid into its cell; with the work the two are adiabatic to first order, without it the
+    donor's fluid expands at constant temperature (an entropy gain). Nothing where e is a
+    1-element dummy (ICE alone)."""
     if ex.size == 1 and ey.size == 1 and ez.size == 1:
         return
     nq = q.shape[0]
@@ -477,8 +483,11 @@ def _open_transfers(q, ex, ey, ez, shs, flo, fhi, lo, hi, dims, acc):
                     m = q[0, a0, a1, a2] * abs(f)
                     a_in = lo[0] <= a0 < hi[0] and lo[1] <= a1 < hi[1] and lo[2] <= a2 < hi[2]
                     b_in = lo[0] <= b0 < hi[0] and lo[1] <= b1 < hi[1] and lo[2] <= b2 < hi[2]
+                    work = m * press[a0, a1, a2] * q[5, a0, a1, a2]
                     for c in range(nq):
                         x = m if c == 0 else m * q[c, a0, a1, a2]
+                        if c == 4 or (c == 6 and with_e):
+                            x += work
                         if a_in:
                             acc[c, a0, a1, a2] -= x
                         if b_in:
@@ -486,8 +495,8 @@ def _open_transfers(q, ex, ey, ez, shs, flo, fhi, lo, hi, dims, acc):
 
 
 @njit(cache=True, error_model="numpy")
-def advect(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey, ez, shs, flo, fhi, lo, hi, dt, dxs,
-           dims, comp, second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
+def advect(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey, ez, press, shs, flo, fhi, lo, hi, dt,
+           dxs, dims, comp, second, transverse, q, acc, buf, sl, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
     """Advect one material's Lagrangian totals (m, m u, m e, m v, E) over one step into the
     cells [lo, hi) and return the new primitives rho = m/V, u = (mu)/m, T = (me)/(m cv),
     v = (mv)/m (and the advected E in tot_o). heating (dissipationHeating, with with_e):
@@ -498,20 +507,22 @@ def advect(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey,
     All arrays are views with the collapsed axes first (a 2D run has a unit first axis),
     `comp` maps view axes to velocity components; shs, flo, fhi: (3, 3) per view axis.
     q, acc: scratch (nq, *mass.shape) with nq = 7 with E, else 6, plus ns; buf: (nq, row length).
-    ex, ey, ez: MPMICE's open-face transfers (_open_transfers), or 1-element dummies.
+    ex, ey, ez: MPMICE's open-face transfers (_open_transfers), or 1-element dummies; press: the
+    cells' pressure for the transfers' flow work (a dummy with them).
     """
     _start(mass, mom, eng, volm, tot, scal, with_e, heating, q, acc, lo, hi)
     for d in range(3):                  # d a run-time value: one compiled _sweep, not one per axis
         if dims[d]:
             uf = ux if d == 0 else (uy if d == 1 else uz)
             _sweep(q, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, comp, second, transverse, acc, buf, sl)
-    _open_transfers(q, ex, ey, ez, shs, flo, fhi, lo, hi, dims, acc)
+    _open_transfers(q, ex, ey, ez, press, with_e, shs, flo, fhi, lo, hi, dims, acc)
     _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o)
 
 
 @njit(cache=True, error_model="numpy")
-def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey, ez, shs, flo, fhi, lo, hi, dt,
-                   dxs, dims, compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
+def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey, ez, press, shs, flo, fhi, lo,
+                   hi, dt, dxs, dims, compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o,
+                   scal_o):
     """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
     grad, rc: scratch (3, nq, *mass.shape), (3, *mass.shape); compatible: Uintah's
     useCompatibleFluxes."""
@@ -523,7 +534,7 @@ def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz,
         if dims[d]:
             uf = ux if d == 0 else (uy if d == 1 else uz)
             _sweep_extrema(q, grad, rc, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, compatible, acc, buf)
-    _open_transfers(q, ex, ey, ez, shs, flo, fhi, lo, hi, dims, acc)
+    _open_transfers(q, ex, ey, ez, press, with_e, shs, flo, fhi, lo, hi, dims, acc)
     _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o)
 
 

@@ -23,7 +23,9 @@ from . import slip_exchange as SL
 FC_TYPES = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)
 UNIT = np.eye(3, dtype=np.int64)
 DELT_START = 1000.0     # s: the value Uintah's actuallyComputeStableTimestep starts its minimum from
-_NO_TRANSFERS = (np.zeros((1, 1, 1)),) * 3      # advection_faces: ICE alone moves nothing besides the fluxes
+# advection_faces: ICE alone moves nothing besides the fluxes (and needs no pressure for their flow work)
+_NO_TRANSFERS = (np.zeros((1, 1, 1)),) * 3
+_NO_PRESS = np.zeros((1, 1, 1))
 
 
 class Boxes:
@@ -727,7 +729,7 @@ class IceTasks:
                 tot, tot_o = new_dw.get(I.tot_eng_L_ME_CC, m, patch), np.empty_like(mass)
             else:
                 tot = tot_o = mass                              # unused
-            uf, ef = self.advection_faces(patch, m, new_dw, dt)
+            uf, ef, pw = self.advection_faces(patch, m, new_dw, dt)
             v = b.view
             shape = v(mass).shape
             # the models' scalars of this material (m f), advected with the others
@@ -737,7 +739,7 @@ class IceTasks:
                 scal[s] = v(new_dw.get(model.f_L, m, patch))
             nq = (A.NQ if with_e else A.NQ - 1) + len(mine)
             common = (v(mass), v(mom), v(eng), v(volm), v(tot), scal, with_e, heating, *(v(uf[p]) for p in b.perm),
-                      *(v(ef[p]) if ef[p].size > 1 else ef[p] for p in b.perm),
+                      *(v(ef[p]) if ef[p].size > 1 else ef[p] for p in b.perm), v(pw) if pw.size > 1 else pw,
                       b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt, patch.level.dx[b.perm], self.dims[b.perm])
             scratch = (self._scratch("q", (nq,) + shape), self._scratch("acc", (nq,) + shape),
                        self._scratch("buf", (nq, shape[2] + 1)))
@@ -770,10 +772,10 @@ class IceTasks:
                 self.bcs.scalar(patch, f, model.name, m, b)
 
     def advection_faces(self, patch, m, new_dw, dt):
-        """The face velocities that advect material m and, per direction, the fractions of a
-        donor cell's totals moved across each face besides (1-element dummies: none; MPMICE's
-        next to its solids, advection._open_transfers)."""
-        return self._faces(new_dw, I.FC_VEL_ME, m, patch), _NO_TRANSFERS
+        """The face velocities that advect material m, per direction the fractions of a donor
+        cell's totals moved across each face besides (1-element dummies: none; MPMICE's next
+        to its solids, advection._open_transfers) and the pressure for their flow work."""
+        return self._faces(new_dw, I.FC_VEL_ME, m, patch), _NO_TRANSFERS, _NO_PRESS
 
     # -- diagnostics ----------------------------------------------------------------------------
     def conserved_sums(self, patch, matls, old_dw, new_dw):

@@ -473,7 +473,7 @@ OPEN_FILL_MIN = 0.01
 
 
 @njit(cache=True)
-def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e):
+def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, cap, e, inside_lo, inside_hi):
     """Step 12 next to a moving solid, per face [flo, fhi) along d (R cell = face + sh, L = R - e_d):
     u_s = the solids' own velocity across the face, the d component of their cell-centred
     velocities from their particles at the start of the step (vel_CC, step 1) weighted by
@@ -490,8 +490,11 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
     side of it). Where instead the donor's fluid is the less dense per open volume (it rides
     with the solid and is not compressed with the fluid ahead of it), the neighbour's fluid
     moves in: e = the fraction (m_n o_d - m_d o_n) / (m_n (o_d + o_n)) of m_n that makes the
-    two equal, signed against u_s, |e| <= cap, and only where o_d >= OPEN_FILL_MIN. Returns
-    whether any face moves fluid so: never where the solids' particles are at rest."""
+    two equal, signed against u_s, |e| <= cap, and only where o_d >= OPEN_FILL_MIN. Nothing
+    crosses a face of the domain's boundary (a cell index along d below inside_lo[d] or from
+    inside_hi[d] on is an extra cell): the fluid would leave the domain or come from its
+    boundary conditions. Returns whether any face moves fluid so: never where the solids'
+    particles are at rest."""
     moved = False
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     for i in range(flo[0], fhi[0]):
@@ -500,6 +503,9 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
                 e[i, j, k] = 0.0
                 r0, r1, r2 = i + sh[0], j + sh[1], k + sh[2]
                 l0, l1, l2 = r0 - e0, r1 - e1, r2 - e2
+                ld = l0 if d == 0 else (l1 if d == 1 else l2)
+                if ld < inside_lo[d] or ld + 1 >= inside_hi[d]:
+                    continue
                 w = 0.0
                 uw = 0.0
                 for s in range(len(solid_vel)):

@@ -317,7 +317,8 @@ class MPMICETasks:
         carries the fluid at the cell's mean density and leaves some of it in the cells a piston
         fills. The solid's motion is its particles' (vel_CC of step 1), not its exchanged face
         velocity, which a gas flowing through a solid at rest gives it: nothing changes where
-        the particles are at rest or no solid moves into a cell that holds fluid."""
+        the particles are at rest or no solid moves into a cell that holds fluid. The fluid so
+        moved carries its flow work p v with its energy (advection._open_transfers)."""
         ice = self.ice
         uf = ice._faces(new_dw, I.FC_VEL_ME, m, patch)
         none = [np.zeros((1, 1, 1))] * 3
@@ -332,12 +333,17 @@ class MPMICETasks:
         ef = list(none)
         moved = False
         solid_vel = tuple(new_dw.get(I.vel_CC, s, patch) for s in self.mpm_matls)    # step 1: the particles'
+        far = 1 << 40           # the extra cells of the domain's boundary faces: no transfer into or out of them
+        inside_lo = np.array([b.lo[d] if patch.at_low[d] else -far for d in range(3)], np.int64)
+        inside_hi = np.array([b.hi[d] if patch.at_high[d] else far for d in range(3)], np.int64)
         for d in range(3):
             if ice.dims[d]:
                 ef[d] = np.empty(uf[d].shape)
                 moved |= K.open_face_transfers(solid_vel, solid_vf, opn, mass, b.sh[d], d, b.flo[d], b.fhi[d],
-                                               dt / patch.level.dx[d], cap, ef[d])
-        return uf, (ef if moved else none)
+                                               dt / patch.level.dx[d], cap, ef[d], inside_lo, inside_hi)
+        if not moved:
+            return uf, none, none[0]
+        return uf, ef, new_dw.get(I.press_CC, 0, patch)        # the transfers' flow work p v
 
     # at most this fraction of a cell's fluid moves besides ICE's fluxes in a step (through all its
     # faces): ICE's second-order flux of m v may itself take up to about 4 |u| dt/dx of a cell

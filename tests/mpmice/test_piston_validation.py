@@ -11,11 +11,12 @@ The bound 0.03 is about twice the largest of them, and far from what a wrong flo
 specific-volume evolution gives: an isothermal gas would be 21 % low at V1/V2 = 1.82.
 
 The deck's 200 cells up to t = 0.8 s (V1/V2 = 5.03, where Uintah's pistonValidation.ups
-stops the piston): the bottom pressure is 0.0002 off the adiabat and 0.08 % of the trapped
-gas is in cells the piston fills (solid volume fraction > 0.99). Before the fluid next to a
-moving solid crossed the faces as open as its neighbour (docs/MPMICE.md, step 12) 1.5 % of
-the gas was left there, carried with the piston, and the pressure was 0.025 low; Uintah's
-sus on its deck run explicit: +0.020 at V1/V2 = 5.0.
+stops the piston): the bottom pressure is +0.0067 off the adiabat (+0.0002 before the
+transfers carried their flow work; +0.014 with heat 0, where no heat leaves the gas for the
+piston) and 0.08 % of the trapped gas is in cells the piston fills (solid volume fraction >
+0.99). Before the fluid next to a moving solid crossed the faces as open as its neighbour
+(docs/MPMICE.md, step 12) 1.5 % of the gas was left there, carried with the piston, and the
+pressure was 0.025 low; Uintah's sus on its deck run explicit: +0.020 at V1/V2 = 5.0.
 """
 import numpy as np
 import pytest
@@ -45,15 +46,16 @@ def test_bottom_pressure_follows_the_adiabat(run):
 
 
 def test_coarse_grid_at_the_stop(tmp_path):
-    """40 cells to the stop (V1/V2 = 6.02, the gas 2.7 cells tall): +0.096 off the adiabat at
-    the first output there (scripts/accuracy_cost.py piston --res 40). Before the fluid in the
+    """40 cells to the stop (V1/V2 = 6.02, the gas 2.7 cells tall): +0.048 off the adiabat at
+    the first output there (scripts/accuracy_cost.py piston --res 40; +0.096 before the
+    transfers carried their flow work, docs/MPMICE.md). Before the fluid in the
     piston's cells was filled from its more open neighbour (docs/MPMICE.md, step 12) it rode
     with the piston uncompressed, at a quarter of the bulk's pressure, and the bulk was +0.264
     over-compressed."""
     da = DataArchive(run_deck(S.deck(N, t_end=0.85), tmp_path, "stop").archiver.dir)
     e = S.errors(da)
     assert e["ratio"] > 5.9
-    assert 0.0 < e["end"] < 0.13, e
+    assert 0.0 < e["end"] < 0.08, e
 
 
 @pytest.fixture(scope="module")
@@ -65,7 +67,7 @@ def fine(tmp_path_factory):
 def test_no_gas_left_in_the_pistons_cells(fine):
     h = S.history(fine)
     assert h["ratio"][-1] > 4.9
-    assert abs(h["err"][-1]) < 0.006, h["err"]              # was -0.025; sus (explicit): +0.020
+    assert abs(h["err"][-1]) < 0.01, h["err"]               # +0.0067; was -0.025; sus (explicit): +0.020
     solid = fine.read("vol_frac_CC", 0, -1)[0].reshape(-1)
     gas = fine.read("rho_CC", 1, -1)[0].reshape(-1)
     assert gas[solid > 0.99].sum() < 0.002 * gas.sum()      # was 0.015
