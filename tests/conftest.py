@@ -1,6 +1,8 @@
 """Shared helpers: run a deck in-process or through the `pysus` command."""
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import subprocess
 import sys
@@ -38,6 +40,21 @@ def pysus(*args, np_=1, env=None, timeout=300, cwd=None):
     e = dict(os.environ)
     e.update(env or {})
     return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=cwd or os.getcwd(), env=e)
+
+
+def pysus_ranks(*args, np_=1, timeout=300):
+    """pysus(*args, np_=n) for the comparisons of rank counts: the one-rank run in this process
+    through framework.cli.main (what the pysus command runs on one rank: the same serial code and
+    kernels), without a second Python start-up and loading of the kernels (~1.4 CPU s a run);
+    more ranks under mpiexec. Returns a CompletedProcess (returncode, stdout, stderr)."""
+    if np_ > 1:
+        return pysus(*args, np_=np_, timeout=timeout)
+    from framework.cli import main
+    argv = [*map(str, args), "-q"]
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main(argv)
+    return subprocess.CompletedProcess(argv, rc, out.getvalue(), err.getvalue())
 
 
 @pytest.fixture(autouse=True)

@@ -4,7 +4,7 @@ the saved total energy equal to round-off (a sum over ranks)."""
 import numpy as np
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus
+from tests.conftest import pysus_ranks
 
 from .test_conservation import deck, totals
 
@@ -17,7 +17,7 @@ def test_two_gases_conserving_energy_ranks_equal_one_rank(tmp_path):
     runs = {}
     for n in (1, 2, 3):
         uda = tmp_path / f"r{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n)
+        r = pysus_ranks(path, "--filebase", uda, np_=n)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     for n in (2, 3):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus
+from tests.conftest import ROOT, UINTAH_INPUTS, pysus_ranks
 
 CASES = {
     # deck, replacements making it small and giving it enough patches for 3 ranks, labels
@@ -39,7 +39,7 @@ def test_ice_ranks_equal_one_rank(tmp_path, case):
     runs = {}
     for n in (1, 2, 3):
         uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n)
+        r = pysus_ranks(path, "--filebase", uda, np_=n)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     nm = len(runs[1].materials)

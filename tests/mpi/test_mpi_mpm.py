@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus
+from tests.conftest import ROOT, UINTAH_INPUTS, pysus_ranks
 
 CASES = {
     "disks_sulsky": (UINTAH_INPUTS / "MPM" / "disks_sulsky.ups",
@@ -42,7 +42,7 @@ def test_mpm_ranks_equal_one_rank(tmp_path, case):
     runs = {}
     for n in (1, 2, 3):
         uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n, timeout=600)
+        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=600)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     base = {m: runs[1].particles(m, -1) for m in range(len(runs[1].materials))}

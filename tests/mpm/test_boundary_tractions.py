@@ -50,9 +50,9 @@ def test_four_patches_equal_sus(tmp_path):
 def test_two_ranks_write_the_same_sums(tmp_path):
     """The patches' sums are combined in patch order: 1 and 2 MPI ranks write the same .dat
     files, byte for byte."""
-    from tests.conftest import pysus
+    from tests.conftest import pysus_ranks
     for n in (1, 2):
-        r = pysus(DECK, "--filebase", tmp_path / f"r{n}.uda", np_=n, timeout=300)
+        r = pysus_ranks(DECK, "--filebase", tmp_path / f"r{n}.uda", np_=n, timeout=300)
         assert r.returncode == 0, r.stderr[-2000:]
     for name in ("BndyForce_zminus", "BndyTraction_zminus", "BndyContactArea_zminus", "AccStrainEnergy"):
         one, two = ((tmp_path / f"r{n}.uda" / f"{name}.dat").read_text() for n in (1, 2))

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus
+from tests.conftest import pysus_ranks
 
 from .helpers import MPM_INPUTS, deck_text
 
@@ -38,7 +38,7 @@ def test_deck_two_ranks_bitwise(tmp_path, case):
     runs = {}
     for n in (1, 2):
         uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n, timeout=300)
+        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     assert np.array_equal(runs[1].times, runs[2].times)

@@ -10,7 +10,7 @@ import pytest
 
 from framework.archiver import DataArchive
 from framework.problemspec import InputError
-from tests.conftest import pysus, run_deck
+from tests.conftest import pysus, pysus_ranks, run_deck
 
 from .helpers import MPM_INPUTS, deck_text
 
@@ -72,7 +72,7 @@ def test_two_ranks_bitwise(tmp_path):
     out = {}
     for n in (1, 2):
         uda = tmp_path / f"r{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n, timeout=300)
+        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
         assert r.returncode == 0, r.stderr[-2000:]
         out[n] = DataArchive(uda).particles(0, -1)
     oa, ob = (np.argsort(out[n]["p.particleID"]) for n in (1, 2))

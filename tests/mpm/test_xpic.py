@@ -12,7 +12,7 @@ import pytest
 
 from framework.archiver import DataArchive
 from framework.problemspec import InputError
-from tests.conftest import ROOT, pysus
+from tests.conftest import ROOT, pysus_ranks
 
 from .helpers import run
 
@@ -96,7 +96,7 @@ def test_two_ranks_bitwise(tmp_path):
     runs = {}
     for n in (1, 2):
         uda = tmp_path / f"nairn_{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n, timeout=300)
+        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     for m in (0, 1):

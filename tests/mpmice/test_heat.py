@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus, run_deck
+from tests.conftest import pysus, pysus_ranks, run_deck
 
 N, DX = 10, 0.01
 RHO_S, CV_S, T_S = 10.0, 100.0, 600.0
@@ -100,7 +100,7 @@ def test_one_two_three_ranks_bitwise(tmp_path):
     out = {}
     for n in (1, 2, 3):
         uda = tmp_path / f"r{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n, timeout=300)
+        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
         assert r.returncode == 0, r.stderr[-2000:]
         da = DataArchive(uda)
         p = da.particles(0, -1)

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus
+from tests.conftest import ROOT, UINTAH_INPUTS, pysus_ranks
 
 PID = '<save label="p.particleID"/>'
 CASES = {
@@ -51,7 +51,7 @@ def test_mpmice_ranks_equal_one_rank(tmp_path, case):
     runs = {}
     for n in (1, 2, 3):
         uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n, timeout=600)
+        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=600)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     one = runs[1]
