@@ -576,7 +576,8 @@ def sp_vol_lagrangian_one(mass_L, sp_vol, vf, cs, delP, out, lo, hi, vol):
 @njit(cache=True, error_model="numpy")
 def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, params, cvs, gammas,
                            outs, lo, hi, vol, dt):
-    """Eq. 40: (m v)^L = m v + V [-theta kappa delP + dt (theta beta Tdot - f_theta sum theta beta Tdot)]."""
+    """Eq. 40: (m v)^L = m v + V [-theta kappa delP + dt (theta beta Tdot - f_theta sum theta beta Tdot)],
+    beta at the start-of-step temperature and v (Uintah's)."""
     n = len(masses)
     nk = hi[2] - lo[2]
     k0 = lo[2]
@@ -599,10 +600,10 @@ def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, 
                     fth[m, k] = th * v / cs[k] ** 2
                     ksum[k] += fth[m, k]
                     t_L = en[k] / (ms[k] * cv)
-                    if ideal:
-                        beta = ideal_gas_alpha(1.0 / v, t_L, cv, g)
+                    if ideal:       # beta at the start-of-step temperature (Uintah's getAlpha(temp_CC old))
+                        beta = ideal_gas_alpha(1.0 / v, to[k], cv, g)
                     else:
-                        beta = eos_alpha(codes[m], params[m], 1.0 / v, t_L, cv, g)
+                        beta = eos_alpha(codes[m], params[m], 1.0 / v, to[k], cv, g)
                     tb[m, k] = th * beta * (t_L - to[k]) / dt
                     bsum[k] += tb[m, k]
             dp = delP[i, j, k0:k0 + nk]
