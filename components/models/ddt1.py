@@ -267,6 +267,8 @@ def ddt1_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, numppc, cr
 
 class DDT1(SteadyBurn):
     name = "DDT1"
+    solid_temp_dw = NEW         # Uintah's DDT1 reads the solids' temp_CC of this step
+    energy_temp_dw = NEW
 
     def __init__(self, node, comp, root):
         self.comp = comp

@@ -20,7 +20,7 @@ Tasks, each added right after the MPMICE task named (models/__init__.py):
         ICE instead eq. P's right-hand side takes the same term (mass_exchange_term)
   ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
         the product's m^L, (m u)^L, (m e)^L += sources (eqs. 7-8)
-  ICE::computeLagrangianSpecificVolume -> Simple_Burn::addVolumeSource
+  in ICE::computeLagrangianSpecificVolume (before its clamp, Models.volume_sources)
         the product's Lagrangian volume holds the new mass at V_created (modelVol_src)
   MPM::computeStressTensor -> Simple_Burn::burnParticles
         p.mass+, p.volume+ *= 1 - f; f = 1: p.x+ = NaN (removed at relocation)
@@ -107,13 +107,7 @@ class SimpleBurn(IceSources):
                 ("ICE::computeDelPressAndUpdatePressCC", self._pressure_task),
                 ("MPMICE::computeLagrangianValuesMPM", self._reactant_lagrangian_task),
                 ("ICE::computeLagrangianValues", self._lagrangian_task),
-                ("ICE::computeLagrangianSpecificVolume", self._volume_task),
                 ("MPM::computeStressTensor", self._particles_task)]
-
-    def _volume_task(self):
-        return Task(f"{self.name}::addVolumeSource", self.volume_source, [self.prod]) \
-            .requires(NEW, ML.modelMass_src).requires(NEW, ML.modelVol_src).requires(NEW, I.sp_vol_CC) \
-            .modifies(I.sp_vol_L_CC)
 
     name = "Simple_Burn"
     volume_of_solid = True      # the product's new volume: burned * v_solid (Uintah's); False: at (p, T_product)
@@ -171,6 +165,14 @@ class SimpleBurn(IceSources):
             .requires(NEW, MI.cMass).requires(NEW, ML.modelMass_src).requires(NEW, ML.modelMom_src) \
             .requires(NEW, ML.modelEng_src).modifies(I.mass_L_CC).modifies(I.mom_L_CC).modifies(I.int_eng_L_CC) \
             .modifies(MI.mom_mpm_CC)
+
+    def volume_source_into(self, patch, matls, new_dw, sp_vol_L):
+        """The product's Lagrangian volume holds the new mass at V_created (K.volume_source) in
+        sp_vol_L (ICE's arrays of matls), before ICE's clamp, as Uintah adds modelVol_src."""
+        b = self.comp.ice.boxes(patch)
+        m = self.prod
+        K.volume_source(new_dw.get(ML.modelMass_src, m, patch), new_dw.get(ML.modelVol_src, m, patch),
+                        new_dw.get(I.sp_vol_CC, m, patch), b.lo, b.hi, sp_vol_L[list(matls).index(m)])
 
     def volume_sources_requires(self, t):
         t.requires(NEW, ML.modelMass_src, matls=[self.prod]).requires(NEW, ML.modelVol_src, matls=[self.prod])

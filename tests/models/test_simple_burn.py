@@ -93,7 +93,7 @@ def test_no_models_no_burn_tasks():
     plain = (text[:start] + text[end:]).replace('<save label="totalMassBurned"/>', "")
     assert "Simple_Burn" not in _task_names(plain)
     names = _task_names(text).split()
-    for t in ("computeModelSources", "addPressureSource", "addLagrangianSources", "addVolumeSource", "burnParticles"):
+    for t in ("computeModelSources", "addPressureSource", "addLagrangianSources", "burnParticles"):
         assert "Simple_Burn::" + t in names, t
 
 
