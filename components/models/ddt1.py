@@ -29,7 +29,7 @@ Per interior cell holding reactant (volume fraction > 1e-10), with p the cell's 
   next to a burning one; a cell that burned last step goes on burning (BurningCriteria 1: warming).
   WSB's burn (steady_burn.py) takes T0 from the neighbour richest in reactant and releases
   Qc + Qg per kg; every burn is at most rho_r theta_r V less 1e-12 kg/m^3 V.
-The burned mass leaves the reactant's particles and enters the product with their momentum,
+The burned mass leaves the reactant's particles and enters the product with the solid's velocity,
 the energy cv_reactant T_reactant per kg plus the heat released, and the solid's volume
 (Simple_Burn's tasks, simple_burn.py). Outputs (reactant cells): burning, BurningCriteria,
 detonating, detLocalTo, F, delF, surfaceTemp, onSurface, crackedEnough, SteadyBurn.numPPC,

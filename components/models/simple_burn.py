@@ -1,29 +1,35 @@
 """Uintah's Simple_Burn (paper 001 sec. 3): a solid reactant's surface burns into a product gas.
 
 Burn rate (per unit surface, eq. 5): m_dot'' = K (p / p_ref)^0.778 where the reactant's
-surface cell is hotter than ThresholdTemp and p > ThresholdPressure. The burned mass
-leaves the reactant's PARTICLES in that cell (each gives the same fraction of its mass;
-one left with next to nothing gives all and is deleted: p.x+ = NaN) and enters the
-product gas in the same cell with the particles' momentum and internal energy
-cv_s T_s plus the heat of reaction (Enthalpy). The sum of mass over all materials is
-unchanged to round-off; momentum is handed over as m_burned v_p at the start of the step
-while the particle keeps its end-of-step velocity (off by m_burned dv per step).
+surface cell is hotter than ThresholdTemp and p > ThresholdPressure, at most the reactant's
+cMass there. As in Uintah the burned mass leaves the reactant (its modelMass/Mom/Eng/Vol_src,
+negative, in its Lagrangian values: MPMICE's computeLagrangianValuesMPM) and enters the
+product gas in the same cell with the solid's cell velocity and internal energy cv_s T_s plus
+the heat of reaction (Enthalpy). The particles lose it through the nodes (Uintah's
+massBurnFraction): each node takes the mean |modelMass_src| / cMass of the cells around it,
+each particle the interpolation f of those, p.mass+ = max(m (1 - f), 0), its volume and size
+scaled alike; one left with minimum_particle_mass or less is deleted (p.x+ = NaN). The
+particles' loss equals the product's gain only where the nodes see uniform particles
+(tests/models/burn1d.ups: 1.3e-15 of the total mass; guni2dRT's reactant mass per cell equals
+sus's, tests/mpmice/test_guni2drt.py).
 
 Tasks, each added right after the MPMICE task named (models/__init__.py):
   MPMICE::computeEquilibrationPressure -> Simple_Burn::computeModelSources
-        surface cells from the reactant's node masses, burned mass per cell, each
-        particle's fraction (p.burnFraction) and the product's mass/momentum/energy sources;
+        surface cells from the reactant's node masses, burned mass per cell, the
+        reactant's and the product's mass/momentum/energy/volume sources;
         the reductions totalMassBurned and totalHeatReleased (this step; <save> them)
   ICE::computeDelPressAndUpdatePressCC -> Simple_Burn::addPressureSource
         p += m_burned (v_product - v_reactant) / (V sum_m theta_m kappa_m) (001 eq. 9,
         Uintah's delP_MassX, sum_m m_src,m v_m with the equilibrated v_m); with semi-implicit
         ICE instead eq. P's right-hand side takes the same term (mass_exchange_term)
+  MPMICE::computeLagrangianValuesMPM -> Simple_Burn::addReactantLagrangianSources
+        the reactant's m^L, (m u)^L, (m e)^L += its sources (Uintah's minimum-mass rule)
   ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
         the product's m^L, (m u)^L, (m e)^L += sources (eqs. 7-8)
   in ICE::computeLagrangianSpecificVolume (before its clamp, Models.volume_sources)
         the product's Lagrangian volume holds the new mass at V_created (modelVol_src)
   MPM::computeStressTensor -> Simple_Burn::burnParticles
-        p.mass+, p.volume+ *= 1 - f; f = 1: p.x+ = NaN (removed at relocation)
+        p.mass+, p.volume+, p.size+ *= 1 - f (f from the nodes); deleted: p.x+ = NaN
 V_created (modelVol_src) is the volume the burned solid held, burned * v_solid (Uintah's; the
 next equilibration expands it); volume_of_solid False makes it at the product's density at the
 cell's pressure and its own temperature e_src / (m_src cv). Energy: the hand-over is exact; ICE's later evolution of

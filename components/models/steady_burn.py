@@ -21,9 +21,9 @@ richest in reactant and v_c the reactant's specific volume in the cell, the mass
 
 (Uintah's bisection-Newton from Ts = 850 K, |Ts - Ts(m(Ts))| < 1e-6). The cell burns
 dt A m, A the surface area from the gradient of the node masses (Uintah's
-computeSurfaceArea), at most its particle mass less 1e-12 kg/m^3 V. The burned mass leaves the
-reactant's particles and enters the product with their momentum and the energy
-Cp T_solid + Qc + Qg per kg, as Simple_Burn's (simple_burn.py: the particles' share, the
+computeSurfaceArea), at most its cMass less 1e-12 kg/m^3 V. The burned mass leaves the
+reactant's particles and enters the product with the solid's cell velocity and the energy
+Cp T_solid + Qc + Qg per kg (every temp_CC of the last step, Uintah's), as Simple_Burn's (simple_burn.py: the particles' share, the
 pressure, Lagrangian and volume sources are its tasks). Outputs: SteadyBurn.BurningCell,
 SteadyBurn.SurfTemp, SteadyBurn.numPPC (per reactant cell) and the reductions
 totalMassBurned, totalHeatReleased (burned (Qc + Qg)).
