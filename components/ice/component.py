@@ -651,7 +651,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         t = Task("ICE::computeLagrangianSpecificVolume", self.lagrangian_sp_vol, self.matls) \
             .requires(OLD, L.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.sp_vol_CC) \
             .requires(NEW, I.vol_frac_CC).requires(NEW, I.speedSound_CC) \
-            .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.sp_vol_L_CC)
+            .requires(NEW, I.delP_Dilatate, matls=m0).requires(NEW, I.press_CC, matls=m0).computes(I.sp_vol_L_CC)
         if many:
             t.requires(NEW, I.int_eng_L_ME_CC).requires(OLD, I.temp_CC)
         self.schedule_sp_vol_src(t, sched)

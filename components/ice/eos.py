@@ -411,6 +411,18 @@ def tst_press_eos(rho, temp, cv, a, b, u, w, Gamma):
 
 
 @njit(cache=True)
+def tst_alpha(v, press, cv, a, b, u, w, Gamma):
+    """Uintah's TST::getAlpha: 1 / (v (dT/dv)_p) at the cell's specific volume and pressure."""
+    bu, bw = b * u, b * w
+    n1 = 2.0 * press * v + press * bw + press * bu
+    n2 = v - b
+    n3 = press * v * v + press * v * (bu + bw) + press * b * b * u * w + a
+    d1 = (v + bu) * (v + bw) * (Gamma - 1.0) * cv
+    dT_dv = n1 * n2 / d1 - n3 * n2 / d1 * (1.0 / (v + bu) + 1.0 / (v + bw)) + n3 / d1
+    return 1.0 / (v * dT_dv)
+
+
+@njit(cache=True)
 def tst_rho_micro(press, temp, cv, gamma, a, b, u, w):
     """Uintah's TST::computeRhoMicro: the cubic in v solved in closed form (trigonometric root);
     as Uintah's, with the material's <gamma> (its pressure takes the EOS's <Gamma>)."""

@@ -163,7 +163,8 @@ class ImplicitICE:
         if precond == "mg" and not PCG.mg_possible(lv):
             precond, note = "jacobi", " (multigrid needs even patch extents: Jacobi instead)"
         self.pcg = PCG("imp.cg", imp_A, lv, self.dims, precond, self.imp.tolerance, self.imp.max_iterations,
-                       self.imp.norm, self.imp.sweeps, self.imp.criteria == "Relative")
+                       self.imp.norm, self.imp.sweeps, self.imp.criteria == "Relative",
+                       test_first=self.imp.package == "CGSolver")
         self.imp_banner = self.imp.describe(precond, note + f"; delT with knob_for_speedSound {self.knob:g}")
         self.imp_logged = False
         self.outer_iterations = []

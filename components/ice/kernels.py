@@ -14,8 +14,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .eos import (IDEAL_GAS, THOMSEN_HARTKA, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro,
-                  eos_sound_speed2, ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2)
+from .eos import (IDEAL_GAS, THOMSEN_HARTKA, TST, eos_alpha, eos_cold_energy, eos_press_eos, eos_rho_micro,
+                  eos_sound_speed2, ideal_gas_alpha, ideal_gas_press_eos, ideal_gas_sound_speed2, tst_alpha)
 from .specific_heat import cv_at, cv_at_flat
 
 TINY = 1.0e-100
@@ -575,8 +575,9 @@ def sp_vol_lagrangian_one(mass_L, sp_vol, vf, cs, delP, out, lo, hi, vol):
 
 @njit(cache=True, error_model="numpy")
 def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, params, cvs, gammas,
-                           outs, lo, hi, vol, dt):
-    """Eq. 40: (m v)^L = m v + V [-theta kappa delP + dt (theta beta Tdot - f_theta sum theta beta Tdot)]."""
+                           outs, lo, hi, vol, dt, press):
+    """Eq. 40: (m v)^L = m v + V [-theta kappa delP + dt (theta beta Tdot - f_theta sum theta beta Tdot)],
+    beta at the start-of-step temperature and v (Uintah's; TST's at v and the cell's pressure)."""
     n = len(masses)
     nk = hi[2] - lo[2]
     k0 = lo[2]
@@ -599,10 +600,13 @@ def sp_vol_lagrangian_many(masses, sps, vfs, css, delP, engs, temps_old, codes, 
                     fth[m, k] = th * v / cs[k] ** 2
                     ksum[k] += fth[m, k]
                     t_L = en[k] / (ms[k] * cv)
-                    if ideal:
-                        beta = ideal_gas_alpha(1.0 / v, t_L, cv, g)
+                    if ideal:       # beta at the start-of-step temperature (Uintah's getAlpha(temp_CC old))
+                        beta = ideal_gas_alpha(1.0 / v, to[k], cv, g)
+                    elif codes[m] == TST:       # Uintah's TST::getAlpha(v, p)
+                        pm = params[m]
+                        beta = tst_alpha(v, press[i, j, k0 + k], cv, pm[0], pm[1], pm[2], pm[3], pm[4])
                     else:
-                        beta = eos_alpha(codes[m], params[m], 1.0 / v, t_L, cv, g)
+                        beta = eos_alpha(codes[m], params[m], 1.0 / v, to[k], cv, g)
                     tb[m, k] = th * beta * (t_L - to[k]) / dt
                     bsum[k] += tb[m, k]
             dp = delP[i, j, k0:k0 + nk]

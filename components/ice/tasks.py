@@ -77,6 +77,7 @@ class Boxes:
 
 
 class IceTasks:
+    model_volume_sources = None     # f(patch, matls, new_dw, sp_vol_L arrays): reactions' volume (MPMICE)
     """Task callbacks of the ICE component (mixed into the component class)."""
 
     press_floor = -np.inf       # lowest press_CC (eq. 30); MPMICE clamps at 1e-12 as Uintah does
@@ -679,9 +680,11 @@ class IceTasks:
                                      v(delP), get(I.int_eng_L_ME_CC),
                                      tuple(v(old_dw.get(I.temp_CC, m, patch)) for m in matls),
                                      self.codes, self.params, self.cvs, self.gammas, tuple(v(o) for o in outs),
-                                     b.v_olo, b.v_ohi, b.vol, dt)
+                                     b.v_olo, b.v_ohi, b.vol, dt, v(new_dw.get(I.press_CC, 0, patch)))
         if self.save_sp_vol_src:
             self._sp_vol_source(patch, matls, new_dw, outs, b)
+        if self.model_volume_sources is not None:    # MPMICE's reactions, before the clamp (Uintah's order)
+            self.model_volume_sources(patch, matls, new_dw, outs)
         if self.clamp_sp_vol:
             for m, out in zip(matls, outs):
                 tiny_rho = getattr(self.materials[m], "tiny_rho", 1e-12)    # MPMICE's solids: Uintah's 1e-12

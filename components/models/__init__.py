@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from components.ice import labels as I
+from . import labels as ML
 from framework.task import NEW, OLD, Task
 
 from .simple_burn import SimpleBurn
@@ -76,6 +77,19 @@ class Models:
 
     def term(self, patch, dw):
         return sum(m.mass_exchange_term(patch, dw) for m in self.models)
+
+    def lagrangian_volume_requires(self, t):
+        """What volume_sources_into reads (added to ICE::computeLagrangianSpecificVolume)."""
+        for m in self.models:
+            if hasattr(m, "volume_source_into"):
+                t.requires(NEW, ML.modelMass_src, matls=[m.prod]).requires(NEW, ML.modelVol_src, matls=[m.prod])
+
+    def volume_sources_into(self, patch, matls, new_dw, sp_vol_L):
+        """The burn models' created volume in the products' Lagrangian volume (ICE's hook
+        model_volume_sources: before ICE's clamp, Uintah's order)."""
+        for m in self.models:
+            if hasattr(m, "volume_source_into"):
+                m.volume_source_into(patch, matls, new_dw, sp_vol_L)
 
     def hook(self, sched):
         after = {}

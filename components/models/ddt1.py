@@ -29,7 +29,7 @@ Per interior cell holding reactant (volume fraction > 1e-10), with p the cell's 
   next to a burning one; a cell that burned last step goes on burning (BurningCriteria 1: warming).
   WSB's burn (steady_burn.py) takes T0 from the neighbour richest in reactant and releases
   Qc + Qg per kg; every burn is at most rho_r theta_r V less 1e-12 kg/m^3 V.
-The burned mass leaves the reactant's particles and enters the product with their momentum,
+The burned mass leaves the reactant's particles and enters the product with the solid's velocity,
 the energy cv_reactant T_reactant per kg plus the heat released, and the solid's volume
 (Simple_Burn's tasks, simple_burn.py). Outputs (reactant cells): burning, BurningCriteria,
 detonating, detLocalTo, F, delF, surfaceTemp, onSurface, crackedEnough, SteadyBurn.numPPC,
@@ -267,6 +267,8 @@ def ddt1_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, numppc, cr
 
 class DDT1(SteadyBurn):
     name = "DDT1"
+    solid_temp_dw = NEW         # Uintah's DDT1 reads the solids' temp_CC of this step
+    energy_temp_dw = NEW
 
     def __init__(self, node, comp, root):
         self.comp = comp

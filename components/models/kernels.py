@@ -10,25 +10,6 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True)
-def bin_particles(px, pmass, pvel, anchor, dx, cc_low, shape, cell, mass_c, mom_c):
-    """The cell (local flat index) of every particle, and per cell the particles' mass and
-    momentum (summed in particle order, so the result does not depend on the patch layout)."""
-    s1, s2 = shape[1], shape[2]
-    for p in range(px.shape[0]):
-        i = int(np.floor((px[p, 0] - anchor[0]) / dx[0])) - cc_low[0]
-        j = int(np.floor((px[p, 1] - anchor[1]) / dx[1])) - cc_low[1]
-        k = int(np.floor((px[p, 2] - anchor[2]) / dx[2])) - cc_low[2]
-        i = min(max(i, 0), shape[0] - 1)
-        j = min(max(j, 0), s1 - 1)
-        k = min(max(k, 0), s2 - 1)
-        c = (i * s1 + j) * s2 + k
-        cell[p] = c
-        mass_c[c] += pmass[p]
-        for d in range(3):
-            mom_c[c, d] += pmass[p] * pvel[p, d]
-
-
 @njit(cache=True, inline="always")
 def _node_masses(gmass, node_low, gi, gj, gk, dims, n_lo, n_hi):
     """Max, min and the gradient sums (plus - minus) of the reactant's node masses around a
@@ -102,42 +83,74 @@ def burn_cells(gmass, node_low, cc_low, lo, hi, dims, dx, n_lo, n_hi, temps, vfs
 
 
 @njit(cache=True)
-def particle_fractions(cell, pmass, pvel, burned_flat, mass_c, tiny_mass, frac, gain_m, gain_mom):
-    """The fraction of its mass each particle gives to the product: burned / mass in its cell;
-    a particle left with less than tiny_mass gives all of it (and is deleted). gain_m and
-    gain_mom (per cell) collect exactly what the particles give, in particle order."""
-    for p in range(cell.shape[0]):
-        c = cell[p]
-        b = burned_flat[c]
-        if b <= 0.0:
-            frac[p] = 0.0
-            continue
-        f = b / mass_c[c]
-        if f >= 1.0 or pmass[p] * (1.0 - f) < tiny_mass:
-            f = 1.0
-        frac[p] = f
-        dm = f * pmass[p]
-        gain_m[c] += dm
-        for d in range(3):
-            gain_mom[c, d] += dm * pvel[p, d]
+def mass_burn_fraction(mass_src, cmass, cc_low, node_low, dims, lo_cell, n_lo, n_hi, sym_lo, sym_hi, out):
+    """Uintah's massBurnFraction (MPMICE::interpolateCCToNC): at every node of the domain the mean
+    over the cells around it of |m_src| / cMass, the fraction of its mass the solid there burns
+    this step. A cell beyond a symmetry plane is its mirror image, beyond another face it burns
+    nothing; nodes outside the domain 0. lo_cell: the local cell of a collapsed direction."""
+    nx, ny, nz = out.shape
+    w = 1.0 / (1 << (dims[0] + dims[1] + dims[2]))
+    for x in range(nx):
+        for y in range(ny):
+            for z in range(nz):
+                g = (x + node_low[0], y + node_low[1], z + node_low[2])
+                out[x, y, z] = 0.0
+                inside = True
+                for d in range(3):
+                    if dims[d] and not (n_lo[d] <= g[d] <= n_hi[d]):
+                        inside = False
+                if not inside:
+                    continue
+                s = 0.0
+                for a in range(2 if dims[0] else 1):
+                    for b in range(2 if dims[1] else 1):
+                        for c in range(2 if dims[2] else 1):
+                            cell = np.empty(3, np.int64)
+                            ok = True
+                            for d, o in ((0, a), (1, b), (2, c)):
+                                if not dims[d]:
+                                    cell[d] = lo_cell[d]
+                                    continue
+                                gc = g[d] - 1 + o
+                                if gc < n_lo[d]:
+                                    if not sym_lo[d]:
+                                        ok = False
+                                    gc = n_lo[d]
+                                elif gc > n_hi[d] - 1:
+                                    if not sym_hi[d]:
+                                        ok = False
+                                    gc = n_hi[d] - 1
+                                cell[d] = gc - cc_low[d]
+                            for d in range(3):
+                                if not 0 <= cell[d] < cmass.shape[d]:
+                                    ok = False
+                            if ok:
+                                cm = cmass[cell[0], cell[1], cell[2]]
+                                if cm > 0.0:        # 0: a cell beyond the ghost cells the task reads
+                                    s += abs(mass_src[cell[0], cell[1], cell[2]]) / cm
+                out[x, y, z] = s * w
 
 
 @njit(cache=True)
-def burn_particles(frac, pmass, pvol, px):
-    """The particles' share of the burn: mass and volume scaled by (1 - f); f = 1: deleted
-    (position NaN, which relocation removes)."""
+def burn_particles(frac, min_mass, pmass, pvol, psize, px):
+    """Uintah's interpolateToParticlesAndUpdate share of a burn: p.mass+ = max(m (1 - f), 0) with
+    f the particle's interpolated massBurnFraction, its volume and size scaled alike; a particle
+    left with min_mass or less is deleted (position NaN, which relocation removes)."""
     for p in range(frac.shape[0]):
         f = frac[p]
         if f <= 0.0:
             continue
-        if f >= 1.0:
-            pmass[p] = 0.0
-            pvol[p] = 0.0
+        m = pmass[p]
+        new = max(m * (1.0 - f), 0.0)
+        ratio = new / m if m > 0.0 else 0.0
+        pmass[p] = new
+        pvol[p] *= ratio
+        if psize.shape[0] > 0:          # p.size carried (GIMP, CPDI)
+            for d in range(3):
+                psize[p, d] *= ratio
+        if new <= min_mass:
             for d in range(3):
                 px[p, d] = np.nan
-        else:
-            pmass[p] *= 1.0 - f
-            pvol[p] *= 1.0 - f
 
 
 @njit(cache=True)
@@ -563,3 +576,32 @@ def seed_tracers(cells, npc, anchor, dx, cc_low, count, x_out, id_out):
             id_out[n] = cell_id | count[ci, cj, ck]
             count[ci, cj, ck] += 1
             n += 1
+
+
+@njit(cache=True)
+def solid_sources(cmass, mass_src, mom_src, eng_src, min_mass, olo, ohi, mass_L, mom_L, eng_L, mom_mpm):
+    """Uintah's computeLagrangianValuesMPM where a model takes mass from a solid (mass_src < 0):
+    m^L = max(cMass + m_src, min_mass); (mu)^L + mom_src and (me)^L each rescaled to the mass
+    left (cMass + m_src) / m^L, the momentum keeping its sign and at least min_mass / cMass of
+    its magnitude, the energy at least min_mass / cMass of itself. mom_mpm takes the same change
+    of momentum (the rate dV/dt holds the exchange and grad p only)."""
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                ms = mass_src[i, j, k]
+                if ms == 0.0:
+                    continue
+                cm = cmass[i, j, k]
+                left = cm + ms
+                m = max(left, min_mass)
+                for d in range(3):
+                    old = mom_L[i, j, k, d]
+                    floor = min_mass * old / cm
+                    tmp = old + mom_src[i, j, k, d]
+                    sign = (tmp + 1e-100) / abs(tmp + 1e-100)
+                    new = sign * max(abs(tmp / m * left), abs(floor))
+                    mom_mpm[i, j, k, d] += new - old
+                    mom_L[i, j, k, d] = new
+                e = eng_L[i, j, k]
+                eng_L[i, j, k] = max(e / m * left + eng_src[i, j, k], min_mass * e / cm)
+                mass_L[i, j, k] = m

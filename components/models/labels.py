@@ -9,7 +9,6 @@ modelMom_src = L.create("modelMom_src", CC, (3,))       # product: momentum gain
 modelEng_src = L.create("modelEng_src", CC)             # product: internal energy gained (J)
 modelVol_src = L.create("modelVol_src", CC)             # product: volume created (m^3), at (p, T_product)
 burnArea = L.create("Simple_Burn::onSurface", CC)       # reactant: burning-surface area per cell (m^2)
-pBurnFraction = L.create("p.burnFraction", P)           # reactant: fraction of its mass a particle gives
 totalMassBurned = L.create("totalMassBurned", R, reduction="sum")       # this step, all patches (kg)
 totalHeatReleased = L.create("totalHeatReleased", R, reduction="sum")   # this step: burned * Enthalpy (J)
 numPPC = L.create("SteadyBurn.numPPC", CC)              # reactant: its particles per cell

@@ -1,29 +1,35 @@
 """Uintah's Simple_Burn (paper 001 sec. 3): a solid reactant's surface burns into a product gas.
 
 Burn rate (per unit surface, eq. 5): m_dot'' = K (p / p_ref)^0.778 where the reactant's
-surface cell is hotter than ThresholdTemp and p > ThresholdPressure. The burned mass
-leaves the reactant's PARTICLES in that cell (each gives the same fraction of its mass;
-one left with next to nothing gives all and is deleted: p.x+ = NaN) and enters the
-product gas in the same cell with the particles' momentum and internal energy
-cv_s T_s plus the heat of reaction (Enthalpy). The sum of mass over all materials is
-unchanged to round-off; momentum is handed over as m_burned v_p at the start of the step
-while the particle keeps its end-of-step velocity (off by m_burned dv per step).
+surface cell is hotter than ThresholdTemp and p > ThresholdPressure, at most the reactant's
+cMass there. As in Uintah the burned mass leaves the reactant (its modelMass/Mom/Eng/Vol_src,
+negative, in its Lagrangian values: MPMICE's computeLagrangianValuesMPM) and enters the
+product gas in the same cell with the solid's cell velocity and internal energy cv_s T_s plus
+the heat of reaction (Enthalpy). The particles lose it through the nodes (Uintah's
+massBurnFraction): each node takes the mean |modelMass_src| / cMass of the cells around it,
+each particle the interpolation f of those, p.mass+ = max(m (1 - f), 0), its volume and size
+scaled alike; one left with minimum_particle_mass or less is deleted (p.x+ = NaN). The
+particles' loss equals the product's gain only where the nodes see uniform particles
+(tests/models/burn1d.ups: 1.3e-15 of the total mass; guni2dRT's reactant mass per cell equals
+sus's, tests/mpmice/test_guni2drt.py).
 
 Tasks, each added right after the MPMICE task named (models/__init__.py):
   MPMICE::computeEquilibrationPressure -> Simple_Burn::computeModelSources
-        surface cells from the reactant's node masses, burned mass per cell, each
-        particle's fraction (p.burnFraction) and the product's mass/momentum/energy sources;
+        surface cells from the reactant's node masses, burned mass per cell, the
+        reactant's and the product's mass/momentum/energy/volume sources;
         the reductions totalMassBurned and totalHeatReleased (this step; <save> them)
   ICE::computeDelPressAndUpdatePressCC -> Simple_Burn::addPressureSource
         p += m_burned (v_product - v_reactant) / (V sum_m theta_m kappa_m) (001 eq. 9,
         Uintah's delP_MassX, sum_m m_src,m v_m with the equilibrated v_m); with semi-implicit
         ICE instead eq. P's right-hand side takes the same term (mass_exchange_term)
+  MPMICE::computeLagrangianValuesMPM -> Simple_Burn::addReactantLagrangianSources
+        the reactant's m^L, (m u)^L, (m e)^L += its sources (Uintah's minimum-mass rule)
   ICE::computeLagrangianValues -> Simple_Burn::addLagrangianSources
         the product's m^L, (m u)^L, (m e)^L += sources (eqs. 7-8)
-  ICE::computeLagrangianSpecificVolume -> Simple_Burn::addVolumeSource
+  in ICE::computeLagrangianSpecificVolume (before its clamp, Models.volume_sources)
         the product's Lagrangian volume holds the new mass at V_created (modelVol_src)
   MPM::computeStressTensor -> Simple_Burn::burnParticles
-        p.mass+, p.volume+ *= 1 - f; f = 1: p.x+ = NaN (removed at relocation)
+        p.mass+, p.volume+, p.size+ *= 1 - f (f from the nodes); deleted: p.x+ = NaN
 V_created (modelVol_src) is the volume the burned solid held, burned * v_solid (Uintah's; the
 next equilibration expands it); volume_of_solid False makes it at the product's density at the
 cell's pressure and its own temperature e_src / (m_src cv). Energy: the hand-over is exact; ICE's later evolution of
@@ -37,6 +43,9 @@ import numpy as np
 from components.ice import labels as I
 from components.ice.tasks import _rho_micro_array
 from components.mpm import labels as M
+from components.mpm import shape as SH
+from components.mpm.thermal import g2p_heat
+from components.mpmice import labels as MI
 from framework import labels as FL
 from framework.problemspec import Param
 from framework.task import NEW, OLD, Task
@@ -102,35 +111,31 @@ class SimpleBurn(IceSources):
     def tasks_after(self):
         return [("MPMICE::computeEquilibrationPressure", self._sources_task),
                 ("ICE::computeDelPressAndUpdatePressCC", self._pressure_task),
+                ("MPMICE::computeLagrangianValuesMPM", self._reactant_lagrangian_task),
                 ("ICE::computeLagrangianValues", self._lagrangian_task),
-                ("ICE::computeLagrangianSpecificVolume", self._volume_task),
                 ("MPM::computeStressTensor", self._particles_task)]
-
-    def _volume_task(self):
-        return Task(f"{self.name}::addVolumeSource", self.volume_source, [self.prod]) \
-            .requires(NEW, ML.modelMass_src).requires(NEW, ML.modelVol_src).requires(NEW, I.sp_vol_CC) \
-            .modifies(I.sp_vol_L_CC)
 
     name = "Simple_Burn"
     volume_of_solid = True      # the product's new volume: burned * v_solid (Uintah's); False: at (p, T_product)
     cell_ghost = ()             # Steady_Burn reads the cell state of the 26 neighbours too
     solid_temp_dw = NEW         # the solids' temp_CC: this step's (Unsteady_Burn: last step's, OLD)
+    energy_temp_dw = NEW        # the reactant's temp_CC the burned mass carries (cv T): this step's (Uintah's)
 
     def _sources_task(self):
-        c, r, g, gh = self.comp, [self.react], [self.prod], self.cell_ghost
-        t = Task(f"{self.name}::computeModelSources", self.compute_sources, [self.react, self.prod]) \
-            .requires(OLD, FL.delT).requires(OLD, M.pX, matls=r).requires(OLD, M.pMass, matls=r) \
-            .requires(OLD, M.pVelocity, matls=r).requires(NEW, M.gMass, Ghost.AROUND_CELLS, 1, matls=r) \
+        c, r, gh, both = self.comp, [self.react], self.cell_ghost, [self.react, self.prod]
+        t = Task(f"{self.name}::computeModelSources", self.compute_sources, both) \
+            .requires(OLD, FL.delT).requires(NEW, M.gMass, Ghost.AROUND_CELLS, 1, matls=r) \
+            .requires(NEW, MI.cMass, matls=r).requires(NEW, I.vel_CC, matls=r).requires(NEW, I.sp_vol_CC, matls=r) \
             .requires(NEW, I.press_equil_CC, *gh, matls=[0]).requires(NEW, I.vol_frac_CC, *gh, matls=c.all_matls) \
-            .computes(ML.pBurnFraction, matls=r) \
-            .computes(ML.modelMass_src, matls=g).computes(ML.modelMom_src, matls=g) \
-            .computes(ML.modelEng_src, matls=g).computes(ML.modelVol_src, matls=g).computes(ML.totalMassBurned).computes(ML.totalHeatReleased)
-        if self.volume_of_solid:
-            t.requires(NEW, I.sp_vol_CC, matls=r)
+            .computes(ML.modelMass_src, matls=both).computes(ML.modelMom_src, matls=both) \
+            .computes(ML.modelEng_src, matls=both).computes(ML.modelVol_src, matls=both) \
+            .computes(ML.totalMassBurned).computes(ML.totalHeatReleased)
         if self.solid_temp_dw is OLD:
             t.requires(OLD, I.temp_CC, *gh, matls=c.all_matls)
         else:
             t.requires(NEW, I.temp_CC, *gh, matls=c.mpm_matls).requires(OLD, I.temp_CC, *gh, matls=c.ice.ice_matls)
+        if self.energy_temp_dw is NEW and self.solid_temp_dw is OLD:
+            t.requires(NEW, I.temp_CC, matls=r)
         return self._own_labels(t)
 
     def _own_labels(self, t):
@@ -151,8 +156,29 @@ class SimpleBurn(IceSources):
             .modifies(I.mass_L_CC).modifies(I.mom_L_CC).modifies(I.int_eng_L_CC)
 
     def _particles_task(self):
-        return Task(f"{self.name}::burnParticles", self.burn_particles, [self.react]) \
-            .requires(NEW, ML.pBurnFraction).modifies(M.pMassPre).modifies(M.pVolumePre).modifies(M.pXpre)
+        mpm = self.comp.mpm
+        t = Task(f"{self.name}::burnParticles", self.burn_particles, [self.react]) \
+            .requires(NEW, ML.modelMass_src, Ghost.AROUND_CELLS, 2).requires(NEW, MI.cMass, Ghost.AROUND_CELLS, 2) \
+            .requires(OLD, M.pX).modifies(M.pMassPre).modifies(M.pVolumePre).modifies(M.pXpre)
+        for lab in mpm.size_labels():
+            t.requires(OLD, lab)
+        if M.pSizePre.name in {pre.name for _, pre in mpm.carry}:
+            t.modifies(M.pSizePre)
+        return t
+
+    def _reactant_lagrangian_task(self):
+        return Task(f"{self.name}::addReactantLagrangianSources", self.reactant_lagrangian_sources, [self.react]) \
+            .requires(NEW, MI.cMass).requires(NEW, ML.modelMass_src).requires(NEW, ML.modelMom_src) \
+            .requires(NEW, ML.modelEng_src).modifies(I.mass_L_CC).modifies(I.mom_L_CC).modifies(I.int_eng_L_CC) \
+            .modifies(MI.mom_mpm_CC)
+
+    def volume_source_into(self, patch, matls, new_dw, sp_vol_L):
+        """The product's Lagrangian volume holds the new mass at V_created (K.volume_source) in
+        sp_vol_L (ICE's arrays of matls), before ICE's clamp, as Uintah adds modelVol_src."""
+        b = self.comp.ice.boxes(patch)
+        m = self.prod
+        K.volume_source(new_dw.get(ML.modelMass_src, m, patch), new_dw.get(ML.modelVol_src, m, patch),
+                        new_dw.get(I.sp_vol_CC, m, patch), b.lo, b.hi, sp_vol_L[list(matls).index(m)])
 
     def volume_sources_requires(self, t):
         t.requires(NEW, ML.modelMass_src, matls=[self.prod]).requires(NEW, ML.modelVol_src, matls=[self.prod])
@@ -177,46 +203,43 @@ class SimpleBurn(IceSources):
 
     # -- task bodies -----------------------------------------------------------------------------
     def compute_sources(self, patch, matls, old_dw, new_dw):
-        c, lv = self.comp, patch.level
-        b = c.ice.boxes(patch)
+        """The burned mass per cell (burned_mass, at most the reactant's cMass) leaves the reactant
+        and joins the product with the solid's cell velocity and energy cv_s T_s (plus the heat of
+        reaction), as Uintah's: both materials' modelMass/Mom/Eng/Vol_src."""
+        c = self.comp
         dt = old_dw.get_reduction(FL.delT)
         r, g = self.react, self.prod
         shape = patch.alloc_shape(CC)
-        px, pm, pv = old_dw.get(M.pX, r, patch), old_dw.get(M.pMass, r, patch), old_dw.get(M.pVelocity, r, patch)
-        n = len(px)
-        cc_low = np.array(patch.low_index(CC), np.int64)
-        ncell = int(np.prod(shape))
-        cell = np.empty(n, np.int64)
-        mass_c, mom_c = np.zeros(ncell), np.zeros((ncell, 3))
-        K.bin_particles(px, pm, pv, lv.anchor, lv.dx, cc_low, np.array(shape, np.int64), cell, mass_c, mom_c)
         solid_dw = new_dw if self.solid_temp_dw is NEW else old_dw
         temps = tuple((solid_dw if m in c.mpm_matls else old_dw).get(I.temp_CC, m, patch) for m in c.all_matls)
         vfs = tuple(new_dw.get(I.vol_frac_CC, m, patch) for m in c.all_matls)
         burned = np.zeros(shape)
-        self.burned_mass(patch, old_dw, new_dw, temps, vfs, mass_c, dt, burned)
-        frac = np.zeros(n)
-        gm, gmom = np.zeros(ncell), np.zeros((ncell, 3))
-        tiny = 1e-9 * c.mpm.materials[r].density * b.vol
-        K.particle_fractions(cell, pm, pv, burned.reshape(-1), mass_c, tiny, frac, gm, gmom)
-        new_dw.put(ML.pBurnFraction, r, patch, frac)
-        burned_total = float(gm.sum())
-        ms = new_dw.allocate(ML.modelMass_src, g, patch)
-        ms[...] = gm.reshape(shape)
+        cmass = np.ascontiguousarray(new_dw.get(MI.cMass, r, patch)).reshape(-1)
+        self.burned_mass(patch, old_dw, new_dw, temps, vfs, cmass, dt, burned)
         heat = self.released_heat(patch)
+        burned_total = float(burned.sum())
         new_dw.put_reduction(ML.totalMassBurned, burned_total)
-        new_dw.put_reduction(ML.totalHeatReleased, burned_total * heat if np.isscalar(heat) else float((ms * heat).sum()))
-        new_dw.allocate(ML.modelMom_src, g, patch)[...] = gmom.reshape(shape + (3,))
+        new_dw.put_reduction(ML.totalHeatReleased,
+                             burned_total * heat if np.isscalar(heat) else float((burned * heat).sum()))
+        mom = burned[..., None] * new_dw.get(I.vel_CC, r, patch)
+        e_solid = burned * (self.cv_react * (new_dw if self.energy_temp_dw is NEW else old_dw).get(I.temp_CC, r, patch))
+        v_solid = burned * new_dw.get(I.sp_vol_CC, r, patch)
+        for m, sign in ((r, -1.0), (g, 1.0)):
+            new_dw.allocate(ML.modelMass_src, m, patch)[...] = sign * burned
+            new_dw.allocate(ML.modelMom_src, m, patch)[...] = sign * mom
+        new_dw.allocate(ML.modelEng_src, r, patch)[...] = -e_solid
         e = new_dw.allocate(ML.modelEng_src, g, patch)
-        e[...] = ms * (self.cv_react * temps[r] + heat)
+        e[...] = e_solid + burned * heat
+        new_dw.allocate(ML.modelVol_src, r, patch)[...] = -v_solid
         vs = new_dw.allocate(ML.modelVol_src, g, patch)
-        on = ms > 0
+        on = burned > 0
         if self.volume_of_solid:       # the volume the burned solid held (Uintah's)
-            vs[...] = ms * new_dw.get(I.sp_vol_CC, r, patch)
+            vs[...] = v_solid
         elif on.any():       # the product made at the cell's pressure and its own temperature
             code, params, cv, gamma = c.ice._eos(g)
-            t_prod = e[on] / (ms[on] * cv)
+            t_prod = e[on] / (burned[on] * cv)
             rho = _rho_micro_array(new_dw.get(I.press_equil_CC, 0, patch)[on], t_prod, 1.0, code, params, cv, gamma)
-            vs[on] = ms[on] / rho
+            vs[on] = burned[on] / rho
 
     def released_heat(self, patch):
         """J/kg the burned mass releases (a number, or per cell: DDT1's)."""
@@ -246,10 +269,41 @@ class SimpleBurn(IceSources):
                           get(I.speedSound_CC), b.lo, b.hi, b.vol, press)
         c.ice.bcs.scalar(patch, press, "Pressure", 0, b)
 
-    def burn_particles(self, patch, matls, old_dw, new_dw):
+    def reactant_lagrangian_sources(self, patch, matls, old_dw, new_dw):
+        """Uintah's computeLagrangianValuesMPM with a model: the reactant's m^L, (mu)^L, (me)^L take its
+        (negative) sources, each kept above its share of a cell's minimum mass (kernels.solid_sources);
+        mom_MPM_CC takes the momentum's change too, so that dV/dt holds only the exchange and grad p."""
+        b = self.comp.ice.boxes(patch)
         for m in matls:
-            K.burn_particles(new_dw.get(ML.pBurnFraction, m, patch), new_dw.get_modifiable(M.pMassPre, m, patch),
-                             new_dw.get_modifiable(M.pVolumePre, m, patch), new_dw.get_modifiable(M.pXpre, m, patch))
+            K.solid_sources(new_dw.get(MI.cMass, m, patch), new_dw.get(ML.modelMass_src, m, patch),
+                            new_dw.get(ML.modelMom_src, m, patch), new_dw.get(ML.modelEng_src, m, patch),
+                            self.comp.tiny * b.vol, b.olo, b.ohi, new_dw.get_modifiable(I.mass_L_CC, m, patch),
+                            new_dw.get_modifiable(I.mom_L_CC, m, patch), new_dw.get_modifiable(I.int_eng_L_CC, m, patch),
+                            new_dw.get_modifiable(MI.mom_mpm_CC, m, patch))
+
+    def burn_particles(self, patch, matls, old_dw, new_dw):
+        """Each reactant particle loses the fraction of its mass its nodes burn (Uintah's massBurnFraction
+        at the nodes, |modelMass_src| / cMass averaged over the cells around each, interpolated to the
+        particle with the step's weights); kernels.burn_particles."""
+        c, mpm, lv = self.comp, self.comp.mpm, patch.level
+        b, cc_low, node_low, dims, n_lo, n_hi = c._geom(patch)
+        sym_lo, sym_hi = c._sym(self.react)
+        carried = {pre.name for _, pre in mpm.carry}
+        kind = {"linear": SH.LINEAR, "gimp": SH.GIMP}.get(mpm.kind, SH.CPDI)
+        act = sum(1 << d for d in range(3) if dims[d])
+        for m in matls:
+            frac_nc = np.zeros(patch.alloc_shape(NC))
+            K.mass_burn_fraction(new_dw.get(ML.modelMass_src, m, patch), new_dw.get(MI.cMass, m, patch), cc_low,
+                                 node_low, dims, np.array(b.lo, np.int64), n_lo, n_hi, sym_lo, sym_hi, frac_nc)
+            px = old_dw.get(M.pX, m, patch)
+            n = len(px)
+            frac = np.empty(n)
+            g2p_heat(kind, act, px, np.zeros(n), np.zeros(n), mpm._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
+                     node_low, frac_nc, 1.0, frac, 0.0)
+            size = new_dw.get_modifiable(M.pSizePre, m, patch) if M.pSizePre.name in carried else np.empty((0, 3))
+            K.burn_particles(frac, mpm.flags["minimum_particle_mass"], new_dw.get_modifiable(M.pMassPre, m, patch),
+                             new_dw.get_modifiable(M.pVolumePre, m, patch), size,
+                             new_dw.get_modifiable(M.pXpre, m, patch))
 
 
 def symmetry_nodes(comp, n_lo, n_hi):
@@ -278,3 +332,4 @@ def copy_to_symmetry_extra_cells(a, b, sym_lo, sym_hi):
                 dst, s = [slice(None)] * 3, [slice(None)] * 3
                 dst[d], s[d] = out, src
                 a[tuple(dst)] = a[tuple(s)]
+

@@ -21,9 +21,9 @@ richest in reactant and v_c the reactant's specific volume in the cell, the mass
 
 (Uintah's bisection-Newton from Ts = 850 K, |Ts - Ts(m(Ts))| < 1e-6). The cell burns
 dt A m, A the surface area from the gradient of the node masses (Uintah's
-computeSurfaceArea), at most its particle mass less 1e-12 kg/m^3 V. The burned mass leaves the
-reactant's particles and enters the product with their momentum and the energy
-Cp T_solid + Qc + Qg per kg, as Simple_Burn's (simple_burn.py: the particles' share, the
+computeSurfaceArea), at most its cMass less 1e-12 kg/m^3 V. The burned mass leaves the
+reactant's particles and enters the product with the solid's cell velocity and the energy
+Cp T_solid + Qc + Qg per kg (every temp_CC of the last step, Uintah's), as Simple_Burn's (simple_burn.py: the particles' share, the
 pressure, Lagrangian and volume sources are its tasks). Outputs: SteadyBurn.BurningCell,
 SteadyBurn.SurfTemp, SteadyBurn.numPPC (per reactant cell) and the reductions
 totalMassBurned, totalHeatReleased (burned (Qc + Qg)).
@@ -71,6 +71,8 @@ class SteadyBurn(SimpleBurn):
     name = "Steady_Burn"
     volume_of_solid = True
     cell_ghost = (Ghost.AROUND_CELLS, 1)
+    solid_temp_dw = OLD         # Uintah's Steady_Burn reads every material's temp_CC of the last step
+    energy_temp_dw = OLD
 
     table = TABLE
 
@@ -95,6 +97,15 @@ class SteadyBurn(SimpleBurn):
 
     def tasks_after(self):
         return [("MPMICE::computeEquilibrationPressure", self._numppc_task)] + super().tasks_after()
+
+    def schedule_initialize(self, sched):
+        sched.add_task(Task(f"{self.name}::initialize", self.initialize_solid_temperature, self.comp.mpm_matls)
+                       .computes(I.temp_CC))
+
+    def initialize_solid_temperature(self, patch, matls, old_dw, new_dw):
+        """The solids' temp_CC the first step's burn reads (their object's temperature)."""
+        for m in matls:
+            new_dw.allocate(I.temp_CC, m, patch)[...] = self.comp.solid_temp[m]
 
     def _numppc_task(self):
         return Task("Steady_Burn::computeNumPPC", self.count_particles, [self.react]) \

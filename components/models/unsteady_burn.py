@@ -58,6 +58,7 @@ class UnsteadyBurn(SteadyBurn):
     name = "Unsteady_Burn"
     table = TABLE
     solid_temp_dw = OLD
+    energy_temp_dw = OLD
 
     def __init__(self, node, comp, root):
         super().__init__(node, comp, root)
@@ -95,7 +96,7 @@ class UnsteadyBurn(SteadyBurn):
 
     def _own_labels(self, t):
         r, g1 = [self.react], (Ghost.AROUND_CELLS, 1)
-        t.requires(NEW, ML.numPPC, *g1, matls=r).requires(NEW, I.sp_vol_CC, matls=r)
+        t.requires(NEW, ML.numPPC, *g1, matls=r).requires(NEW, I.sp_vol_CC, matls=r).requires(OLD, M.pX, matls=r)
         for lab in CELL:
             t.requires(OLD, lab, *g1, matls=r).computes(lab, matls=r)
         for final, pre in PART:

@@ -349,9 +349,13 @@ class MPMICE(MPMICETasks, Component):
         t = Task("ICE::computeLagrangianSpecificVolume", self.lagrangian_sp_vol, alls) \
             .requires(OLD, FL.delT).requires(NEW, I.mass_L_CC).requires(NEW, I.sp_vol_CC) \
             .requires(NEW, I.vol_frac_CC).requires(NEW, I.speedSound_CC) \
-            .requires(NEW, I.delP_Dilatate, matls=m0).computes(I.sp_vol_L_CC).requires(NEW, I.int_eng_L_ME_CC)
+            .requires(NEW, I.delP_Dilatate, matls=m0).requires(NEW, I.press_CC, matls=m0) \
+            .computes(I.sp_vol_L_CC).requires(NEW, I.int_eng_L_ME_CC)
         self._start_state(t, (I.temp_CC,), 0)
         ice.schedule_sp_vol_src(t, sched)
+        if self.models is not None:         # the burn models' created volume, before ICE's clamp
+            self.models.lagrangian_volume_requires(t)
+            ice.model_volume_sources = self.models.volume_sources_into
         sched.add_task(t)
 
         self._schedule_diagnostics(sched)

@@ -27,10 +27,12 @@ class Loop(Task):
     A Loop may sit in another Loop's body: its PARENT warehouses are then the
     enclosing iteration's (an outer Newton-type iteration around an inner solve).
     converged(dw, iteration, parent_new_dw) -> bool reads the iteration's (already reduced) values.
+    done_before(parent_new_dw) -> bool, if given, is asked once before the first iteration: True
+    runs none (the results are the init values).
     """
 
     def __init__(self, name, matls, body, init: dict, results: dict, converged, max_iterations=100,
-                 fail="error"):
+                 fail="error", done_before=None):
         super().__init__(name, None, matls)
         self.body = list(body)
         self.init = dict(init)
@@ -38,6 +40,7 @@ class Loop(Task):
         self.converged = converged
         self.max_iterations = int(max_iterations)
         self.fail = fail
+        self.done_before = done_before
         self.iterations = 0
         self.body_graph = None
         for it_label, parent_label in self.init.items():
@@ -71,9 +74,9 @@ def run_loop(sched, loop: Loop, old_dw, new_dw):
             if name == parent_label.name:
                 (it_old.grid if lab.vartype.is_grid else it_old.particles)[(it_name, m, pid)] = arr
     it_old.nparticles = dict(new_dw.nparticles)
-    converged = False
+    converged = loop.done_before is not None and bool(loop.done_before(new_dw))
     k = 0
-    while k < loop.max_iterations:
+    while not converged and k < loop.max_iterations:
         it_new = DataWarehouse(-1)
         it_new.pre_counts = dict(it_old.nparticles)
         sched.execute(loop.body_graph, it_old, it_new, parents=(old_dw, new_dw))

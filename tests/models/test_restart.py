@@ -23,4 +23,4 @@ def test_restart_mid_burn_equals_straight_run(tmp_path):
     for lab, m in (("press_CC", 0), ("rho_CC", 1), ("temp_CC", 1)):
         assert np.array_equal(a.read(lab, m, -1)[0], b.read(lab, m, -1)[0]), lab
     pa, pb = a.particles(0, -1), b.particles(0, -1)
-    assert len(pa["p.mass"]) == 4 and np.array_equal(pa["p.mass"], pb["p.mass"])
+    assert len(pa["p.mass"]) == 8 and np.array_equal(pa["p.mass"], pb["p.mass"])

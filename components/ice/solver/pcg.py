@@ -39,8 +39,9 @@ class PCG:
     """Labels, tasks and convergence test of one PCG solve A x = b on the level."""
 
     def __init__(self, prefix, A_label, level, dims, precond="mg", tolerance=1e-10, max_iterations=500,
-                 norm="L2", sweeps=1, relative=True):
+                 norm="L2", sweeps=1, relative=True, test_first=False):
         self.A = A_label
+        self.test_first = test_first        # Uintah's CGSolver: no iteration when |b| < tolerance
         self.level = level
         self.dims = np.asarray(dims, dtype=np.int64)
         self.precond = precond
@@ -140,8 +141,21 @@ class PCG:
                           init={self.X.name: self.X0, self.R.name: self.R0, self.P.name: self.P0,
                                 self.RZ.name: self.RZ0},
                           results={self.X.name: result_label}, converged=self.converged,
-                          max_iterations=self.max_iterations, fail="continue")
+                          max_iterations=self.max_iterations, fail="continue",
+                          done_before=self.below_tolerance if self.test_first else None)
         return self.solve
+
+    def below_tolerance(self, parent_new):
+        """Uintah's CGSolver tests the seed's residual against the tolerance (unscaled, whatever
+        the criteria) before its first iteration: x = 0 when it is already below."""
+        if self.norm == "LInfinity":
+            r0 = parent_new.get_reduction(self.RMAX0)
+        else:
+            r0 = np.sqrt(parent_new.get_reduction(self.RR0))
+        if r0 < self.tol:
+            self.iterations.append(0)
+            return True
+        return False
 
     def converged(self, dw, k, parent_new):
         if self.norm == "LInfinity":
