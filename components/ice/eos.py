@@ -35,6 +35,11 @@ Codes and parameter layouts (Uintah deck tags in brackets):
                      (Uintah's ViscoScram computePressEOSCM); dp_de = 0, c^2 = dp/drho. p_ref > 0
                      (<useModifiedEOS>): below the density rho_ref(T) where p = p_ref, the
                      threshold curve p_ref (rho/rho_ref)^(K0/p_ref), K0 = rho dp/drho there.
+  SOLID_UCNH = 8     (MPMICE: a comp_neo_hook, comp_neo_hook_plastic or UCNH solid) [K, rho0, p_ref]
+                     Uintah's UCNH computePressEOSCM: p = p_ref + K/2 (x - 1/x), x = rho/rho0,
+                     dp/drho = K/2 (1 + 1/x^2)/rho0, c^2 = K/rho (not dp/drho: Uintah's); below
+                     rho0 its modified EOS (the threshold curve) p = p_ref x^(K/p_ref), c^2 =
+                     dp/drho; rho(p) in closed form (computeRhoMicroCM), 0 at p <= 0
   THOMSEN_HARTKA = 5 ``Thomsen_Hartka_water`` [a, b, co, ko, To, L, vo]
                      v = vo (1 - ko p + L (a p + T - To)^2) (Uintah Thomsen_Hartka_water.cc:
                      p(rho, T) the root of that quadratic, dp_drho, dp_de and alpha its
@@ -84,6 +89,7 @@ STIFFENED_GAS = 4
 THOMSEN_HARTKA = 5
 SOLID_JWL = 6
 TST = 7
+SOLID_UCNH = 8
 RHO_REF_TOL = 1e-10       # SOLID_JWL: relative tolerance of rho_ref (Uintah's computeRhoRef)
 MAX_PARAMS = 8
 
@@ -152,6 +158,31 @@ def murnaghan_rho_micro(press, K, n, rho0, P0):
     if press <= 0.0:
         return 0.0
     return rho0 * (press / P0) ** (K * P0)
+
+
+# ----------------------------------------------------------------------------
+# a comp_neo_hook solid (Uintah's UCNH computePressEOSCM, computeRhoMicroCM)
+@njit(cache=True)
+def solid_ucnh_press_eos(rho, K, rho0, p_ref):
+    """(p, dp/drho, c^2) of a UCNH solid: the modified EOS below rho0, else p_ref + K/2 (x - 1/x)."""
+    if rho < rho0:
+        n = K / p_ref
+        r = (rho / rho0) ** n
+        dp = (K / rho) * r
+        return p_ref * r, dp, dp
+    J = rho0 / rho
+    return p_ref - 0.5 * K * (J - 1.0 / J), 0.5 * K * (1.0 + J * J) / rho0, K / rho
+
+
+@njit(cache=True)
+def solid_ucnh_rho_micro(press, K, rho0, p_ref):
+    """The density of a UCNH solid at press (its EOS inverted in closed form, as Uintah's)."""
+    pg = press - p_ref
+    if pg < 0.0:
+        if press <= 0.0:
+            return 0.0
+        return rho0 * (press / p_ref) ** (p_ref / K)
+    return rho0 / K * (pg + math.sqrt(K * K + pg * pg))
 
 
 # ----------------------------------------------------------------------------
@@ -346,6 +377,9 @@ def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
                                    params[5], params[6], params[7])
     elif code == TST:
         return tst_press_eos(rho_micro, temp, cv, params[0], params[1], params[2], params[3], params[4])
+    elif code == SOLID_UCNH:
+        p, dp, _c2 = solid_ucnh_press_eos(rho_micro, params[0], params[1], params[2])
+        return p, dp, 0.0
     return math.nan, math.nan, math.nan
 
 
@@ -371,7 +405,7 @@ def eos_cold_energy(code, params, rho_micro):
     so that e = cv T + e_c(rho) is the energy whose conservation the Euler equations state.
     Ideal gas 0; stiffened gas Pinf/rho; JWL/JWLC A/(R1 rho0) exp(-R1 V) + B/(R2 rho0) exp(-R2 V)
     (+ C rho^om / (om rho0^(1+om)) for JWLC); Murnaghan the integral of p/rho^2 from rho0."""
-    if code == IDEAL_GAS or code == SOLID_JWL:     # a solid's energy is its particles'
+    if code == IDEAL_GAS or code == SOLID_JWL or code == SOLID_UCNH:     # a solid's energy is its particles'
         return 0.0
     elif code == STIFFENED_GAS:
         return params[0] / rho_micro
@@ -460,6 +494,8 @@ def eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess):
                                    params[6], params[7], rho_guess)
     elif code == TST:
         return tst_rho_micro(press, temp, cv, gamma, params[0], params[1], params[2], params[3])
+    elif code == SOLID_UCNH:
+        return solid_ucnh_rho_micro(press, params[0], params[1], params[2])
     return math.nan
 
 
@@ -501,10 +537,13 @@ def eos_alpha(code, params, rho_micro, temp, cv, gamma):
 @njit(cache=True)
 def eos_sound_speed2(code, params, rho_micro, temp, cv, gamma):
     """Adiabatic c^2 = (dp/drho)_T + T (dp/dT)_rho^2 / (rho^2 cv); Thomsen_Hartka_water:
-    Uintah's c^2 = dp_drho + dp_de p / rho^2 (its dp_de is not (dp/dT)_rho / cv)."""
+    Uintah's c^2 = dp_drho + dp_de p / rho^2 (its dp_de is not (dp/dT)_rho / cv); SOLID_UCNH:
+    Uintah's UCNH c^2."""
     if code == THOMSEN_HARTKA:
         p, dp_drho, dp_de = eos_press_eos(code, params, rho_micro, temp, cv, gamma)
         return sound_speed2_uintah(p, rho_micro, dp_drho, dp_de)
+    if code == SOLID_UCNH:
+        return solid_ucnh_press_eos(rho_micro, params[0], params[1], params[2])[2]
     dpdrho = eos_dp_drho(code, params, rho_micro, temp, cv, gamma)
     dpdt = _dp_dtemp(code, params, rho_micro, temp, cv, gamma)
     return dpdrho + temp * dpdt * dpdt / (rho_micro * rho_micro * cv)

@@ -12,14 +12,18 @@ MPM materials come first (indices 0..nm-1), then ICE's (nm..N-1), as in Uintah.
                condensed-phase EOS of paper 000 sec. 3.1: its bulk response
                p = p_ref + K (rho/rho0 - 1) above the threshold p_th = p_ref and
                p = p_ref (rho/rho0)^(K/p_ref) below it (C1 at p_ref, -> 0 as v -> inf);
-               ICE's Murnaghan code with n = 1, P0 = p_ref is exactly that curve.
+               ICE's Murnaghan code with n = 1, P0 = p_ref is exactly that curve. The
+               models Uintah builds as UCNH (comp_neo_hook, comp_neo_hook_plastic, UCNH)
+               take Uintah's UCNH computePressEOSCM instead, eos.py's SOLID_UCNH:
+               p_ref + K/2 (x - 1/x) above rho0 (x = rho/rho0) and c^2 = K/rho, the same
+               curve below; a visco_scram solid with <useJWLEOS> its JWL (SOLID_JWL).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from components.ice.component import ICE
-from components.ice.eos import MAX_PARAMS, MURNAGHAN, SOLID_JWL
+from components.ice.eos import MAX_PARAMS, MURNAGHAN, SOLID_JWL, SOLID_UCNH
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
@@ -104,6 +108,10 @@ class _SolidStub:
         self.objects = []
 
 
+# the models Uintah builds as its class UCNH, whose solid EOS in MPMICE is eos.py's SOLID_UCNH
+UCNH_MODELS = ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH")
+
+
 class ICEinMPMICE(ICE):
     """ICE over the global material index space (see the module docstring)."""
 
@@ -128,6 +136,9 @@ class ICEinMPMICE(ICE):
                 q = mat.params
                 row[:8] = (q.A, q.B, q.R1, q.R2, q.om, q.Cv, mat.density, p_ref if q.useModifiedEOS else 0.0)
                 codes.append(SOLID_JWL)
+            elif mat.model_name in UCNH_MODELS:                # Uintah's UCNH computePressEOSCM
+                row[:3] = (K, mat.density, p_ref)
+                codes.append(SOLID_UCNH)
             else:
                 row[:4] = (1.0 / K, 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
                 codes.append(MURNAGHAN)

@@ -9,8 +9,9 @@ F and delF (reactant), modelMass_src (product) and both temperatures over the 40
 
 Measured, in the cells 8..39 away from the copper: step 1 burned mass per cell 5e-15 relative to
 sus, pressure 4e-15; the steps' times 1.2e-8 apart, steps 2-5 burn 2.3e-8 apart, the pressure
-7e-10; next to the copper (cell 4, copper volume fraction 0.2) press_CC 1.3e-5 of the maximum
-after step 1, 1.9e-4 after step 5. The start's press_CC is Uintah's (ICE's initialization leaves
+7e-10; next to the copper (cell 4, copper volume fraction 0.2) press_CC 5.2e-11 of the maximum
+after step 1, 7.5e-10 after step 2, 1.0e-5 after step 5 (1.3e-5, 1.3e-5 and 2.3e-5 with the copper
+as Murnaghan n = 1 instead of Uintah's UCNH EOS, eos.py SOLID_UCNH). The start's press_CC is Uintah's (ICE's initialization leaves
 the last fluid's EOS pressure, here the products' 1 atm, where its objects do not reach), which
 the solid's start density in the first equilibration depends on.
 Uintah's updateVolumeFraction (components/models/__init__.py) is what makes step 1 agree: without
@@ -77,6 +78,16 @@ def test_first_step_burns_as_uintah(runs):
                                ("temp_CC", 2, "temp_product", 1e-7)]:
         ours, ref = _cc(da, label, m, 1)[FAR], sus[f"{key}_1"][FAR]
         assert np.allclose(ours, ref, rtol=tol, atol=0), label
+
+
+def test_next_to_the_copper_as_uintah(runs):
+    """The cell shared with the copper (cell 4) after steps 1 and 2: the copper's pressure from
+    Uintah's UCNH EOS (p_ref + K/2 (x - 1/x), c^2 = K/rho), press_CC to 1e-9 of the maximum
+    (measured 5.2e-11, 7.5e-10; with Murnaghan n = 1: 1.3e-5)."""
+    da, sus = runs
+    for step in (1, 2):
+        ours, ref = _cc(da, "press_CC", 0, step), sus[f"press_CC_{step}"]
+        assert abs(ours[4] - ref[4]) < 1e-9 * np.abs(ref).max(), step
 
 
 @pytest.mark.parametrize("step", [2, 3, 5])
