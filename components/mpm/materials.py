@@ -438,6 +438,18 @@ def _flat(sub, n):
     return sub[:, 0] + n[0] * (sub[:, 1] + n[1] * sub[:, 2])
 
 
+def lattice_positions(anchor, dx, r, sub):
+    """The points of a lattice of r per cell (sub-cell indices sub, (n, 3)) with Uintah's
+    ParticleCreator arithmetic: (anchor + dx c) + dxpp/2 + dxpp i, c the cell, i the index in
+    it, dxpp = dx / r. The same points as anchor + (sub + 1/2) dx / r, but rounded as Uintah's:
+    a point an ulp off sits on the other side of a GIMP piece's bound (a weight of 1e-32
+    instead of 0), which decides friction_LR's prominence there."""
+    anchor, dx = np.asarray(anchor, float), np.asarray(dx, float)
+    cell, idx = np.divmod(sub, r)
+    dxpp = dx / r
+    return ((anchor + dx * cell) + dxpp * 0.5) + dxpp * idx
+
+
 def fill_levels(piece, patch, res, fill):
     """The lattice points of a patch inside `piece`, per fill level: [(level, sub-cell index (n, 3)
     on that level's lattice, position (n, 3))]. Level 0 is the <res> lattice. With |fill| > 1
@@ -452,7 +464,7 @@ def fill_levels(piece, patch, res, fill):
         axes = [np.arange(patch.lo[d] * r[d], patch.hi[d] * r[d]) for d in range(3)]
         I, J, K = np.meshgrid(*axes, indexing="ij")
         sub = np.stack([I.ravel(order="F"), J.ravel(order="F"), K.ravel(order="F")], axis=1)
-        x = lv.anchor + (sub + 0.5) / r * lv.dx
+        x = lattice_positions(lv.anchor, lv.dx, r, sub)
         inside = piece.inside(x)
         sub, x = sub[inside], x[inside]
         if level:

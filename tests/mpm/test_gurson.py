@@ -8,16 +8,21 @@ Mie-Gruneisen EOS, Gurson yield with a Gaussian initial porosity) hits a rigid w
 - against sus: the deck with the cylinder's <res>[2,2,2]</res> (3013 particles, not 27 per
   cell), <max_Timesteps>30</max_Timesteps>, output every 10 steps, p.porosity saved,
   <stress_update>usl</stress_update> (Uintah's) and the linear interpolator (with
-  <extraCells>[0,0,0]</extraCells>, as Uintah requires for it). With GIMP (and usl) the copy
-  parts from sus in the first step at four particles by the wall (two mirrored pairs; velocity
-  4.4e-2 of the largest), the same with GIMP weights in Uintah's own form: the cause lies in
-  the contact, not in the weights. With linear
-  weights there is no such edge; both codes run the copy stably for 30 steps (the impact
-  end goes unstable in both around step 32). tests/mpm/data/sus_gurson.npz holds, from
-  sus's run of it with output every step, the times of steps 10, 20, 30 and there p.stress,
-  p.plasticStrain, p.porosity and p.temperature of every fourth particle of the cylinder (in
-  sus's order at step 1, with its place on the particle lattice), and p.porosity of all
-  particles after step 1;
+  <extraCells>[0,0,0]</extraCells>, as Uintah requires for it); both codes run it stably for
+  30 steps (the impact end goes unstable in both around step 32). tests/mpm/data/sus_gurson.npz
+  holds, from sus's run of it with output every step, the times of steps 10, 20, 30 and there
+  p.stress, p.plasticStrain, p.porosity and p.temperature of every fourth particle of the
+  cylinder (in sus's order at step 1, with its place on the particle lattice), and p.porosity
+  of all particles after step 1;
+- against sus with the deck's own GIMP (and usl, extraCells 1), 30 steps:
+  tests/mpm/data/sus_gurson_gimp.npz holds, from sus's run with output every step, the times
+  of steps 1 and 30 and there p.x, p.velocity and p.stress of the cylinder's two bottom particle
+  layers and every tenth particle, with their places on the lattice and their positions at
+  t = 0. The particles are made where Uintah's ParticleCreator puts them, to the bit
+  (materials.lattice_positions): one ulp off, as before, a particle whose face ends on a node
+  reaches it with a GIMP weight of 1e-32, Uintah's specified_friction (friction_LR's
+  prominence) then counts it there, and four particles by the wall parted from sus by 4.4e-2
+  of the largest velocity in the first step;
 - the initial porosity of the particles that stay elastic is sus's to the last bit (Uintah's
   seeded generator, drawn in its order of particle creation);
 - the physics of the pieces: the yield function is zero on the analytic Gurson surface (pure
@@ -43,6 +48,7 @@ from framework.controller import Controller
 HERE = Path(__file__).parent
 DECK = HERE / "uintah_reference" / "test_gurson_beckerdrucker_mts.ups"
 SUS = HERE / "data" / "sus_gurson.npz"
+SUS_GIMP = HERE / "data" / "sus_gurson_gimp.npz"
 Q = np.array([1.5, 1.0, 2.25, 4.0, 0.05])          # GursonYieldSteel.xml: q1, q2, q3, k, f_c
 
 
@@ -60,6 +66,21 @@ def sus_copy():
         assert old in text, old
         text = text.replace(old, new)
     return text.replace('href="inputs/', f'href="{DECK.parent}/inputs/')       # run from a temporary folder
+
+
+def sus_copy_gimp():
+    """The deck as sus ran it for sus_gurson_gimp.npz (module docstring): GIMP, output every step."""
+    text = DECK.read_text()
+    for old, new in (("<res>[3,3,3]</res>", "<res>[2,2,2]</res>"),
+                     ("<timestep_multiplier>0.4</timestep_multiplier>",
+                      "<timestep_multiplier>0.4</timestep_multiplier><max_Timesteps>30</max_Timesteps>"),
+                     ("<outputTimestepInterval>5</outputTimestepInterval>",
+                      "<outputTimestepInterval>1</outputTimestepInterval>"),
+                     ("<interpolator>gimp</interpolator>",
+                      "<interpolator>gimp</interpolator><stress_update>usl</stress_update>")):
+        assert old in text, old
+        text = text.replace(old, new)
+    return text.replace('href="inputs/', f'href="{DECK.parent}/inputs/')
 
 
 def run(text, tmp_path):
@@ -214,6 +235,36 @@ def test_deck_as_sus(tmp_path):
 # measured: stress 2.0e-8 of the largest, plastic strain 3.1e-9, porosity 1.8e-10, temperature
 # 7.8e-6 K (the heat conduction's round-off), time 6.4e-12 (relative)
 TOL = {"stress": 1e-7, "plasticStrain": 2e-8, "porosity": 2e-9, "temperature": 3e-5}
+
+
+def test_gimp_deck_as_sus(tmp_path):
+    """The GIMP copy (module docstring) against sus: the particles made at sus's positions to the
+    bit, and at steps 1 and 30 (the stress reaching 5.2e9 Pa at the wall) the
+    time, the displacement, velocity and stress within TOL_GIMP of the largest (measured: see
+    there; with the particles an ulp off: 4.4e-2, 4.4e-2 and 1.4e-1 at step 1)."""
+    _, da = run(sus_copy_gimp(), tmp_path)
+    sus = np.load(SUS_GIMP)
+    steps = list(da.timesteps)
+    first = da.particles(1, 0)
+    at = {k: i for i, k in enumerate(lattice_key(first["p.x"]))}
+    mine = [at[k] for k in sus["key"]]
+    assert np.array_equal(first["p.x"][mine], sus["x0"])
+    ids = first["p.particleID"][mine]
+    for j, step in enumerate(sus["timestep"]):
+        k = steps.index(step)
+        assert da.times[k] == pytest.approx(sus["time"][j], rel=1e-12)
+        p = da.particles(1, k)
+        where = {v: i for i, v in enumerate(p["p.particleID"])}
+        i = [where[v] for v in ids]
+        for name, got, ref in (("displacement", p["p.x"][i] - sus["x0"], sus["x"][j] - sus["x0"]),
+                               ("velocity", p["p.velocity"][i], sus["velocity"][j]),
+                               ("stress", p["p.stress"][i], sus["stress"][j])):
+            assert np.abs(got - ref).max() < TOL_GIMP[name] * np.abs(ref).max(), (step, name)
+    assert np.abs(sus["stress"][-1]).max() > 5e9
+
+
+# measured (relative to the largest): displacement 4.3e-10, velocity 3.3e-9, stress 8.9e-9
+TOL_GIMP = {"displacement": 4e-9, "velocity": 3e-8, "stress": 1e-7}
 
 
 @pytest.mark.parametrize("old,new,words", [
