@@ -91,8 +91,9 @@ def trace_share(da, k):
 
 def beam_tip_from_load(da, k, E=5e6, nu=0.3, t=0.1, L=0.8):
     """Tip deflection of the straight cantilever (Euler-Bernoulli, plane strain E' = E / (1 - nu^2))
-    under the run's own load at output k: in each row below L, the pressure of the first element
-    upstream of the bar (phi < 0.05) less that of the first one downstream, times dy;
+    under the run's own load at output k: in each row below L where the bar's fraction reaches
+    1/2, the pressure one element beyond the first element upstream of the bar with phi < 0.05
+    (the solid's own pressure reaches into that one) less that downstream, times dy;
     w(L) = sum q(s) s^2 (3 L - s) / (6 E' I) ds. (load per metre of height, N/m; tip m)."""
     f, (x, y, _) = da.read("vol_frac_CC", 0, k)
     p = da.read("press_CC", 0, k)[0][:, :, 0]
@@ -101,10 +102,15 @@ def beam_tip_from_load(da, k, E=5e6, nu=0.3, t=0.1, L=0.8):
     tip = 0.0
     total = 0.0
     for j in np.nonzero(y < L)[0]:
-        solid = np.nonzero(f[:, j, 0] >= 0.05)[0]
-        if len(solid) == 0:
+        row = f[:, j, 0]
+        a = b = int(np.argmax(row))
+        if row[a] < 0.5:
             continue
-        q = p[max(solid[0] - 1, 0), j] - p[min(solid[-1] + 1, len(x) - 1), j]
+        while a > 0 and row[a] >= 0.05:
+            a -= 1
+        while b < len(x) - 1 and row[b] >= 0.05:
+            b += 1
+        q = p[max(a - 1, 0), j] - p[min(b + 1, len(x) - 1), j]
         total += q * dy
         tip += q * y[j] ** 2 * (3.0 * L - y[j]) / (6.0 * EI) * dy
     return total, tip
