@@ -11,7 +11,8 @@ at each output:
           the distance between the 0.1 and 0.9 crossings of phi on each face, in elements;
   trace   the share of the bar's volume in elements below <solid_min> (stress-free traces);
   fill    the range of the sum of the volume fractions (the box stays full);
-then the change of top and core over the last 0.4 s, and draws the paper's panels, 0 to
+then the change of top and core over the last 0.4 s, beam theory's tip under the run's own
+pressure load (its mean over those outputs), and draws the paper's panels, 0 to
 2.4 s, with scripts/efem_snapshots.py.
 
 Beam and drag estimate: the bar blocks 0.8 m of the 1 m channel, the 0.2 m/s stream goes
@@ -160,9 +161,11 @@ def main(argv=None):
     k0 = int(np.argmin([abs(t - (t_end - 0.4)) for t, _, _ in hist]))
     print(f"change over the last {t_end - hist[k0][0]:.2f} s: top {1000 * (hist[-1][1] - hist[k0][1]):+.1f} mm, "
           f"core {1000 * (hist[-1][2] - hist[k0][2]):+.1f} mm")
-    force, tip = beam_tip_from_load(da, len(da.times) - 1)
-    print(f"the run's pressure load on the bar at {t_end:.2f} s: {force:.1f} N per metre of depth; "
-          f"beam theory's tip under it {1000 * tip:.1f} mm")
+    last = [k for k in range(max(k0, 1), len(da.times))]      # the initial output holds no pressure
+    if last:
+        force, tip = np.mean([beam_tip_from_load(da, k) for k in last], axis=0)
+        print(f"the run's pressure load on the bar, mean over the outputs from {da.times[last[0]]:.2f} s: "
+              f"{force:.1f} N per metre of depth; beam theory's tip under it {1000 * tip:.1f} mm")
     from efem_snapshots import main as snapshots
     snapshots([uda, *[str(t) for t in TIMES if t <= da.times[-1] + 1e-9], "--png", args.png])
 
