@@ -26,6 +26,7 @@ from framework.geometry import GeometryReader
 from framework.task import NEW, OLD, Task
 from framework.variables import Ghost
 
+from . import kernels as K
 from . import labels as E
 from .materials import SETTINGS, SOLVER, read_boundaries, read_material
 from .tasks import EfemTasks
@@ -53,11 +54,15 @@ class EFEM(EfemTasks, Component):
             raise grid.child("Level").child("periodic").error("EFEM has no periodic directions; accepted: [0, 0, 0]")
         efem = root.child("EFEM")
         self.settings = efem.read(SETTINGS) if efem is not None else {k: p.default for k, p in SETTINGS.items()}
+        self.limiter = {"vanleer": K.LIMITER_VAN_LEER, "superbee": K.LIMITER_SUPERBEE}[
+            self.settings["volume_fraction_limiter"]]
         sn = efem.child("pressure_solver") if efem is not None else None
         solver = sn.read(SOLVER) if sn is not None else {k: p.default for k, p in SOLVER.items()}
         pc = root.child("PhysicalConstants")
         g = pc.get("gravity", "vector", (0.0, 0.0, 0.0)) if pc is not None else (0.0, 0.0, 0.0)
         self.gravity = np.array(g, dtype=np.float64)
+        # the mesh direction across gravity (the free surface's), -1 without gravity
+        self.side = int(np.argmin(np.abs(self.gravity[:2]))) if np.any(self.gravity[:2]) else -1
         mp = root.child("MaterialProperties", required=True)
         en = mp.child("EFEM", required=True)
         geo = GeometryReader(level)
@@ -120,7 +125,7 @@ class EFEM(EfemTasks, Component):
                        .computes(E.gVelocityStar).computes(E.gMass))
         t = Task("EFEM::setupPressureSystem", self.pressure_system, m0) \
             .requires(OLD, L.delT).requires(NEW, E.gVelocityStar, G, 1).requires(NEW, E.rho_CC, G, 1) \
-            .requires(NEW, E.fill_CC, G, 1).requires(NEW, E.fluid_CC).computes(E.press_A).computes(E.press_rhs)
+            .requires(NEW, E.fill_CC, G, 1).requires(NEW, E.fluid_CC, G, 1).computes(E.press_A).computes(E.press_rhs)
         if self.pcg.precond == "mg":
             t.computes(self.pcg.OP)
         sched.add_task(t)

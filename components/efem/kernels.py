@@ -208,13 +208,38 @@ def _surface_distance(fill):
 
 
 @njit(cache=True)
-def pressure_system(vstar, rho, fill, fluid, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, open_faces, fill_min, beta):
+def _under_surface(fluid, fc, I, J, c0, N, side):
+    """Whether the void of an underfilled element (fill fc) with no void neighbour lies under the
+    free surface: the element is mostly solid (void the remap mixed into a body's edge), or a
+    neighbour along `side` (the mesh direction across gravity) holds more fluid than the
+    element's fill plus half its void (void the remap carried down beside a body whose faces
+    cut the elements, next to the full water); a surface element under a film of fluid has
+    neighbours about as full as itself.
+    Without gravity (side < 0) there is no free surface: any such void is."""
+    i, j = I - c0[0], J - c0[1]
+    if side < 0 or fc - fluid[i, j, 0] > fluid[i, j, 0]:
+        return True
+    level = 0.5 * (1.0 + fc)
+    for s in range(2):
+        e = (I if side == 0 else J) + 2 * s - 1
+        if e < 0 or e >= N[side]:
+            continue
+        k, l = (i + 2 * s - 1, j) if side == 0 else (i, j + 2 * s - 1)
+        if fluid[k, l, 0] > level:
+            return True
+    return False
+
+
+@njit(cache=True)
+def pressure_system(vstar, rho, fill, fluid, A, rhs, n0, c0, lo, hi, N, dx, dz, dt, open_faces, fill_min, beta,
+                    side):
     """Eq. (16) on the elements: -div(dt / rho grad p) V = -V div v*, a 5-point stencil.
 
     A[.., 0] = kap, then W, E, S, N faces: (A p)_c = kap p_c + sum_f a_f (p_c - p_nb)
     (components.ice.solver's layout). Elements with sum_m phi_m < fill_min are void: p = 0.
     A void neighbour is a Dirichlet face (p = 0) at the free surface, _surface_distance
-    cells away. Domain faces are walls (no flux) unless open (p = 0 on the face).
+    cells away. Domain faces are walls (no flux) unless open (p = 0 on the face). `side`: the
+    mesh direction across gravity (-1 without gravity), for the fill correction's surface test.
     """
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
@@ -250,8 +275,12 @@ def pressure_system(vstar, rho, fill, fluid, A, rhs, n0, c0, lo, hi, N, dx, dz, 
             vol = dx[0] * dx[1] * dz
             # the fill correction: div v = beta (fill - 1) / dt, an overfilled element gives its
             # excess to its neighbours; an underfilled one that holds fluid and has no void
-            # neighbour (void the remap carried under the surface, beside a body) draws from them
-            excess = fc - 1.0 if (fc > 1.0 or (not surface and fluid[i, j, 0] > 0.0)) else 0.0
+            # neighbour draws from them where its void lies under the surface
+            excess = 0.0
+            if fc > 1.0:
+                excess = fc - 1.0
+            elif not surface and fluid[i, j, 0] > 0.0 and _under_surface(fluid, fc, I, J, c0, N, side):
+                excess = fc - 1.0
             rhs[i, j, 0] = -_divergence_volume(vstar, I - n0[0], J - n0[1], dx, vol) + beta * vol * excess / dt
 
 
@@ -296,11 +325,20 @@ def element_velocity(vel, n0, c0, lo, hi, u):
                                      + vel[a, b + 1, 0, d])
 
 
+LIMITER_VAN_LEER, LIMITER_SUPERBEE = 0, 1
+
+
 @njit(cache=True)
-def _van_leer(dm, dp):
-    """Van Leer's limited slope (harmonic mean of one-sided differences of one sign)."""
+def _limited_slope(dm, dp, limiter):
+    """The limited slope of MUSCL from the one-sided differences: van Leer's harmonic mean, or
+    Roe's superbee, the most compressive TVD limiter (a body that swings back and forth keeps
+    sharper faces: the bar in the stream, docs/EFEM.md)."""
     if dm * dp <= 0.0:
         return 0.0
+    if limiter == LIMITER_SUPERBEE:
+        a, b = abs(dm), abs(dp)
+        s = max(min(2.0 * a, b), min(a, 2.0 * b))
+        return s if dm > 0.0 else -s
     return 2.0 * dm * dp / (dm + dp)
 
 
@@ -338,11 +376,11 @@ def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min,
 
 @njit(cache=True)
 def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_min, n0, c0, lo, hi, N, dx, dt,
-                walls, wall_vel, inflow_matl, phi_out, sig_out, u_out):
+                walls, wall_vel, inflow_matl, limiter, phi_out, sig_out, u_out):
     """One directional sweep of the Eulerian step (eq. 4) along mesh lines d over cells [lo, hi).
 
-    phi (nm, X, Y): volume fractions, advected by van Leer's MUSCL (ref. 17) with the
-    face velocities of the moved mesh (face_velocity); the donor's content
+    phi (nm, X, Y): volume fractions, advected by MUSCL (ref. 17; `limiter`: van Leer's or
+    superbee) with the face velocities of the moved mesh (face_velocity); the donor's content
     bounds each flux. sig (ns, X, Y, q): solid state (stress, hourglass forces), carried as phi_m sigma_m with the
     material's volume flux (upwind stress). u (X, Y, 2): element velocities, carried as
     momentum sum_m rho_m phi_m u (upwind u). Walls carry nothing; an inflow face brings its
@@ -424,7 +462,7 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
                 p_up = phi[m, iu, ju]
                 dp = phi[m, idn, jdn] - p_up
                 dm = p_up - phi[m, iuu, juu] if has_uu else 0.0
-                face = p_up + 0.5 * (1.0 - ac) * _van_leer(dm, dp)
+                face = p_up + 0.5 * (1.0 - ac) * _limited_slope(dm, dp, limiter)
                 flux = min(ac * face, p_up)
                 F[m, f] = flux if c > 0.0 else -flux
                 mom += rho_m[m] * flux

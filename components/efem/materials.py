@@ -39,6 +39,7 @@ SETTINGS = {
     "solid_min": Param("float", 0.1, at_least=0.0),
     "volume_correction": Param("float", 0.25, at_least=0.0),
     "fill_correction": Param("float", 0.1, at_least=0.0),
+    "volume_fraction_limiter": Param("str", "vanleer", choices=("vanleer", "superbee")),
 }
 SOLVER = {
     "tolerance": Param("float", 1e-10, above=0.0),

@@ -54,3 +54,8 @@ def test_no_extra_cells(tmp_path):
 
 def test_geometry_outside_domain(tmp_path):
     _fails(tmp_path, deck(block=dict(BLOCK, lo=(2, 2), hi=(3, 3))), "outside the domain")
+
+
+def test_unknown_limiter(tmp_path):
+    _fails(tmp_path, deck(settings="<volume_fraction_limiter> minmod </volume_fraction_limiter>"),
+           "volume_fraction_limiter", "superbee")
