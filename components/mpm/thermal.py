@@ -44,8 +44,7 @@ from framework.variables import Ghost, VarType
 
 from . import labels as L
 from .shape import _counts as _sizes
-from .shape import _sel as _pick
-from .shape import AXI, CPDI, GIMP, LINEAR, _corners, _stencil
+from .shape import AXI, CPDI, GIMP, LINEAR, _corners, _over_nodes, _stencil
 
 FM = {'contract'}
 NC = VarType.NC
@@ -58,26 +57,33 @@ def _inv(dx, act):
             float(dx[0]), float(dx[1]), float(dx[2]))
 
 
+@njit(cache=True, fastmath=FM, inline="always")
+def _share(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """p2g_heat at one node: += m T S."""
+    f, mT = args
+    f[n] += mT * wa * wb * wc
+    return acc
+
+
 @njit(cache=True, fastmath=FM)
 def p2g_heat(kind, act, px, particle_mass, particle_temperature, lp, anchor, dx, node_low, grid_mass_temperature):
     """gmT_i += sum_p S_ip m_p T_p (shares beyond the node array dropped)."""
-    sh0, sh1, sh2 = grid_mass_temperature.shape
-    na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
     f = grid_mass_temperature.reshape(-1)
     for p in range(px.shape[0]):
         mT = particle_mass[p] * particle_temperature[p]
         for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
-            for a in range(na):
-                wa = _pick(a, wx0, wx1, wx2)
-                for b in range(nb):
-                    wb = _pick(b, wy0, wy1, wy2)
-                    for c in range(nc):
-                        if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
-                            continue
-                        f[((i + a) * sh1 + j + b) * sh2 + k + c] += mT * wa * wb * _pick(c, wz0, wz1, wz2)
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            _over_nodes(_share, kind, act, (st[0], st[1], st[2]), grid_mass_temperature.shape, st[3:], True, 0.0,
+                        (f, mT))
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _conduct(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """heat_rate at one node: -= (k/cv) V grad S . grad T_p."""
+    fa, s, t0, t1, t2 = args
+    fa[n] -= s * (ga * wb * wc * t0 + wa * gb * wc * t1 + wa * wb * gc * t2)
+    return acc
 
 
 @njit(cache=True, fastmath=FM)
@@ -86,31 +92,28 @@ def heat_rate(kind, act, px, particle_volume, particle_temperature_gradient, lp,
     """heat_rate_i -= (k/cv) V_p grad S_ip . grad T_p with the particles' grad T_p of the last
     step (Uintah's computeInternalHeatRate, which reads p.temperatureGradient from the old DW);
     shares beyond the node array dropped."""
-    sh0, sh1, sh2 = grid_heat_rate.shape
-    na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
     fa = grid_heat_rate.reshape(-1)
     for p in range(px.shape[0]):
-        t0 = particle_temperature_gradient[p, 0]
-        t1 = particle_temperature_gradient[p, 1]
-        t2 = particle_temperature_gradient[p, 2]
-        s = conductivity_over_cv * particle_volume[p]
+        args = (fa, conductivity_over_cv * particle_volume[p], particle_temperature_gradient[p, 0],
+                particle_temperature_gradient[p, 1], particle_temperature_gradient[p, 2])
         for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
-            for a in range(na):
-                wa = _pick(a, wx0, wx1, wx2)
-                ga = _pick(a, gx0, gx1, gx2)
-                for b in range(nb):
-                    wb = _pick(b, wy0, wy1, wy2)
-                    gb = _pick(b, gy0, gy1, gy2)
-                    for c in range(nc):
-                        if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
-                            continue
-                        wc = _pick(c, wz0, wz1, wz2)
-                        gc = _pick(c, gz0, gz1, gz2)
-                        h = ga * wb * wc * t0 + wa * gb * wc * t1 + wa * wb * gc * t2
-                        fa[((i + a) * sh1 + j + b) * sh2 + k + c] -= s * h
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            _over_nodes(_conduct, kind, act, (st[0], st[1], st[2]), grid_heat_rate.shape, st[3:], True, 0.0, args)
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _gather_heat(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """g2p_heat at one node: += S rate_i and, with the gradient, T*_i grad S."""
+    r, t0, t1, t2 = acc
+    fr, fs, with_gradient = args
+    r += wa * wb * wc * fr[n]
+    if with_gradient:
+        T = fs[n]
+        t0 += T * ga * wb * wc
+        t1 += T * wa * gb * wc
+        t2 += T * wa * wb * gc
+    return r, t0, t1, t2
 
 
 @njit(cache=True, fastmath=FM)
@@ -122,37 +125,21 @@ def g2p_heat(kind, act, px, particle_temperature, particle_mass, lp, anchor, dx,
     sh0, sh1, sh2 = grid_temperature_rate.shape
     na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
-    fr = grid_temperature_rate.reshape(-1)
-    fs = grid_temperature_star.reshape(-1)
-    with_gradient = gradient_out.shape[0] > 0
+    args = (grid_temperature_rate.reshape(-1), grid_temperature_star.reshape(-1), gradient_out.shape[0] > 0)
     e = 0.0
     for p in range(px.shape[0]):
-        r = t0 = t1 = t2 = 0.0
+        acc = (0.0, 0.0, 0.0, 0.0)
         for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            i, j, k = st[0], st[1], st[2]
             if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
                 raise IndexError("particle's nodes lie outside the patch node arrays")
-            for a in range(na):
-                wa = _pick(a, wx0, wx1, wx2)
-                ga = _pick(a, gx0, gx1, gx2)
-                for b in range(nb):
-                    wb = _pick(b, wy0, wy1, wy2)
-                    gb = _pick(b, gy0, gy1, gy2)
-                    for c in range(nc):
-                        wc = _pick(c, wz0, wz1, wz2)
-                        gc = _pick(c, gz0, gz1, gz2)
-                        n = ((i + a) * sh1 + j + b) * sh2 + k + c
-                        r += wa * wb * wc * fr[n]
-                        if with_gradient:
-                            T = fs[n]
-                            t0 += T * ga * wb * wc
-                            t1 += T * wa * gb * wc
-                            t2 += T * wa * wb * gc
+            acc = _over_nodes(_gather_heat, kind, act, (i, j, k), (sh0, sh1, sh2), st[3:], False, acc, args)
+        r, t0, t1, t2 = acc
         T = particle_temperature[p] + dt * r
         T_out[p] = T
         e += particle_mass[p] * specific_heat * T
-        if with_gradient:
+        if args[2]:
             gradient_out[p, 0] = t0
             gradient_out[p, 1] = t1
             gradient_out[p, 2] = t2
