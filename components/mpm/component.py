@@ -434,6 +434,8 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             c.append((L.pVelGradLast, L.pVelGradLastPre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
+        if self.conducting:                   # grad T* of the last step: this step's conduction (thermal.py)
+            self.carry_thermal.append((L.pTemperatureGradient, L.pTemperatureGradientPre))
 
     # -- scheduling ---------------------------------------------------------------------
     def schedule_initialize(self, level, sched):

@@ -46,6 +46,7 @@ pLoadCurveID, pLoadCurveIDPre = _pair("p.loadCurveID", (3,))     # up to 3 load-
 pExternalHeatRate, pExternalHeatRatePre = _pair("p.externalHeatRate")   # W, <heat_flux> (pressure.py)
 pSurface, pSurfacePre = _pair("p.surface")        # 1 on its object's surface (friction_LR prominence)
 pTemperature, pTemperaturePre = _pair("p.temperature")      # heat conduction / MPMICE (thermal.py)
+pTemperatureGradient, pTemperatureGradientPre = _pair("p.temperatureGradient", (3,))   # K/m, grad T* of the last step (thermal.py)
 pPlasticStrainRate, pPlasticStrainRatePre = _pair("p.plasticStrainRate")   # elastic_plastic_hp
 pEnergy, pEnergyPre = _pair("p.energy")                  # elastic_plastic_hp: specific internal energy
 pStrainRate, pStrainRatePre = _pair("p.strainRate")      # elastic_plastic_hp: sqrt(2/3) |D|

@@ -341,6 +341,32 @@ def _stencil_get(kind, act, q, ih, sw):
     return wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2
 
 
+@njit(cache=True, fastmath=FM, inline="always")
+def _over_nodes(visit, kind, act, ijk, sh, st, clip, acc, args):
+    """The loop over the nodes of one stencil, for every kernel: base node ijk (local), the
+    weights and gradients st (as _stencil_get gives them) on arrays of shape sh; at each node
+    acc = visit(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha): local index (x, y, z), flat
+    index n, S = wa wb wc, grad S = (ga wb wc, wa gb wc, wa wb gc), ha the z slot of axis a
+    (AXI's <S/r>). clip: nodes beyond sh are passed over. visit is an inlined njit function,
+    so each kernel compiles to its own loop."""
+    na, nb, nc = _counts(kind, act)
+    i, j, k = ijk
+    sh0, sh1, sh2 = sh
+    wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2 = st
+    for a in range(na):
+        wa = _sel(a, wx0, wx1, wx2)
+        ga = _sel(a, gx0, gx1, gx2)
+        for b in range(nb):
+            wb = _sel(b, wy0, wy1, wy2)
+            gb = _sel(b, gy0, gy1, gy2)
+            for c in range(nc):
+                if clip and not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
+                    continue
+                acc = visit(acc, args, act, i + a, j + b, k + c, ((i + a) * sh1 + j + b) * sh2 + k + c, wa, wb,
+                            _sel(c, wz0, wz1, wz2), ga, gb, _sel(c, gz0, gz1, gz2), _sel(a, gz0, gz1, gz2))
+    return acc
+
+
 @njit(cache=True, inline="always")
 def _counts(kind, act):
     n = 3 if kind == GIMP else 2

@@ -4,26 +4,34 @@ Uintah's MPM HeatConduction (explicit), written as three tasks per timestep:
 
   MPM::interpolateTemperatureToGrid   g.temperature = sum S m T_p / m_i (mass-weighted)
   MPM::computeInternalHeatRate        g.temperatureRate: m_i cv dT_i/dt = -sum_p V_p k
-                                      grad S_ip . grad T_p, grad T_p = sum_j T_j grad S_jp
-                                      (the Galerkin weak form of rho cv dT/dt = div(k grad T)
-                                      with particle quadrature; no flux leaves a free surface)
+                                      grad S_ip . grad T_p (the Galerkin weak form of
+                                      rho cv dT/dt = div(k grad T) with particle quadrature;
+                                      no flux leaves a free surface)
   MPM::updateParticleTemperature      T_p += dt sum S_ip (dT/dt)_i, plus MPMICE's exchange
-                                      rate (dTdt_NC) when the solid is coupled to fluids
+                                      rate (dTdt_NC) when the solid is coupled to fluids, and
+                                      p.temperatureGradient = sum_i T*_i grad S_ip of
+                                      g.temperatureStar T* = g.temperature + dt dT/dt
+
+grad T_p is a particle variable carried from step to step, as Uintah's p.temperatureGradient:
+the conduction of step n+1 uses the gradient of step n's T* at the particles' positions of
+step n (zero at the start, so the first step conducts nothing). The lag is first order in dt.
 
 Since sum_i grad S_ip = 0, the conduction rates conserve sum_i m_i cv T_i exactly and the
 particle update hands every node's heat to its particles in proportion to S m: an
 insulated body keeps its heat to round-off. A particle near a nearly empty node takes
 S_ip dT_i/dt from it, whose 1/m_i the small S_ip cancels, so such nodes do not limit the
-step. The grad T of a ghost particle needs g.temperature at nodes one stencil beyond the
-patch: they come from the neighbours (AroundCells 2 ng), so every patch computes its own
-nodes in particle-ID order and 1, 2, 3 ranks agree bitwise.
+step. Ghost particles bring their own grad T_p (AroundNodes), and every patch computes its
+own nodes in particle-ID order, so 1, 2, 3 ranks agree bitwise.
 
 The tasks run only when `<MPM><DoExplicitHeatConduction>` is true, MPMICE needs the
 solid temperature (heat exchange with a fluid) or a constitutive model reads it
 (elastic_plastic with sub-models, which adds its own p.dTdt dt afterwards); the conduction task only for materials
-with thermal_conductivity > 0. The explicit step is stable for
-dt <= rho cv / (2 k sum_d 1/dx_d^2) (the finite-difference limit, which the lumped-mass
-linear element shares); the stable timestep takes it into account.
+with thermal_conductivity > 0. Forward Euler on the lumped-mass linear element is stable for
+dt <= rho cv / (2 k sum_d 1/dx_d^2) (the finite-difference limit); with the gradient a step
+late a mode with dt lambda = -a grows as z^2 - z + a = 0, stable for a <= 1, half of that
+(measured: the bar of tests/mpm/test_thermal.py blows up at 0.6 of the Euler limit, runs at
+0.55). The stable timestep takes rho cv / (4 k sum_d 1/dx_d^2) into account (Uintah's has no
+thermal limit).
 """
 from __future__ import annotations
 
@@ -36,8 +44,7 @@ from framework.variables import Ghost, VarType
 
 from . import labels as L
 from .shape import _counts as _sizes
-from .shape import _sel as _pick
-from .shape import AXI, CPDI, GIMP, LINEAR, _corners, _stencil
+from .shape import AXI, CPDI, GIMP, LINEAR, _corners, _over_nodes, _stencil
 
 FM = {'contract'}
 NC = VarType.NC
@@ -50,100 +57,92 @@ def _inv(dx, act):
             float(dx[0]), float(dx[1]), float(dx[2]))
 
 
+@njit(cache=True, fastmath=FM, inline="always")
+def _share(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """p2g_heat at one node: += m T S."""
+    f, mT = args
+    f[n] += mT * wa * wb * wc
+    return acc
+
+
 @njit(cache=True, fastmath=FM)
 def p2g_heat(kind, act, px, particle_mass, particle_temperature, lp, anchor, dx, node_low, grid_mass_temperature):
     """gmT_i += sum_p S_ip m_p T_p (shares beyond the node array dropped)."""
-    sh0, sh1, sh2 = grid_mass_temperature.shape
-    na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
     f = grid_mass_temperature.reshape(-1)
     for p in range(px.shape[0]):
         mT = particle_mass[p] * particle_temperature[p]
         for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
-            for a in range(na):
-                wa = _pick(a, wx0, wx1, wx2)
-                for b in range(nb):
-                    wb = _pick(b, wy0, wy1, wy2)
-                    for c in range(nc):
-                        if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
-                            continue
-                        f[((i + a) * sh1 + j + b) * sh2 + k + c] += mT * wa * wb * _pick(c, wz0, wz1, wz2)
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            _over_nodes(_share, kind, act, (st[0], st[1], st[2]), grid_mass_temperature.shape, st[3:], True, 0.0,
+                        (f, mT))
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _conduct(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """heat_rate at one node: -= (k/cv) V grad S . grad T_p."""
+    fa, s, t0, t1, t2 = args
+    fa[n] -= s * (ga * wb * wc * t0 + wa * gb * wc * t1 + wa * wb * gc * t2)
+    return acc
 
 
 @njit(cache=True, fastmath=FM)
-def heat_rate(kind, act, px, particle_volume, lp, anchor, dx, node_low, grid_temperature, conductivity_over_cv,
-              grid_heat_rate):
-    """heat_rate_i -= (k/cv) V_p grad S_ip . grad T_p with grad T_p = sum_j T_j grad S_jp
-    (Uintah's computeInternalHeatRate, the gradient taken from this step's g.temperature)."""
-    sh0, sh1, sh2 = grid_temperature.shape
-    na, nb, nc = _sizes(kind, act)
+def heat_rate(kind, act, px, particle_volume, particle_temperature_gradient, lp, anchor, dx, node_low,
+              conductivity_over_cv, grid_heat_rate):
+    """heat_rate_i -= (k/cv) V_p grad S_ip . grad T_p with the particles' grad T_p of the last
+    step (Uintah's computeInternalHeatRate, which reads p.temperatureGradient from the old DW);
+    shares beyond the node array dropped."""
     ih = _inv(dx, act)
-    ft = grid_temperature.reshape(-1)
     fa = grid_heat_rate.reshape(-1)
     for p in range(px.shape[0]):
-        t0 = t1 = t2 = 0.0
+        args = (fa, conductivity_over_cv * particle_volume[p], particle_temperature_gradient[p, 0],
+                particle_temperature_gradient[p, 1], particle_temperature_gradient[p, 2])
         for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
-            if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
-                raise IndexError("particle's nodes lie outside the patch node arrays")
-            for a in range(na):
-                wa = _pick(a, wx0, wx1, wx2)
-                ga = _pick(a, gx0, gx1, gx2)
-                for b in range(nb):
-                    wb = _pick(b, wy0, wy1, wy2)
-                    gb = _pick(b, gy0, gy1, gy2)
-                    for c in range(nc):
-                        wc = _pick(c, wz0, wz1, wz2)
-                        gc = _pick(c, gz0, gz1, gz2)
-                        T = ft[((i + a) * sh1 + j + b) * sh2 + k + c]
-                        t0 += T * ga * wb * wc
-                        t1 += T * wa * gb * wc
-                        t2 += T * wa * wb * gc
-        s = conductivity_over_cv * particle_volume[p]
-        for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
-            for a in range(na):
-                wa = _pick(a, wx0, wx1, wx2)
-                ga = _pick(a, gx0, gx1, gx2)
-                for b in range(nb):
-                    wb = _pick(b, wy0, wy1, wy2)
-                    gb = _pick(b, gy0, gy1, gy2)
-                    for c in range(nc):
-                        wc = _pick(c, wz0, wz1, wz2)
-                        gc = _pick(c, gz0, gz1, gz2)
-                        h = ga * wb * wc * t0 + wa * gb * wc * t1 + wa * wb * gc * t2
-                        fa[((i + a) * sh1 + j + b) * sh2 + k + c] -= s * h
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            _over_nodes(_conduct, kind, act, (st[0], st[1], st[2]), grid_heat_rate.shape, st[3:], True, 0.0, args)
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _gather_heat(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """g2p_heat at one node: += S rate_i and, with the gradient, T*_i grad S."""
+    r, t0, t1, t2 = acc
+    fr, fs, with_gradient = args
+    r += wa * wb * wc * fr[n]
+    if with_gradient:
+        T = fs[n]
+        t0 += T * ga * wb * wc
+        t1 += T * wa * gb * wc
+        t2 += T * wa * wb * gc
+    return r, t0, t1, t2
 
 
 @njit(cache=True, fastmath=FM)
 def g2p_heat(kind, act, px, particle_temperature, particle_mass, lp, anchor, dx, node_low, grid_temperature_rate, dt,
-             T_out, specific_heat):
-    """T_p += dt sum S_ip rate_i; returns sum m_p cv T_p of the updated particles."""
+             T_out, specific_heat, grid_temperature_star, gradient_out):
+    """T_p += dt sum S_ip rate_i; returns sum m_p cv T_p of the updated particles. Unless
+    gradient_out is empty, also grad T_p = sum_i T*_i grad S_ip of g.temperatureStar
+    (Uintah's p.temperatureGradient of interpolateToParticlesAndUpdate, at the same x_p)."""
     sh0, sh1, sh2 = grid_temperature_rate.shape
     na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
-    fr = grid_temperature_rate.reshape(-1)
+    args = (grid_temperature_rate.reshape(-1), grid_temperature_star.reshape(-1), gradient_out.shape[0] > 0)
     e = 0.0
     for p in range(px.shape[0]):
-        r = 0.0
+        acc = (0.0, 0.0, 0.0, 0.0)
         for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            i, j, k = st[0], st[1], st[2]
             if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
                 raise IndexError("particle's nodes lie outside the patch node arrays")
-            for a in range(na):
-                wa = _pick(a, wx0, wx1, wx2)
-                for b in range(nb):
-                    wb = _pick(b, wy0, wy1, wy2)
-                    for c in range(nc):
-                        r += wa * wb * _pick(c, wz0, wz1, wz2) * fr[((i + a) * sh1 + j + b) * sh2 + k + c]
+            acc = _over_nodes(_gather_heat, kind, act, (i, j, k), (sh0, sh1, sh2), st[3:], False, acc, args)
+        r, t0, t1, t2 = acc
         T = particle_temperature[p] + dt * r
         T_out[p] = T
         e += particle_mass[p] * specific_heat * T
+        if args[2]:
+            gradient_out[p, 0] = t0
+            gradient_out[p, 1] = t1
+            gradient_out[p, 2] = t2
     return e
 
 
@@ -169,6 +168,13 @@ def divide_by_mass(gm, q, out):
     f, fm, fo = q.reshape(-1), gm.reshape(-1), out.reshape(-1)
     for n in range(f.shape[0]):
         fo[n] = f[n] / fm[n] if fm[n] > 0.0 else 0.0
+
+
+def _total(rates, shape):
+    """The sum of the nodal rate arrays (the one array itself; zeros for none)."""
+    if len(rates) == 1:
+        return rates[0]
+    return sum(rates) if rates else np.zeros(shape)
 
 
 class _Keep:
@@ -238,14 +244,14 @@ class ThermalTasks:
         ih2 = sum(1.0 / self.level.dx[d] ** 2 for d in range(3) if self.dims[d])
         for m in self.conducting:
             mat = self.materials[m]
-            self.dt_thermal = min(self.dt_thermal, mat.density * mat.specific_heat / (2.0 * mat.conductivity * ih2))
+            self.dt_thermal = min(self.dt_thermal, mat.density * mat.specific_heat / (4.0 * mat.conductivity * ih2))
 
     # -- scheduling ---------------------------------------------------------------------------
     def schedule_thermal_initialize(self, sched):
         if self.thermal:
-            sched.add_task(Task("MPM::initializeTemperature", self.initialize_temperature, self.matls)
-                           .requires(NEW, L.pID).requires(NEW, L.pMass).computes(L.pTemperature)
-                           .computes(L.ThermalEnergy))
+            t = (Task("MPM::initializeTemperature", self.initialize_temperature, self.matls)
+                 .requires(NEW, L.pID).requires(NEW, L.pMass).computes(L.pTemperature).computes(L.ThermalEnergy))
+            sched.add_task(t.computes(L.pTemperatureGradient) if self.conducting else t)
 
     def schedule_heat_conduction(self, sched):
         """g.temperature and (with conduction) g.temperatureRate, after particles -> grid."""
@@ -260,9 +266,8 @@ class ThermalTasks:
             t.computes(L.gTemperatureNoBC)
         sched.add_task(t.computes(L.gTemperature))
         if self.conducting:
-            t = (Task("MPM::computeInternalHeatRate", self.internal_heat_rate, self.conducting)
-                 .requires(NEW, L.gMass).requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, 2 * ng))
-            for lab in [L.pX, L.pVolume] + lp:
+            t = Task("MPM::computeInternalHeatRate", self.internal_heat_rate, self.conducting).requires(NEW, L.gMass)
+            for lab in [L.pX, L.pVolume, L.pTemperatureGradient] + lp:
                 t.requires(OLD, lab, g, ng)
             if self.pressure_bcs and self.pressure_bcs.heat_flux:
                 t.requires(OLD, L.pLoadCurveID, g, ng).requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
@@ -284,15 +289,18 @@ class ThermalTasks:
             t.requires(NEW, L.gTemperatureRate, Ghost.AROUND_CELLS, self.ng, matls=self.conducting)
         for lab in self.thermal_rates + ((L.gThermalContactRate,) if self.thermal_contact else ()):
             t.requires(NEW, lab, Ghost.AROUND_CELLS, self.ng)
-        if self.temperature_bcs:
+        if self.temperature_bcs or self.conducting:
             t.requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, self.ng)
+        if self.temperature_bcs:
             t.requires(NEW, L.gTemperatureNoBC, Ghost.AROUND_CELLS, self.ng)
+        if self.conducting:
+            t.computes(L.pTemperatureGradientPre)
         sched.add_task(t.computes(L.pTemperaturePre).computes(L.ThermalEnergy))
 
     # -- task bodies ----------------------------------------------------------------------------
     def initialize_temperature(self, patch, matls, old_dw, new_dw):
         """p.temperature = the <temperature> of the geometry object that made the particle
-        (object number = p.particleID >> 40, see Material.create)."""
+        (object number = p.particleID >> 40, see Material.create); p.temperatureGradient = 0."""
         e = 0.0
         for m in matls:
             mat = self.materials[m]
@@ -300,6 +308,8 @@ class ThermalTasks:
             ids = new_dw.get(L.pID, m, patch)
             T = temps[(ids >> 40) - self._obj_base(m)] if len(ids) else np.zeros(0)
             new_dw.put(L.pTemperature, m, patch, np.ascontiguousarray(T))
+            if self.conducting:     # Uintah's ParticleCreator: zero, so the first step conducts nothing
+                new_dw.put(L.pTemperatureGradient, m, patch, np.zeros((len(ids), 3)))
             e += mat.specific_heat * float(np.dot(new_dw.get(L.pMass, m, patch), T)) if len(ids) else 0.0
         new_dw.put_reduction(L.ThermalEnergy, e)
 
@@ -347,9 +357,9 @@ class ThermalTasks:
             mat = self.materials[m]
             px = old_dw.get(L.pX, m, patch)
             acc = np.zeros(patch.alloc_shape(NC))
-            heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch), lps(old_dw, m, patch, len(px)),
-                      lv.anchor, lv.dx, low, new_dw.get(L.gTemperature, m, patch),
-                      mat.conductivity / mat.specific_heat, acc)
+            heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch),
+                      old_dw.get(L.pTemperatureGradient, m, patch), lps(old_dw, m, patch, len(px)),
+                      lv.anchor, lv.dx, low, mat.conductivity / mat.specific_heat, acc)
             if flux:
                 q = self.pressure_bcs.heat_rates(px, old_dw.get(L.pLoadCurveID, m, patch),
                                                  old_dw.get_reduction(FL.simTime),
@@ -359,30 +369,40 @@ class ThermalTasks:
             divide_by_mass(new_dw.get(L.gMass, m, patch), acc, new_dw.allocate(L.gTemperatureRate, m, patch, None))
 
     def update_particle_temperature(self, patch, matls, old_dw, new_dw):
-        """T_p^{n+1} = T_p^n + dt sum S_ip (conduction + exchange rates)_i; ThermalEnergy."""
+        """T_p^{n+1} = T_p^n + dt sum S_ip (conduction + exchange rates)_i; ThermalEnergy; with
+        conduction the next step's p.temperatureGradient from g.temperatureStar = g.temperature
+        + dt (conduction + contact rates), the Temperature BCs applied (Uintah's
+        integrateTemperatureRate; the MPMICE exchange rate is added after it, as in Uintah)."""
         lv = self.level
         dt = old_dw.get_reduction(FL.delT)
         low = np.array(patch.low_index(NC), np.int64)
         kind, lps = self._heat_stencil()
+        shape = patch.alloc_shape(NC)
         e = 0.0
         for m in matls:
             mat = self.materials[m]
-            rates = [new_dw.get(lab, m, patch) for lab in self.thermal_rates]
-            if self.thermal_contact:
-                rates.append(new_dw.get(L.gThermalContactRate, m, patch))
+            rates = [new_dw.get(L.gThermalContactRate, m, patch)] if self.thermal_contact else []
             if m in self.conducting:
                 rates.append(new_dw.get(L.gTemperatureRate, m, patch))
-            rate = rates[0] if len(rates) == 1 else (sum(rates) if rates else np.zeros(patch.alloc_shape(NC)))
-            if self.temperature_bcs:
+            t_star = None
+            if self.temperature_bcs or self.conducting:
+                rate = _total(rates, shape)
                 t_star = new_dw.get(L.gTemperature, m, patch) + rate * dt
-                self.bcs.apply_temperature(patch, m, t_star)
-                rate = (t_star - new_dw.get(L.gTemperatureNoBC, m, patch)) / dt
+                if self.temperature_bcs:
+                    self.bcs.apply_temperature(patch, m, t_star)
+                    rate = (t_star - new_dw.get(L.gTemperatureNoBC, m, patch)) / dt
+                rates = [rate]
+            rate = np.ascontiguousarray(_total(rates + [new_dw.get(lab, m, patch) for lab in self.thermal_rates],
+                                               shape))
             px = old_dw.get(L.pX, m, patch)
             T_new = np.empty(len(px))
+            gradient = np.empty((len(px) if self.conducting else 0, 3))
             e += g2p_heat(kind, self.th_act, px, old_dw.get(L.pTemperature, m, patch), old_dw.get(L.pMass, m, patch),
-                          lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, np.ascontiguousarray(rate), dt,
-                          T_new, mat.specific_heat)
+                          lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, rate, dt, T_new, mat.specific_heat,
+                          rate if t_star is None else np.ascontiguousarray(t_star), gradient)
             new_dw.put(L.pTemperaturePre, m, patch, T_new)
+            if self.conducting:
+                new_dw.put(L.pTemperatureGradientPre, m, patch, gradient)
         new_dw.put_reduction(L.ThermalEnergy, e)
 
     def compute_stable_timestep(self, patch, matls, old_dw, new_dw):

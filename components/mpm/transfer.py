@@ -17,7 +17,10 @@ could alias the node arrays), and does all the work that particle needs at its n
 
 CPDI particles visit the linear stencils of their domain's corners in turn (shape._corners; one
 stencil for linear and GIMP, the loop folded away), each corner's weights and gradients
-carried in the same per-axis values, so every kernel below serves all interpolators.
+carried in the same per-axis values, so every kernel below serves all interpolators. The loop
+over one stencil's nodes is shape._over_nodes, each kernel with its node function (_g2p_node,
+_velocity_gradient_node, _gather_node, _scatter_node, ...), inlined; but p2g's (_p2g_one), whose
+internal force came out of it with other fused multiply-adds in 2D (not bitwise).
 
 p2g and g2p run the particles in chunks of shape.CHUNK: a first loop stores every particle's
 base node and weights (shape._stencil_put; g2p also prefetches the node rows it will read), a
@@ -39,8 +42,8 @@ import numpy as np
 from numba import njit
 
 from .constitutive import comp_neo_hook
-from .shape import (AXI, CHUNK, CPDI, GIMP, LINEAR, _corners, _counts, _inv_dx, _prefetch_nodes, _scratch, _sel, _stencil,
-                    _stencil_get, _stencil_put, _visits)
+from .shape import (AXI, CHUNK, CPDI, GIMP, LINEAR, _corners, _counts, _inv_dx, _over_nodes, _prefetch_nodes, _scratch,
+                    _sel, _stencil, _stencil_get, _stencil_put, _visits)
 
 FM = {'contract'}
 
@@ -299,60 +302,53 @@ def _node_offset(act, px, p, anchor, dx, node_low, li, lj, lk):
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _g2p_gather(kind, act, musl, ijk, sh, fv, fa, st, sums):
-    """g2p's sums over the nodes of one stencil with weights st (_stencil_get) and local base
-    node ijk: += S a_i, S v*_i and (USL) v*_i (x) grad S_i; returns the 15 running sums."""
-    na, nb, nc = _counts(kind, act)
-    i, j, k = ijk
-    sh1, sh2 = sh
-    wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2 = st
-    a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = sums
-    for a in range(na):
-        wa = _sel(a, wx0, wx1, wx2)
-        ga = _sel(a, gx0, gx1, gx2)
-        for b in range(nb):
-            wb = _sel(b, wy0, wy1, wy2)
-            gb = _sel(b, gy0, gy1, gy2)
-            for c in range(nc):
-                wc = _sel(c, wz0, wz1, wz2)
-                gc = _sel(c, gz0, gz1, gz2)
-                S = wa * wb * wc
-                f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                gv0 = fv[f3]
-                gv1 = fv[f3 + np.uint64(1)]
-                gv2 = fv[f3 + np.uint64(2)]
-                a0 += S * fa[f3]
-                a1 += S * fa[f3 + np.uint64(1)]
-                a2 += S * fa[f3 + np.uint64(2)]
-                v0 += S * gv0
-                v1 += S * gv1
-                v2 += S * gv2
-                if not musl:
-                    L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
-                        act, wa, wb, wc, ga, gb, gc, _sel(a, gz0, gz1, gz2), gv0, gv1, gv2, L00, L01, L02, L10,
-                        L11, L12, L20, L21, L22)
+def _velocity_gradient_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """L += v_i (x) grad S_i at one node (_add_L) of the node velocity array args (flat)."""
+    L00, L01, L02, L10, L11, L12, L20, L21, L22 = acc
+    f3 = np.uint64(3) * np.uint64(n)
+    return _add_L(act, wa, wb, wc, ga, gb, gc, ha, args[f3], args[f3 + np.uint64(1)], args[f3 + np.uint64(2)],
+                  L00, L01, L02, L10, L11, L12, L20, L21, L22)
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _g2p_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """g2p's sums at one node: += S a_i, S v*_i and (USL) v*_i (x) grad S_i; args = (v*, a, musl)
+    (flat); acc the 15 running sums."""
+    a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = acc
+    fv, fa, musl = args
+    S = wa * wb * wc
+    f3 = np.uint64(3) * np.uint64(n)
+    a0 += S * fa[f3]
+    a1 += S * fa[f3 + np.uint64(1)]
+    a2 += S * fa[f3 + np.uint64(2)]
+    v0 += S * fv[f3]
+    v1 += S * fv[f3 + np.uint64(1)]
+    v2 += S * fv[f3 + np.uint64(2)]
+    if not musl:
+        L00, L01, L02, L10, L11, L12, L20, L21, L22 = _velocity_gradient_node(
+            (L00, L01, L02, L10, L11, L12, L20, L21, L22), fv, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha)
     return a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22
 
 
 @njit(cache=True, fastmath=FM, inline="always")
-def _gather_S(kind, act, ijk, sh, fg, st, s0, s1, s2):
-    """s += sum S_i g_i over the nodes of one stencil (weights st, local base node ijk) of
-    the node vector array fg (flat): XPIC(2)'s S v_i and S (S+ S+ v)_i."""
-    na, nb, nc = _counts(kind, act)
-    i, j, k = ijk
-    sh1, sh2 = sh
-    wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2, wz0, wz1, wz2, gz0, gz1, gz2 = st
-    for a in range(na):
-        wa = _sel(a, wx0, wx1, wx2)
-        for b in range(nb):
-            wb = _sel(b, wy0, wy1, wy2)
-            for c in range(nc):
-                S = wa * wb * _sel(c, wz0, wz1, wz2)
-                f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                s0 += S * fg[f3]
-                s1 += S * fg[f3 + np.uint64(1)]
-                s2 += S * fg[f3 + np.uint64(2)]
-    return s0, s1, s2
+def _gather_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """s += S g_i at one node of the node vector array args (flat): XPIC(2)'s S v_i and S (S+ S+ v)_i."""
+    s0, s1, s2 = acc
+    S = wa * wb * wc
+    f3 = np.uint64(3) * np.uint64(n)
+    return s0 + S * args[f3], s1 + S * args[f3 + np.uint64(1)], s2 + S * args[f3 + np.uint64(2)]
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _scatter_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """g_i += S (mv) at one node; args = (g flat, mv0, mv1, mv2): MUSL's and XPIC(2)'s scatters."""
+    fo, mv0, mv1, mv2 = args
+    S = wa * wb * wc
+    f3 = np.uint64(3) * np.uint64(n)
+    fo[f3] += mv0 * S
+    fo[f3 + np.uint64(1)] += mv1 * S
+    fo[f3 + np.uint64(2)] += mv2 * S
+    return acc
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -390,18 +386,17 @@ def _g2p_rows(kind, act, musl, xpic, part, first, end, owned, grid, outs, lim, a
             L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
             for cq in range(nq):
                 q = (p - c0) * nq + cq
-                a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = _g2p_gather(
-                    kind, act, musl, (sb[0, q], sb[1, q], sb[2, q]), (sh1, sh2), fv, fa,
-                    _stencil_get(kind, act, q, ih, sw),
-                    (a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22))
+                a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = _over_nodes(
+                    _g2p_node, kind, act, (sb[0, q], sb[1, q], sb[2, q]), sh, _stencil_get(kind, act, q, ih, sw),
+                    False, (a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22), (fv, fa, musl))
             if xpic:        # XPIC(2) (Hammerquist & Nairn 2017): v = 2 v+ - v++ + a dt
                 s0 = s1 = s2 = ss0 = ss1 = ss2 = 0.0
                 for cq in range(nq):
                     q = (p - c0) * nq + cq
                     st = _stencil_get(kind, act, q, ih, sw)
                     ijk = (sb[0, q], sb[1, q], sb[2, q])
-                    s0, s1, s2 = _gather_S(kind, act, ijk, (sh1, sh2), fg, st, s0, s1, s2)
-                    ss0, ss1, ss2 = _gather_S(kind, act, ijk, (sh1, sh2), fs, st, ss0, ss1, ss2)
+                    s0, s1, s2 = _over_nodes(_gather_node, kind, act, ijk, sh, st, False, (s0, s1, s2), fg)
+                    ss0, ss1, ss2 = _over_nodes(_gather_node, kind, act, ijk, sh, st, False, (ss0, ss1, ss2), fs)
                 nv0 = 2.0 * s0 - ss0 + a0 * dt
                 nv1 = 2.0 * s1 - ss1 + a1 * dt
                 nv2 = 2.0 * s2 - ss2 + a2 * dt
@@ -416,19 +411,8 @@ def _g2p_rows(kind, act, musl, xpic, part, first, end, owned, grid, outs, lim, a
                 mv2 = m * nv2
                 for cq in range(nq):
                     q = (p - c0) * nq + cq
-                    (wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-                     wz0, wz1, wz2, gz0, gz1, gz2) = _stencil_get(kind, act, q, ih, sw)
-                    i, j, k = sb[0, q], sb[1, q], sb[2, q]
-                    for a in range(na):
-                        wa = _sel(a, wx0, wx1, wx2)
-                        for b in range(nb):
-                            wb = _sel(b, wy0, wy1, wy2)
-                            for c in range(nc):
-                                S = wa * wb * _sel(c, wz0, wz1, wz2)
-                                f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                                fp[f3] += mv0 * S
-                                fp[f3 + np.uint64(1)] += mv1 * S
-                                fp[f3 + np.uint64(2)] += mv2 * S
+                    _over_nodes(_scatter_node, kind, act, (sb[0, q], sb[1, q], sb[2, q]), sh,
+                                _stencil_get(kind, act, q, ih, sw), False, 0.0, (fp, mv0, mv1, mv2))
             if not owned:
                 continue
             if xpic:        # x += dt (v* - (a dt + v_p - 2 v+ + v++) / 2), as Uintah's SerialMPM
@@ -514,26 +498,13 @@ def _grad(kind, act, model, px, lp, anchor, dx, node_low, gvel, L_out, write_L, 
     for p in range(px.shape[0]):
         L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
         for q in range(_corners(kind, act)):
-            (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-             wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            i, j, k = st[0], st[1], st[2]
             if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
                 raise IndexError("particle's nodes lie outside the patch node arrays")
-            for a in range(na):
-                wa = _sel(a, wx0, wx1, wx2)
-                ga = _sel(a, gx0, gx1, gx2)
-                for b in range(nb):
-                    wb = _sel(b, wy0, wy1, wy2)
-                    gb = _sel(b, gy0, gy1, gy2)
-                    for c in range(nc):
-                        wc = _sel(c, wz0, wz1, wz2)
-                        gc = _sel(c, gz0, gz1, gz2)
-                        f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                        gv0 = fv[f3]
-                        gv1 = fv[f3 + np.uint64(1)]
-                        gv2 = fv[f3 + np.uint64(2)]
-                        L00, L01, L02, L10, L11, L12, L20, L21, L22 = _add_L(
-                            act, wa, wb, wc, ga, gb, gc, _sel(a, gz0, gz1, gz2), gv0, gv1, gv2, L00, L01, L02,
-                            L10, L11, L12, L20, L21, L22)
+            L00, L01, L02, L10, L11, L12, L20, L21, L22 = _over_nodes(
+                _velocity_gradient_node, kind, act, (i, j, k), (sh0, sh1, sh2), st[3:], False,
+                (L00, L01, L02, L10, L11, L12, L20, L21, L22), fv)
         if write_L:
             _store_L(L_out, p, L00, L01, L02, L10, L11, L12, L20, L21, L22)
         m = pmass[p]
@@ -652,24 +623,16 @@ def _spssp(kind, act, own, ghost, runs, anchor, dx, node_low, gvel, gout):
                 i, j, k = st[0], st[1], st[2]
                 if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
                     raise IndexError("particle's nodes lie outside the patch node arrays")
-                s0, s1, s2 = _gather_S(kind, act, (i, j, k), (sh1, sh2), fg, st[3:], s0, s1, s2)
+                s0, s1, s2 = _over_nodes(_gather_node, kind, act, (i, j, k), (sh0, sh1, sh2), st[3:], False,
+                                         (s0, s1, s2), fg)
             m = pmass[p]
             mv0 = s0 * m
             mv1 = s1 * m
             mv2 = s2 * m
             for q in range(nq):
-                (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-                 wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
-                for a in range(na):
-                    wa = _sel(a, wx0, wx1, wx2)
-                    for b in range(nb):
-                        wb = _sel(b, wy0, wy1, wy2)
-                        for c in range(nc):
-                            S = wa * wb * _sel(c, wz0, wz1, wz2)
-                            f3 = np.uint64(3) * np.uint64(((i + a) * sh1 + j + b) * sh2 + k + c)
-                            fo[f3] += mv0 * S
-                            fo[f3 + np.uint64(1)] += mv1 * S
-                            fo[f3 + np.uint64(2)] += mv2 * S
+                st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+                _over_nodes(_scatter_node, kind, act, (st[0], st[1], st[2]), (sh0, sh1, sh2), st[3:], False, 0.0,
+                            (fo, mv0, mv1, mv2))
 
 
 @functools.lru_cache(maxsize=None)
@@ -731,30 +694,24 @@ def merged_p2g(p2g):
     return f
 
 
+@njit(cache=True, fastmath=FM, inline="always")
+def _mass_gradient_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """mass_gradient at one node: += m grad S."""
+    fo, m = args
+    f3 = 3 * n
+    fo[f3] += m * ga * wb * wc
+    fo[f3 + 1] += m * wa * gb * wc
+    fo[f3 + 2] += m * wa * wb * gc
+    return acc
+
+
 @njit(cache=True, fastmath=FM)
 def mass_gradient(kind, act, px, pm, lp, anchor, dx, node_low, out):
     """out_i += sum_p m_p grad S_i(x_p) (contact normals; kind/act at run time), shares
     beyond the node array dropped."""
-    sh0, sh1, sh2 = out.shape[:3]
-    na, nb, nc = _counts(kind, act)
     ih = _inv_dx(dx)
     fo = out.reshape(-1)
     for p, q in _visits(kind, act, px.shape[0]):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
-        m = pm[p]
-        for a in range(na):
-            wa = _sel(a, wx0, wx1, wx2)
-            ga = _sel(a, gx0, gx1, gx2)
-            for b in range(nb):
-                wb = _sel(b, wy0, wy1, wy2)
-                gb = _sel(b, gy0, gy1, gy2)
-                for c in range(nc):
-                    wc = _sel(c, wz0, wz1, wz2)
-                    gc = _sel(c, gz0, gz1, gz2)
-                    if not (0 <= i + a < sh0 and 0 <= j + b < sh1 and 0 <= k + c < sh2):
-                        continue
-                    f3 = 3 * (((i + a) * sh1 + j + b) * sh2 + k + c)
-                    fo[f3] += m * ga * wb * wc
-                    fo[f3 + 1] += m * wa * gb * wc
-                    fo[f3 + 2] += m * wa * wb * gc
+        st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+        _over_nodes(_mass_gradient_node, kind, act, (st[0], st[1], st[2]), out.shape[:3], st[3:], True, 0.0,
+                    (fo, pm[p]))

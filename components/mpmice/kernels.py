@@ -17,9 +17,7 @@ import numpy as np
 from numba import njit
 
 from components.ice.equilibration import _rho_micro
-from components.mpm.shape import _counts as _sizes
-from components.mpm.shape import _sel as _pick
-from components.mpm.shape import _stencil
+from components.mpm.shape import _over_nodes, _stencil
 from components.mpm.thermal import _inv
 
 
@@ -135,51 +133,46 @@ def _pressure_force(kind, dim, px, pvol, lp, anchor, dx, node_low, press, cc_low
             for z in range(sh2):
                 pn[x, y, z] = _node_pressure(press, x + node_low[0], y + node_low[1], z + node_low[2], cc_low, dims)
     act = (1 << dim) - 1                 # the leading `dim` axes are active
-    na, nb, nc = _sizes(kind, act)
     ih = _inv(dx, act)
     fi = gfint.reshape(-1)
+    sh = gfint.shape[:3]
     o = 0
     all_own = own.shape[0] == 0
     for p in range(px.shape[0]):
-        (i, j, k, wx0, wx1, wx2, gx0, gx1, gx2, wy0, wy1, wy2, gy0, gy1, gy2,
-         wz0, wz1, wz2, gz0, gz1, gz2) = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
-        pr = 0.0
-        for a in range(na):
-            wa = _pick(a, wx0, wx1, wx2)
-            for b in range(nb):
-                wb = _pick(b, wy0, wy1, wy2)
-                for c in range(nc):
-                    S = wa * wb * _pick(c, wz0, wz1, wz2)
-                    if S != 0.0:
-                        x, y, z = i + a, j + b, k + c
-                        if 0 <= x < sh0 and 0 <= y < sh1 and 0 <= z < sh2:
-                            pr += S * pn[x, y, z]
-                        else:
-                            pr += S * _node_pressure(press, x + node_low[0], y + node_low[1], z + node_low[2],
-                                                     cc_low, dims)
-        pr -= p_ref
+        st = _stencil(kind, act, px, lp, p, anchor, ih, node_low)
+        ijk = (st[0], st[1], st[2])
+        pr = _over_nodes(_node_pressure_share, kind, act, ijk, sh, st[3:], False, 0.0,
+                         (pn, press, node_low, cc_low, dims, sh)) - p_ref
         if all_own or own[p]:
             ppress[o] = pr
             o += 1
-        s = pvol[p] * pr
-        for a in range(na):
-            wa = _pick(a, wx0, wx1, wx2)
-            ga = _pick(a, gx0, gx1, gx2)
-            for b in range(nb):
-                wb = _pick(b, wy0, wy1, wy2)
-                gb = _pick(b, gy0, gy1, gy2)
-                for c in range(nc):
-                    wc = _pick(c, wz0, wz1, wz2)
-                    gc = _pick(c, gz0, gz1, gz2)
-                    x, y, z = i + a, j + b, k + c
-                    if not (0 <= x < sh0 and 0 <= y < sh1 and 0 <= z < sh2):
-                        continue
-                    f3 = 3 * ((x * sh1 + y) * sh2 + z)
-                    fi[f3] -= s * ga * wb * wc
-                    if dim >= 2:
-                        fi[f3 + 1] -= s * wa * gb * wc
-                    if dim >= 3:
-                        fi[f3 + 2] -= s * wa * wb * gc
+        _over_nodes(_pressure_force_share, kind, act, ijk, sh, st[3:], True, 0.0, (fi, pvol[p] * pr))
+
+
+@njit(cache=True, inline="always")
+def _node_pressure_share(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """p_p += S p_i at one node: from the patch's node pressures pn, beyond them on the fly."""
+    pn, press, node_low, cc_low, dims, sh = args
+    S = wa * wb * wc
+    if S != 0.0:
+        if 0 <= x < sh[0] and 0 <= y < sh[1] and 0 <= z < sh[2]:
+            acc += S * pn[x, y, z]
+        else:
+            acc += S * _node_pressure(press, x + node_low[0], y + node_low[1], z + node_low[2], cc_low, dims)
+    return acc
+
+
+@njit(cache=True, inline="always")
+def _pressure_force_share(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """fint_i -= V_p p_p grad S at one node (the active axes' components)."""
+    fi, s = args
+    f3 = 3 * n
+    fi[f3] -= s * ga * wb * wc
+    if act & 2:
+        fi[f3 + 1] -= s * wa * gb * wc
+    if act & 4:
+        fi[f3 + 2] -= s * wa * wb * gc
+    return acc
 
 
 INTERPOLATORS = {"linear": 0, "gimp": 1}     # _pressure_force's kind

@@ -3,8 +3,11 @@
 Exact solution: in an insulated bar with diffusivity alpha the amplitude of the mode
 cos(pi x / L) decays as exp(-pi^2 alpha t / L^2), and sum m cv T is constant. The
 conduction tasks must not depend on the patch layout or the rank count, and must not
-run at all in a deck that does not ask for them.
+run at all in a deck that does not ask for them. Against Uintah's sus: heatcond2mat with
+conduction (its grad T_p lags a step, as Uintah's p.temperatureGradient).
 """
+import os
+
 import numpy as np
 import pytest
 
@@ -12,9 +15,10 @@ from framework.archiver import DataArchive
 from framework.problemspec import InputError
 from tests.conftest import pysus, pysus_ranks, run_deck
 
-from .helpers import MPM_INPUTS, deck_text
+from .helpers import MPM_INPUTS, deck_text, run
 
 BAR = MPM_INPUTS / "heat_conduction_bar.ups"
+HERE = os.path.dirname(__file__)
 
 
 def _mode(p):
@@ -24,13 +28,16 @@ def _mode(p):
 
 
 def test_cosine_mode_decays_at_the_exact_rate(tmp_path):
+    """Within 4e-3 of the exact decay over 0.1 s (measured 3.7e-3 at 0.9 of the stable step,
+    457 steps; 2.8e-3 at a tenth of it: 16 slabs' spatial error of ~2.5e-3 plus the first-order
+    lag of grad T, which the step with this step's gradient partly cancelled, 4.4e-4)."""
     ctl = run_deck(deck_text(BAR), tmp_path)
     da = DataArchive(ctl.archiver.dir)
     a0 = _mode(da.particles(0, 0))
     assert abs(a0 - 10.0) < 0.02                     # the 16 slabs lay the mode
     for i in range(1, len(da.times)):
         exact = a0 * np.exp(-np.pi ** 2 * da.times[i])
-        assert abs(_mode(da.particles(0, i)) / exact - 1.0) < 2e-3, da.times[i]
+        assert abs(_mode(da.particles(0, i)) / exact - 1.0) < 4e-3, da.times[i]
     assert da.times[-1] > 0.099
     t, e = da.reduction("ThermalEnergy")
     assert np.all(np.abs(np.asarray(e) / e[0] - 1.0) < 1e-12)
@@ -115,3 +122,39 @@ def test_restart_carries_the_temperature(tmp_path):
     pa, pb = a.particles(0, -1), b.particles(0, -1)
     oa, ob = np.argsort(pa["p.particleID"]), np.argsort(pb["p.particleID"])
     assert np.array_equal(pa["p.temperature"][oa], pb["p.temperature"][ob])
+
+
+@pytest.mark.parametrize("kind, deck", [("gimp", "heatcond2mat_k.ups"), ("cpdi", "heatcond2mat_cpdi.ups")])
+def test_conduction_equals_uintahs_sus(tmp_path, kind, deck):
+    """p.temperature of both bars after each of 5 steps against sus (tests/mpm/data/
+    sus_heatcond2mat_k.npz, read from sus's uda; gimp: heatcond2mat_k.ups, thermal_conductivity
+    237 and 23.7; cpdi: heatcond2mat_cpdi.ups, 100) with conduction, thermal contact and
+    Temperature BCs. grad T_p is the last step's, so step 1 conducts nothing; with this step's
+    gradient the bars were 3.9 K (gimp) and 16.5 K (cpdi) off sus at step 1. CPDI agrees to
+    3e-12 K, with p.temperatureGradient to 2e-14 of its largest value. GIMP agrees to 2e-13 K
+    for 2 steps, then to 3e-3 K: sus's GIMP weights give the cold bar's last particles
+    (x/dx = 9.750000000000002) a node beyond the bar with weight 3e-30 and gradient 4e-12,
+    whose rate ~ gradient/weight brings an O(1) share into those particles' grad T (358 K/m
+    of 8951 at step 2); pysus's weights there are zero."""
+    ref = np.load(os.path.join(HERE, "data", "sus_heatcond2mat_k.npz"))
+    text = open(os.path.join(HERE, deck)).read().replace("<max_Timesteps>3</max_Timesteps>",
+                                                         "<max_Timesteps>5</max_Timesteps>")
+    save = '<save label = "p.temperatureGradient"/>'
+    if save not in text:
+        text = text.replace('<save label = "p.temperature"/>', '<save label = "p.temperature"/>' + save)
+    _, da = run(text, tmp_path)
+    worst = {}
+    for step in range(1, 6):
+        assert da.times[step] == pytest.approx(float(ref[f"{kind}_time_step{step}"]), rel=1e-12)
+        for m in (0, 1):
+            p = da.particles(m, step)
+            o = np.lexsort(np.round(p["p.x"], 7).T)
+            assert np.abs(p["p.x"][o] - ref[f"{kind}_x{m}"]).max() < 1e-12
+            worst[step, m] = np.abs(p["p.temperature"][o] - ref[f"{kind}_temperature{m}_step{step}"]).max()
+            if step == 5 and kind == "cpdi":
+                g = ref[f"cpdi_temperatureGradient{m}_step5"]
+                assert np.abs(p["p.temperatureGradient"][o] - g).max() < 1e-12 * np.abs(g).max()
+    for (step, m), dT in worst.items():
+        assert dT < (1e-10 if kind == "cpdi" or step <= 2 else 5e-3), (step, m, dT)
+    assert da.particles(1, 1)["p.temperature"].min() == pytest.approx(100.0)     # step 1: no conduction
+    assert da.particles(1, 5)["p.temperature"].min() > 106.0                     # then the cold bar warms
