@@ -52,35 +52,35 @@ SUS_GIMP = HERE / "data" / "sus_gurson_gimp.npz"
 Q = np.array([1.5, 1.0, 2.25, 4.0, 0.05])          # GursonYieldSteel.xml: q1, q2, q3, k, f_c
 
 
-def sus_copy():
-    """The deck as sus ran it for the reference (module docstring)."""
+_SUS_RUN = (("<res>[3,3,3]</res>", "<res>[2,2,2]</res>"),
+            ("<timestep_multiplier>0.4</timestep_multiplier>",
+             "<timestep_multiplier>0.4</timestep_multiplier><max_Timesteps>30</max_Timesteps>"))
+
+
+def _deck_with(edits):
+    """The deck with each (old, new) replaced, its include files found from a temporary folder."""
     text = DECK.read_text()
-    for old, new in (("<res>[3,3,3]</res>", "<res>[2,2,2]</res>"),
-                     ("<timestep_multiplier>0.4</timestep_multiplier>",
-                      "<timestep_multiplier>0.4</timestep_multiplier><max_Timesteps>30</max_Timesteps>"),
-                     ("<extraCells> [1,1,1]  </extraCells>", "<extraCells> [0,0,0]  </extraCells>"),
-                     ("<outputTimestepInterval>5</outputTimestepInterval>",
-                      '<outputTimestepInterval>10</outputTimestepInterval><save label = "p.porosity"/>'),
-                     ("<interpolator>gimp</interpolator>",
-                      "<interpolator>linear</interpolator><stress_update>usl</stress_update>")):
+    for old, new in _SUS_RUN + edits:
         assert old in text, old
         text = text.replace(old, new)
-    return text.replace('href="inputs/', f'href="{DECK.parent}/inputs/')       # run from a temporary folder
+    return text.replace('href="inputs/', f'href="{DECK.parent}/inputs/')
+
+
+def sus_copy():
+    """The deck as sus ran it for the reference (module docstring)."""
+    return _deck_with((("<extraCells> [1,1,1]  </extraCells>", "<extraCells> [0,0,0]  </extraCells>"),
+                       ("<outputTimestepInterval>5</outputTimestepInterval>",
+                        '<outputTimestepInterval>10</outputTimestepInterval><save label = "p.porosity"/>'),
+                       ("<interpolator>gimp</interpolator>",
+                        "<interpolator>linear</interpolator><stress_update>usl</stress_update>")))
 
 
 def sus_copy_gimp():
     """The deck as sus ran it for sus_gurson_gimp.npz (module docstring): GIMP, output every step."""
-    text = DECK.read_text()
-    for old, new in (("<res>[3,3,3]</res>", "<res>[2,2,2]</res>"),
-                     ("<timestep_multiplier>0.4</timestep_multiplier>",
-                      "<timestep_multiplier>0.4</timestep_multiplier><max_Timesteps>30</max_Timesteps>"),
-                     ("<outputTimestepInterval>5</outputTimestepInterval>",
-                      "<outputTimestepInterval>1</outputTimestepInterval>"),
-                     ("<interpolator>gimp</interpolator>",
-                      "<interpolator>gimp</interpolator><stress_update>usl</stress_update>")):
-        assert old in text, old
-        text = text.replace(old, new)
-    return text.replace('href="inputs/', f'href="{DECK.parent}/inputs/')
+    return _deck_with((("<outputTimestepInterval>5</outputTimestepInterval>",
+                        "<outputTimestepInterval>1</outputTimestepInterval>"),
+                       ("<interpolator>gimp</interpolator>",
+                        "<interpolator>gimp</interpolator><stress_update>usl</stress_update>")))
 
 
 def run(text, tmp_path):

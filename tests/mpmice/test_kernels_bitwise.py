@@ -102,16 +102,21 @@ def _run(fn, case, shape):
     return it, press, out
 
 
+def _assert_equilibrations_bitwise(case, shape):
+    """equilibrate_many and the per-cell equilibrate give the same iterations and bits."""
+    it_a, p_a, out_a = _run(equilibrate_many, case, shape)
+    it_b, p_b, out_b = _run(equilibrate, case, shape)
+    assert it_a == it_b
+    assert np.array_equal(p_a, p_b)
+    for qa, qb in zip(out_a, out_b):
+        for a, b in zip(qa, qb):
+            assert np.array_equal(a, b)
+
+
 def test_equilibrate_is_bitwise_equilibrate_many():
     for nmat, seed, shape in ((2, 0, (1, 12, 9)), (2, 1, (3, 4, 9)), (3, 2, (1, 12, 9)), (2, 3, (12, 9, 1))):
         case = _case(nmat, shape, seed)
-        it_a, p_a, out_a = _run(equilibrate_many, case, shape)
-        it_b, p_b, out_b = _run(equilibrate, case, shape)
-        assert it_a == it_b
-        assert np.array_equal(p_a, p_b)
-        for qa, qb in zip(out_a, out_b):
-            for a, b in zip(qa, qb):
-                assert np.array_equal(a, b)
+        _assert_equilibrations_bitwise(case, shape)
 
 
 def test_equilibrate_is_bitwise_for_the_solid_codes():
@@ -124,13 +129,7 @@ def test_equilibrate_is_bitwise_for_the_solid_codes():
         case[4] = np.array([code, IDEAL_GAS], np.int64)
         case[5] = case[5].copy()
         case[5][0, :5] = (117e9, 8900.0, 101325.0, modified, viscoscram)
-        it_a, p_a, out_a = _run(equilibrate_many, case, shape)
-        it_b, p_b, out_b = _run(equilibrate, case, shape)
-        assert it_a == it_b
-        assert np.array_equal(p_a, p_b)
-        for qa, qb in zip(out_a, out_b):
-            for a, b in zip(qa, qb):
-                assert np.array_equal(a, b)
+        _assert_equilibrations_bitwise(case, shape)
 
 
 # cells of the steel block of scripts/bench/mpmice.py (solid-filled, a gas sliver): rho_solid, rho_gas,
