@@ -42,16 +42,20 @@ def conduction(tmp_path_factory):
 
 def test_conduction_equals_gimps_on_undeformed_particles(conduction):
     """CPDI's corner-averaged linear weights are GIMP's on an undeformed box particle: with
-    conduction the two agree while F stays near I (measured 8e-13 K after 3 steps), and
-    conduction has moved heat (grad T lags a step, as Uintah's: the cold bar's coldest
-    particle stays at 100 K for one step, then warms)."""
+    conduction the two agree while F stays near I, and conduction has moved heat (grad T lags a
+    step, as Uintah's: the cold bar's coldest particle stays at 100 K for one step, then warms).
+    Particles are laid with Uintah's arithmetic, so the last layer's faces sit one ulp past a
+    node: GIMP gives the node beyond the bar a weight of about 1e-30, its T* there (rate / that
+    weight's mass) a real share of grad T, as sus's GIMP does (test_thermal's sus comparison).
+    Conduction spreads it: measured 2.6e-4 K after 3 steps, where the bars' temperatures move
+    by over 10 K."""
     cpdi, gimp = conduction
     for step in (1, 2, 3):
         for m in (0, 1):
             xc, Tc = _sorted(cpdi, m, step)
             xg, Tg = _sorted(gimp, m, step)
             assert np.abs(xc - xg).max() < 1e-12
-            assert np.abs(Tc - Tg).max() < 1e-9
+            assert np.abs(Tc - Tg).max() < 1e-3
     assert cpdi.particles(1, 1)["p.temperature"].min() == pytest.approx(100.0)
     assert cpdi.particles(1, 3)["p.temperature"].min() > 110.0
 
