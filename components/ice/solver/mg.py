@@ -128,19 +128,42 @@ def prolong_add(u, ec, cf):
 
 
 @njit(cache=True)
+def _dense_entry(kap, F, u, i, j, k, dims, per, sh, col, M):
+    dg, off = _row(kap, F, u, i, j, k, dims, per, sh)
+    M[(i * sh[1] + j) * sh[2] + k, col] = dg * u[i, j, k] - off
+
+
+@njit(cache=True)
 def dense(kap, F, dims, per, M):
-    """The level's operator as a dense matrix (coarsest level)."""
+    """The level's operator as a dense matrix (coarsest level; M zeroed by the caller). Column c
+    is the operator on the unit vector of cell c, evaluated on the rows that c's stencil reaches
+    (the cell and its face neighbours): the others are zero."""
     sh = kap.shape
     u = np.zeros(sh)
-    n = sh[0] * sh[1] * sh[2]
-    for col in range(n):
-        u.ravel()[col] = 1.0
-        for i in range(sh[0]):
-            for j in range(sh[1]):
-                for k in range(sh[2]):
-                    dg, off = _row(kap, F, u, i, j, k, dims, per, sh)
-                    M[(i * sh[1] + j) * sh[2] + k, col] = dg * u[i, j, k] - off
-        u.ravel()[col] = 0.0
+    for i in range(sh[0]):
+        for j in range(sh[1]):
+            for k in range(sh[2]):
+                col = (i * sh[1] + j) * sh[2] + k
+                u[i, j, k] = 1.0
+                _dense_entry(kap, F, u, i, j, k, dims, per, sh, col, M)
+                for d in range(3):
+                    if not dims[d]:
+                        continue
+                    n = sh[d]
+                    e = i if d == 0 else (j if d == 1 else k)
+                    for s in (-1, 1):
+                        f = e + s
+                        if f < 0 or f >= n:
+                            if not per[d]:
+                                continue
+                            f = (f + n) % n
+                        if f == e:
+                            continue
+                        a = f if d == 0 else i
+                        b = f if d == 1 else j
+                        c = f if d == 2 else k
+                        _dense_entry(kap, F, u, a, b, c, dims, per, sh, col, M)
+                u[i, j, k] = 0.0
 
 
 class Hierarchy:
