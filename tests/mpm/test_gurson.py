@@ -203,6 +203,13 @@ def test_gaussian_is_uintahs():
 
 
 # -- the deck against sus ----------------------------------------------------------------
+def _followed(da, k, ids):
+    """The steel's particles at output k and the indices of the particles with the given IDs."""
+    p = da.particles(1, k)
+    where = {v: i for i, v in enumerate(p["p.particleID"])}
+    return p, [where[v] for v in ids]
+
+
 def test_deck_as_sus(tmp_path):
     """The copy (module docstring) against sus over 30 steps (through the impact: plastic
     strain to 0.25 and porosity to 0.2, past f_c = 0.05, in the particles compared 0.117 and
@@ -221,9 +228,7 @@ def test_deck_as_sus(tmp_path):
     for j, step in enumerate(sus["timestep"]):
         k = steps.index(step)
         assert da.times[k] == pytest.approx(sus["time"][j], rel=1e-10)
-        p = da.particles(1, k)
-        where = {v: i for i, v in enumerate(p["p.particleID"])}
-        i = [where[v] for v in ids]
+        p, i = _followed(da, k, ids)
         s, ep, f, T = p["p.stress"][i], p["p.plasticStrain"][i], p["p.porosity"][i], p["p.temperature"][i]
         assert np.abs(s - sus["stress"][j]).max() < TOL["stress"] * np.abs(sus["stress"][j]).max(), step
         assert np.abs(ep - sus["plasticStrain"][j]).max() < TOL["plasticStrain"], step
@@ -253,9 +258,7 @@ def test_gimp_deck_as_sus(tmp_path):
     for j, step in enumerate(sus["timestep"]):
         k = steps.index(step)
         assert da.times[k] == pytest.approx(sus["time"][j], rel=1e-12)
-        p = da.particles(1, k)
-        where = {v: i for i, v in enumerate(p["p.particleID"])}
-        i = [where[v] for v in ids]
+        p, i = _followed(da, k, ids)
         for name, got, ref in (("displacement", p["p.x"][i] - sus["x0"], sus["x"][j] - sus["x0"]),
                                ("velocity", p["p.velocity"][i], sus["velocity"][j]),
                                ("stress", p["p.stress"][i], sus["stress"][j])):

@@ -326,6 +326,18 @@ def erode_kinematics(code, loc_old, F_old, F_new, L):
     return L
 
 
+@njit(cache=True, inline="always")
+def _mean_and_von_mises(stress, p):
+    """Particle p's mean stress and von Mises stress sqrt(3/2 s:s), s the deviator."""
+    mean = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
+    ss = 0.0
+    for i in range(3):
+        for j in range(3):
+            s = stress[p, i, j] - (mean if i == j else 0.0)
+            ss += s * s
+    return mean, np.sqrt(ss * 1.5)
+
+
 @njit(cache=True, error_model="numpy")
 def johnson_cook_damage(jc, Tr, Tm, dt, stress, epdot, T, d_old, d_new):
     """Uintah's JohnsonCookDamage (Johnson and Cook 1985), a diagnostic p.damage that leaves the
@@ -334,13 +346,7 @@ def johnson_cook_damage(jc, Tr, Tm, dt, stress, epdot, T, d_old, d_new):
     T* = (T - T_room)/(T_melt - T_room); a damage under the critical <critical_scalar_damage>
     is set to 0. jc = D1, D2, D3, D4, D5, the critical damage."""
     for p in range(stress.shape[0]):
-        mean = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
-        ss = 0.0
-        for i in range(3):
-            for j in range(3):
-                s = stress[p, i, j] - (mean if i == j else 0.0)
-                ss += s * s
-        eq = np.sqrt(ss * 1.5)
+        mean, eq = _mean_and_von_mises(stress, p)
         star = mean / eq if eq != 0.0 else 0.0
         star = min(1.5, max(-1.5, star))
         rate = (1.0 + epdot[p]) ** jc[3] if epdot[p] < 1.0 else 1.0 + jc[3] * np.log(epdot[p])
@@ -355,15 +361,9 @@ def hancock_mackenzie_damage(dt, stress, epdot, d_old, d_new):
     leaves the stress alone: D += epdot dt exp(1.5 p / sigma_eq) / 1.65, p the mean stress,
     sigma_eq the von Mises stress where p > 0 and 1 (Pa) otherwise, as Uintah's."""
     for p in range(stress.shape[0]):
-        mean = (stress[p, 0, 0] + stress[p, 1, 1] + stress[p, 2, 2]) / 3.0
-        eq = 1.0
-        if mean > 0.0:
-            ss = 0.0
-            for i in range(3):
-                for j in range(3):
-                    s = stress[p, i, j] - (mean if i == j else 0.0)
-                    ss += s * s
-            eq = np.sqrt(ss * 1.5)
+        mean, eq = _mean_and_von_mises(stress, p)
+        if mean <= 0.0:
+            eq = 1.0
         d_new[p] = d_old[p] + epdot[p] * dt * np.exp(1.5 * mean / eq) / 1.65
 
 
