@@ -73,6 +73,11 @@ FLAGS = {
     "minimum_mass_for_acc": Param("float", 0.0, doc="nodes this light get no force acceleration"),
     "do_grid_reset": Param("bool", True, (True,), doc="the grid is always reset"),
     "DoExplicitHeatConduction": Param("bool", False, doc="particle temperature and explicit heat conduction (thermal.py)"),
+    "conduction_gradient": Param("str", "previous", ("previous", "current"),
+                                 "grad T_p of the heat conduction (thermal.py): previous = the particles' "
+                                 "p.temperatureGradient of the last step (Uintah's; stable step rho cv / "
+                                 "(4 k sum 1/dx^2)); current = pysus: from this step's g.temperature (twice "
+                                 "that step)"),
     "artificial_viscosity": Param("bool", False, doc="bulk viscosity q of compressed solid particles in the "
                                   "internal force (artificial_viscosity.py)"),
     "artificial_viscosity_heating": Param("bool", False, doc="elastic_plastic's viscous work to heat (on with "
@@ -434,7 +439,7 @@ class MPM(ThermalTasks, MPMTasks, BoundaryTractionTasks, Component):
             c.append((L.pVelGradLast, L.pVelGradLastPre))
         self.carry = c
         self.carry_thermal = [(L.pTemperature, L.pTemperaturePre)] if self.thermal else []
-        if self.conducting:                   # grad T* of the last step: this step's conduction (thermal.py)
+        if self.gradient_carried:             # grad T* of the last step: this step's conduction (thermal.py)
             self.carry_thermal.append((L.pTemperatureGradient, L.pTemperatureGradientPre))
 
     # -- scheduling ---------------------------------------------------------------------

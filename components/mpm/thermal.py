@@ -15,13 +15,19 @@ Uintah's MPM HeatConduction (explicit), written as three tasks per timestep:
 grad T_p is a particle variable carried from step to step, as Uintah's p.temperatureGradient:
 the conduction of step n+1 uses the gradient of step n's T* at the particles' positions of
 step n (zero at the start, so the first step conducts nothing). The lag is first order in dt.
+`<MPM><conduction_gradient>current` (pysus) takes grad T_p = sum_j T_j grad S_jp of this
+step's g.temperature instead, in computeInternalHeatRate: nothing is carried, and a ghost
+particle's grad T reads g.temperature at its own nodes, up to 2 ng beyond the patch, which
+the task requires from the neighbours (AroundCells 2 ng). The owned nodes' rates take only
+ghost particles within reach of them, whose nodes lie within ng; the wider halo keeps every
+ghost gradient defined.
 
 Since sum_i grad S_ip = 0, the conduction rates conserve sum_i m_i cv T_i exactly and the
 particle update hands every node's heat to its particles in proportion to S m: an
 insulated body keeps its heat to round-off. A particle near a nearly empty node takes
 S_ip dT_i/dt from it, whose 1/m_i the small S_ip cancels, so such nodes do not limit the
-step. Ghost particles bring their own grad T_p (AroundNodes), and every patch computes its
-own nodes in particle-ID order, so 1, 2, 3 ranks agree bitwise.
+step. Ghost particles bring their own grad T_p (AroundNodes) or the nodes to take it from, and
+every patch computes its own nodes in particle-ID order, so 1, 2, 3 ranks agree bitwise.
 
 The tasks run only when `<MPM><DoExplicitHeatConduction>` is true, MPMICE needs the
 solid temperature (heat exchange with a fluid) or a constitutive model reads it
@@ -31,7 +37,7 @@ dt <= rho cv / (2 k sum_d 1/dx_d^2) (the finite-difference limit); with the grad
 late a mode with dt lambda = -a grows as z^2 - z + a = 0, stable for a <= 1, half of that
 (measured: the bar of tests/mpm/test_thermal.py blows up at 0.6 of the Euler limit, runs at
 0.55). The stable timestep takes rho cv / (4 k sum_d 1/dx_d^2) into account (Uintah's has no
-thermal limit).
+thermal limit), with this step's gradient the Euler limit rho cv / (2 k sum_d 1/dx_d^2).
 """
 from __future__ import annotations
 
@@ -100,6 +106,33 @@ def heat_rate(kind, act, px, particle_volume, particle_temperature_gradient, lp,
         for q in range(_corners(kind, act)):
             st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
             _over_nodes(_conduct, kind, act, (st[0], st[1], st[2]), grid_heat_rate.shape, st[3:], True, 0.0, args)
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _gradient(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """grid_temperature_gradient at one node: += T_i grad S_ip."""
+    t0, t1, t2 = acc
+    T = args[n]
+    return t0 + T * ga * wb * wc, t1 + T * wa * gb * wc, t2 + T * wa * wb * gc
+
+
+@njit(cache=True, fastmath=FM)
+def grid_temperature_gradient(kind, act, px, lp, anchor, dx, node_low, grid_temperature, gradient_out):
+    """grad T_p = sum_i T_i grad S_ip of this step's g.temperature (<conduction_gradient>current);
+    every particle's nodes must lie in the node array."""
+    sh0, sh1, sh2 = grid_temperature.shape
+    na, nb, nc = _sizes(kind, act)
+    ih = _inv(dx, act)
+    ft = grid_temperature.reshape(-1)
+    for p in range(px.shape[0]):
+        acc = (0.0, 0.0, 0.0)
+        for q in range(_corners(kind, act)):
+            st = _stencil(kind, act, px, lp, p, anchor, ih, node_low, q)
+            i, j, k = st[0], st[1], st[2]
+            if not (i >= 0 and i + na <= sh0 and j >= 0 and j + nb <= sh1 and k >= 0 and k + nc <= sh2):
+                raise IndexError("particle's nodes lie outside the patch node arrays")
+            acc = _over_nodes(_gradient, kind, act, (i, j, k), (sh0, sh1, sh2), st[3:], False, acc, ft)
+        gradient_out[p, 0], gradient_out[p, 1], gradient_out[p, 2] = acc
 
 
 @njit(cache=True, fastmath=FM, inline="always")
@@ -223,6 +256,8 @@ class ThermalTasks:
                    or (carries_T and not self.heat_flag_given))
         self.thermal = conduct or carries_T
         self.conducting = [m for m, mat in enumerate(self.materials) if conduct and mat.conductivity > 0]
+        # grad T_p of the conduction: carried from the last step (Uintah's) or this step's (pysus)
+        self.gradient_carried = bool(self.conducting) and self.flags["conduction_gradient"] == "previous"
         for m in self.conducting:
             if self.materials[m].specific_heat <= 0:
                 raise self.materials[m].node.error(
@@ -242,16 +277,18 @@ class ThermalTasks:
                 raise child.error("<thermal_contact> takes no tags (Uintah's STThermalContact)")
         self.dt_thermal = np.inf
         ih2 = sum(1.0 / self.level.dx[d] ** 2 for d in range(3) if self.dims[d])
+        lag = 2.0 if self.gradient_carried else 1.0     # the last step's gradient halves the Euler limit
         for m in self.conducting:
             mat = self.materials[m]
-            self.dt_thermal = min(self.dt_thermal, mat.density * mat.specific_heat / (4.0 * mat.conductivity * ih2))
+            self.dt_thermal = min(self.dt_thermal,
+                                  mat.density * mat.specific_heat / (2.0 * lag * mat.conductivity * ih2))
 
     # -- scheduling ---------------------------------------------------------------------------
     def schedule_thermal_initialize(self, sched):
         if self.thermal:
             t = (Task("MPM::initializeTemperature", self.initialize_temperature, self.matls)
                  .requires(NEW, L.pID).requires(NEW, L.pMass).computes(L.pTemperature).computes(L.ThermalEnergy))
-            sched.add_task(t.computes(L.pTemperatureGradient) if self.conducting else t)
+            sched.add_task(t.computes(L.pTemperatureGradient) if self.gradient_carried else t)
 
     def schedule_heat_conduction(self, sched):
         """g.temperature and (with conduction) g.temperatureRate, after particles -> grid."""
@@ -267,7 +304,11 @@ class ThermalTasks:
         sched.add_task(t.computes(L.gTemperature))
         if self.conducting:
             t = Task("MPM::computeInternalHeatRate", self.internal_heat_rate, self.conducting).requires(NEW, L.gMass)
-            for lab in [L.pX, L.pVolume, L.pTemperatureGradient] + lp:
+            if self.gradient_carried:
+                t.requires(OLD, L.pTemperatureGradient, g, ng)
+            else:                                    # a ghost particle's grad T: its nodes, up to 2 ng out
+                t.requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, 2 * ng)
+            for lab in [L.pX, L.pVolume] + lp:
                 t.requires(OLD, lab, g, ng)
             if self.pressure_bcs and self.pressure_bcs.heat_flux:
                 t.requires(OLD, L.pLoadCurveID, g, ng).requires(OLD, FL.simTime).requires(OLD, L.PressureBCParticles)
@@ -289,18 +330,19 @@ class ThermalTasks:
             t.requires(NEW, L.gTemperatureRate, Ghost.AROUND_CELLS, self.ng, matls=self.conducting)
         for lab in self.thermal_rates + ((L.gThermalContactRate,) if self.thermal_contact else ()):
             t.requires(NEW, lab, Ghost.AROUND_CELLS, self.ng)
-        if self.temperature_bcs or self.conducting:
+        if self.temperature_bcs or self.gradient_carried:
             t.requires(NEW, L.gTemperature, Ghost.AROUND_CELLS, self.ng)
         if self.temperature_bcs:
             t.requires(NEW, L.gTemperatureNoBC, Ghost.AROUND_CELLS, self.ng)
-        if self.conducting:
+        if self.gradient_carried:
             t.computes(L.pTemperatureGradientPre)
         sched.add_task(t.computes(L.pTemperaturePre).computes(L.ThermalEnergy))
 
     # -- task bodies ----------------------------------------------------------------------------
     def initialize_temperature(self, patch, matls, old_dw, new_dw):
         """p.temperature = the <temperature> of the geometry object that made the particle
-        (object number = p.particleID >> 40, see Material.create); p.temperatureGradient = 0."""
+        (object number = p.particleID >> 40, see Material.create); p.temperatureGradient = 0 where
+        it is carried."""
         e = 0.0
         for m in matls:
             mat = self.materials[m]
@@ -308,7 +350,7 @@ class ThermalTasks:
             ids = new_dw.get(L.pID, m, patch)
             T = temps[(ids >> 40) - self._obj_base(m)] if len(ids) else np.zeros(0)
             new_dw.put(L.pTemperature, m, patch, np.ascontiguousarray(T))
-            if self.conducting:     # Uintah's ParticleCreator: zero, so the first step conducts nothing
+            if self.gradient_carried:    # Uintah's ParticleCreator: zero, so the first step conducts nothing
                 new_dw.put(L.pTemperatureGradient, m, patch, np.zeros((len(ids), 3)))
             e += mat.specific_heat * float(np.dot(new_dw.get(L.pMass, m, patch), T)) if len(ids) else 0.0
         new_dw.put_reduction(L.ThermalEnergy, e)
@@ -348,7 +390,8 @@ class ThermalTasks:
     def internal_heat_rate(self, patch, matls, old_dw, new_dw):
         """g.temperatureRate = (-sum_p k V_p grad S_ip . grad T_p + sum_p S_ip q_p) / (m_i cv)
         (Uintah's computeInternalHeatRate and solveHeatEquations); q_p the heat rates of
-        the <heat_flux> BCs at the step's start (pressure.py), when the deck has any."""
+        the <heat_flux> BCs at the step's start (pressure.py), when the deck has any. grad T_p: the
+        carried p.temperatureGradient, or with <conduction_gradient>current this step's g.temperature's."""
         flux = self.pressure_bcs is not None and self.pressure_bcs.heat_flux
         lv = self.level
         low = np.array(patch.low_index(NC), np.int64)
@@ -357,9 +400,14 @@ class ThermalTasks:
             mat = self.materials[m]
             px = old_dw.get(L.pX, m, patch)
             acc = np.zeros(patch.alloc_shape(NC))
-            heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch),
-                      old_dw.get(L.pTemperatureGradient, m, patch), lps(old_dw, m, patch, len(px)),
-                      lv.anchor, lv.dx, low, mat.conductivity / mat.specific_heat, acc)
+            if self.gradient_carried:
+                gradient = old_dw.get(L.pTemperatureGradient, m, patch)
+            else:
+                gradient = np.empty((len(px), 3))
+                grid_temperature_gradient(kind, self.th_act, px, lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx,
+                                          low, new_dw.get(L.gTemperature, m, patch), gradient)
+            heat_rate(kind, self.th_act, px, old_dw.get(L.pVolume, m, patch), gradient,
+                      lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, mat.conductivity / mat.specific_heat, acc)
             if flux:
                 q = self.pressure_bcs.heat_rates(px, old_dw.get(L.pLoadCurveID, m, patch),
                                                  old_dw.get_reduction(FL.simTime),
@@ -370,7 +418,7 @@ class ThermalTasks:
 
     def update_particle_temperature(self, patch, matls, old_dw, new_dw):
         """T_p^{n+1} = T_p^n + dt sum S_ip (conduction + exchange rates)_i; ThermalEnergy; with
-        conduction the next step's p.temperatureGradient from g.temperatureStar = g.temperature
+        the gradient carried the next step's p.temperatureGradient from g.temperatureStar = g.temperature
         + dt (conduction + contact rates), the Temperature BCs applied (Uintah's
         integrateTemperatureRate; the MPMICE exchange rate is added after it, as in Uintah)."""
         lv = self.level
@@ -385,7 +433,7 @@ class ThermalTasks:
             if m in self.conducting:
                 rates.append(new_dw.get(L.gTemperatureRate, m, patch))
             t_star = None
-            if self.temperature_bcs or self.conducting:
+            if self.temperature_bcs or self.gradient_carried:
                 rate = _total(rates, shape)
                 t_star = new_dw.get(L.gTemperature, m, patch) + rate * dt
                 if self.temperature_bcs:
@@ -396,12 +444,12 @@ class ThermalTasks:
                                                shape))
             px = old_dw.get(L.pX, m, patch)
             T_new = np.empty(len(px))
-            gradient = np.empty((len(px) if self.conducting else 0, 3))
+            gradient = np.empty((len(px) if self.gradient_carried else 0, 3))
             e += g2p_heat(kind, self.th_act, px, old_dw.get(L.pTemperature, m, patch), old_dw.get(L.pMass, m, patch),
                           lps(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, rate, dt, T_new, mat.specific_heat,
                           rate if t_star is None else np.ascontiguousarray(t_star), gradient)
             new_dw.put(L.pTemperaturePre, m, patch, T_new)
-            if self.conducting:
+            if self.gradient_carried:
                 new_dw.put(L.pTemperatureGradientPre, m, patch, gradient)
         new_dw.put_reduction(L.ThermalEnergy, e)
 
