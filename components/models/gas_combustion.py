@@ -8,6 +8,7 @@ fractions are passive scalars of one ICE material, with finite-rate chemistry fr
       <closureSpecies> N2 </closureSpecies>       its Y = 1 - sum of the others, not transported
       <Y_init> [...] </Y_init>                    the tracked species (mechanism order, closure left out)
       <geom_object> pieces <Y> [...] </Y> </geom_object> ...   regions with other fractions
+      <initProfile> <filename/> <axis> x|y|z </axis> </initProfile>   a 1D profile file (below)
       <doChemistry/> <doDiffusion/> (true)  <rtol/> <atol_Y/> <atol_T/> (1e-12)
       <safety/> (0.9) <max_grow/> (2) <max_shrink/> (0.1)
     </gasCombustion></Model></Models>
@@ -23,13 +24,21 @@ energy of formation moves into sensible energy. With doDiffusion, the species di
 mixture-averaged coefficients (Fick's law on mole fractions with the mass-conserving correction)
 and carry their sensible enthalpy.
 
-Saved only when a deck asks: HeatReleaseRate (W/m^3), dt_chemistry (the smallest sub-step a cell
-took), viscosity and thermalCond (the mixture's), diffCoef-Y<k>.
+<initProfile> (Uintah's): every cell, extra cells included, takes T, the axis' velocity, rho and
+the tracked species from the file's rows (x T u rho p Y_1 .. Y_nt, '#' lines skipped) linearly
+interpolated at its centre (the end rows beyond them); cv, gamma and the speed of sound are the
+mixture's there (p = rho R_mix T, the file's p unused).
 
-pysus runs it in explicit ICE with one material, no LODI faces and the material's
-<dynamic_viscosity> and <thermal_conductivity> 0 (with them Uintah's ICE takes the mixture's
-values per cell in its viscous and conduction terms, which pysus's do not yet); these are
-refused with one line. <units> other than SI and <initProfile> are refused as well.
+The mixture's viscosity (Wilke's rule) and thermal conductivity, of the step's start, are
+ICE's viscosity and thermalCond where the material's <dynamic_viscosity> or
+<thermal_conductivity> is non-zero (they turn ICE's viscous and conduction terms on, as in
+Uintah): the stress, the heat flux and the delT's diffusion limit then use them per cell
+(0 with doDiffusion false). Saved only when a deck asks: HeatReleaseRate (W/m^3), dt_chemistry
+(the smallest sub-step a cell took), viscosity and thermalCond, diffCoef-Y<k>.
+
+pysus runs it in explicit ICE with one material (LODI faces allowed), without
+<dynamicViscosityModels>, <turbulence> or the conservative delT; <units> other than SI are
+refused.
 """
 from __future__ import annotations
 
