@@ -274,8 +274,10 @@ class IceTasks:
                 # Uintah's per-cell limit with the mixture's cv, gamma and (after a step) mu, k
                 inv_sum = sum(1.0 / dx[d] ** 2 for d in range(3) if count[d])
                 shape = patch.alloc_shape(VarType.CC)
-                k_cells = new_dw.get(I.thermalCond, m, patch) if per_cell_transport else np.full(shape, mat.conductivity)
-                mu_cells = new_dw.get(I.viscosity, m, patch) if per_cell_transport else np.full(shape, mat.viscosity)
+                if per_cell_transport:
+                    k_cells, mu_cells = new_dw.get(I.thermalCond, m, patch), new_dw.get(I.viscosity, m, patch)
+                else:
+                    k_cells, mu_cells = np.full(shape, mat.conductivity), np.full(shape, mat.viscosity)
                 dt = min(dt, K.stable_dt_diffusion_cells(new_dw.get(I.specific_heat, m, patch),
                                                          new_dw.get(I.gamma, m, patch), k_cells, mu_cells, sp_vol,
                                                          b.lo, b.hi, self.knob_diffusion, inv_sum))

@@ -281,7 +281,7 @@ class GasCombustion:
             t.requires(OLD, s.f)
         for lab in self.diff_coef:
             t.computes(lab)
-        sched.add_task(t)                       # only when saved
+        sched.add_task(t)                       # for ICE's viscous, conduction and delT terms, or when saved
 
     def lagrangian_requires(self, t):
         t.requires(NEW, ML.modelEng_src, matls=[self.matl])

@@ -258,10 +258,10 @@ def _mutated(tmp_path, old, new):
      "7 mass fractions; accepted: 8, the tracked species H H2 O OH H2O O2 HO2 H2O2"),
     ("<closureSpecies> N2 </closureSpecies>", "<closureSpecies> Ar </closureSpecies>",
      "closure species Ar is not in the mechanism"),
-    ("<closureSpecies>", "<initProfile> <filename> nowhere.dat </filename> <axis> x </axis> </initProfile> <closureSpecies>",
-     "profile file nowhere.dat not found"),
-    ("<closureSpecies>", "<initProfile> <filename> nowhere.dat </filename> <axis> r </axis> </initProfile> <closureSpecies>",
-     "<axis> r; accepted: x, y, z"),
+    ("<closureSpecies>", "<initProfile> <filename> nowhere.dat </filename> <axis> x </axis> </initProfile>"
+     " <closureSpecies>", "profile file nowhere.dat not found"),
+    ("<closureSpecies>", "<initProfile> <filename> nowhere.dat </filename> <axis> r </axis> </initProfile>"
+     " <closureSpecies>", "<axis> r; accepted: x, y, z"),
     (f"<mechanismFile> {MECH}", "<mechanismFile> nowhere/Burke2012Modified.xml", "not found"),
 ])
 def test_deck_errors(tmp_path, old, new, message):
