@@ -487,12 +487,26 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
 
     def schedule_compute_stable_timestep(self, level, sched):
         g = (G, 1) if self.conservative_dt else ()     # the swept volume reads neighbours
-        t = Task("ICE::computeStableTimestep", self.stable_timestep, self.matls) \
+        step = sched.graph_name == "timestep"
+        t = Task("ICE::computeStableTimestep", self.stable_timestep_step if step else self.stable_timestep,
+                 self.matls) \
             .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g) \
             .requires(NEW, I.speedSound_CC, *g).computes(L.delT)
         if self.cv_matls:
             t.requires(NEW, I.specific_heat, matls=self.cv_matls)
+        transport = self._transport_matls()
+        if transport:
+            t.requires(NEW, I.gamma, matls=transport)
+            if step:
+                t.requires(NEW, I.viscosity, matls=transport).requires(NEW, I.thermalCond, matls=transport)
         sched.add_task(t)
+
+    def _transport_matls(self):
+        """The materials whose viscosity and thermal conductivity a model gives per cell (those
+        with a model owning their caloric EOS, and a non-zero <dynamic_viscosity> or
+        <thermal_conductivity>, which turn ICE's diffusion terms on as in Uintah)."""
+        return sorted(m for m in self.caloric
+                      if self.materials[m].viscosity > 0 or self.materials[m].conductivity > 0)
 
     def schedule_time_advance(self, level, sched):
         m0 = [0]
@@ -577,9 +591,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                        .requires(NEW, I.delP_MassX, matls=m0).requires(NEW, I.vol_frac_CC)
                        .requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC).computes(I.term2, matls=m0))
 
-        if self.viscous:
-            sched.add_task(Task("ICE::computeThermoTransportProperties", self.viscosity_field, self.matls)
+        transport = self._transport_matls()
+        own_mu = [m for m in self.matls if m not in self.caloric]     # (the models compute the others')
+        if self.viscous and own_mu:
+            sched.add_task(Task("ICE::computeThermoTransportProperties", self.viscosity_field, own_mu)
                            .requires(OLD, I.temp_CC).computes(I.viscosity))                 # only when saved
+        if self.viscous:
             turb = self.turbulence
             if turb is not None:
                 # Uintah's Turbulence::callTurb: the subgrid-scale viscosity from the face velocities
@@ -595,19 +612,26 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                 .requires(OLD, I.temp_CC, G, 1).computes(I.viscous_src_CC)
             if turb is not None:
                 t.requires(NEW, I.total_viscosity_CC, G, 1)
+            if transport:
+                t.requires(NEW, I.viscosity, G, 1, matls=transport)
             sched.add_task(t)
             t = Task("ICE::computeTauFC", self.tau_fc, self.matls) \
                 .requires(OLD, I.vel_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1) \
                 .requires(OLD, I.temp_CC, G, 1)    # only when saved
             if turb is not None:
                 t.requires(NEW, I.total_viscosity_CC, G, 1)
+            if transport:
+                t.requires(NEW, I.viscosity, G, 1, matls=transport)
             for d in dirs:
                 t.computes(I.TAU_FC[d])
             sched.add_task(t)
         if self.conduction:
-            sched.add_task(Task("ICE::computeHeatFlux", self.conduction_source, self.matls)
-                           .requires(OLD, L.delT).requires(OLD, I.temp_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1)
-                           .computes(I.heatCond_src_CC))
+            t = Task("ICE::computeHeatFlux", self.conduction_source, self.matls) \
+                .requires(OLD, L.delT).requires(OLD, I.temp_CC, G, 1).requires(NEW, I.vol_frac_CC, G, 1) \
+                .computes(I.heatCond_src_CC)
+            if transport:
+                t.requires(NEW, I.thermalCond, G, 1, matls=transport)
+            sched.add_task(t)
 
         t = Task("ICE::computeLagrangianValues", self.lagrangian_values, self.matls) \
             .requires(OLD, L.delT).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(OLD, I.temp_CC) \
@@ -616,9 +640,10 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
             .computes(I.mass_L_CC).computes(I.mom_L_CC).computes(I.int_eng_L_CC)
         for d in dirs:
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)
-        if not self.exchange:
+        lodi_caloric = lodi and bool(self.caloric)      # its exchange needs the species' m Y_L: a task of its own
+        if not self.exchange and not lodi_caloric:
             t.computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
-        if lodi:
+        if lodi and not lodi_caloric:
             t.requires(NEW, I.maxMach_faces)
         if self.conserve_energy:
             t.computes(I.tot_eng_L_CC)
@@ -658,6 +683,17 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         sched.add_task(t)
 
         self.schedule_transported(sched, self.matls)
+        if lodi_caloric:
+            # Uintah's exchange task with a model-owned caloric EOS: after computeLagrangian_Transported_Vars
+            t = Task("ICE::addExchangeToMomentumAndEnergy", self.lodi_exchange_caloric, self.matls) \
+                .requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_CC).requires(NEW, I.int_eng_L_CC) \
+                .requires(OLD, I.rho_CC).requires(NEW, I.press_CC, matls=m0).requires(NEW, I.speedSound_CC) \
+                .requires(NEW, I.maxMach_faces).requires(NEW, I.gamma) \
+                .computes(I.mom_L_ME_CC).computes(I.int_eng_L_ME_CC)
+            for model in self.caloric.values():
+                for sp in model.species:
+                    t.requires(NEW, sp.f_L, matls=[model.matl])
+            sched.add_task(t)
 
         t = Task("ICE::advectAndAdvanceInTime", self.advect_and_advance, self.matls) \
             .requires(OLD, L.delT).requires(NEW, I.mass_L_CC, G, gadv).requires(NEW, I.mom_L_ME_CC, G, gadv) \
@@ -671,6 +707,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         self.advect_scalars(t, gadv)
         if lodi:
             t.requires(NEW, I.press_CC, matls=m0).requires(NEW, I.speedSound_CC).requires(NEW, I.maxMach_faces)
+            if self.caloric:
+                t.requires(NEW, I.gamma, matls=sorted(self.caloric))
         if cvm:
             t.requires(NEW, I.specific_heat, matls=cvm)
         sched.add_task(t)

@@ -741,24 +741,42 @@ def rho_micro_fill(press, temp, out, guess, code, params, cv, gamma):
 
 
 @njit(cache=True)
+def stable_dt_diffusion_cells(cv, gamma, conductivity, viscosity, sp_vol, lo, hi, knob, inv_sum):
+    """The diffusion limit 0.5 / (inv_sum D) of Uintah's aggressive delT with the cells' own
+    cp = cv gamma, thermal conductivity and viscosity (knob_for_diffusion scaling both):
+    D = max(k v / cp, mu v) per cell, the smallest limit over the cells lo..hi."""
+    dt = np.inf
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            for k in range(lo[2], hi[2]):
+                cp = cv[i, j, k] * gamma[i, j, k]
+                v = sp_vol[i, j, k]
+                inv_thermal = cp / (v * knob * conductivity[i, j, k] + TINY)
+                inv_kinematic = 1.0 / (knob * viscosity[i, j, k] * v + TINY)
+                dt = min(dt, 0.5 * min(inv_thermal, inv_kinematic) / inv_sum)
+    return dt
+
+
+@njit(cache=True)
 def diffusion_source(q, vf, coef, out, dims, lo, hi, dx, dt, vol):
     """Viscous / heat-conduction source (eqs. 8-9): out = dt V div(theta c grad q), per component.
 
-    q is (..., ncomp); face coefficients are harmonic means of theta c of the two cells.
+    q is (..., ncomp), coef the cells' coefficient; face coefficients are harmonic means of
+    theta c of the two cells (Uintah's q_flux_FC).
     """
     nc = q.shape[3]
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                c0 = coef * vf[i, j, k]
+                c0 = coef[i, j, k] * vf[i, j, k]
                 for c in range(nc):
                     s = 0.0
                     for d in range(3):
                         if not dims[d]:
                             continue
                         di, dj, dk = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
-                        cp = coef * vf[i + di, j + dj, k + dk]
-                        cm = coef * vf[i - di, j - dj, k - dk]
+                        cp = coef[i + di, j + dj, k + dk] * vf[i + di, j + dj, k + dk]
+                        cm = coef[i - di, j - dj, k - dk] * vf[i - di, j - dj, k - dk]
                         kp = 2.0 * c0 * cp / (c0 + cp + TINY)
                         km = 2.0 * c0 * cm / (c0 + cm + TINY)
                         s += (kp * (q[i + di, j + dj, k + dk, c] - q[i, j, k, c])

@@ -40,6 +40,7 @@ PRESS_FC = (L.create("pressX_FC", X), L.create("pressY_FC", Y), L.create("pressZ
 # optional physics sources (viscous stress, heat conduction)
 viscous_src_CC = L.create("viscous_src_CC", CC, (3,))
 viscosity = L.create("viscosity", CC)            # dynamic viscosity (<dynamic_viscosity> and its models)
+thermalCond = L.create("thermalCond", CC)        # thermal conductivity (a model's per cell; gasCombustion)
 heatCond_src_CC = L.create("heatCond_src_CC", CC)
 turb_viscosity_CC = L.create("turb_viscosity_CC", CC)      # <turbulence>: the subgrid-scale viscosity
 total_viscosity_CC = L.create("total_viscosity_CC", CC)    # and molecular + subgrid-scale (turbulence.py)

@@ -25,6 +25,7 @@ from numba import njit
 
 from . import kernels as K
 from . import labels as I
+from .specific_heat import cv_at
 
 PRESS, DENSITY, TEMP = 0, 1, 2
 # Uintah's fixed corner values (LODI2.cc: FacePress/Density/Temp/Vel_LODI)
@@ -150,7 +151,8 @@ def wave_amplitudes(L, rho, press, vel, cs, d, side, dx, max_mach, p, length, g_
 @njit(cache=True, error_model="numpy")
 def fill_scalar(q, kind, L, rho, vel, cs, gamma, d, side, dx, lo, hi):
     """press_CC, rho_CC or temp_CC (kind) in the extra cells of face (d, side) from the first
-    interior cell and the L's (table 6); vel, rho, cs: that stage's fields."""
+    interior cell and the L's (table 6); vel, rho, cs: that stage's fields; gamma: the material's
+    (a number) or per cell (the mixture's of a model owning the caloric EOS)."""
     e = lo[d] - 1 if side == 0 else hi[d]
     n = lo[d] if side == 0 else hi[d] - 1
     sign = -1.0 if side == 0 else 1.0
@@ -168,7 +170,8 @@ def fill_scalar(q, kind, L, rho, vel, cs, gamma, d, side, dx, lo, hi):
                 dq = L2 / (un + TINY) + (L5 / (un + C) + L1 / (un - C)) / (C * C)
             else:
                 t1 = q[c] / (rho[c] * C * C)
-                dq = t1 * (-(L2 / (un + TINY)) + (gamma - 1.0) * (L5 / (un + C) + L1 / (un - C)))
+                g = cv_at(gamma, c[0], c[1], c[2])
+                dq = t1 * (-(L2 / (un + TINY)) + (g - 1.0) * (L5 / (un + C) + L1 / (un - C)))
             q[ce] = q[c] + sign * dx * dq
 
 
@@ -291,7 +294,8 @@ class LodiTasks:
                     fill_velocity(q, L, rho, cs, d, side, dx, b.lo, b.hi)
                     fill_edges(q, d, side, np.zeros(3), at_lo, at_hi, dims, b.lo, b.hi)
                 else:
-                    fill_scalar(q, kind, L, rho, vel, cs, self.gammas[m], d, side, dx, b.lo, b.hi)
+                    gamma = self._gamma(new_dw, m, patch) if kind == TEMP else 0.0
+                    fill_scalar(q, kind, L, rho, vel, cs, gamma, d, side, dx, b.lo, b.hi)
                     fill_edges(q[..., None], d, side, np.array([CORNER[kind]]), at_lo, at_hi, dims, b.lo, b.hi)
 
     def lodi_press(self, patch, press, cs, old_dw, new_dw):
@@ -316,6 +320,30 @@ class LodiTasks:
         mom_me = new_dw.allocate(I.mom_L_ME_CC, m, patch, fill=None)
         eng_me = new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None)
         K.primitive_to_lagrangian(mass, vel, temp, cv, mom_me, eng_me, b.olo, b.ohi)
+
+    def lodi_exchange_caloric(self, patch, matls, old_dw, new_dw):
+        """lodi_exchange where a model owns the material's caloric EOS (Uintah's exchange task
+        then): T from e_s = int_eng_L / mass_L and the Lagrangian species Y_L = (m Y)_L / mass_L
+        in every cell, the faces' conditions on u and T, then int_eng_L_ME = mass_L e_s(T, Y_L)."""
+        b = self.boxes(patch)
+        own = tuple(slice(l, h) for l, h in zip(b.olo, b.ohi))
+        for m in matls:
+            model = self.caloric[m]
+            mass, mom, eng = (new_dw.get(lab, m, patch) for lab in (I.mass_L_CC, I.mom_L_CC, I.int_eng_L_CC))
+            y = np.ones((len(model.species),) + mass.shape)
+            for s, sp in enumerate(model.species):
+                y[s][own] = new_dw.get(sp.f_L, m, patch)[own] / mass[own]
+            vel, es, temp = np.zeros(mom.shape), np.ones(eng.shape), np.ones(eng.shape)
+            K.lagrangian_to_primitive(mass, mom, eng, 1.0, vel, es, b.olo, b.ohi)
+            model.temperature(patch, es, y, temp, b.olo, b.ohi)
+            self.lodi_set(patch, new_dw, old_dw.get(I.rho_CC, m, patch), new_dw.get(I.press_CC, 0, patch), vel,
+                          new_dw.get(I.speedSound_CC, m, patch), [(VEL, vel), (TEMP, temp)])
+            self.bcs.velocity(patch, vel, m, b)
+            self.bcs.scalar(patch, temp, "Temperature", m, b)
+            model.sensible_energy(temp, y, es, b.olo, b.ohi)
+            mom_me = new_dw.allocate(I.mom_L_ME_CC, m, patch, fill=None)
+            eng_me = new_dw.allocate(I.int_eng_L_ME_CC, m, patch, fill=None)
+            K.primitive_to_lagrangian(mass, vel, es, 1.0, mom_me, eng_me, b.olo, b.ohi)
 
     def lodi_advected(self, patch, m, rho, vel, temp, new_dw):
         """rho_CC, vel_CC and temp_CC after advection (Uintah's Advection stage: the L's of the

@@ -241,7 +241,12 @@ class IceTasks:
             press[cell_fractions(piece, patch.level, own, g["res"]) > 0.0] = g["pressure"]
         return press
 
-    def stable_timestep(self, patch, matls, old_dw, new_dw):
+    def stable_timestep_step(self, patch, matls, old_dw, new_dw):
+        """stable_timestep at a step's end: a model owning a material's caloric EOS gives its
+        cells' own viscosity and thermal conductivity (at the start, the material's values)."""
+        self.stable_timestep(patch, matls, old_dw, new_dw, per_cell_transport=True)
+
+    def stable_timestep(self, patch, matls, old_dw, new_dw, per_cell_transport=False):
         """Uintah's delT (ICE::actuallyComputeStableTimestep): 'aggressive' (the default) is
         cfl min dx / (knob c + |u|) over cells, materials and directions, and the diffusion
         limit cfl / (2 D sum 1/dx^2); 'conservative' is cfl vol / swept outflow volume. Like
@@ -265,7 +270,18 @@ class IceTasks:
                                                b.hi, self.knob, mat.conductivity, mat.viscosity, grav_vel))
                 continue
             dt = min(dt, K.stable_dt(vel, speed_sound, count, dx, b.lo, b.hi, np.arange(3), self.knob))
-            if mat.viscosity > 0 or mat.conductivity > 0:
+            if m in self.caloric and (mat.viscosity > 0 or mat.conductivity > 0):
+                # Uintah's per-cell limit with the mixture's cv, gamma and (after a step) mu, k
+                inv_sum = sum(1.0 / dx[d] ** 2 for d in range(3) if count[d])
+                shape = patch.alloc_shape(VarType.CC)
+                if per_cell_transport:
+                    k_cells, mu_cells = new_dw.get(I.thermalCond, m, patch), new_dw.get(I.viscosity, m, patch)
+                else:
+                    k_cells, mu_cells = np.full(shape, mat.conductivity), np.full(shape, mat.viscosity)
+                dt = min(dt, K.stable_dt_diffusion_cells(new_dw.get(I.specific_heat, m, patch),
+                                                         new_dw.get(I.gamma, m, patch), k_cells, mu_cells, sp_vol,
+                                                         b.lo, b.hi, self.knob_diffusion, inv_sum))
+            elif mat.viscosity > 0 or mat.conductivity > 0:
                 sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
                 diffusivity = self.knob_diffusion * float(sp_vol[sl].max()) * max(
                     mat.conductivity / cp, mat.viscosity)
@@ -527,10 +543,23 @@ class IceTasks:
             new_dw.put(I.total_viscosity_CC, m, patch, tot)
 
     def _stress_viscosity(self, patch, m, old_dw, new_dw):
-        """The viscosity of the stress: total_viscosity_CC with a turbulence model, else mu."""
+        """The viscosity of the stress: total_viscosity_CC with a turbulence model, the mixture's
+        per cell (viscosity) where a model owns the material's caloric EOS, else mu."""
         if self.turbulence is not None:
             return new_dw.get(I.total_viscosity_CC, m, patch)
+        if m in self.caloric:
+            return new_dw.get(I.viscosity, m, patch)
         return self._mu(patch, m, old_dw)
+
+    def _conductivity(self, patch, m, new_dw):
+        """The cells' thermal conductivity: the mixture's (thermalCond) where a model owns the
+        material's caloric EOS, else a cached array of <thermal_conductivity>."""
+        if m in self.caloric:
+            return new_dw.get(I.thermalCond, m, patch)
+        key = ("k", m, patch.id, patch.alloc_shape(VarType.CC))
+        if key not in self._geom_cache:
+            self._geom_cache[key] = np.full(patch.alloc_shape(VarType.CC), float(self.materials[m].conductivity))
+        return self._geom_cache[key]
 
     def viscous_source(self, patch, matls, old_dw, new_dw):
         """Uintah's viscous_src_CC = V div(tau) (a force: the Lagrangian momentum adds dt times it)."""
@@ -564,7 +593,7 @@ class IceTasks:
         for m in matls:
             out = new_dw.allocate(I.heatCond_src_CC, m, patch)
             K.diffusion_source(old_dw.get(I.temp_CC, m, patch)[..., None], new_dw.get(I.vol_frac_CC, m, patch),
-                               self.materials[m].conductivity, out[..., None], self.dims, b.lo, b.hi,
+                               self._conductivity(patch, m, new_dw), out[..., None], self.dims, b.lo, b.hi,
                                patch.level.dx, dt, b.vol)
 
     # -- steps 8-9: sources and Lagrangian values (eqs. 33-37) ----------------------------------
@@ -598,7 +627,8 @@ class IceTasks:
             for model in self.source_models:        # Uintah's modelMom_src, modelEng_src
                 model.add_lagrangian(patch, m, mass, mom, eng, old_dw, new_dw)
             if self.lodi is not None:
-                self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
+                if m not in self.caloric:           # else lodi_exchange_caloric, after the species' m Y_L
+                    self.lodi_exchange(patch, m, mass, mom, eng, old_dw, new_dw)
             elif not self.exchange:
                 self._lagrangian_bcs(patch, m, mass, mom, eng, b, new_dw, cv)
                 new_dw.put(I.mom_L_ME_CC, m, patch, mom)      # no exchange: the same arrays

@@ -8,6 +8,7 @@ fractions are passive scalars of one ICE material, with finite-rate chemistry fr
       <closureSpecies> N2 </closureSpecies>       its Y = 1 - sum of the others, not transported
       <Y_init> [...] </Y_init>                    the tracked species (mechanism order, closure left out)
       <geom_object> pieces <Y> [...] </Y> </geom_object> ...   regions with other fractions
+      <initProfile> <filename/> <axis> x|y|z </axis> </initProfile>   a 1D profile file (below)
       <doChemistry/> <doDiffusion/> (true)  <rtol/> <atol_Y/> <atol_T/> (1e-12)
       <safety/> (0.9) <max_grow/> (2) <max_shrink/> (0.1)
     </gasCombustion></Model></Models>
@@ -23,13 +24,21 @@ energy of formation moves into sensible energy. With doDiffusion, the species di
 mixture-averaged coefficients (Fick's law on mole fractions with the mass-conserving correction)
 and carry their sensible enthalpy.
 
-Saved only when a deck asks: HeatReleaseRate (W/m^3), dt_chemistry (the smallest sub-step a cell
-took), viscosity and thermalCond (the mixture's), diffCoef-Y<k>.
+<initProfile> (Uintah's): every cell, extra cells included, takes T, the axis' velocity, rho and
+the tracked species from the file's rows (x T u rho p Y_1 .. Y_nt, '#' lines skipped) linearly
+interpolated at its centre (the end rows beyond them); cv, gamma and the speed of sound are the
+mixture's there (p = rho R_mix T, the file's p unused).
 
-pysus runs it in explicit ICE with one material, no LODI faces and the material's
-<dynamic_viscosity> and <thermal_conductivity> 0 (with them Uintah's ICE takes the mixture's
-values per cell in its viscous and conduction terms, which pysus's do not yet); these are
-refused with one line. <units> other than SI and <initProfile> are refused as well.
+The mixture's viscosity (Wilke's rule) and thermal conductivity, of the step's start, are
+ICE's viscosity and thermalCond where the material's <dynamic_viscosity> or
+<thermal_conductivity> is non-zero (they turn ICE's viscous and conduction terms on, as in
+Uintah): the stress, the heat flux and the delT's diffusion limit then use them per cell
+(0 with doDiffusion false). Saved only when a deck asks: HeatReleaseRate (W/m^3), dt_chemistry
+(the smallest sub-step a cell took), viscosity and thermalCond, diffCoef-Y<k>.
+
+pysus runs it in explicit ICE with one material (LODI faces allowed), without
+<dynamicViscosityModels>, <turbulence> or the conservative delT; <units> other than SI are
+refused.
 """
 from __future__ import annotations
 
@@ -49,7 +58,6 @@ CC = VarType.CC
 HeatReleaseRate = L.create("HeatReleaseRate", CC)
 dt_chemistry = L.create("dt_chemistry", CC)
 dt_chemistry_limiter = L.create("dt_chemistry_limiter", CC)
-thermalCond = L.create("thermalCond", CC)
 SI_UNITS = {"length": "m", "mass": "kg", "time": "s", "temperature": "K"}
 
 
@@ -115,10 +123,8 @@ class GasCombustion:
                 u = units.get(tag, "str", si).strip()
                 if u != si:
                     raise units.child(tag).error(f"<{tag}> {u}: pysus's gasCombustion takes SI units; accepted: {si}")
-        if gc.child("initProfile") is not None:
-            raise gc.child("initProfile").error("<initProfile> (a 1D profile file) is not available; accepted: "
-                                                "<Y_init> and <geom_object> regions")
         self.y_init = self._fractions(gc, "Y_init", nt)
+        self.profile = self._read_profile(gc.child("initProfile"), nt) if gc.has("initProfile") else None
         self.regions = []
         for go in gc.children("geom_object"):
             self.regions.append((geo.read_object(go), self._fractions(go, "Y", nt)))
@@ -142,6 +148,42 @@ class GasCombustion:
         return y
 
     @staticmethod
+    def _read_profile(node, nt):
+        """<initProfile>: the file's rows x T u rho p Y_1 .. Y_nt (the tracked species in mechanism
+        order; '#' lines and blank lines skipped, further columns ignored) as (axis, x, table) with
+        table's rows T, u, rho, Y_1 .. Y_nt (Uintah's gasCombustion reads the same columns; it
+        takes p from rho R_mix T instead of the file's)."""
+        axis_name = node.get("axis", "str").strip().upper()
+        if axis_name not in ("X", "Y", "Z"):
+            raise node.child("axis").error(f"<axis> {axis_name.lower()}; accepted: x, y, z")
+        name = node.get("filename", "str").strip()
+        path = find_mechanism_file(name, node.filename)
+        if path is None:
+            raise node.child("filename").error(f"profile file {name} not found (looked in the working directory, next "
+                                               "to the deck and in the deck's parent folders)")
+        rows = []
+        with open(path) as f:
+            for number, line in enumerate(f, 1):
+                if not line.strip() or line.startswith("#"):
+                    continue
+                words = line.split()
+                try:
+                    values = [float(w) for w in words[:5 + nt]]
+                except ValueError:
+                    raise node.child("filename").error(f"{path}:{number}: cannot read numbers from this row") from None
+                if len(values) < 5 + nt:
+                    raise node.child("filename").error(f"{path}:{number}: {len(values)} columns; accepted: x T u rho p "
+                                                       f"and the {nt} tracked species' mass fractions")
+                rows.append(values)
+        if len(rows) < 2:
+            raise node.child("filename").error(f"{path}: {len(rows)} data rows; accepted: at least 2")
+        data = np.array(rows)
+        if np.any(np.diff(data[:, 0]) <= 0.0):
+            raise node.child("filename").error(f"{path}: the positions x (first column) must increase row by row")
+        table = np.ascontiguousarray(np.delete(data[:, 1:], 3, axis=1).T)     # T u rho Y..., p left out
+        return "XYZ".index(axis_name), np.ascontiguousarray(data[:, 0]), table
+
+    @staticmethod
     def _list(node, tag):
         text = node.get(tag, "str").replace("[", " ").replace("]", " ").replace(",", " ")
         try:
@@ -157,13 +199,16 @@ class GasCombustion:
             raise where.error("gasCombustion is available with one ICE material (ICE alone)")
         if ice.implicit:
             raise where.error("gasCombustion is available with explicit ICE only (no <ImplicitSolver>)")
-        if ice.lodi is not None:
-            raise where.error("gasCombustion is not available with LODI boundaries")
         if ice.conserve_energy:
             raise where.error("gasCombustion is not available with <conserveTotalEnergy>")
-        if mat.viscosity != 0.0 or mat.conductivity != 0.0:
-            raise where.error("gasCombustion runs with the material's <dynamic_viscosity> and <thermal_conductivity> 0 "
-                              "(Uintah's ICE then takes the mixture's values per cell, pysus's does not yet)")
+        if getattr(mat, "viscosity_models", None):
+            raise where.error("gasCombustion gives the material's viscosity itself; accepted: no "
+                              "<dynamicViscosityModels>")
+        if ice.turbulence is not None:
+            raise where.error("gasCombustion is not available with a <turbulence> model")
+        if ice.conservative_dt and (mat.viscosity > 0.0 or mat.conductivity > 0.0):
+            raise where.error("gasCombustion with a non-zero <dynamic_viscosity> or <thermal_conductivity> takes the "
+                              "aggressive delT; accepted: <Scheme_for_delT_calc> aggressive")
         if getattr(mat, "cv_model", None) is not None:
             raise where.error("gasCombustion gives the material's cv itself; accepted: no <SpecificHeatModel>")
 
@@ -199,14 +244,23 @@ class GasCombustion:
             raise RuntimeError(f"gasCombustion: no temperature for the sensible energy in cell {self._cell(patch, bad)} "
                                "(Newton's method did not converge)")
 
+    def sensible_energy(self, temp, y, es, lo, hi):
+        """es = e_s(T, Y) over [lo, hi) (y: the tracked species, an (nt, ...) array)."""
+        GK.energy_cells(self.kin, y, lo, hi, (temp, es))
+
     @staticmethod
     def _cell(patch, ijk):
         return tuple(int(a) + int(b) for a, b in zip(ijk, patch.low_index(VarType.CC)))
 
     # -- scheduling (the ICE component calls these) ----------------------------------------------
     def schedule_initialize(self, sched):
-        t = Task("gasCombustion::initialize", self.initialize, [self.matl]).requires(NEW, I.temp_CC) \
+        t = Task("gasCombustion::initialize", self.initialize, [self.matl]) \
             .modifies(I.specific_heat).modifies(I.gamma)
+        if self.profile is None:
+            t.requires(NEW, I.temp_CC)
+        else:
+            for lab in (I.temp_CC, I.vel_CC, I.rho_CC, I.sp_vol_CC, I.speedSound_CC):
+                t.modifies(lab)
         for s in self.species:
             t.computes(s.f)
         sched.add_task(t)
@@ -222,12 +276,12 @@ class GasCombustion:
         sched.add_task(Task("gasCombustion::zeroSources", self.zero_sources, [self.matl])    # only when saved
                        .computes(ML.modelMass_src).computes(ML.modelMom_src))
         t = Task("gasCombustion::transportProperties", self.transport_task, [self.matl]) \
-            .requires(OLD, I.temp_CC).requires(OLD, I.rho_CC).computes(I.viscosity).computes(thermalCond)
+            .requires(OLD, I.temp_CC).requires(OLD, I.rho_CC).computes(I.viscosity).computes(I.thermalCond)
         for s in self.species:
             t.requires(OLD, s.f)
         for lab in self.diff_coef:
             t.computes(lab)
-        sched.add_task(t)                       # only when saved
+        sched.add_task(t)                       # for ICE's viscous, conduction and delT terms, or when saved
 
     def lagrangian_requires(self, t):
         t.requires(NEW, ML.modelEng_src, matls=[self.matl])
@@ -250,9 +304,42 @@ class GasCombustion:
                 hit = piece.inside(x).reshape(arrs[0][inner].shape)
                 for a, yk in zip(arrs, y):
                     a[inner][hit] = yk
+        if self.profile is not None:
+            self._initialize_profile(patch, b, arrs, new_dw)
+            return
         temp = new_dw.get(I.temp_CC, self.matl, patch)
         self.thermo(patch, temp, new_dw.get_modifiable(I.specific_heat, self.matl, patch),
                     new_dw.get_modifiable(I.gamma, self.matl, patch), np.stack(arrs), b.olo, b.ohi)
+
+    def _initialize_profile(self, patch, b, arrs, new_dw):
+        """<initProfile> (Uintah's gasCombustion::initialize): every cell, extra cells included,
+        takes T, the axis' velocity (the others 0), rho (sp_vol = 1 / rho) and the species from
+        the profile at its centre; cv, gamma and the speed of sound are the mixture's there."""
+        axis, px, table = self.profile
+        m = self.matl
+        lv = patch.level
+        dx = lv.dx[axis]
+        idx = np.arange(b.olo[axis], b.ohi[axis]) + patch.low_index(VarType.CC)[axis]
+        xq = lv.anchor[axis] + dx * idx + dx * 0.5        # Uintah's Level::getCellPosition
+        vals = np.empty((table.shape[0], xq.size))
+        GK.interpolate_profile(px, table, xq, vals)
+        shape = [1, 1, 1]
+        shape[axis] = xq.size
+        own = tuple(slice(l, h) for l, h in zip(b.olo, b.ohi))
+        temp, vel, rho, spv, cs = (new_dw.get_modifiable(lab, m, patch) for lab in
+                                   (I.temp_CC, I.vel_CC, I.rho_CC, I.sp_vol_CC, I.speedSound_CC))
+        temp[own] = vals[0].reshape(shape)
+        vel[own] = 0.0
+        vel[own + (axis,)] = vals[1].reshape(shape)
+        rho[own] = vals[2].reshape(shape)
+        spv[own] = 1.0 / rho[own]
+        for a, v in zip(arrs, vals[3:]):
+            a[own] = v.reshape(shape)
+        bad = GK.sound_cells(self.kin, np.stack(arrs), b.olo, b.ohi,
+                             (temp, rho, new_dw.get_modifiable(I.specific_heat, m, patch),
+                              new_dw.get_modifiable(I.gamma, m, patch), cs))
+        if bad[0] >= 0:
+            raise RuntimeError(f"gasCombustion: the mixture's cv is negative in cell {self._cell(patch, bad)}")
 
     def sources_task(self, patch, matls, old_dw, new_dw):
         """The chemistry of every interior cell over delT (gas_kinetics.chemistry_cells), then the
@@ -294,7 +381,7 @@ class GasCombustion:
         m = self.matl
         temp, rho = old_dw.get(I.temp_CC, m, patch), old_dw.get(I.rho_CC, m, patch)
         mu = new_dw.allocate(I.viscosity, m, patch)
-        lam = new_dw.allocate(thermalCond, m, patch)
+        lam = new_dw.allocate(I.thermalCond, m, patch)
         diff = np.zeros((len(self.mech.names),) + temp.shape)
         GK.transport_cells(self.kin, self._y_stack(old_dw, patch), b.olo, b.ohi, (temp, rho, mu, lam, diff))
         if not self.do_diffusion:

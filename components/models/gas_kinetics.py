@@ -516,7 +516,26 @@ def _temperature_cell(mech, y, i, j, k, fields, work):
     return ok
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _sound_cell(mech, y, i, j, k, fields, work):
+    """cv, gamma and the speed of sound sqrt(gamma p / rho), p = rho R_mix T, of the mixture
+    (Uintah's gasCombustion::initialize with <initProfile>); False where cv < 0.
+    fields: (temp, rho, cv, gamma, speed_sound)."""
+    temp, rho, cv, gamma, cs = fields
+    t = temp[i, j, k]
+    cp, r = cv_cp_r(mech, t, y)
+    c = cp - r
+    if c < 0.0:
+        return False
+    g = cp / c
+    cv[i, j, k] = c
+    gamma[i, j, k] = g
+    cs[i, j, k] = np.sqrt(g * (rho[i, j, k] * r * t) / rho[i, j, k])
+    return True
+
+
 # kernel(mech, y_tr, lo, hi, fields) over the cells [lo, hi) -> the first failing cell or (-1, 0, 0)
+sound_cells = _over_cells(_sound_cell)
 thermo_cells = _over_cells(_thermo_cell)
 transport_cells = _over_cells(_transport_cell)
 energy_cells = _over_cells(_energy_cell)
@@ -647,3 +666,21 @@ def _mixture_diffusion(r_gas, mw, diff_fit, t, rho, y, x, dbin, dk):
             if b != a:
                 s_ += x[b] / dbin[b, a]
         dk[a] = (m_mix - x[a] * mw[a]) / (p * m_mix * s_)
+
+
+@njit(cache=True, error_model="numpy")
+def interpolate_profile(px, table, xq, out):
+    """out[:, q] = each row of table at xq[q], linear between the rows of px that bracket it
+    (std::lower_bound's), the first or last row outside px (Uintah's <initProfile>)."""
+    n = px.shape[0]
+    for q in range(xq.shape[0]):
+        x = xq[q]
+        if x <= px[0]:
+            i, frac = 0, 0.0
+        elif x >= px[n - 1]:
+            i, frac = n - 2, 1.0
+        else:
+            i = np.searchsorted(px, x) - 1
+            frac = (x - px[i]) / (px[i + 1] - px[i])
+        for c in range(table.shape[0]):
+            out[c, q] = table[c, i] + frac * (table[c, i + 1] - table[c, i])

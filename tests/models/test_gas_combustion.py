@@ -16,6 +16,12 @@ sus's fields after each of its 10 steps on the same deck without the advection a
 (pysus's `limiter="BarthJespersen" dissipationHeating="false"` is Uintah's scheme, which sus's
 parser does not accept as attributes). Measured: every field to 1.2e-14 of its range.
 
+tests/models/hydrogen_flame.ups: Uintah's hydrogenFlame1 (a stoichiometric laminar flame between LODI
+faces, initialised from a 1D profile file, the mixture's viscosity and thermal conductivity in
+ICE's terms) on 150 cells around the flame, 3 patches, 60 steps; data/flame_profile_phi1.00.dat is
+every 8th row of Uintah's profile there. data/sus_hydrogen_flame.npz: sus's fields after steps 30
+and 60 on that deck without the advection attributes. Measured: every field to 2e-13 of its maximum.
+
 Measured on cv_hydrogen: the same 306 steps to round-off, temperature and pressure to 3e-14 of
 sus's maxima through the ignition, the species and HeatReleaseRate to 1.1e-13 (dt_chemistry, the
 smallest adaptive sub-step, to 1e-2: it follows the integrator's accept/reject decisions, not a result).
@@ -213,6 +219,31 @@ def test_pocket3d_against_sus(tmp_path):
     assert np.abs(moved).max() > 1e-3                      # the species did move
 
 
+def test_hydrogen_flame_against_sus(tmp_path):
+    """A laminar flame from <initProfile> between LODI faces, with the mixture's per-cell viscosity
+    and thermal conductivity in ICE's stress, conduction and delT, over 60 steps against sus."""
+    from framework.archiver import DataArchive
+    from framework.controller import Controller
+    ref = np.load(os.path.join(HERE, "data", "sus_hydrogen_flame.npz"))
+    c = Controller(os.path.join(HERE, "hydrogen_flame.ups"), quiet=True, filebase=str(tmp_path / "f.uda"))
+    c.run()
+    da = DataArchive(c.archiver.dir)
+    # t = 0: the profile file's rows interpolated to the cell centres
+    rows = np.loadtxt(os.path.join(HERE, "data", "flame_profile_phi1.00.dat"))
+    temp0, xyz = da.read("temp_CC", 0, 0)
+    assert np.allclose(temp0[:, 0, 0], np.interp(xyz[0], rows[:, 0], rows[:, 1]), rtol=1e-13, atol=0)
+    assert np.allclose(da.read("scalar-YOH", 0, 0)[0][:, 0, 0], np.interp(xyz[0], rows[:, 0], rows[:, 8]),
+                       rtol=1e-12, atol=1e-18)
+    assert np.allclose(da.times[1:], ref["times"], rtol=1e-13, atol=0)
+    for j in range(len(ref["times"])):
+        for lab in ("temp_CC", "press_CC", "rho_CC", "vel_CC", "scalar-YH2", "scalar-YOH", "viscosity", "thermalCond"):
+            ours = da.read(lab, 0, j + 1)[0]
+            ours = (ours[..., 0] if ours.ndim == 4 else ours)[:, 0, 0]
+            theirs = ref[lab][j]
+            assert np.max(np.abs(ours - theirs)) <= 1e-12 * np.abs(theirs).max(), (lab, j)
+    assert ref["vel_CC"][-1].max() > 5 * ref["vel_CC"][-1].min() > 0       # burnt gas leaves faster than it came
+
+
 def _mutated(tmp_path, old, new):
     """The deck with one edit, its mechanism file named by its absolute path."""
     text = open(DECK).read().replace("<mechanismFile> Burke2012Modified.xml", f"<mechanismFile> {MECH}")
@@ -227,8 +258,10 @@ def _mutated(tmp_path, old, new):
      "7 mass fractions; accepted: 8, the tracked species H H2 O OH H2O O2 HO2 H2O2"),
     ("<closureSpecies> N2 </closureSpecies>", "<closureSpecies> Ar </closureSpecies>",
      "closure species Ar is not in the mechanism"),
-    ("<dynamic_viscosity>     0.0", "<dynamic_viscosity>     1e-5",
-     "runs with the material's <dynamic_viscosity> and <thermal_conductivity> 0"),
+    ("<closureSpecies>", "<initProfile> <filename> nowhere.dat </filename> <axis> x </axis> </initProfile>"
+     " <closureSpecies>", "profile file nowhere.dat not found"),
+    ("<closureSpecies>", "<initProfile> <filename> nowhere.dat </filename> <axis> r </axis> </initProfile>"
+     " <closureSpecies>", "<axis> r; accepted: x, y, z"),
     (f"<mechanismFile> {MECH}", "<mechanismFile> nowhere/Burke2012Modified.xml", "not found"),
 ])
 def test_deck_errors(tmp_path, old, new, message):
