@@ -139,7 +139,7 @@ def test_conduction_gradient_refuses_other_values(tmp_path):
     path = tmp_path / "bar.ups"
     text = _with_gradient(deck_text(BAR), "later")
     path.write_text(text)
-    line = text[:text.index("<conduction_gradient>")].count("\n") + 1
+    line = text[:text.index("<conduction_gradient>later")].count("\n") + 1
     r = pysus("-validate", path)
     assert r.returncode != 0
     assert r.stderr.strip() == (f"pysus: error: {path}:{line}: <Uintah_specification/MPM/conduction_gradient> "
