@@ -128,17 +128,19 @@ def _piston_scene():
 
     state = {"gamma": P.GAMMA}
 
-    def deck(n, heat=None, stop=None, gamma=None, speed=None, ratio=None, stroke=None, open=None):
+    def deck(n, heat=None, stop=None, gamma=None, speed=None, ratio=None, stroke=None, open=None, dtmax=None):
         """n cells along the 2.5 mm column (dy = 2.5e-3 / n; the deck's 200 cells: n = 200);
         heat: the heat-exchange coefficient (the deck's 1); stop: the piston's stop_time;
         gamma: the gases' gamma (1.4); speed: the piston's speed in m/s (1e-3); ratio: V1/V2
         where the piston stops (5.9); stroke: the piston's travel as a fraction of the trapped
         gas's initial height (ratio = 1 / (1 - stroke); the deck's 0.83); open: false for
-        Uintah's advection next to the piston (openFaceTransfers, docs/MPMICE.md)."""
+        Uintah's advection next to the piston (openFaceTransfers, docs/MPMICE.md); dtmax: the
+        deck's delt_max in s (0.006 at the deck's speed)."""
         state["gamma"] = P.GAMMA if gamma is None else float(gamma)
         if stroke is not None:
             ratio = 1.0 / (1.0 - float(stroke))
-        return P.deck(n, heat=heat, stop=stop, gamma=gamma, speed=speed, ratio=ratio, open_faces=open)
+        return P.deck(n, heat=heat, stop=stop, gamma=gamma, speed=speed, ratio=ratio, open_faces=open,
+                      delt_max=dtmax)
 
     def error(da):
         return P.errors(da, state["gamma"])

@@ -483,7 +483,10 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
     side of it). Where instead the donor's fluid is the less dense per open volume (it rides
     with the solid and is not compressed with the fluid ahead of it), the neighbour's fluid
     moves in: e = the fraction (m_n o_d - m_d o_n) / (m_n (o_d + o_n)) of m_n that makes the
-    two equal, signed against u_s, |e| <= cap, and only where o_d >= OPEN_FILL_MIN. Nothing
+    two equal, signed against u_s, |e| <= cap and |e| <= |u_s| dt/dx (what the solid swept
+    past in the step: a solid that barely moves leaves little gas behind, and a fill beyond
+    that pumped hot gas into the cold, heat-exchanged gas of a ringing steel wall's cells), and
+    only where o_d >= OPEN_FILL_MIN. Nothing
     crosses a face of the domain's boundary (a cell index along d below inside_lo[d] or from
     inside_hi[d] on is an extra cell): the fluid would leave the domain or come from its
     boundary conditions. Returns whether any face moves fluid so: never where the solids'
@@ -517,7 +520,7 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
                     e[i, j, k] = x if us > 0.0 else -x
                     moved = True
                 elif on > od and od >= OPEN_FILL_MIN and mn * od > md * on:
-                    x = min((mn * od - md * on) / (mn * (od + on)), cap)
+                    x = min((mn * od - md * on) / (mn * (od + on)), abs(us) * dt_dx, cap)
                     e[i, j, k] = -x if us > 0.0 else x
                     moved = True
     return moved

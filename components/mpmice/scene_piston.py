@@ -33,22 +33,24 @@ Y0, SPEED = 1.0e-3, 1.0e-3  # the piston's bottom at t = 0 and its speed (deck; 
 
 
 def deck(n=200, t_end=None, stop=None, heat=None, patches="1,2,1", output=None, gamma=None, speed=None, ratio=None,
-         open_faces=None):
+         open_faces=None, delt_max=None):
     """The validation deck with n cells; t_end: maxTime; stop: the piston's stop_time;
     heat: the heat-exchange coefficients (one number for all pairs); output: outputInterval;
     gamma: both gases' gamma (their densities scaled to keep the pressure P1); speed: the piston's speed (m/s; maxTime, stop_time, delt_max and
     outputInterval scale with 1/speed unless given); ratio: V1/V2 at the stop (sets stop_time);
     open_faces: "false" for Uintah's advection next to the piston (the deck's "true": docs/MPMICE.md,
-    step 12)."""
+    step 12); delt_max: the largest step (s; the deck's 0.006 at its speed)."""
     text = open(DECK, encoding="iso-8859-1").read()
     reps = [("<resolution>    [1,200,1]               </resolution>", f"<resolution> [1,{int(n)},1] </resolution>"),
             ("<patches>       [1,2,1]                 </patches>", f"<patches> [{patches}] </patches>")]
     slow = SPEED / float(speed) if speed is not None else 1.0      # the deck's times over this speed's
+    if speed is not None or delt_max is not None:
+        dt = 0.006 * slow if delt_max is None else float(delt_max)
+        reps.append(("<delt_max>           0.006    </delt_max>", f"<delt_max> {dt!r} </delt_max>"))
     if speed is not None:
         v = -float(speed)
         reps += [("<velocity>              [0.0,-0.001,0.0] </velocity>", f"<velocity> [0.0,{v!r},0.0] </velocity>"),
-                 ("<velocity>             [0.0,-0.001,0.0]  </velocity>", f"<velocity> [0.0,{v!r},0.0] </velocity>"),
-                 ("<delt_max>           0.006    </delt_max>", f"<delt_max> {0.006 * slow!r} </delt_max>")]
+                 ("<velocity>             [0.0,-0.001,0.0]  </velocity>", f"<velocity> [0.0,{v!r},0.0] </velocity>")]
         output = 0.01 * slow if output is None else output
         stop = 0.8305 * slow if stop is None and ratio is None else stop
         t_end = 0.9 * slow if t_end is None and ratio is None else t_end

@@ -91,12 +91,13 @@ def test_fluid_less_dense_in_the_solids_cell_is_filled_from_the_neighbour():
     """The fluid in the advancing solid's cell less dense per open volume than its more open
     neighbour's (it rides with the solid and is not compressed with the fluid ahead): the
     neighbour's fluid moves in, the fraction (m_n o_d - m_d o_n) / (m_n (o_d + o_n)) of m_n that
-    makes the two densities per open volume equal, signed against the solid's motion."""
+    makes the two densities per open volume equal, signed against the solid's motion, at most
+    |u_s| dt/dx (the gas the solid swept past in the step)."""
     shape = (1, 6, 1)
     vf = np.zeros(shape)
     vf[0, :3, 0] = (1.0, 1.0, 0.7)
     vel = np.zeros(shape + (3,))
-    vel[0, :3, 0, 1] = 1e-3
+    vel[0, :3, 0, 1] = 1.0
     mass = np.ones(shape)
     mass[0, :2, 0] = 0.0
     mass[0, 2, 0] = 0.1                     # 0.33 per open volume in cell 2, 1 in cell 3
@@ -107,6 +108,11 @@ def test_fluid_less_dense_in_the_solids_cell_is_filled_from_the_neighbour():
                                      *ANYWHERE)
         assert e[0, 3, 0] == pytest.approx(-want, rel=1e-12)           # cell 3 -> cell 2
         assert np.count_nonzero(e[0, 1:, 0]) == 1
+    # a solid that barely moves (u dt/dx = 0.01) fills its cell by at most what it swept past
+    vel[0, :3, 0, 1] = 1e-3
+    K.open_face_transfers((vel,), (vf,), 1.0 - vf, mass, np.zeros(3, np.int64), 1, np.array([0, 1, 0], np.int64),
+                          np.array([1, 6, 1], np.int64), 10.0, 1.0, e, *ANYWHERE)
+    assert e[0, 3, 0] == pytest.approx(-0.01, rel=1e-12)
 
 
 def test_slip_deck_solid_at_rest_in_a_stream_moves_no_fluid(tmp_path):
