@@ -539,6 +539,35 @@ def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz,
 
 
 @njit(cache=True, error_model="numpy")
+def outflow_fraction(vf, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, q, acc, buf, grad, rc, out):
+    """out += the volume fraction that second-order advection with Uintah's limiter carries out of
+    each cell of [lo, hi) over the step, net of what it carries in: the fraction itself is
+    reconstructed (its limited gradient at the outflow slab's centroid), as Uintah's advectQ of
+    vol_frac in computeDelPressAndUpdatePressCC (term2, the dilatation of eq. 29).
+    q, acc: scratch (1, *vf.shape); buf (1, row length + 1); grad (3, 1, *vf.shape), rc (3, *vf.shape)."""
+    q[0] = vf
+    n = hi[2] - lo[2]
+    k0 = lo[2]
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            a, f = acc[0, i, j, k0:k0 + n], vf[i, j, k0:k0 + n]
+            for k in range(n):
+                a[k] = f[k]
+    limited_gradients(q, dims, dxs, False, grad)
+    if int(dims[0]) + int(dims[1]) + int(dims[2]) > 1:
+        _slab_offsets(ux, uy, uz, shs, dims, dt, rc)
+    for d in range(3):
+        if dims[d]:
+            uf = ux if d == 0 else (uy if d == 1 else uz)
+            _sweep_extrema(q, grad, rc, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, False, acc, buf)
+    for i in range(lo[0], hi[0]):
+        for j in range(lo[1], hi[1]):
+            a, f, o = acc[0, i, j, k0:k0 + n], vf[i, j, k0:k0 + n], out[i, j, k0:k0 + n]
+            for k in range(n):
+                o[k] += f[k] - a[k]
+
+
+@njit(cache=True, error_model="numpy")
 def _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o):
     """The new primitives of the cells [lo, hi) from the advected totals (see advect)."""
     n = hi[2] - lo[2]

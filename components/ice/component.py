@@ -107,6 +107,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     caloric = {}                         # {material: the model owning its caloric EOS} (gasCombustion)
     var_K = var_H = False                 # <CoefficientModel> linearVariation (problem_setup)
 
+    @property
+    def delp_vol_frac_ghost(self):
+        """Ghost layers of vol_frac_CC that computeDelPressAndUpdatePressCC reads: Uintah's limiter
+        (second order, BarthJespersen) reconstructs the donors' fractions from their neighbours."""
+        return 2 if self.second_order and self.limiter == EXTREMA else 1
+
     def problem_setup(self, root, level):
         self.level = level
         self.dims = np.array([not c for c in level.collapsed])
@@ -570,7 +576,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                 .requires(NEW, I.press_equil_CC, matls=m0) \
                 .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
             if many:
-                t.requires(NEW, I.vol_frac_CC, G, 1)
+                t.requires(NEW, I.vol_frac_CC, G, self.delp_vol_frac_ghost)
             else:
                 t.requires(NEW, I.vol_frac_CC)
             for d in dirs:

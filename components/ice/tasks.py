@@ -400,17 +400,29 @@ class IceTasks:
 
     # -- step 5: pressure increment (eqs. 29-30) ------------------------------------------------
     def delp_press(self, patch, matls, old_dw, new_dw):
+        """press_CC = press_equil_CC + delP_Dilatate, delP_Dilatate = -dt sum_m div(theta_m u*_m) /
+        sum_m theta_m kappa_m (eqs. 29-30). theta on the faces: the donor cell's, or with
+        limiter="BarthJespersen" (Uintah's advector) the second-order advected fractions as Uintah's."""
         b = self.boxes(patch)
         dt = old_dw.get_reduction(L.delT)
         shape = patch.alloc_shape(VarType.CC)
         div, ksum = np.zeros(shape), np.zeros(shape)
         one = len(matls) == 1
+        # Uintah's advector: the volume fractions advected second order with its limiter
+        extrema = not one and self.second_order and self.limiter == A.EXTREMA
         v = b.view
         for m in matls:
             vf = new_dw.get(I.vol_frac_CC, m, patch)
             uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
-            K.div_theta_u(v(vf), one, *(v(uf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
-                          b.v_lo, b.v_hi, dt, b.v_dx, v(div))
+            if extrema:
+                vshape = v(vf).shape
+                A.outflow_fraction(v(vf), *(v(uf[p]) for p in b.perm), b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt,
+                                   patch.level.dx[b.perm], self.dims[b.perm], self._scratch("q", (1,) + vshape),
+                                   self._scratch("acc", (1,) + vshape), self._scratch("buf", (1, vshape[2] + 1)),
+                                   self._scratch("grad", (3, 1) + vshape), self._scratch("rc", (3,) + vshape), v(div))
+            else:
+                K.div_theta_u(v(vf), one, *(v(uf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
+                              b.v_lo, b.v_hi, dt, b.v_dx, v(div))
             K.add_theta_kappa(v(vf), v(new_dw.get(I.sp_vol_CC, m, patch)), v(new_dw.get(I.speedSound_CC, m, patch)),
                               v(ksum), b.v_lo, b.v_hi)
         delP = new_dw.allocate(I.delP_Dilatate, 0, patch)

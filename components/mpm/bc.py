@@ -178,6 +178,11 @@ class GridBCs:
             self._masks[key] = mask
         return mask
 
+    def has_symmetric(self, patch, matl):
+        """Whether a symmetry condition of this material lies on a face `patch` touches."""
+        return any(matl in mats and comps.sum() == 1 and (patch.at_high if s else patch.at_low)[d]
+                   for d, s, comps, value, mats, where in self.items)
+
     def apply_symmetric(self, patch, matl, gvel):
         """The symmetry conditions of this material on g.velocity (normal component 0)."""
         self.apply(patch, matl, gvel, np.empty_like(gvel), gvel, 1.0, symmetric_only=True)

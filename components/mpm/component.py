@@ -89,6 +89,8 @@ FLAGS = {
                                     "with the other materials' (Uintah's default); false: each material's own"),
     "axisymmetric": Param("bool", False, doc="Uintah's axisymmetric MPM: x is r, y the axial z, one cell in z; "
                           "particle volumes and masses per radian"),
+    "delT_activeDirectionsOnly": Param("bool", True, doc="pysus: the wave-speed step over the active "
+                                       "directions; false: over all three, a one-cell one too (Uintah's)"),
     "stress_update": Param("str", "musl", ("musl", "usl"),
                            "pysus: musl = paper 004 eqs. 11-14 (stress from the remapped updated "
                            "velocity, robust at nearly empty nodes); usl = Uintah's (stress from v*)"),

@@ -213,11 +213,14 @@ class MPMTasks:
         dw.put_reduction(L.CenterOfMassPosition, tot[5:8])
 
     def compute_stable_timestep(self, patch, matls, old_dw, new_dw):
-        """delT = min_d dx_d / (c + |v_d|) over active directions (Uintah's MPM rule)."""
+        """delT = min_d dx_d / (c + |v_d|) (Uintah's MPM rule) over the active directions, or with
+        <delT_activeDirectionsOnly>false over all three, a one-cell direction too, as Uintah's
+        constitutive models (a thin cell along a collapsed z then sets the step)."""
         ws = np.asarray(new_dw.get_reduction(L.WaveSpeed))
         dt = np.inf
+        every = not self.flags["delT_activeDirectionsOnly"]
         for d in range(3):
-            if self.dims[d] and ws[d] > 0:
+            if (every or self.dims[d]) and ws[d] > 0:
                 dt = min(dt, self.level.dx[d] / ws[d])
         dt = min([dt] + [mat.max_delT for mat in self.materials])    # visco_scram: at most 1 microsecond
         new_dw.put_reduction(FL.delT, dt if np.isfinite(dt) else 1e30)
@@ -473,7 +476,11 @@ class MPMTasks:
         return {m: new_dw.get(L.gNormTraction, m, patch) for m in self.contact.materials}
 
     def integrate_acceleration(self, patch, matls, old_dw, new_dw):
-        """a_i = (fint + fext)/m_i + g (000 eq. 21), v*_i = v_i + a_i dt (000 eq. 25)."""
+        """a_i = (fint + fext)/m_i + g (000 eq. 21), v*_i = v_i + a_i dt (000 eq. 25). fint takes
+        the symmetry conditions first (no normal force on a symmetry plane's nodes, the extra
+        nodes mirrored), as Uintah's computeInternalForce: v* is read before the grid's velocity
+        conditions by contact and by MPMICE's Lagrangian momentum, which then see no normal
+        velocity on the plane (g.internalforce itself, which the boundary forces read, is kept)."""
         dt = old_dw.get_reduction(FL.delT)
         f = self.flags
         ftm_sums = np.zeros(L.FTMForce.shape) if self.ftm else None
@@ -483,7 +490,11 @@ class MPMTasks:
             gvs = new_dw.allocate(L.gVelocityStar, m, patch, None)
             ga = new_dw.allocate(L.gAcceleration, m, patch, None)
             fext = new_dw.get(L.gExtForce, m, patch)
-            kernels.integrate_acceleration(gm, gv, new_dw.get(L.gIntForce, m, patch), fext, self.gravity, dt,
+            fint = new_dw.get(L.gIntForce, m, patch)
+            if self.bcs.has_symmetric(patch, m):
+                fint = fint.copy()
+                self.bcs.apply_symmetric(patch, m, fint)
+            kernels.integrate_acceleration(gm, gv, fint, fext, self.gravity, dt,
                                            f["minimum_mass_for_acc"], f["artificial_damping_coeff"], gvs, ga)
             if ftm_sums is not None:    # nodal mass and external force over the patch's nodes
                 own = patch.slices(NC, patch.owned(NC))

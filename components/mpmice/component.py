@@ -171,6 +171,8 @@ class MPMICE(MPMICETasks, Component):
         self.gas_start = "particles" if self.rigid else "geometry"
         if node is not None and node.has("gas_start"):      # pysus's own start (docs/MPMICE.md)
             self.gas_start = node.get("gas_start", "str", choices=("geometry", "particles"))
+        # pysus's rule for fluid slivers in solid-filled cells (tasks.exchange); false: Uintah's exchange alone
+        self.trace_temperatures = node.get("trace_temperatures", "bool", True) if node is not None else True
 
     def material_names(self):
         return self.ice.material_names()
@@ -258,7 +260,7 @@ class MPMICE(MPMICETasks, Component):
 
             t = Task("ICE::computeDelPressAndUpdatePressCC", ice.delp_press, alls) \
                 .requires(OLD, FL.delT).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
-                .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.vol_frac_CC, G, 1) \
+                .requires(NEW, I.press_equil_CC, matls=m0).requires(NEW, I.vol_frac_CC, G, ice.delp_vol_frac_ghost) \
                 .computes(I.delP_Dilatate, matls=m0).computes(I.press_CC, matls=m0)
             for d in dirs:
                 t.requires(NEW, I.FC_VEL_ME[d], G, 1)

@@ -377,10 +377,11 @@ class MPMICETasks:
         temperature of the solids that exchange heat (kernels.trace_temperatures): those
         solids' temperature evolves, so the heat they give is carried to their particles.
         A deck whose solids exchange no heat (<heat> 0) keeps its slivers adiabatic. A cell
-        where a reaction model adds mass to a fluid keeps the exchange's temperatures (Uintah's)."""
+        where a reaction model adds mass to a fluid keeps the exchange's temperatures (Uintah's),
+        and so does every cell with <MPMICE><trace_temperatures>false (Uintah's exchange alone)."""
         keep = _KeepAllocated(new_dw)
         self.ice.exchange_cc(patch, matls, old_dw, keep)
-        if not self.solid_heat:
+        if not self.solid_heat or not self.trace_temperatures:
             return
         b = self.ice.boxes(patch)
         get = lambda lab: tuple(new_dw.get(lab, m, patch) for m in matls)
