@@ -19,6 +19,8 @@ error vs cells and vs wall time when matplotlib is importable).
     .venv/bin/python scripts/accuracy_cost.py piston --res 50 100 200 400 --opt heat=1,0 --json piston.json
     .venv/bin/python scripts/accuracy_cost.py piston --res 40 100 200 --opt gamma=1.4,1.67 --opt speed=0.001,0.002
     .venv/bin/python scripts/accuracy_cost.py piston --res 100 200 --opt heat=0 --opt stroke=0.3,0.5,0.83
+    .venv/bin/python scripts/accuracy_cost.py piston --res 40 80 --uintah PATH/TO/sus
+    .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 --uintah PATH/TO/sus
     .venv/bin/python scripts/accuracy_cost.py bar --res 25 50 100 200 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py lame --res 11 22 44 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py disks --res 20 50 --opt interpolator=linear,gimp --opt update=musl,usl
@@ -38,6 +40,8 @@ particle, particles beyond the patch's nodes) prints a FAILED row and the table 
 --uintah SUS runs each resolution's deck (the template's defaults, pysus-only options
 dropped, see uintah_deck) on Uintah's sus too and reads its .uda (framework/uintah_uda.py):
 its error and wall time (sus's start-up included) join the table, the JSON and the PNG.
+An implicit deck runs on sus's own CGSolver unless --uintah-solver names another (deck: the
+deck's own, hypre where sus has it).
 Wall time is the whole run (initialisation included: the 2D wave's per-cell geometry
 takes a noticeable part of it); step_s in the JSON is the time-stepping alone.
 """

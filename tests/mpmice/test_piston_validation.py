@@ -153,3 +153,21 @@ def test_scene_gamma_keeps_the_start_pressure():
         assert len(rhos) == 2
         for rho in rhos:
             assert (g - 1.0) * rho * 716.0e-8 * 300.0 == pytest.approx(S.P1, rel=1e-9)
+
+
+def test_deck_for_uintahs_sus():
+    """scripts/accuracy_cost.py --uintah: the piston deck as sus (built without hypre) runs it, the
+    pressure solve on sus's CGSolver in the max norm, the output at t = 0 kept (V1/V2 starts from it)."""
+    import importlib.util
+    from lxml import etree
+    from tests.conftest import ROOT
+    spec = importlib.util.spec_from_file_location("accuracy_cost", ROOT / "scripts" / "accuracy_cost.py")
+    acc = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(acc)
+    root = etree.fromstring(acc.uintah_deck(S.deck(N)).encode())
+    assert root.find("Solver").get("type") == "CGSolver"
+    assert root.findtext("CFD/ICE/ImplicitSolver/Parameters/norm") == "LInfinity"
+    assert root.find("DataArchiver/outputInitTimestep") is not None
+    assert "openFaceTransfers" not in root.find("CFD/ICE/advection").attrib
+    keep = etree.fromstring(acc.uintah_deck(S.deck(N), solver=None).encode())
+    assert keep.find("Solver").get("type") == "hypre" and keep.find("CFD/ICE/ImplicitSolver/Parameters/norm") is None
