@@ -5,7 +5,8 @@ Enough for comparing a run of sus with pysus on the same deck (scripts/accuracy_
 saved uncompressed as 64-bit little-endian (sus's default). `read` returns the interior
 cells only, x fastest in the file (Uintah's layout), as an (nx, ny, nz[, 3]) array like
 DataArchive.read, with the cell-centre coordinates. `particles` returns one particle variable
-(double, long64, Point, Vector) of all patches.
+(double, long64, Point, Vector) of all patches; `particle_var` reads one from either archive,
+so an error function takes a pysus run and a sus run alike.
 """
 from __future__ import annotations
 
@@ -106,3 +107,10 @@ class UintahArchive:
             raise KeyError(f"{step}: no {label} for material {matl}")
         out = np.concatenate([a for _, a in sorted(parts, key=lambda it: it[0])])
         return out.reshape(-1, 3, 3) if out.ndim == 2 and out.shape[1] == 9 else out
+
+
+def particle_var(da, label, matl=0, timestep=-1):
+    """One particle variable of all patches from a pysus DataArchive or a sus UintahArchive."""
+    if isinstance(da, UintahArchive):
+        return da.particles(label, matl, timestep)
+    return da.particles(matl, timestep)[label]

@@ -19,6 +19,8 @@ error vs cells and vs wall time when matplotlib is importable).
     .venv/bin/python scripts/accuracy_cost.py piston --res 50 100 200 400 --opt heat=1,0 --json piston.json
     .venv/bin/python scripts/accuracy_cost.py piston --res 40 100 200 --opt gamma=1.4,1.67 --opt speed=0.001,0.002
     .venv/bin/python scripts/accuracy_cost.py piston --res 100 200 --opt heat=0 --opt stroke=0.3,0.5,0.83
+    .venv/bin/python scripts/accuracy_cost.py piston --res 40 80 --uintah PATH/TO/sus
+    .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 --uintah PATH/TO/sus
     .venv/bin/python scripts/accuracy_cost.py bar --res 25 50 100 200 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py lame --res 11 22 44 --opt interpolator=linear,gimp
     .venv/bin/python scripts/accuracy_cost.py disks --res 20 50 --opt interpolator=linear,gimp --opt update=musl,usl
@@ -38,6 +40,8 @@ particle, particles beyond the patch's nodes) prints a FAILED row and the table 
 --uintah SUS runs each resolution's deck (the template's defaults, pysus-only options
 dropped, see uintah_deck) on Uintah's sus too and reads its .uda (framework/uintah_uda.py):
 its error and wall time (sus's start-up included) join the table, the JSON and the PNG.
+An implicit deck runs on sus's own CGSolver unless --uintah-solver names another (deck: the
+deck's own, hypre where sus has it).
 Wall time is the whole run (initialisation included: the 2D wave's per-cell geometry
 takes a noticeable part of it); step_s in the JSON is the time-stepping alone.
 """
@@ -180,15 +184,31 @@ def run_case(scene, n, opts, workdir):
             "step_s": sum(c.step_times), "errors": err, **{f"opt_{k}": v for k, v in opts.items()}}
 
 
-PYSUS_ONLY_ATTRS = ("limiter", "dissipationHeating", "transverseTerms")
+PYSUS_ONLY_ATTRS = ("limiter", "dissipationHeating", "transverseTerms", "openFaceTransfers")
 
 
-def uintah_deck(text):
+def uintah_deck(text, solver="CGSolver"):
     """The deck as Uintah's sus takes it: pysus-only options dropped (sus's own scheme runs),
-    one material's boundary conditions under id "0" (sus refuses "all" then), and symmetry
-    on faces the deck leaves open (a 1D tube: y and z)."""
+    one material's boundary conditions under id "0" (sus refuses "all" then), symmetry
+    on faces the deck leaves open (a 1D tube: y and z), the output at t = 0 written (the
+    piston's V1/V2 starts from it), and an implicit deck's <Solver> set to `solver` (sus's
+    own CGSolver by default: it needs no hypre, and solves the pressure system to the
+    deck's relative <tolerance> as hypre's cg does, in the max norm of the residual per
+    cell volume: with its default L2 norm CGSolver tests the unscaled squared residual
+    against tolerance^2 before its first iteration, and a deck in small units, such as the
+    piston's (residual^2 ~ 1e-22), is never solved; None keeps the deck's solver)."""
     from lxml import etree
     root = etree.fromstring(text.encode())
+    sol = root.find("Solver")
+    if sol is not None and solver:
+        sol.set("type", solver)
+        if solver == "CGSolver":
+            for par in root.iter("Parameters"):
+                if par.find("norm") is None:
+                    etree.SubElement(par, "norm").text = "LInfinity"
+    da = root.find("DataArchiver")
+    if da is not None and da.find("outputInitTimestep") is None:
+        etree.SubElement(da, "outputInitTimestep")
     for a in root.iter("advection"):
         for name in PYSUS_ONLY_ATTRS:
             a.attrib.pop(name, None)
@@ -212,14 +232,14 @@ def uintah_deck(text):
     return etree.tostring(root, encoding="unicode")
 
 
-def run_uintah(sus, scene, n, workdir):
+def run_uintah(sus, scene, n, workdir, solver="CGSolver"):
     """Run the scene's deck (template defaults) on Uintah's sus; the same row as run_case."""
     import glob
     import subprocess
     from framework.uintah_uda import UintahArchive
     path = os.path.join(workdir, "deck.ups")
     with open(path, "w") as f:
-        f.write(uintah_deck(scene["deck"](n)))
+        f.write(uintah_deck(scene["deck"](n), solver))
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     t0 = time.perf_counter()
     out = subprocess.run([sus, path], cwd=workdir, env=env, capture_output=True, text=True)
@@ -230,8 +250,8 @@ def run_uintah(sus, scene, n, workdir):
     uda = max(udas, key=os.path.getmtime)
     da = UintahArchive(uda)
     steps = int(os.path.basename(da.steps[-1])[1:])
-    rho, _ = da.read("rho_CC", 0, -1)
-    return {"n": n, "cells": int(rho.size), "steps": steps, "wall_s": wall, "step_s": None,
+    press, _ = da.read("press_CC", 0, -1)
+    return {"n": n, "cells": int(press.size), "steps": steps, "wall_s": wall, "step_s": None,
             "errors": scene["error"](da), "opt_code": "uintah"}
 
 
@@ -268,6 +288,8 @@ def main(argv=None):
     ap.add_argument("--png", default=None)
     ap.add_argument("--uintah", metavar="SUS", default=None,
                     help="also run each resolution's deck on Uintah's sus (path to the executable)")
+    ap.add_argument("--uintah-solver", metavar="NAME", default="CGSolver",
+                    help="the <Solver> sus uses for an implicit deck (CGSolver: sus's own; 'deck' keeps the deck's)")
     args = ap.parse_args(argv)
     scene = SCENES[args.scene]()
     if args.interpolators:
@@ -295,7 +317,8 @@ def main(argv=None):
         prev = None
         for n in args.res:
             with tempfile.TemporaryDirectory() as d:
-                row = run_uintah(args.uintah, scene, n, d)
+                row = run_uintah(args.uintah, scene, n, d,
+                                 None if args.uintah_solver == "deck" else args.uintah_solver)
             prev = _report_row(row, prev, n, key, "Uintah sus", " " * 14)
             rows.append(row)
     out = {"scene": args.scene, "what": scene["what"], "rows": rows}

@@ -3,7 +3,7 @@ against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
 
     deck(n)  inputs/MPMICE/pressurized_cylinder.ups with n cells across the 1.2 m domain
              (dx = 1.2 / n; the paper's 0.025 m is n = 48)
-    errors(da)  at the last output: P = mean gauge pressure of the inner air (cells with
+    errors(da)  (a pysus DataArchive or a sus UintahArchive) at the last output: P = mean gauge pressure of the inner air (cells with
              r < 0.4 m); over all particles, eq. 43
                  mean | |s_r + s_t| - 2/3 P | / (2/3 P)      (ri^2 / (ro^2 - ri^2) = 1/3)
              and the L1 errors of s_r and s_t against eq. 42, relative to P.
@@ -14,6 +14,8 @@ from __future__ import annotations
 import os
 
 import numpy as np
+
+from framework.uintah_uda import particle_var
 
 DECK = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "MPMICE", "pressurized_cylinder.ups")
 RI, RO, L, P_REF = 0.5, 1.0, 1.2, 101325.0
@@ -38,8 +40,7 @@ def deck(n, damping=None, patches="1,1,1", t_end=None):
 
 def stresses(da, i=-1):
     """(r, s_r, s_t, P) at output i: particle radius, radial and hoop stress, inner gauge pressure."""
-    parts = da.particles(0, i)
-    x, s = parts["p.x"], parts["p.stress"]
+    x, s = particle_var(da, "p.x", 0, i), particle_var(da, "p.stress", 0, i)
     r = np.hypot(x[:, 0], x[:, 1])
     n = np.stack([x[:, 0] / r, x[:, 1] / r], axis=1)
     t = np.stack([-n[:, 1], n[:, 0]], axis=1)

@@ -6,7 +6,8 @@ bottom pressure against the adiabatic law P1 (V1/V2)^gamma (eq. 44).
                   along the 2.5 mm column (dy = 2.5e-3 / n; the deck's 200 cells: n = 200);
                   gamma, speed (the piston's, m/s) and ratio (V1/V2 where it stops) vary the
                   deck's 1.4, 1e-3 and 5.9 (the times scale with 1/speed)
-    history(da)   per output: t, the piston's bottom y_b (lowest particle minus half a
+    history(da)   per output (the first at t = 0), of a pysus DataArchive or a sus
+                  UintahArchive: t, the piston's bottom y_b (lowest particle minus half a
                   particle spacing), V1/V2 = y_b(0) / y_b(t), the trapped gas's own volume
                   ratio (sum of its volume fractions), P at the bottom cell (y = dy/2, the
                   paper's "y = 0"), the exact P1 (V1/V2)^gamma and the relative error
@@ -24,6 +25,8 @@ from __future__ import annotations
 import os
 
 import numpy as np
+
+from framework.uintah_uda import particle_var
 
 DECK = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "MPMICE", "piston_validation.ups")
 H = 2.5e-3                  # column height
@@ -88,7 +91,7 @@ def history(da, gamma=GAMMA):
     """Arrays over the outputs: t, y_b, ratio (geometric), ratio_gas, P (bottom cell), exact, err."""
     rows = []
     for i, t in enumerate(da.times):
-        y = da.particles(0, i)["p.x"][:, 1]
+        y = particle_var(da, "p.x", 0, i)[:, 1]
         p, _ = da.read("press_CC", 0, i)
         p = p.reshape(-1)
         dy = H / p.size
