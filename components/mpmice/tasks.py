@@ -280,11 +280,13 @@ class MPMICETasks:
         spv, vfs, css = new(I.sp_vol_CC), new(I.vol_frac_CC), new(I.speedSound_CC)
         rhos, temps, sp_old = get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC)
         p_old = b.view(old_dw.get(I.press_CC, 0, patch))
-        # deformable solids start from their EOS volume at the old pressure (Uintah's normalization);
-        # prescribed (rigid) solids keep their particle density: their stand-in EOS is not a material's
-        # and scaling by it collapses the time step (the Mach 3 wedge: delT 4e-8 instead of 5.7e-6)
+        # the solids start from their EOS volume at the old pressure (Uintah's normalization); prescribed
+        # (rmpmice) solids only with <gas_start>geometry (Uintah's start: the fluids scaled too, sus's
+        # press_CC to 2e-6 on a rigid slab in 10 atm air, tests/mpmice/test_solid_eos_decks.py); with
+        # pysus's particle start, their default, scaling the solids alone collapsed the Mach 3 wedge's
+        # time step (delT 4e-8 instead of 5.7e-6)
         scaled = rhos
-        if not self.rigid:
+        if not self.rigid or self.gas_start == "geometry":
             solid = np.array([m in self.mpm_matls for m in matls])
             fluids_too = self.gas_start == "geometry"
             scaled = tuple(r.copy() if s or fluids_too else r for r, s in zip(rhos, solid))
