@@ -271,7 +271,8 @@ class MPMICETasks:
     def equilibration_pressure(self, patch, matls, old_dw, new_dw):
         """Eq. 13 over solids and fluids (the solids with the sec. 3.1 threshold EOS): ICE's
         computeEquilibrationPressure with MPMICE's kernel (equilibration.equilibrate, the same values)
-        on arrays seen with the collapsed axes first."""
+        on arrays seen with the collapsed axes first; an iterate below 0 and a cell that does not
+        converge handled as Uintah's MPMICE (|dp|, then its binary search)."""
         ice, start = self.ice, StartOfStep(old_dw, new_dw, self.mpm_matls)
         b = ice.boxes(patch)
         peq = new_dw.allocate(I.press_equil_CC, 0, patch)
@@ -294,7 +295,7 @@ class MPMICETasks:
                                      fluids_too, scaled, b.v_olo, b.v_ohi)
         E.equilibrate(scaled, temps, sp_old, p_old,
                       spv, vfs, css, b.view(peq), ice.codes, ice.params, ice.cvs, ice.gammas, b.v_olo, b.v_ohi,
-                      1e-11, ice.max_iter)
+                      1e-11, ice.max_iter, True)
         ice.bcs.scalar(patch, peq, "Pressure", 0, b)
 
     def vel_fc(self, patch, matls, old_dw, new_dw):
