@@ -1,8 +1,8 @@
 """Eq. 13 of paper 000 for several materials of any EOS: the equilibration pressure by Newton
 per cell (ICE's computeEquilibrationPressure; MPMICE's step 2 over solids and fluids, each solid
-with its constitutive model's EOS as Uintah's computePressEOSCM: eos.py's SOLID_UCNH .. SOLID_RIGID,
-a visco_scram solid's JWL SOLID_JWL, or ICE's Murnaghan with n = 1 for models Uintah gives none:
-mpmice/setup.py).
+with its constitutive model's EOS as Uintah's computePressEOSCM: eos.py's SOLID_UCNH .. SOLID_JWLPP,
+a visco_scram solid's JWL SOLID_JWL, or ICE's Murnaghan with n = 1 for rmpmice's unscaled
+prescribed solids: mpmice/setup.py).
 
 The first Newton iteration runs a row of cells at a time in loops that vectorize; the
 Murnaghan n = 1 EOS skips its powers of 1 and 0; the round-off cycle of a cell full of a stiff

@@ -5,10 +5,11 @@ model: RigidMPM carries the particle stress forward (zero), puts no internal for
 no stable-timestep limit, and the solid moves with its own velocity, or as
 `<contact type="rigid">` (SpecifiedBodyContact) prescribes: its velocity until
 <stop_time>, <velocity_after_stop> after. Here a solid of an rmpmice deck is read with
-any constitutive model type Uintah has; only the tags of the model's EOS act (Uintah's
-MPMICE calls the deck model's computePressEOSCM in the equilibration pressure: setup.py
-solid_eos); the model's other tags have no effect and are reported at start-up. The stress
-is the rigid model's (zero).
+any constitutive model type Uintah has; only the tags of the model's EOS act (with
+<MPMICE><gas_start>geometry Uintah's: MPMICE calls the deck model's computePressEOSCM in the
+equilibration pressure; with the particle start, the default here, <bulk_modulus> in a
+Murnaghan stand-in: setup.py solid_eos); the model's other tags have no effect and are
+reported at start-up. The stress is the rigid model's (zero).
 """
 from __future__ import annotations
 
@@ -89,7 +90,8 @@ def describe(mpm, rigid_matls):
         s = f"'{mat.name.strip()}' moves with {how}"
         asked = getattr(mat, "model_asked", "rigid")
         if asked != "rigid":
-            s += f"; constitutive_model {asked} acts only through its EOS in the equilibration"
+            s += (f"; constitutive_model {asked} acts only through its EOS in the equilibration (with "
+                  "<gas_start>geometry; else <bulk_modulus> in a Murnaghan stand-in)")
         if getattr(mat, "no_effect", None):
             s += "; no effect: " + ", ".join(mat.no_effect)
         parts.append(s)

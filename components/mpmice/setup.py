@@ -14,8 +14,11 @@ MPM materials come first (indices 0..nm-1), then ICE's (nm..N-1), as in Uintah.
                parameter row per solid, ice/eos.py SOLID_UCNH .. SOLID_JWLPP, SOLID_JWL);
                with <useModifiedEOS> below rho0 the condensed-phase threshold curve of
                paper 000 sec. 3.1, p = p_ref (rho/rho0)^(K/p_ref) (C1 at p_ref, -> 0 as
-               v -> inf). rmpmice's prescribed solids too: Uintah's RigidMPM keeps the
-               deck's model, whose EOS MPMICE calls. comp_mooney_rivlin is refused: Uintah's
+               v -> inf). rmpmice's prescribed solids too with <gas_start>geometry (Uintah's
+               start and scaling): Uintah's RigidMPM keeps the deck's model, whose EOS MPMICE
+               calls; with pysus's particle start (their default, unscaled) a stand-in, ICE's
+               Murnaghan with n = 1, P0 = p_ref (p_ref + K (rho/rho0 - 1) above rho0, the
+               threshold curve below). comp_mooney_rivlin is refused: Uintah's
                CompMooneyRivlin has none (its density 0: sus stops at step 1 with NaN).
 """
 from __future__ import annotations
@@ -25,7 +28,7 @@ import numpy as np
 from components.ice.component import ICE
 import importlib
 
-from components.ice.eos import (MAX_PARAMS, SOLID_HYPER, SOLID_HYPO, SOLID_IDEAL_GAS, SOLID_JWL, SOLID_JWLPP,
+from components.ice.eos import (MAX_PARAMS, MURNAGHAN, SOLID_HYPER, SOLID_HYPO, SOLID_IDEAL_GAS, SOLID_JWL, SOLID_JWLPP,
                                 SOLID_RIGID, SOLID_UCNH)
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
@@ -115,6 +118,12 @@ NO_EOS = {"comp_mooney_rivlin": "Uintah's CompMooneyRivlin has no EOS for MPMICE
                                 "computeRhoMicroCM returns 0: sus stops at step 1 with NaN)"}
 
 
+def _bulk(mat):
+    """The solid's bulk modulus for the Murnaghan stand-in (none given: effectively incompressible)."""
+    K = getattr(mat.params, "bulk_modulus", 0.0) or 0.0
+    return K if K > 0 else 1e12
+
+
 def _asked_model(mat):
     """(deck type, Params) of an rmpmice solid's own <constitutive_model> (RigidSolid reads it as
     rigid; its EOS is the asked model's), read as MPM reads a material's (materials.py)."""
@@ -138,13 +147,19 @@ def _asked_model(mat):
     return kind, params
 
 
-def solid_eos(mat, p_ref, prescribed):
+def solid_eos(mat, p_ref, stand_in=False):
     """(code, parameter row) of MPM material mat's EOS in the equilibration: its Uintah model's
     computePressEOSCM (SOLID_EOS; visco_scram's <useJWLEOS> SOLID_JWL); a prescribed (rmpmice)
-    solid's deck model's, as Uintah's RigidMPM keeps it."""
+    solid's deck model's, as Uintah's RigidMPM keeps it. stand_in (prescribed solids left
+    unscaled, pysus's particle start): Murnaghan n = 1 with the threshold at p_ref, K the
+    <bulk_modulus>; an incompressible rigid solid there leaves the fluids no room where the
+    particles' mapped mass fills a cell (the Mach 3 wedge stops at step 4)."""
     row = np.zeros(MAX_PARAMS)
+    if stand_in:
+        row[:4] = (1.0 / _bulk(mat), 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
+        return MURNAGHAN, row
     kind, q = mat.model_name, mat.params
-    if prescribed and getattr(mat, "model_asked", kind) != kind:
+    if getattr(mat, "model_asked", kind) != kind:
         kind, q = _asked_model(mat)
     cm = mat.node.child("constitutive_model")
     if isinstance(cm, _RigidModel):          # rigid.py's view of the deck's node
@@ -190,12 +205,12 @@ class ICEinMPMICE(ICE):
 
     press_floor = 1.0e-12       # Uintah's clamp of press_CC: solids in tension (tests/mpmice/test_hard_cases.py)
 
-    def __init__(self, mpm_materials, solid_cv, prescribed):
+    def __init__(self, mpm_materials, solid_cv, stand_in):
         super().__init__()
         self.n_before = len(mpm_materials)
         self._mpm_materials = mpm_materials
         self._solid_cv = solid_cv
-        self._prescribed = prescribed
+        self._stand_in = stand_in
 
     def problem_setup(self, root, level):
         super().problem_setup(root, level)
@@ -204,7 +219,7 @@ class ICEinMPMICE(ICE):
         p_ref = self.reference_pressure
         rows, codes = [], []
         for mat in self._mpm_materials:
-            code, row = solid_eos(mat, p_ref, self._prescribed)
+            code, row = solid_eos(mat, p_ref, self._stand_in)
             codes.append(code)
             rows.append(row)
         cvs = list(self._solid_cv)

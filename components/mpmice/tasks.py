@@ -282,10 +282,10 @@ class MPMICETasks:
         rhos, temps, sp_old = get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC)
         p_old = b.view(old_dw.get(I.press_CC, 0, patch))
         # the solids start from their EOS volume at the old pressure (Uintah's normalization); prescribed
-        # (rmpmice) solids only with <gas_start>geometry (Uintah's start: the fluids scaled too, sus's
-        # press_CC to 2e-6 on a rigid slab in 10 atm air, tests/mpmice/test_solid_eos_decks.py); with
-        # pysus's particle start, their default, scaling the solids alone collapsed the Mach 3 wedge's
-        # time step (delT 4e-8 instead of 5.7e-6)
+        # (rmpmice) solids only with <gas_start>geometry (Uintah's start: the fluids scaled too, and the
+        # deck model's EOS: sus's press_CC to 1e-12 on a rigid slab in 10 atm air,
+        # tests/mpmice/test_solid_eos_decks.py); with pysus's particle start, their default, scaling the
+        # solids alone by their stand-in EOS collapsed the Mach 3 wedge's time step (4e-8 s, not 5.7e-6)
         scaled = rhos
         if not self.rigid or self.gas_start == "geometry":
             solid = np.array([m in self.mpm_matls for m in matls])

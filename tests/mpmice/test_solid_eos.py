@@ -107,7 +107,9 @@ def test_ucnh_arithmetic_is_uintahs():
 def test_deck_model_selects_its_eos(kind, tags, code, K):
     """setup.solid_eos: the model's Uintah EOS with its bulk modulus, <useModifiedEOS> in the row
     (Uintah's default false); RigidMaterial without <bulk_modulus> Uintah's K = 1e200; a prescribed
-    (rmpmice) solid its model's too (Uintah's RigidMPM keeps the deck's model)."""
+    (rmpmice) solid its model's too (Uintah's RigidMPM keeps the deck's model), the Murnaghan stand-in
+    where it is left unscaled (stand_in: pysus's particle start)."""
+    from components.ice.eos import MURNAGHAN
     from components.mpm.materials import MODELS
     from components.mpmice.setup import solid_eos
     from framework.problemspec import ProblemSpec
@@ -125,7 +127,7 @@ def test_deck_model_selects_its_eos(kind, tags, code, K):
         assert got == code and row[0] == K and row[1] == 8930.0 and row[2] == P_REF
         if code in (SOLID_UCNH, SOLID_HYPER):
             assert row[3] == float(modified)
-        assert solid_eos(mat, P_REF, True)[0] == code
+        assert solid_eos(mat, P_REF, True)[0] == MURNAGHAN
 
 
 def test_ucnhvar_takes_its_largest_bulk_modulus():
