@@ -22,6 +22,8 @@ of the solid and the air, and the solid's speedSound_CC after the steps listed.
            compared after step 5).
 
 comp_mooney_rivlin is refused: Uintah's CompMooneyRivlin has no EOS (sus stops at step 1 with NaN).
+Uintah's own rmpmice deck advect_periodic.ups (uintah_reference/, unchanged; the run's edits in
+advect_periodic_text) against data/sus_advect_periodic_3steps.npz, every cell after steps 1 and 3.
 """
 import pathlib
 
@@ -92,3 +94,36 @@ def test_mooney_rivlin_refused(tmp_path):
     from framework.problemspec import InputError
     with pytest.raises(InputError, match="comp_mooney_rivlin.*not accepted with MPMICE"):
         run_deck(deck("mooney", 1), tmp_path, "mooney")
+
+
+def advect_periodic_text():
+    """Uintah's advect_periodic.ups (R_Tester MPMICE.py, rmpmice_advect_periodic) as sus ran it for
+    data/sus_advect_periodic_3steps.npz: 3 steps, output every step, sp_vol_CC and speedSound_CC
+    saved, no checkpoints; for pysus <MPMICE><gas_start>geometry."""
+    import re
+    text = (HERE / "uintah_reference" / "advect_periodic.ups").read_text(encoding="iso-8859-1")
+    text = re.sub(r"<max_Timesteps>\s*500\s*</max_Timesteps>", "<max_Timesteps>3</max_Timesteps>", text)
+    text = text.replace("<outputTimestepInterval>10</outputTimestepInterval>",
+                        "<outputTimestepInterval>1</outputTimestepInterval>")
+    text = text.replace('<save label="press_equil_CC"/>',
+                        '<save label="press_equil_CC"/><save label="sp_vol_CC"/><save label="speedSound_CC"/>')
+    text = re.sub(r"<checkpoint[^>]*/>", "", text)
+    i = text.index("<MPM>")
+    return text[:i] + "<MPMICE><gas_start>geometry</gas_start></MPMICE>\n    " + text[i:]
+
+
+def test_rmpmice_advect_periodic_as_sus(tmp_path):
+    """A rigid comp_neo_hook_plastic box (<useModifiedEOS>, K = 1.17e9) translating with the air,
+    periodic, 20^3 cells: with Uintah's start the box's UCNH EOS keeps every field sus's, after
+    3 steps press_CC 3.4e-12, press_equil_CC 1.4e-13, the air's sp_vol 6e-14, the box's sound
+    speed exactly (pysus's default particle start: press_CC up to 7.9e5 Pa, sus 101325)."""
+    from framework.archiver import DataArchive
+    sus = np.load(HERE / "data" / "sus_advect_periodic_3steps.npz")
+    da = DataArchive(run_deck(advect_periodic_text(), tmp_path, "ap").archiver.dir)
+    assert np.allclose(da.times[1:4], sus["times"], rtol=1e-12, atol=0)
+    for step in (1, 3):
+        for label, m in (("press_equil_CC", 0), ("press_CC", 0), ("sp_vol_CC", 0), ("sp_vol_CC", 1),
+                         ("speedSound_CC", 0)):
+            ref = sus[f"{label}{m}_{step}"]
+            err = np.max(np.abs(da.read(label, m, step)[0] - ref)) / np.max(np.abs(ref))
+            assert err < 1e-11, (label, m, step, err)
