@@ -41,9 +41,12 @@ def solid_stress(D, sig_old, vf, fluid, sig_new, mean, excess, lam, mu, dt, slid
     """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m, and
     excess += phi_m e_v, the solid's volume strain tr(sigma_m) / (2 (lambda + mu)).
 
-    With `slide` (the paper's slide condition, eq. 24), an element that also holds fluid
-    drops the solid's shear traction on the interface, whose normal n is the gradient of
-    phi_m: sigma -= tau (n t + t n), tau = t . sigma . n; its normal stresses stay.
+    With `slide` (the paper's slide condition, eq. 24), an element where the fluid holds more
+    than the solid drops the solid's shear traction on the interface, whose normal n is the
+    gradient of phi_m: sigma -= tau (n t + t n), tau = t . sigma . n; its normal stresses
+    stay. Where the solid holds more, the element's centre lies inside the body and the shear
+    there is the body's own: a wall two or three elements thick, all of it mixed by the
+    remap, would otherwise lose the shear that carries its bending.
     Traces below phi_min (left by the remap) carry no stress."""
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
