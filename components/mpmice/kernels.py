@@ -179,25 +179,28 @@ INTERPOLATORS = {"linear": 0, "gimp": 1}     # _pressure_force's kind
 
 
 @functools.lru_cache(maxsize=None)
-def pressure_force(interpolator):
-    """The pressure-force entry point for one interpolator (a compile-time constant), with the
-    dimension branched once per call so that each is compiled constant:
-    f(dim, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
-      grid_internal_force, owned, particle_pressure)."""
-    kind = INTERPOLATORS[interpolator]
+def _pressure_force_entry(kind, dim):
+    """The pressure-force kernel for one interpolator and dimension (compile-time constants),
+    compiled only where a run uses it (one entry branching on dim compiled all three: a third
+    of a 1D MPMICE deck's first-run compile)."""
 
     @njit(cache=True)
-    def pressure_force_entry(dim, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+    def pressure_force_entry(px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
                              grid_internal_force, owned, particle_pressure):
-        if dim == 1:
-            _pressure_force(kind, 1, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
-                            grid_internal_force, owned, particle_pressure)
-        elif dim == 2:
-            _pressure_force(kind, 2, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
-                            grid_internal_force, owned, particle_pressure)
-        else:
-            _pressure_force(kind, 3, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
-                            grid_internal_force, owned, particle_pressure)
+        _pressure_force(kind, dim, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+                        grid_internal_force, owned, particle_pressure)
+    return pressure_force_entry
+
+
+@functools.lru_cache(maxsize=None)
+def pressure_force(interpolator):
+    """The pressure-force entry point for one interpolator:
+    f(dim, px, particle_volume, lp, anchor, dx, node_low, press_CC, cc_low, dims, p_ref,
+      grid_internal_force, owned, particle_pressure); dim 1, 2 or (any other) 3."""
+    kind = INTERPOLATORS[interpolator]
+
+    def pressure_force_entry(dim, *args):
+        _pressure_force_entry(kind, dim if dim in (1, 2) else 3)(*args)
     return pressure_force_entry
 
 
