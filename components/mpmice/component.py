@@ -219,6 +219,10 @@ class MPMICE(MPMICETasks, Component):
         for t in after:
             sched.add_task(t)
         self._schedule_advection(sched)
+        if not self.rigid:      # after every task that reads the solids' step-1 vel_CC
+            sched.add_task(Task("MPMICE::solidVelocityAfterExchange", self.solid_velocity_after_exchange,
+                                self.mpm_matls)
+                           .requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_ME_CC).modifies(I.vel_CC))
 
     def _schedule_fluid_lagrangian_start(self, sched):
         """Steps 1-7: solid state at cell centres, pressure, face velocities, solid forces."""

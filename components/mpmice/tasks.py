@@ -488,6 +488,18 @@ class MPMICETasks:
             out = new_dw.allocate(MI.Tdot, m, patch)
             out[o] = np.where(mass > 0, (temp - start.get(I.temp_CC, m, patch)[o]) / dt, 0.0)
 
+    def solid_velocity_after_exchange(self, patch, matls, old_dw, new_dw):
+        """The solids' vel_CC that the step leaves (and saves) is their exchanged velocity
+        (mu)^L_ME / m^L, as Uintah's exchange leaves it; the step's tasks read the step-1 value
+        before this one."""
+        b = self.ice.boxes(patch)
+        inner = tuple(slice(lo, hi) for lo, hi in zip(b.lo, b.hi))
+        for m in matls:
+            vel = new_dw.get_modifiable(I.vel_CC, m, patch)
+            mass = new_dw.get(I.mass_L_CC, m, patch)[inner]
+            vel[inner] = new_dw.get(I.mom_L_ME_CC, m, patch)[inner] / mass[..., None]
+            self._extra_vector(patch, vel, m, b)
+
     # -- steps 10 -> 13: the exchange's change carried back to the nodes ------------------------------
     def velocity_rates(self, patch, matls, old_dw, new_dw):
         """computeCCVelAndTempRates: dV/dt of each solid cell (kernels.velocity_rates)."""

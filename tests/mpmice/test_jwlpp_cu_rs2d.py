@@ -5,7 +5,8 @@ are the impact. tests/mpmice/data/sus_jwlppcurs2d.npz holds, from sus's run of t
 (one rank, output every step), the times of steps 1 and 2 and there p.x, p.velocity and p.stress
 of the whacker's front particles (the 8 columns within 1 mm of its face, sus's z layer at
 6.25e-5; pysus makes the one layer of the collapsed z), with their places on the particle lattice,
-and press_CC of cell columns 30 to 49 after step 2; sus_jwlppcurs2d_15.npz the same after step 15.
+and press_CC of cell columns 30 to 49 after step 2; sus_jwlppcurs2d_15.npz the same after step 15,
+with the copper's vel_CC there (sus saves it after the exchange; so does pysus).
 
 - With <stress_update>usl</stress_update>, Uintah's update (the stress from the velocity
   gradient of the grid velocity v*), pysus is sus's: within TOL (measured: see there), after 15 steps within TOL_15.
@@ -88,7 +89,9 @@ def test_usl_is_sus_over_15_steps(tmp_path):
     the internal force's normal component on the symmetry plane y = 0 (zero in Uintah's
     computeInternalForce, before MPMICE's Lagrangian momentum reads v*), the fluids' flow
     work over the cell's total material volume TMV_CC, and the Lagrangian momentum of a cell
-    holding only the floor mass of the copper (GIMP-tail nodes next to the whacker's corner)."""
+    holding only the floor mass of the copper (GIMP-tail nodes next to the whacker's corner).
+    What is left comes from pysus's trace rule (mpmice/tasks.py THETA_TRACE) in the whacker's
+    corner cell (docs/models.md)."""
     da, sus = run(tmp_path, 15, usl=True), np.load(SUS_15)
     assert da.times[15] == pytest.approx(float(sus["time"]), rel=1e-8)      # measured 4.3e-9
     key, x, v, s = front(da.particles(0, 15))
@@ -97,11 +100,14 @@ def test_usl_is_sus_over_15_steps(tmp_path):
     assert rel(s, sus["stress"]) < TOL_15["stress"]
     press = np.squeeze(da.read("press_CC", 0, 15)[0])[30:50]
     assert rel(press, sus["press_CC"]) < TOL_15["press_CC"]
+    vel = np.squeeze(da.read("vel_CC", 0, 15)[0])[30:50][..., :2]      # the copper's, after the exchange
+    assert rel(vel, sus["vel_CC_0"]) < TOL_15["vel_CC"]
 
 
 SUS_15 = HERE / "data" / "sus_jwlppcurs2d_15.npz"
-# measured: velocity 7.4e-10, stress 7.3e-9, press_CC 2.0e-6 (without the three: 8.5e-5, 3.3e-4, 8.6e-5)
-TOL_15 = {"velocity": 1e-8, "stress": 1e-7, "press_CC": 1e-5}
+# measured: velocity 7.4e-10, stress 7.3e-9, press_CC 2.0e-6 (without the three: 8.5e-5, 3.3e-4, 8.6e-5),
+# the copper's vel_CC 5.0e-7 (saved before the exchange: 1.0)
+TOL_15 = {"velocity": 1e-8, "stress": 1e-7, "press_CC": 1e-5, "vel_CC": 2e-6}
 
 
 def test_musl_stress_is_pysus_own(tmp_path):
