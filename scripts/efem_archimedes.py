@@ -3,7 +3,8 @@
 
 Runs inputs/EFEM/floating_block.ups (block 0.2 m x 0.2 m, density 500, in water: exact
 draught 0.1 m) at several resolutions and prints the draught at the end, its error, the
-steps and the wall time side by side. About 8 min on one core for 20, 30 and 40 elements.
+steps and the wall time side by side; and the block's volume below the hydrostatic surface
+(the pressure head far from the block) against Archimedes' displaced volume. About 8 min on one core for 20, 30 and 40 elements.
 
     .venv/bin/python scripts/efem_archimedes.py                 # 20 30 40
     .venv/bin/python scripts/efem_archimedes.py -n 20 40 --json archimedes.json
@@ -36,7 +37,9 @@ def run(n, max_time, workdir):
     wall = time.perf_counter() - t0
     da = DataArchive(ctl.archiver.dir)
     d, surface, under = S.draught(da)
-    return dict(n=n, draught=d, error=d / S.EXACT - 1.0, surface=surface, steps=ctl.timestep, wall_s=wall,
+    head, displaced = S.displaced(da)
+    return dict(n=n, draught=d, error=d / S.EXACT - 1.0, surface=surface, head=head, displaced=displaced,
+                steps=ctl.timestep, wall_s=wall,
                 history=[(float(t), S.draught(da, k)[0]) for k, t in enumerate(da.times)])
 
 
@@ -52,6 +55,7 @@ def main(argv=None):
             rows.append(run(n, args.max_time, wd))
             r = rows[-1]
             print(f"n={n:4d}  draught {r['draught']:.5f} m (exact {S.EXACT:.3f})  error {100 * r['error']:+.2f} %  "
+                  f"displaced below the hydrostatic surface {100 * (r['displaced'] - 1):+.2f} %  "
                   f"steps {r['steps']:6d}  wall {r['wall_s']:7.1f} s", flush=True)
     if args.json:
         with open(args.json, "w") as f:

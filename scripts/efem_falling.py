@@ -15,6 +15,7 @@ ring centroid 0.446 m; pontoon bottom 0.428 m with the outside surface at 0.644 
     .venv/bin/python scripts/efem_falling.py ring                      # 100 x 66, to 0.9 s
     .venv/bin/python scripts/efem_falling.py pontoon                   # 50 x 34, to 1.8 s
     .venv/bin/python scripts/efem_falling.py ring -n 100 64 --max-time 0.3
+    .venv/bin/python scripts/efem_falling.py ring -n 50 33 --set slide_condition=false
     .venv/bin/python scripts/efem_falling.py pontoon --uda pontoon_falling.uda   # an existing run
 """
 from __future__ import annotations
@@ -47,6 +48,32 @@ def centroid_y(da, k):
     return float((f.sum(axis=0) * y).sum() / f.sum())
 
 
+def ring_shape(da, k, r_in=0.075, r_out=0.125, sectors=16):
+    """The ring's roundness at output k, from the solid's volume fractions about its centroid:
+    (aspect, spread, hole, wall). aspect: sqrt of the ratio of the principal second moments
+    (1 for a round ring, above 1 for an oval); spread: (max - min) / mean over `sectors`
+    angular sectors of the phi-weighted mean radius (the centreline's radius); hole: the mean
+    solid fraction within the inner radius less an element of the centroid (0 for a clean
+    hole); wall: the phi-weighted rms distance from the mean centreline radius over the
+    exact wall's (r_out - r_in) / sqrt(12) (1 for a sharp wall, above 1 as it smears)."""
+    f, (x, y, _) = da.read("vol_frac_CC", 0, k)
+    f = f[:, :, 0]
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    w = f.sum()
+    xc, yc = (f * X).sum() / w, (f * Y).sum() / w
+    dx, dy = X - xc, Y - yc
+    ixx, iyy, ixy = (f * dx * dx).sum() / w, (f * dy * dy).sum() / w, (f * dx * dy).sum() / w
+    ev = np.linalg.eigvalsh(np.array([[ixx, ixy], [ixy, iyy]]))
+    r = np.hypot(dx, dy)
+    sector = ((np.arctan2(dy, dx) + np.pi) / (2.0 * np.pi) * sectors).astype(int) % sectors
+    radii = np.array([(f * r)[sector == s].sum() / max(f[sector == s].sum(), 1e-300) for s in range(sectors)])
+    inside = r < r_in - (x[1] - x[0])
+    rc = (f * r).sum() / w
+    wall = np.sqrt((f * (r - rc) ** 2).sum() / w) / ((r_out - r_in) / np.sqrt(12.0))
+    return (float(np.sqrt(ev[1] / ev[0])), float((radii.max() - radii.min()) / radii.mean()),
+            float(f[inside].mean()), float(wall))
+
+
 def bottom_y(da, k):
     """The pontoon's lowest face: over its middle columns (|x - 0.75| < 0.3 m), the lowest y at
     which the solid's column profile reaches one half, interpolated between element centres."""
@@ -75,6 +102,8 @@ def main(argv=None):
     ap.add_argument("-n", type=int, nargs=2, default=None, metavar=("NX", "NY"),
                     help="elements (default the paper's: ring 100 66, pontoon 50 34)")
     ap.add_argument("--max-time", type=float, default=None, help="end time (default the paper's)")
+    ap.add_argument("--set", action="append", default=[], metavar="TAG=VALUE",
+                    help="an <EFEM> setting of the deck, e.g. slide_condition=false (repeatable)")
     ap.add_argument("--uda", default=None, help="read this run instead of running the deck")
     ap.add_argument("--png", default=None, help="snapshots (default <scene>_<nx>x<ny>.png)")
     args = ap.parse_args(argv)
@@ -91,6 +120,11 @@ def main(argv=None):
         text = re.sub(r"<resolution>.*?</resolution>", f"<resolution> [{nx}, {ny}, 1] </resolution>", text)
         text = re.sub(r"<patches>.*?</patches>", f"<patches> [{px}, {py}, 1] </patches>", text)
         text = re.sub(r"<maxTime>.*?</maxTime>", f"<maxTime> {t_end} </maxTime>", text)
+        for item in args.set:
+            tag, value = item.split("=", 1)
+            text, n = re.subn(rf"<{tag}>.*?</{tag}>", f"<{tag}> {value} </{tag}>", text)
+            if not n:
+                text = text.replace("<EFEM>\n", f"<EFEM>\n    <{tag}> {value} </{tag}>\n", 1)
         t0 = time.perf_counter()
         ctl = Controller(path, quiet=True, filebase=f"{args.scene}_{nx}x{ny}.uda", deck_text=text)
         ctl.run()
@@ -104,7 +138,10 @@ def main(argv=None):
     for k, t in enumerate(da.times):
         vols = [float(da.read("vol_frac_CC", m, k)[0].sum()) for m in range(nm)]
         fill = sum(da.read("vol_frac_CC", m, k)[0] for m in range(nm))
-        extra = f"  bottom {bottom_y(da, k):.4f} m (rest {PONTOON_BOTTOM_REST})" if args.scene == "pontoon" else ""
+        if args.scene == "pontoon":
+            extra = f"  bottom {bottom_y(da, k):.4f} m (rest {PONTOON_BOTTOM_REST})"
+        else:
+            extra = "  aspect {:.3f} spread {:.3f} hole {:.3f} wall {:.2f}".format(*ring_shape(da, k))
         print(f"t = {t:5.2f} s  centroid {centroid_y(da, k):.4f} m (rest {rest}){extra}  volume change "
               + ", ".join(f"{da.materials[m]} {v / v0 - 1:+.1e}" for m, (v, v0) in enumerate(zip(vols, vol0)))
               + f"  fill max {fill.max():.5f}")

@@ -144,7 +144,8 @@ class EFEM(EfemTasks, Component):
         # Eulerian step
         t = Task("EFEM::advectAndRemap", self.remap, self.matls) \
             .requires(OLD, L.delT).requires(NEW, E.gVelocityL, G, GADV + 1, matls=m0) \
-            .requires(NEW, E.gVelocityStar, G, GADV + 1, matls=m0).requires(NEW, E.press_CC, G, GADV, matls=m0) \
+            .requires(NEW, E.gVelocityStar, G, GADV + 1, matls=m0).requires(NEW, E.gMass, G, GADV + 1, matls=m0) \
+            .requires(NEW, E.press_CC, G, GADV, matls=m0) \
             .requires(NEW, E.rho_CC, G, GADV, matls=m0).requires(NEW, E.fill_CC, G, GADV, matls=m0) \
             .requires(OLD, E.vol_frac_CC, G, GADV) \
             .computes(E.vol_frac_CC).computes(E.dvel_CC, matls=m0).computes(E.mass_CC, matls=m0)
@@ -153,7 +154,7 @@ class EFEM(EfemTasks, Component):
                 .requires(NEW, E.hourglass_L_CC, G, GADV, matls=solids).computes(E.hourglass_CC, matls=solids)
         sched.add_task(t)
         sched.add_task(Task("EFEM::remapNodalVelocity", self.remap_velocity, m0)
-                       .requires(NEW, E.gVelocityL, G, 1).requires(NEW, E.gMass).requires(NEW, E.dvel_CC, G, 1)
+                       .requires(NEW, E.gVelocityL, G, 1).requires(NEW, E.gMass, G, 1).requires(NEW, E.dvel_CC, G, 1)
                        .requires(NEW, E.mass_CC, G, 1).computes(E.gVelocity))
         sched.add_task(Task("EFEM::sumConservedQuantities", self.conserved, self.matls)
                        .requires(NEW, E.vol_frac_CC).requires(NEW, E.gVelocity, matls=m0)

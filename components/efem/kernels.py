@@ -41,9 +41,12 @@ def solid_stress(D, sig_old, vf, fluid, sig_new, mean, excess, lam, mu, dt, slid
     """Eqs. (21)-(23): sigma_m += dt C_m : D (Hooke, plane strain), mean += phi_m sigma_m, and
     excess += phi_m e_v, the solid's volume strain tr(sigma_m) / (2 (lambda + mu)).
 
-    With `slide` (the paper's slide condition, eq. 24), an element that also holds fluid
-    drops the solid's shear traction on the interface, whose normal n is the gradient of
-    phi_m: sigma -= tau (n t + t n), tau = t . sigma . n; its normal stresses stay.
+    With `slide` (the paper's slide condition, eq. 24), an element where the fluid holds more
+    than the solid drops the solid's shear traction on the interface, whose normal n is the
+    gradient of phi_m: sigma -= tau (n t + t n), tau = t . sigma . n; its normal stresses
+    stay. Where the solid holds more, the element's centre lies inside the body and the shear
+    there is the body's own: a wall two or three elements thick, all of it mixed by the
+    remap, would otherwise lose the shear that carries its bending.
     Traces below phi_min (left by the remap) carry no stress."""
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
@@ -57,7 +60,7 @@ def solid_stress(D, sig_old, vf, fluid, sig_new, mean, excess, lam, mu, dt, slid
             syy = sig_old[i, j, 0, 1] + dt * (lam * exx + (lam + 2.0 * mu) * eyy)
             sxy = sig_old[i, j, 0, 2] + dt * mu * gxy
             excess[i, j, 0] += phi * (sxx + syy) / (2.0 * (lam + mu))
-            if slide and fluid[i, j, 0] > phi_min:
+            if slide and fluid[i, j, 0] > phi:
                 gx = (vf[i + 1, j, 0] if I + 1 < N[0] else phi) - (vf[i - 1, j, 0] if I > 0 else phi)
                 gy = (vf[i, j + 1, 0] if J + 1 < N[1] else phi) - (vf[i, j - 1, 0] if J > 0 else phi)
                 g = np.sqrt(gx * gx + gy * gy)
@@ -314,15 +317,28 @@ def project(vstar, press, mass, vel, n0, c0, lo, hi, N, dx, vol, dt, walls, wall
 
 
 @njit(cache=True)
-def element_velocity(vel, n0, c0, lo, hi, u):
-    """The element's velocity: the mean of its four nodes (paper sec. 6: nodal momentum to the element)."""
+def _element_mean(vel, gmass, a, b, q):
+    """Component q of the element's velocity (paper sec. 6: nodal momentum to the element): the mean
+    over those of its four nodes (node 0 at local (a, b)) that carry mass. A node without mass is
+    held at rest, not moving with the body: counting it would make a body's front and back
+    elements slower than the body, and the remap's velocity change there (new minus this) would
+    push the body's edge nodes."""
+    s = 0.0
+    n = 0
+    for aa, bb in ((a, b), (a + 1, b), (a + 1, b + 1), (a, b + 1)):
+        if gmass[aa, bb, 0] > TINY_MASS:
+            s += vel[aa, bb, 0, q]
+            n += 1
+    return s / n if n else 0.0
+
+
+@njit(cache=True)
+def element_velocity(vel, gmass, n0, c0, lo, hi, u):
+    """The elements' velocities: the mean of their nodes that carry mass (_element_mean)."""
     for I in range(lo[0], hi[0]):
         for J in range(lo[1], hi[1]):
-            a, b = I - n0[0], J - n0[1]
-            i, j = I - c0[0], J - c0[1]
-            for d in range(2):
-                u[i, j, d] = 0.25 * (vel[a, b, 0, d] + vel[a + 1, b, 0, d] + vel[a + 1, b + 1, 0, d]
-                                     + vel[a, b + 1, 0, d])
+            for q in range(2):
+                u[I - c0[0], J - c0[1], q] = _element_mean(vel, gmass, I - n0[0], J - n0[1], q)
 
 
 LIMITER_VAN_LEER, LIMITER_SUPERBEE = 0, 1
@@ -526,14 +542,8 @@ def nodal_remap(velL, gmass, dvel, mass_new, vel, n0, c0, lo, hi, N, walls, wall
                     sx += mc * dvel[i, j, 0, 0]
                     sy += mc * dvel[i, j, 0, 1]
                     if not had:
-                        aa, bb = ci - n0[0], cj - n0[1]
-                        for q in range(2):
-                            uc = 0.25 * (velL[aa, bb, 0, q] + velL[aa + 1, bb, 0, q] + velL[aa + 1, bb + 1, 0, q]
-                                         + velL[aa, bb + 1, 0, q])
-                            if q == 0:
-                                sx += mc * uc
-                            else:
-                                sy += mc * uc
+                        sx += mc * _element_mean(velL, gmass, ci - n0[0], cj - n0[1], 0)
+                        sy += mc * _element_mean(velL, gmass, ci - n0[0], cj - n0[1], 1)
             vel[a, b, 0, 2] = 0.0
             if w <= TINY_MASS:
                 vel[a, b, 0, 0] = vel[a, b, 0, 1] = 0.0

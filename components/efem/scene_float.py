@@ -13,7 +13,7 @@ import os
 import numpy as np
 
 DECK = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "EFEM", "floating_block.ups")
-H, RHO_S, RHO_W = 0.2, 500.0, 1000.0
+H, WIDTH, RHO_S, RHO_W = 0.2, 0.2, 500.0, 1000.0
 EXACT = H * RHO_S / RHO_W
 
 
@@ -40,3 +40,18 @@ def draught(da, timestep=-1):
     mid = fw.shape[0] // 2
     under = float(fw[mid - 1:mid + 1, :, 0].sum(axis=1).mean() * dy)
     return surface - under, surface, under
+
+
+def displaced(da, timestep=-1):
+    """(hydrostatic surface, the block's volume below it over the Archimedes volume H W rho_s /
+    rho_w): the surface is the pressure head deep in the column next to the x- wall, p / (rho_w g)
+    + y, which a film of water thinner than fill_min lying on top does not raise; the volume
+    counts the block's smeared edges wherever they lie."""
+    fs, (x, y, _) = da.read("vol_frac_CC", 0, timestep)
+    p, _ = da.read("press_CC", 0, timestep)
+    dx, dy = x[1] - x[0], y[1] - y[0]
+    j = len(y) // 4
+    surface = float(p[0, j, 0] / (RHO_W * 9.81) + y[j])
+    below = np.clip((surface - (y - dy / 2)) / dy, 0.0, 1.0)
+    volume = float((fs[:, :, 0] * below[None, :]).sum() * dx * dy)
+    return surface, volume / (EXACT * WIDTH)

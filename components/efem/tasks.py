@@ -176,7 +176,7 @@ class EfemTasks:
         u0 = np.zeros(phi.shape[1:] + (2,))
         glo = np.maximum(f.clo - 2, 0)
         ghi = np.minimum(f.chi + 2, f.N)
-        K.element_velocity(velL, f.n0, f.c0, glo, ghi, u0)
+        K.element_velocity(velL, new_dw.get(E.gMass, 0, patch), f.n0, f.c0, glo, ghi, u0)
         # the x sweep on rows [lo - 2, hi + 2), then the y sweep on the patch
         xlo = np.array([f.clo[0], glo[1]], dtype=np.int64)
         xhi = np.array([f.chi[0], ghi[1]], dtype=np.int64)

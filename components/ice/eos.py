@@ -50,6 +50,18 @@ Codes and parameter layouts (Uintah deck tags in brackets):
                      p = p_ref + K (1 - rho0/rho), dp/drho = K rho0/rho^2, c^2 = K/rho.
   SOLID_RIGID = 11   (MPMICE: rigid) [K, rho0, p_ref]: Uintah's RigidMaterial, rho = rho0 at any
                      pressure, p = p_ref, dp/drho = c^2 = K/rho0.
+  SOLID_IDEAL_GAS = 12 (MPMICE: ideal_gas_fluid) [gamma, cv]: Uintah's IdealGasMP with the model's
+                     <gamma> and <specific_heat>: p = (gamma-1) rho cv T, dp/drho = (gamma-1) cv T,
+                     c^2 = dp/drho + (gamma-1) p/rho, rho(p) = p / ((gamma-1) cv T).
+  SOLID_JWLPP = 13   (MPMICE: jwlpp_mpm) [A, B, R1, R2, om, cv, rho0]: Uintah's JWLppMPM,
+                     rho = rho0 at any pressure; p = A exp(-R1 V) + B exp(-R2 V) + om cv T rho,
+                     V = rho0/rho, c^2 = JWL's dp/drho = (R1 rho0 P1 + R2 rho0 P2)/rho^2 + om cv T
+                     (Uintah's model takes its sound-speed argument as the temperature and leaves
+                     it unset: sus's speedSound_CC there is whatever that variable held). The
+                     dp/drho the equilibration's Newton step weighs it by is that of its density
+                     law, incompressible (JWLPP_STIFF / rho0, as RigidMaterial's K = 1e200): the
+                     root is where the fluids fill the rest of the cell, as sus's (whose Newton,
+                     pulled to the JWL pressure, ends in its binary search there).
                      The solid codes' dp_de is 0 and eos_sound_speed2 is the model's own c^2
                      (solid_cm_press_eos), which MPMICE's equilibration takes as Uintah's.
   THOMSEN_HARTKA = 5 ``Thomsen_Hartka_water`` [a, b, co, ko, To, L, vo]
@@ -105,6 +117,9 @@ SOLID_UCNH = 8
 SOLID_HYPER = 9
 SOLID_HYPO = 10
 SOLID_RIGID = 11
+SOLID_IDEAL_GAS = 12
+SOLID_JWLPP = 13
+JWLPP_STIFF = 1.0e200     # SOLID_JWLPP's dp/drho in the equilibration: its density is rho0 at any pressure
 RHO_REF_TOL = 1e-10       # SOLID_JWL: relative tolerance of rho_ref (Uintah's computeRhoRef)
 MAX_PARAMS = 8
 
@@ -344,8 +359,20 @@ def hyper_rho_micro(press, K, rho0, p_ref, modified):
 
 
 @njit(cache=True)
-def solid_cm_press_eos(code, params, rho):
-    """(p, dp/drho, c^2) of the solid codes (SOLID_UCNH .. SOLID_RIGID)."""
+def solid_cm_press_eos(code, params, rho, temp):
+    """(p, dp/drho, c^2) of the solid codes (SOLID_UCNH .. SOLID_JWLPP) at the solid's temp."""
+    if code == SOLID_IDEAL_GAS:         # Uintah's IdealGasMP
+        g, cv = params[0], params[1]
+        p = (g - 1.0) * rho * cv * temp
+        dp = (g - 1.0) * cv * temp
+        return p, dp, dp + (g - 1.0) * rho * p / (rho * rho)
+    if code == SOLID_JWLPP:             # Uintah's JWLppMPM (its temperature the cell's)
+        A, B, R1, R2, om, cv, rho0 = params[0], params[1], params[2], params[3], params[4], params[5], params[6]
+        V = rho0 / rho
+        P1 = A * math.exp(-R1 * V)
+        P2 = B * math.exp(-R2 * V)
+        c2 = (R1 * rho0 * P1 + R2 * rho0 * P2) / (rho * rho) + om * cv * temp
+        return P1 + P2 + om * cv * temp * rho, JWLPP_STIFF / rho0, c2
     K, rho0, p_ref = params[0], params[1], params[2]
     if code == SOLID_UCNH:
         return ucnh_press_eos(rho, K, rho0, p_ref, params[3] != 0.0)
@@ -358,8 +385,12 @@ def solid_cm_press_eos(code, params, rho):
 
 
 @njit(cache=True)
-def solid_cm_rho_micro(code, params, press):
+def solid_cm_rho_micro(code, params, press, temp):
     """rho_micro(p) of the solid codes (Uintah's computeRhoMicroCM)."""
+    if code == SOLID_IDEAL_GAS:
+        return press / ((params[0] - 1.0) * params[1] * temp)
+    if code == SOLID_JWLPP:
+        return params[6]
     K, rho0, p_ref = params[0], params[1], params[2]
     if code == SOLID_UCNH:
         return ucnh_rho_micro(press, K, rho0, p_ref, params[3] != 0.0)
@@ -465,7 +496,7 @@ def eos_press_eos(code, params, rho_micro, temp, cv, gamma):
     elif code == TST:
         return tst_press_eos(rho_micro, temp, cv, params[0], params[1], params[2], params[3], params[4])
     elif code >= SOLID_UCNH:
-        p, dp, _c2 = solid_cm_press_eos(code, params, rho_micro)
+        p, dp, _c2 = solid_cm_press_eos(code, params, rho_micro, temp)
         return p, dp, 0.0
     return math.nan, math.nan, math.nan
 
@@ -582,7 +613,7 @@ def eos_rho_micro(code, params, press, temp, cv, gamma, rho_guess):
     elif code == TST:
         return tst_rho_micro(press, temp, cv, gamma, params[0], params[1], params[2], params[3])
     elif code >= SOLID_UCNH:
-        return solid_cm_rho_micro(code, params, press)
+        return solid_cm_rho_micro(code, params, press, temp)
     return math.nan
 
 
@@ -627,7 +658,7 @@ def eos_sound_speed2(code, params, rho_micro, temp, cv, gamma):
     Uintah's c^2 = dp_drho + dp_de p / rho^2 (its dp_de is not (dp/dT)_rho / cv); the solid
     codes: their model's c^2 (solid_cm_press_eos)."""
     if code >= SOLID_UCNH:
-        return solid_cm_press_eos(code, params, rho_micro)[2]
+        return solid_cm_press_eos(code, params, rho_micro, temp)[2]
     if code == THOMSEN_HARTKA:
         p, dp_drho, dp_de = eos_press_eos(code, params, rho_micro, temp, cv, gamma)
         return sound_speed2_uintah(p, rho_micro, dp_drho, dp_de)

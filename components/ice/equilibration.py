@@ -1,8 +1,8 @@
 """Eq. 13 of paper 000 for several materials of any EOS: the equilibration pressure by Newton
 per cell (ICE's computeEquilibrationPressure; MPMICE's step 2 over solids and fluids, each solid
-with its constitutive model's EOS as Uintah's computePressEOSCM: eos.py's SOLID_UCNH .. SOLID_RIGID,
-a visco_scram solid's JWL SOLID_JWL, or ICE's Murnaghan with n = 1 for models Uintah gives none:
-mpmice/setup.py).
+with its constitutive model's EOS as Uintah's computePressEOSCM: eos.py's SOLID_UCNH .. SOLID_JWLPP,
+a visco_scram solid's JWL SOLID_JWL, or ICE's Murnaghan with n = 1 for rmpmice's unscaled
+prescribed solids: mpmice/setup.py).
 
 The first Newton iteration runs a row of cells at a time in loops that vectorize; the
 Murnaghan n = 1 EOS skips its powers of 1 and 0; the round-off cycle of a cell full of a stiff
@@ -130,11 +130,80 @@ def _rho_micro_row(code, params, m, p, t, cv, gamma, rm):
             rm[c] = eos_rho_micro(code, params[m], p[c], t[c], cv, gamma, rm[c])
 
 
+# Uintah's MPMICE: an iterate below 100 DBL_EPSILON is replaced by |dp|; the binary search's
+# tolerance on |1 - sum theta| and its bracket [DBL_EPSILON, 1/DBL_EPSILON]
+DBL_EPSILON = 2.220446049250313e-16
+UINTAH_CONVERGENCE = 100.0 * DBL_EPSILON
+
+
+@njit(cache=True, inline="always")
+def _next_iterate(p, dp, uintah_mpmice):
+    """p + dp, kept positive: pysus's ICE takes a tenth of p where p + dp < p/10 (an ideal gas's
+    Newton step overshoots to p < 0 once the root is below p/2); Uintah's MPMICE takes |dp| where
+    p + dp < 100 DBL_EPSILON (MPMICE::computeEquilibrationPressure; ICE's own has no such clamp
+    and stops the run where the iterate ends below 0)."""
+    pn = p + dp
+    if uintah_mpmice:
+        return abs(dp) if pn < UINTAH_CONVERGENCE else pn
+    return 0.1 * p if p > 0.0 and pn < 0.1 * p else pn
+
+
 @njit(cache=True, error_model="numpy")
-def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_iter, rm1, rm2):
+def _theta_sum(c, press, R, T, RM, codes, params, cvs, gammas, rm_out):
+    """sum_m rho_m / rho_micro_m(press) of cell c (rm_out[m]: those densities; RM the guesses)."""
+    s = 0.0
+    for m in range(R.shape[0]):
+        rm_out[m] = _rho_micro(codes[m], params, m, press, T[m, c], cvs[m], gammas[m], RM[m, c])
+        s += R[m, c] / rm_out[m]
+    return s
+
+
+@njit(cache=True, error_model="numpy")
+def _binary_search_cell(c, p_old, P, R, T, RM, PE, DP, codes, params, cvs, gammas, max_iter, rm, rm_l, rm_r):
+    """Uintah's MPMICE::binaryPressureSearch for a cell whose Newton iteration ran out of iterations
+    without converging: from the old pressure, Pm evaluated each pass, the bracket [Pleft, Pright]
+    starting at [DBL_EPSILON, 1/DBL_EPSILON] halved by the sign of (1 - sum_R)(1 - sum_L), until
+    |1 - sum theta(Pm)| <= 100 DBL_EPSILON; unconverged after max_iter passes, as Uintah's, the
+    next Pm with the densities of the last one evaluated. Returns the passes."""
+    n = R.shape[0]
+    pm = p_old
+    p_left = p_right = p_temp = 0.0
+    count = 0
+    converged = False
+    while count < max_iter and not converged:
+        count += 1
+        s = _theta_sum(c, pm, R, T, RM, codes, params, cvs, gammas, rm)
+        for m in range(n):
+            RM[m, c] = rm[m]
+        if abs(1.0 - s) <= UINTAH_CONVERGENCE:
+            converged = True
+            P[c] = pm
+        if count == 1:
+            p_left = DBL_EPSILON
+            p_right = 1.0 / DBL_EPSILON
+            p_temp = 0.5 * (p_left + p_right)
+        s_r = _theta_sum(c, p_right, R, T, RM, codes, params, cvs, gammas, rm_r)
+        s_l = _theta_sum(c, p_left, R, T, RM, codes, params, cvs, gammas, rm_l)
+        if (1.0 - s_r) * (1.0 - s_l) < 0.0:
+            p_temp = p_left
+            p_left = 0.5 * (p_left + p_right)
+        else:
+            p_right = p_left
+            p_left = p_temp
+            p_left = 0.5 * (p_left + p_right)
+        pm = 0.5 * (p_left + p_right)
+    if not converged:
+        P[c] = pm
+    for m in range(n):
+        PE[m, c], DP[m, c], _ = _press_eos(codes[m], params, m, RM[m, c], T[m, c], cvs[m], gammas[m])
+    return count
+
+
+@njit(cache=True, error_model="numpy")
+def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_iter, rm1, rm2, uintah_mpmice):
     """Iterations 2.. of one cell of equilibrate (its state after iteration 1 in P, RM, PE,
     DP column c): the plain per-cell Newton loop, with the round-off cycle taken at once. Returns
-    the iteration count."""
+    the iteration count and whether it converged (or cycled)."""
     n = RM.shape[0]
     p = P[c]
     p1 = p
@@ -153,15 +222,18 @@ def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_it
             B += (p - PE[m, c]) / y
             C += 1.0 / y
         dp = (A - 1.0 - B) / C
-        pn = p + dp
-        if p > 0.0 and pn < 0.1 * p:
-            pn = 0.1 * p            # keep an ideal-gas iterate positive
-        p = pn
+        p = _next_iterate(p, dp, uintah_mpmice)
+        if uintah_mpmice and not p <= 1.0 / DBL_EPSILON:
+            # |dp| grows without bound: Uintah's iterate goes on to inf and NaN and never converges, its
+            # binary search (bracket up to 1/DBL_EPSILON) then starts from the old pressure
+            P[c] = p
+            return it, False
         for m in range(n):
             RM[m, c] = _rho_micro(codes[m], params, m, p, T[m, c], cvs[m], gammas[m], RM[m, c])
             PE[m, c], DP[m, c], _ = _press_eos(codes[m], params, m, RM[m, c], T[m, c], cvs[m], gammas[m])
         if abs(dp) <= tol * abs(p) + 1e-300 and abs(A - 1.0) < 1e-9:
-            break
+            P[c] = p
+            return it, True
         same = p == p2
         for m in range(n):
             same = same and RM[m, c] == rm2[m]
@@ -173,20 +245,20 @@ def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_it
                 for m in range(n):
                     RM[m, c] = rm1[m]
                     PE[m, c], DP[m, c], _ = _press_eos(codes[m], params, m, RM[m, c], T[m, c], cvs[m], gammas[m])
-            it = max_iter
-            break
+            P[c] = p
+            return max_iter, True
         p2 = p1
         p1 = p
         for m in range(n):
             rm2[m] = rm1[m]
             rm1[m] = RM[m, c]
     P[c] = p
-    return it
+    return it, False
 
 
 @njit(cache=True, error_model="numpy")
 def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, params, cvs, gammas,
-                lo, hi, tol, max_iter):
+                lo, hi, tol, max_iter, uintah_mpmice=False):
     """Step 2, eq. 13 over solids and fluids by Newton per cell: p with sum_m rho_m / rho_micro_m(p, T_m) = 1, dp = (sum theta - 1 -
     sum Q_m/y_m) / sum 1/y_m, Q_m = p - p_eos_m, y_m = (dp/drho)_m rho_micro_m^2 / rho_m.
 
@@ -200,6 +272,8 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
     the last (dp/drho)_T (Thomsen_Hartka_water and the MPM solids' codes: Uintah's c^2, as
     eos_sound_speed2). Every
     cell does the plain per-cell iteration's operations in its order: bitwise its results.
+    uintah_mpmice: MPMICE's equilibration as Uintah's where the iterate would fall below 0 and
+    where it does not converge (_next_iterate, _binary_search_cell); else pysus ICE's.
     Returns the largest iteration count (max_iter where a cell cycles)."""
     n = len(rhos)
     k0 = lo[2]
@@ -216,6 +290,7 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
     D = np.empty(nk)
     rm1 = np.empty(n)
     rm2 = np.empty(n)
+    rm3 = np.empty(n)
     worst = 0
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -244,9 +319,7 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
                         C[c] += 1.0 / y
                 for c in range(nk):
                     dp = (A[c] - 1.0 - B[c]) / C[c]
-                    p = P[c]
-                    pn = p + dp
-                    P[c] = 0.1 * p if p > 0.0 and pn < 0.1 * p else pn     # keep an ideal-gas iterate positive
+                    P[c] = _next_iterate(P[c], dp, uintah_mpmice)
                     D[c] = dp
                 for m in range(n):
                     _rho_micro_row(codes[m], params, m, P, T[m], cvs[m], gammas[m], RM[m])
@@ -255,8 +328,12 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
                     if abs(D[c]) <= tol * abs(P[c]) + 1e-300 and abs(A[c] - 1.0) < 1e-9:
                         worst = max(worst, 1)
                     else:
-                        worst = max(worst, _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol,
-                                                        max_iter, rm1, rm2))
+                        it, done = _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_iter,
+                                                rm1, rm2, uintah_mpmice)
+                        worst = max(worst, it)
+                        if uintah_mpmice and not done:
+                            _binary_search_cell(c, pg[c], P, R, T, RM, PE, DP, codes, params, cvs, gammas,
+                                                max_iter, rm1, rm2, rm3)
             out = press[i, j, k0:k0 + nk]
             for c in range(nk):
                 out[c] = P[c]

@@ -150,7 +150,12 @@ class MPMICE(MPMICETasks, Component):
                     "ArenaSoil in MPMICE (its Murnaghan EOS of <K0_Murnaghan_EOS>, <n_Murnaghan_EOS>) is not "
                     "implemented; accepted there: the other MPM models")
         cv = [_specific_heat(m) for m in self.mpm.materials]
-        self.ice = ICEinMPMICE(self.mpm.materials, cv, self.rigid)
+        node = root.child("MPMICE")
+        self.gas_start = "particles" if self.rigid else "geometry"
+        if node is not None and node.has("gas_start"):      # pysus's own start (docs/MPMICE.md)
+            self.gas_start = node.get("gas_start", "str", choices=("geometry", "particles"))
+        # prescribed solids with pysus's particle start (unscaled: setup.solid_eos) take a Murnaghan stand-in
+        self.ice = ICEinMPMICE(self.mpm.materials, cv, self.rigid and self.gas_start == "particles")
         self.ice.problem_setup(root, level)
         self.ice.coupling = self          # the fluids' advection next to the solids (tasks.open_faces)
         if self.ice.implicit:
@@ -167,10 +172,6 @@ class MPMICE(MPMICETasks, Component):
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
         self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
-        node = root.child("MPMICE")
-        self.gas_start = "particles" if self.rigid else "geometry"
-        if node is not None and node.has("gas_start"):      # pysus's own start (docs/MPMICE.md)
-            self.gas_start = node.get("gas_start", "str", choices=("geometry", "particles"))
         # pysus's rule for fluid slivers in solid-filled cells (tasks.exchange); false: Uintah's exchange alone
         self.trace_temperatures = node.get("trace_temperatures", "bool", True) if node is not None else True
 

@@ -5,15 +5,20 @@ model: RigidMPM carries the particle stress forward (zero), puts no internal for
 no stable-timestep limit, and the solid moves with its own velocity, or as
 `<contact type="rigid">` (SpecifiedBodyContact) prescribes: its velocity until
 <stop_time>, <velocity_after_stop> after. Here a solid of an rmpmice deck is read with
-any constitutive model type Uintah has; only its <bulk_modulus> acts (the solid's EOS in
-the equilibration pressure, setup.py); the model's other tags have no effect and are
+any constitutive model type Uintah has; only the tags of the model's EOS act (with
+<MPMICE><gas_start>geometry Uintah's: MPMICE calls the deck model's computePressEOSCM in the
+equilibration pressure; with the particle start, the default here, <bulk_modulus> in a
+Murnaghan stand-in: setup.py solid_eos); the model's other tags have no effect and are
 reported at start-up. The stress is the rigid model's (zero).
 """
 from __future__ import annotations
 
 from components.mpm.materials import Material
 
-ACTS = ("bulk_modulus",)        # the constitutive-model tags that act in rmpmice
+# the constitutive-model tags that act in rmpmice: those of the models' EOS (setup.solid_eos)
+ACTS = ("bulk_modulus", "useModifiedEOS", "K", "gamma", "specific_heat", "usePlasticity", "flow_model",
+        "jwl_A", "jwl_B", "jwl_R1", "jwl_R2", "jwl_om", "PR", "G1", "G2", "G3", "G4", "G5",
+        "useJWLEOS", "A", "B", "R1", "R2", "om", "Cv")
 
 
 class _RigidModel:
@@ -85,7 +90,8 @@ def describe(mpm, rigid_matls):
         s = f"'{mat.name.strip()}' moves with {how}"
         asked = getattr(mat, "model_asked", "rigid")
         if asked != "rigid":
-            s += f"; constitutive_model {asked} acts only through <bulk_modulus> (the solid's EOS)"
+            s += (f"; constitutive_model {asked} acts only through its EOS in the equilibration (with "
+                  "<gas_start>geometry; else <bulk_modulus> in a Murnaghan stand-in)")
         if getattr(mat, "no_effect", None):
             s += "; no effect: " + ", ".join(mat.no_effect)
         parts.append(s)

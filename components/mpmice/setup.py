@@ -11,20 +11,25 @@ MPM materials come first (indices 0..nm-1), then ICE's (nm..N-1), as in Uintah.
                global indices unchanged. A solid enters the ICE kernels with its
                constitutive model's EOS, as Uintah's MPMICE calls the model's
                computePressEOSCM and computeRhoMicroCM (solid_eos: an EOS code and
-               parameter row per solid, ice/eos.py SOLID_UCNH .. SOLID_RIGID, SOLID_JWL);
+               parameter row per solid, ice/eos.py SOLID_UCNH .. SOLID_JWLPP, SOLID_JWL);
                with <useModifiedEOS> below rho0 the condensed-phase threshold curve of
                paper 000 sec. 3.1, p = p_ref (rho/rho0)^(K/p_ref) (C1 at p_ref, -> 0 as
-               v -> inf). Models Uintah gives no such EOS, and rmpmice's prescribed solids,
-               take ICE's Murnaghan code with n = 1, P0 = p_ref: p_ref + K (rho/rho0 - 1)
-               above rho0 and that threshold curve below it.
+               v -> inf). rmpmice's prescribed solids too with <gas_start>geometry (Uintah's
+               start and scaling): Uintah's RigidMPM keeps the deck's model, whose EOS MPMICE
+               calls; with pysus's particle start (their default, unscaled) a stand-in, ICE's
+               Murnaghan with n = 1, P0 = p_ref (p_ref + K (rho/rho0 - 1) above rho0, the
+               threshold curve below). comp_mooney_rivlin is refused: Uintah's
+               CompMooneyRivlin has none (its density 0: sus stops at step 1 with NaN).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from components.ice.component import ICE
-from components.ice.eos import (MAX_PARAMS, MURNAGHAN, SOLID_HYPER, SOLID_HYPO, SOLID_JWL, SOLID_RIGID,
-                                SOLID_UCNH)
+import importlib
+
+from components.ice.eos import (MAX_PARAMS, MURNAGHAN, SOLID_HYPER, SOLID_HYPO, SOLID_IDEAL_GAS, SOLID_JWL, SOLID_JWLPP,
+                                SOLID_RIGID, SOLID_UCNH)
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
@@ -33,6 +38,7 @@ from framework.gridspec import boundary_faces, sub_faces
 from framework.problemspec import Param
 
 from . import labels as MI
+from .rigid import _RigidModel, _RigidView
 
 
 class ContactWithICE(Contact):
@@ -103,8 +109,13 @@ class MPMinMPMICE(MPM):
 SOLID_EOS = {"comp_neo_hook": SOLID_UCNH, "comp_neo_hook_plastic": SOLID_UCNH, "UCNH": SOLID_UCNH,
              "UCNHVar": SOLID_UCNH,
              "elastic_plastic": SOLID_HYPER, "elastic_plastic_hp": SOLID_HYPER, "visco_scram": SOLID_HYPER,
-             "hypo_elastic": SOLID_HYPO, "rigid": SOLID_RIGID}
+             "hypo_elastic": SOLID_HYPO, "rigid": SOLID_RIGID,
+             "membrane": SOLID_HYPER,             # Uintah's Membrane.cc (not in its build): ElasticPlasticHP's curve
+             "ideal_gas_fluid": SOLID_IDEAL_GAS,  # Uintah's IdealGasMP (deck type ideal_gas)
+             "jwlpp_mpm": SOLID_JWLPP}
 RIGID_BULK = 1.0e200      # Uintah's RigidMaterial without <bulk_modulus>
+NO_EOS = {"comp_mooney_rivlin": "Uintah's CompMooneyRivlin has no EOS for MPMICE's equilibration (its "
+                                "computeRhoMicroCM returns 0: sus stops at step 1 with NaN)"}
 
 
 def _bulk(mat):
@@ -113,30 +124,69 @@ def _bulk(mat):
     return K if K > 0 else 1e12
 
 
-def solid_eos(mat, p_ref, prescribed):
+def _asked_model(mat):
+    """(deck type, Params) of an rmpmice solid's own <constitutive_model> (RigidSolid reads it as
+    rigid; its EOS is the asked model's), read as MPM reads a material's (materials.py)."""
+    import dataclasses
+    from components.mpm.materials import MODELS
+    node = mat.node._node if isinstance(mat.node, _RigidView) else mat.node
+    cm = node.child("constitutive_model")
+    kind = mat.model_asked
+    if kind == "elastic_plastic" and cm.has("flow_model"):
+        kind = "elastic_plastic_hp"
+    if kind == "comp_neo_hook" and cm.get("usePlasticity", "bool", False):
+        kind = "UCNH"
+    model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
+    props = {"density": mat.density, "specific_heat": mat.specific_heat}
+    if hasattr(model, "read_params"):
+        return kind, model.read_params(cm, node, props)
+    values = {f.name: cm.child(f.name).text() for f in dataclasses.fields(model.Params) if cm.has(f.name)}
+    params = model.Params.from_ups(values)
+    if hasattr(model, "MATERIAL_PROPERTIES"):
+        params = dataclasses.replace(params, **{k: props[k] for k in model.MATERIAL_PROPERTIES})
+    return kind, params
+
+
+def solid_eos(mat, p_ref, stand_in=False):
     """(code, parameter row) of MPM material mat's EOS in the equilibration: its Uintah model's
-    computePressEOSCM (SOLID_EOS; visco_scram's <useJWLEOS> SOLID_JWL), else (models without
-    one in Uintah, prescribed rmpmice solids) Murnaghan n = 1 with the threshold at p_ref."""
+    computePressEOSCM (SOLID_EOS; visco_scram's <useJWLEOS> SOLID_JWL); a prescribed (rmpmice)
+    solid's deck model's, as Uintah's RigidMPM keeps it. stand_in (prescribed solids left
+    unscaled, pysus's particle start): Murnaghan n = 1 with the threshold at p_ref, K the
+    <bulk_modulus>; an incompressible rigid solid there leaves the fluids no room where the
+    particles' mapped mass fills a cell (the Mach 3 wedge stops at step 4)."""
     row = np.zeros(MAX_PARAMS)
-    q = mat.params
-    code = None if prescribed else SOLID_EOS.get(mat.model_name)
+    if stand_in:
+        row[:4] = (1.0 / _bulk(mat), 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
+        return MURNAGHAN, row
+    kind, q = mat.model_name, mat.params
+    if getattr(mat, "model_asked", kind) != kind:
+        kind, q = _asked_model(mat)
+    cm = mat.node.child("constitutive_model")
+    if isinstance(cm, _RigidModel):          # rigid.py's view of the deck's node
+        cm = cm._cm
+    if kind in NO_EOS:
+        raise cm.error(f"type=\"{kind}\" is not accepted with MPMICE: {NO_EOS[kind]}; accepted: "
+                       + ", ".join(sorted(SOLID_EOS)))
+    code = SOLID_EOS[kind]
     if getattr(q, "useJWLEOS", False):                  # visco_scram's JWL (Uintah's ViscoScram)
         row[:8] = (q.A, q.B, q.R1, q.R2, q.om, q.Cv, mat.density, p_ref if q.useModifiedEOS else 0.0)
         return SOLID_JWL, row
-    if code is None:
-        row[:4] = (1.0 / _bulk(mat), 1.0, mat.density, p_ref)   # Murnaghan: compressibility, n, rho0, P0
-        return MURNAGHAN, row
-    cm = mat.node.child("constitutive_model")
-    modified = cm.get("useModifiedEOS", "bool", False) and mat.model_name != "UCNHVar"   # UCNHVar never reads it
+    if code == SOLID_IDEAL_GAS:
+        row[:2] = (q.gamma, q.specific_heat or mat.specific_heat)
+        return code, row
+    if code == SOLID_JWLPP:
+        row[:7] = (q.A, q.B, q.R1, q.R2, q.omega, mat.specific_heat, mat.density)
+        return code, row
+    modified = (cm.get("useModifiedEOS", "bool", False) and kind not in ("UCNHVar", "membrane"))  # neither reads it
     if code == SOLID_HYPO:
         K = q.K
     elif code == SOLID_RIGID:
         K = q.bulk_modulus if q.bulk_modulus > 0.0 else RIGID_BULK
-    elif mat.model_name == "UCNHVar":             # Uintah's UCNHVar: the largest entry's
+    elif kind == "UCNHVar":             # Uintah's UCNHVar: the largest entry's
         K = float(max(q.bulk_modulus))
     else:
         K = q.bulk_modulus
-    row[:5] = (K, mat.density, p_ref, float(modified), float(mat.model_name == "visco_scram"))
+    row[:5] = (K, mat.density, p_ref, float(modified), float(kind == "visco_scram"))
     return code, row
 
 
@@ -155,12 +205,12 @@ class ICEinMPMICE(ICE):
 
     press_floor = 1.0e-12       # Uintah's clamp of press_CC: solids in tension (tests/mpmice/test_hard_cases.py)
 
-    def __init__(self, mpm_materials, solid_cv, prescribed):
+    def __init__(self, mpm_materials, solid_cv, stand_in):
         super().__init__()
         self.n_before = len(mpm_materials)
         self._mpm_materials = mpm_materials
         self._solid_cv = solid_cv
-        self._prescribed = prescribed
+        self._stand_in = stand_in
 
     def problem_setup(self, root, level):
         super().problem_setup(root, level)
@@ -169,7 +219,7 @@ class ICEinMPMICE(ICE):
         p_ref = self.reference_pressure
         rows, codes = [], []
         for mat in self._mpm_materials:
-            code, row = solid_eos(mat, p_ref, self._prescribed)
+            code, row = solid_eos(mat, p_ref, self._stand_in)
             codes.append(code)
             rows.append(row)
         cvs = list(self._solid_cv)

@@ -271,7 +271,8 @@ class MPMICETasks:
     def equilibration_pressure(self, patch, matls, old_dw, new_dw):
         """Eq. 13 over solids and fluids (the solids with the sec. 3.1 threshold EOS): ICE's
         computeEquilibrationPressure with MPMICE's kernel (equilibration.equilibrate, the same values)
-        on arrays seen with the collapsed axes first."""
+        on arrays seen with the collapsed axes first; an iterate below 0 and a cell that does not
+        converge handled as Uintah's MPMICE (|dp|, then its binary search)."""
         ice, start = self.ice, StartOfStep(old_dw, new_dw, self.mpm_matls)
         b = ice.boxes(patch)
         peq = new_dw.allocate(I.press_equil_CC, 0, patch)
@@ -280,12 +281,14 @@ class MPMICETasks:
         spv, vfs, css = new(I.sp_vol_CC), new(I.vol_frac_CC), new(I.speedSound_CC)
         rhos, temps, sp_old = get(I.rho_CC), get(I.temp_CC), get(I.sp_vol_CC)
         p_old = b.view(old_dw.get(I.press_CC, 0, patch))
-        # deformable solids start from their EOS volume at the old pressure (Uintah's normalization);
-        # prescribed (rigid) solids keep their particle density: their stand-in EOS is not a material's
-        # and scaling by it collapses the time step (the Mach 3 wedge: delT 4e-8 instead of 5.7e-6)
+        # the solids start from their EOS volume at the old pressure (Uintah's normalization); prescribed
+        # (rmpmice) solids only with <gas_start>geometry (Uintah's start: the fluids scaled too, and the
+        # deck model's EOS: sus's press_CC to 1e-12 on a rigid slab in 10 atm air,
+        # tests/mpmice/test_solid_eos_decks.py); with pysus's particle start, their default, scaling the
+        # solids alone by their stand-in EOS collapsed the Mach 3 wedge's time step (4e-8 s, not 5.7e-6)
         scaled = rhos
         tmv = new_dw.allocate(I.TMV_CC, 0, patch, fill=b.vol)
-        if not self.rigid:
+        if not self.rigid or self.gas_start == "geometry":
             solid = np.array([m in self.mpm_matls for m in matls])
             fluids_too = self.gas_start == "geometry"
             scaled = tuple(r.copy() if s or fluids_too else r for r, s in zip(rhos, solid))
@@ -293,7 +296,7 @@ class MPMICETasks:
                                      fluids_too, scaled, b.view(tmv), b.vol, b.v_olo, b.v_ohi)
         E.equilibrate(scaled, temps, sp_old, p_old,
                       spv, vfs, css, b.view(peq), ice.codes, ice.params, ice.cvs, ice.gammas, b.v_olo, b.v_ohi,
-                      1e-11, ice.max_iter)
+                      1e-11, ice.max_iter, True)
         ice.bcs.scalar(patch, peq, "Pressure", 0, b)
 
     def vel_fc(self, patch, matls, old_dw, new_dw):

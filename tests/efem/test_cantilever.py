@@ -23,7 +23,7 @@ def test_cantilever_first_swing_against_beam_theory(tmp_path):
     k = int(np.argmax(tip))
     assert 0 < k < len(tip) - 1, tip            # the first maximum lies inside the run
     peak = tip[k] / (2.0 * S.beam(x[-1]))
-    assert abs(peak - 1.0) < 0.1, peak          # measured 0.964 (1.39 without <volume_correction>)
+    assert abs(peak - 1.0) < 0.1, peak          # measured 0.963 (1.39 without <volume_correction>)
     half = da.times[k] / (0.5 * S.period())
     assert abs(half - 1.0) < 0.1, half          # measured 1.006 (1.31 without <volume_correction>)
     assert all(w[3:] > w[2:-1])                 # the deflection grows along the bar

@@ -1,7 +1,7 @@
 """The MPM solids' own EOS in MPMICE's equilibration (components/ice/eos.py SOLID_UCNH .. SOLID_RIGID,
 components/mpmice/setup.py solid_eos), against the formulas of Uintah's constitutive models'
 computePressEOSCM / computeRhoMicroCM (UCNH.cc, ElasticPlasticHP.cc, ViscoScram.cc, HypoElastic.cc,
-RigidMaterial.cc): pressure, dp/drho, the sound speed Uintah's MPMICE takes (the model's c^2, not
+RigidMaterial.cc, IdealGasMP.cc, JWLppMPM.cc): pressure, dp/drho, the sound speed Uintah's MPMICE takes (the model's c^2, not
 dp/drho), the density at a pressure, and the <useModifiedEOS> curve below rho0.
 """
 import importlib
@@ -107,7 +107,8 @@ def test_ucnh_arithmetic_is_uintahs():
 def test_deck_model_selects_its_eos(kind, tags, code, K):
     """setup.solid_eos: the model's Uintah EOS with its bulk modulus, <useModifiedEOS> in the row
     (Uintah's default false); RigidMaterial without <bulk_modulus> Uintah's K = 1e200; a prescribed
-    (rmpmice) solid the Murnaghan stand-in."""
+    (rmpmice) solid its model's too (Uintah's RigidMPM keeps the deck's model), the Murnaghan stand-in
+    where it is left unscaled (stand_in: pysus's particle start)."""
     from components.ice.eos import MURNAGHAN
     from components.mpm.materials import MODELS
     from components.mpmice.setup import solid_eos
@@ -140,3 +141,40 @@ def test_ucnhvar_takes_its_largest_bulk_modulus():
     mat = types.SimpleNamespace(node=node, model_name="UCNHVar", density=8930.0, params=params)
     code, row = solid_eos(mat, P_REF, False)
     assert code == SOLID_UCNH and row[0] == 117e9 and row[3] == 0.0
+
+
+def test_ideal_gas_and_jwlpp():
+    """IdealGasMP: p = (gamma-1) rho cv T, dp/drho = (gamma-1) cv T, c^2 = dp/drho + (gamma-1) p/rho,
+    rho(p) its inverse (the solid's temperature); JWLppMPM: rho0 at any pressure, p its JWL with
+    the cell's temperature, c^2 the JWL's dp/drho, and the equilibration's dp/drho that of an
+    incompressible density (Uintah's computeRhoMicroCM)."""
+    from components.ice.eos import JWLPP_STIFF, SOLID_IDEAL_GAS, SOLID_JWLPP
+    row = _row(1.4, 716.0)
+    p, dp, de = eos_press_eos(SOLID_IDEAL_GAS, row, 5.0, 400.0, 999.0, 1.0)
+    assert p == pytest.approx(0.4 * 5.0 * 716.0 * 400.0, rel=1e-15) and dp == pytest.approx(0.4 * 716.0 * 400.0)
+    assert de == 0.0
+    assert eos_sound_speed2(SOLID_IDEAL_GAS, row, 5.0, 400.0, 999.0, 1.0) == pytest.approx(1.4 * 0.4 * 716.0 * 400.0,
+                                                                                         rel=1e-15)
+    assert eos_rho_micro(SOLID_IDEAL_GAS, row, p, 400.0, 999.0, 1.0, 1.0) == pytest.approx(5.0, rel=1e-15)
+    A, B, R1, R2, om, cv, rho0 = 7.73037e11, 21.629e9, 4.5, 1.5, 0.33, 1000.0, 1844.0
+    row = _row(A, B, R1, R2, om, cv, rho0)
+    rho, T = 1900.0, 320.0
+    V = rho0 / rho
+    p, dp, de = eos_press_eos(SOLID_JWLPP, row, rho, T, 999.0, 1.0)
+    assert p == pytest.approx(A * math.exp(-R1 * V) + B * math.exp(-R2 * V) + om * cv * T * rho, rel=1e-14)
+    assert dp == JWLPP_STIFF / rho0 and de == 0.0
+    c2 = (R1 * rho0 * A * math.exp(-R1 * V) + R2 * rho0 * B * math.exp(-R2 * V)) / rho ** 2 + om * cv * T
+    assert eos_sound_speed2(SOLID_JWLPP, row, rho, T, 999.0, 1.0) == pytest.approx(c2, rel=1e-14)
+    assert eos_rho_micro(SOLID_JWLPP, row, 3e9, T, 999.0, 1.0, 1.0) == rho0
+
+
+def test_membrane_takes_elastic_plastic_hps_curve():
+    """Uintah's Membrane.cc (not in its build): ElasticPlasticHP's curve, no <useModifiedEOS>."""
+    from components.mpmice.setup import solid_eos
+    from framework.problemspec import ProblemSpec
+    node = ProblemSpec.from_string('<material><constitutive_model type="membrane"><useModifiedEOS>true'
+                                   '</useModifiedEOS></constitutive_model></material>')
+    params = types.SimpleNamespace(bulk_modulus=2e9)
+    mat = types.SimpleNamespace(node=node, model_name="membrane", density=1000.0, params=params)
+    code, row = solid_eos(mat, P_REF, False)
+    assert code == SOLID_HYPER and row[0] == 2e9 and row[3] == 0.0 and row[4] == 0.0

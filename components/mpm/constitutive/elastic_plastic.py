@@ -32,6 +32,7 @@ import numpy as np
 from numba import njit
 
 from ._common import _get, det3, max_wavespeed
+from .damage import _mean_and_von_mises
 from .hypo_elastic import jaumann_trial, work_increment
 
 ENERGY_IS_INCREMENT = True
@@ -119,13 +120,7 @@ def kernel(G, K, sy0, H, eps_f, erosion, L, F_old, F_new, vol, mass, vel, dt, st
         if erosion == 1 and eps_p_old[p] >= eps_f:
             freeze(p, F_old, F_new, vol)
         jaumann_trial(G, K, L, p, dt, stress_old, stress_new)
-        pr = (stress_new[p, 0, 0] + stress_new[p, 1, 1] + stress_new[p, 2, 2]) / 3.0
-        ss = 0.0
-        for i in range(3):
-            for j in range(3):
-                sij = stress_new[p, i, j] - (pr if i == j else 0.0)
-                ss += sij * sij
-        q = np.sqrt(1.5 * ss)
+        pr, q = _mean_and_von_mises(stress_new, p)
         sy = sy0 + H * eps_p_old[p]
         eps_p_new[p] = eps_p_old[p]
         if q > sy:
