@@ -380,7 +380,8 @@ def face_pressure(press, rho_sum, pf, sh, dd, flo, fhi):
 
 @njit(cache=True, error_model="numpy")
 def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy, shz, dims,
-               mass_L, mom_L, eng_L, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g, code, params, gamma, comp=None):
+               mass_L, mom_L, eng_L, olo, ohi, lo, hi, vol, dx, dt, cv, g, use_g, code, params, gamma, tmv,
+               comp=None):
     """Eqs. 33-37 for one material: m, m u, m e plus pressure-gradient and flow-work sources.
 
     Everywhere (extra cells included) m u and m e start from the current state; the
@@ -388,8 +389,10 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
     ICE carries e = cv T, so the flow work uses p_w = p + (T (dp/dT)_v - p_eos): for an
     ideal gas p_w = p exactly (as Uintah); for a stiffened gas it is p + Pinf, which
     keeps cv dT = -T (dp/dT)_v dv consistent with the EOS; Thomsen_Hartka_water takes p_w = p
-    (Uintah's, whose values pysus reproduces for it). comp[d]: the momentum
-    component along axis d (arrays seen with permuted axes; None = the identity).
+    (Uintah's, whose values pysus reproduces for it). The flow work's volume is the cell's,
+    or with MPMICE tmv, the cell's total material volume (Uintah's TMV_CC; tmv of size 0:
+    the cell's). comp[d]: the momentum component along axis d (arrays seen with permuted
+    axes; None = the identity).
     """
     c0, c1, c2 = (0, 1, 2) if comp is None else (comp[0], comp[1], comp[2])
     n = ohi[2] - olo[2]
@@ -418,6 +421,7 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
             ms, es, mu = mass_L[i, j, k0:k0 + n], eng_L[i, j, k0:k0 + n], mom_L[i, j, k0:k0 + n]
             for k in range(n):
                 th = th_[k]
+                v_work = tmv[i, j, k0 + k] if tmv.size else vol
                 f = -dt * vol * th
                 if dims[0]:
                     mu[k, c0] += f * (xb[k] - xa[k]) / dx[0]
@@ -436,7 +440,7 @@ def lagrangian(rho, vel, temp, vf, sp_vol, cs, press, delP, px, py, pz, shx, shy
                 else:
                     pe, dpdr, dpde = eos_press_eos(code, params, 1.0 / v_[k], t, cvk, gamma)
                 pw = p_[k] if code == THOMSEN_HARTKA else p_[k] + (dpde * cvk * t - pe)
-                es[k] += vol * th * v_[k] / cc * pw * d_[k]
+                es[k] += v_work * th * v_[k] / cc * pw * d_[k]
 
 
 @njit(cache=True)

@@ -26,6 +26,7 @@ gamma = L.create("gamma", CC)
 press_equil_CC = L.create("press_equil_CC", CC)
 vol_frac_CC = L.create("vol_frac_CC", CC)
 speedSound_CC = L.create("speedSound_CC", CC)
+TMV_CC = L.create("TMV_CC", CC)                 # MPMICE: the cell's total material volume (material 0)
 
 # step 3: face velocities (eq. 28) and their exchange
 FC_VEL = (L.create("uvel_FC", X), L.create("vvel_FC", Y), L.create("wvel_FC", Z))

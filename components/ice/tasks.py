@@ -26,6 +26,7 @@ DELT_START = 1000.0     # s: the value Uintah's actuallyComputeStableTimestep st
 # advection_faces: ICE alone moves nothing besides the fluxes (and needs no pressure for their flow work)
 _NO_TRANSFERS = (np.zeros((1, 1, 1)),) * 3
 _NO_PRESS = np.zeros((1, 1, 1))
+_NO_TMV = np.zeros((0, 0, 0))      # lagrangian: the flow work over the cell's volume (ICE alone)
 
 
 class Boxes:
@@ -609,8 +610,10 @@ class IceTasks:
                                patch.level.dx, dt, b.vol)
 
     # -- steps 8-9: sources and Lagrangian values (eqs. 33-37) ----------------------------------
-    def lagrangian_values(self, patch, matls, old_dw, new_dw):
+    def lagrangian_values(self, patch, matls, old_dw, new_dw, tmv=None):
+        """Eqs. 33-37 (K.lagrangian); tmv: MPMICE's TMV_CC, the flow work's volume (else the cell's)."""
         b = self.boxes(patch)
+        tmv = _NO_TMV if tmv is None else b.view(tmv)
         dt = old_dw.get_reduction(L.delT)
         pf = self._faces(new_dw, I.PRESS_FC, 0, patch)
         press, delP = new_dw.get(I.press_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch)
@@ -630,7 +633,7 @@ class IceTasks:
                          v(delP), *(v(pf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
                          v(mass), v(mom), v(eng), b.v_olo, b.v_ohi, b.v_lo, b.v_hi, b.vol, b.v_dx, dt,
                          v(cv) if np.ndim(cv) else cv, self.gravity, self.use_gravity, self.codes[m],
-                         self.params[m], self.gammas[m], b.perm)
+                         self.params[m], self.gammas[m], tmv, b.perm)
             sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))
             if self.viscous:
                 mom[sl] += dt * new_dw.get(I.viscous_src_CC, m, patch)[sl]

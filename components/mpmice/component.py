@@ -220,6 +220,10 @@ class MPMICE(MPMICETasks, Component):
         for t in after:
             sched.add_task(t)
         self._schedule_advection(sched)
+        if not self.rigid:      # after every task that reads the solids' step-1 vel_CC
+            sched.add_task(Task("MPMICE::solidVelocityAfterExchange", self.solid_velocity_after_exchange,
+                                self.mpm_matls)
+                           .requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_ME_CC).modifies(I.vel_CC))
 
     def _schedule_fluid_lagrangian_start(self, sched):
         """Steps 1-7: solid state at cell centres, pressure, face velocities, solid forces."""
@@ -235,7 +239,7 @@ class MPMICE(MPMICETasks, Component):
         t = Task("MPMICE::computeEquilibrationPressure", self.equilibration_pressure, alls) \
             .requires(OLD, I.press_CC, matls=m0).requires(NEW, MI.sp_vol_mpm_CC, matls=ms) \
             .computes(I.press_equil_CC, matls=m0).computes(I.vol_frac_CC).computes(I.sp_vol_CC) \
-            .computes(I.speedSound_CC)
+            .computes(I.speedSound_CC).computes(I.TMV_CC, matls=m0)
         self._start_state(t, (I.rho_CC, I.temp_CC, I.sp_vol_CC), 0)
         sched.add_task(t)
         if self.slip is not None:
@@ -307,7 +311,7 @@ class MPMICE(MPMICETasks, Component):
         ice, ms, alls, fl, m0 = self.ice, self.mpm_matls, self.all_matls, self.ice.ice_matls, [0]
         dirs = [d for d in range(3) if ice.dims[d]]
         t = Task("MPMICE::computeLagrangianValuesMPM", self.lagrangian_values_mpm, ms) \
-            .requires(OLD, FL.delT).requires(NEW, MI.cMass).requires(NEW, I.temp_CC) \
+            .requires(OLD, FL.delT).requires(NEW, MI.cMass).requires(NEW, I.temp_CC).requires(NEW, I.vel_CC) \
             .requires(NEW, M.gMass, G, 1).requires(NEW, M.gVolume, G, 1).requires(NEW, M.gVelocityStar, G, 1) \
             .requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
             .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
@@ -320,6 +324,7 @@ class MPMICE(MPMICETasks, Component):
             .requires(OLD, FL.delT).requires(OLD, I.rho_CC).requires(OLD, I.vel_CC).requires(OLD, I.temp_CC) \
             .requires(NEW, I.vol_frac_CC).requires(NEW, I.sp_vol_CC).requires(NEW, I.speedSound_CC) \
             .requires(NEW, I.press_CC, matls=m0).requires(NEW, I.delP_Dilatate, matls=m0) \
+            .requires(NEW, I.TMV_CC, matls=m0) \
             .computes(I.mass_L_CC).computes(I.mom_L_CC).computes(I.int_eng_L_CC)
         for d in dirs:
             t.requires(NEW, I.PRESS_FC[d], G, 1, matls=m0)

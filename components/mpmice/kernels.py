@@ -378,11 +378,15 @@ def nc_to_cc(gmass, gvol, gvel, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, 
 
 
 @njit(cache=True)
-def lagrangian_solid(cmass, vstar, temp, vf, px, py, pz, shx, shy, shz, dims, mass_L, mom_L, eng_L, mom_mpm,
-                     olo, ohi, lo, hi, vol, dx, dt, cv):
+def lagrangian_solid(cmass, vstar, temp, vel_sur, temp_sur, tiny_mass, vf, px, py, pz, shx, shy, shz, dims,
+                     mass_L, mom_L, eng_L, mom_mpm, olo, ohi, lo, hi, vol, dx, dt, cv):
     """Steps 8-9 for a solid (computeLagrangianValuesMPM), one pass over the cells:
     m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p* (eq. 33, ICE's lagrangian
-    term by term), (me)^L = m^L cv T*, and mom_mpm = cMass v* (without the pressure source).
+    term by term), (me)^L = cv sum_w m_i T*_i, each blended as Uintah's with the cell's
+    step-1 state (vel_sur, temp_sur) in the proportion of the floor mass tiny_mass to cMass:
+    a cell holding no more solid than the floor keeps that state, not the v* of nodes whose
+    mass is a GIMP tail (their v* = dt f/m is unbounded). mom_mpm = (mu)^L less the pressure
+    source (what the exchange's change is measured from, computeCCVelAndTempRates).
     m^L is (cMass / V) V, as ICE's lagrangian forms it from rho_CC."""
     for i in range(olo[0], ohi[0]):
         for j in range(olo[1], ohi[1]):
@@ -390,28 +394,36 @@ def lagrangian_solid(cmass, vstar, temp, vf, px, py, pz, shx, shy, shz, dims, ma
                 cm = cmass[i, j, k]
                 m = cm / vol * vol
                 mass_L[i, j, k] = m
-                eng_L[i, j, k] = m * cv * temp[i, j, k]
+                solid = cm - tiny_mass
+                w = solid / cm                  # Uintah's one_or_zero
+                eng_L[i, j, k] = (1.0 - w) * cm * temp_sur[i, j, k] * cv + w * solid * temp[i, j, k] * cv
                 for c in range(3):
-                    mom_L[i, j, k, c] = m * vstar[i, j, k, c]
-                    mom_mpm[i, j, k, c] = cm * vstar[i, j, k, c]
+                    mu = (1.0 - w) * cm * vel_sur[i, j, k, c] + w * cm * vstar[i, j, k, c]
+                    mom_L[i, j, k, c] = mu
+                    mom_mpm[i, j, k, c] = mu
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
                 f = -dt * vol * vf[i, j, k]
-                if dims[0]:
-                    mom_L[i, j, k, 0] += f * (px[i - shx[0] + 1, j - shx[1], k - shx[2]]
-                                              - px[i - shx[0], j - shx[1], k - shx[2]]) / dx[0]
-                if dims[1]:
-                    mom_L[i, j, k, 1] += f * (py[i - shy[0], j - shy[1] + 1, k - shy[2]]
-                                              - py[i - shy[0], j - shy[1], k - shy[2]]) / dx[1]
-                if dims[2]:
-                    mom_L[i, j, k, 2] += f * (pz[i - shz[0], j - shz[1], k - shz[2] + 1]
-                                              - pz[i - shz[0], j - shz[1], k - shz[2]]) / dx[2]
+                cm = cmass[i, j, k]
+                w = (cm - tiny_mass) / cm
+                for d in range(3):
+                    if not dims[d]:
+                        continue
+                    if d == 0:
+                        g = (px[i - shx[0] + 1, j - shx[1], k - shx[2]] - px[i - shx[0], j - shx[1], k - shx[2]]) / dx[0]
+                    elif d == 1:
+                        g = (py[i - shy[0], j - shy[1] + 1, k - shy[2]] - py[i - shy[0], j - shy[1], k - shy[2]]) / dx[1]
+                    else:
+                        g = (pz[i - shz[0], j - shz[1], k - shz[2] + 1] - pz[i - shz[0], j - shz[1], k - shz[2]]) / dx[2]
+                    source = f * g
+                    mom_L[i, j, k, d] += w * source
+                    mom_mpm[i, j, k, d] -= (1.0 - w) * source
 
 
 @njit(cache=True)
 def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params, cvs, gammas, fluids_too,
-                           out, lo, hi):
+                           out, tmv, vol, lo, hi):
     """The solids' densities the equilibration starts from (Uintah's computeEquilibrationPressure,
     its Docs/MPMICE.txt): a solid's volume in a cell is its EOS volume at the old pressure,
     rho_m / rho_micro_m(p_old), not the particles' mass mapped to the cell over their mapped
@@ -423,7 +435,9 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
     0.4 ms in symAnnulus.ups); a solid's sliver in a gas cell stays a sliver. With fluids_too
     (the gas started from its geometry, as Uintah) the fluids of a cell holding a solid are
     scaled as well, so that the geometric gas and the particles' smeared solid start by filling
-    the cell at the old pressure. out[m] is written for the materials scaled."""
+    the cell at the old pressure. out[m] is written for the materials scaled; with fluids_too
+    tmv is the materials' total volume before the scaling (Uintah's TMV_CC, m^3), which the
+    fluids' flow work takes as the cell's volume."""
     n = len(rhos)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -438,6 +452,8 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
                     else:
                         fluid += r * sp_vols[m][i, j, k]
                 scale = 1.0 / (fluid + solid_vol) if solid_vol > 0.0 else 1.0
+                if fluids_too and solid_vol > 0.0:
+                    tmv[i, j, k] = vol * (fluid + solid_vol)
                 for m in range(n):
                     if solid[m] or fluids_too:
                         out[m][i, j, k] = rhos[m][i, j, k] * scale

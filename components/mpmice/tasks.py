@@ -287,12 +287,13 @@ class MPMICETasks:
         # tests/mpmice/test_solid_eos_decks.py); with pysus's particle start, their default, scaling the
         # solids alone by their stand-in EOS collapsed the Mach 3 wedge's time step (4e-8 s, not 5.7e-6)
         scaled = rhos
+        tmv = new_dw.allocate(I.TMV_CC, 0, patch, fill=b.vol)
         if not self.rigid or self.gas_start == "geometry":
             solid = np.array([m in self.mpm_matls for m in matls])
             fluids_too = self.gas_start == "geometry"
             scaled = tuple(r.copy() if s or fluids_too else r for r, s in zip(rhos, solid))
             K.solids_at_old_pressure(rhos, temps, sp_old, p_old, solid, ice.codes, ice.params, ice.cvs, ice.gammas,
-                                     fluids_too, scaled, b.v_olo, b.v_ohi)
+                                     fluids_too, scaled, b.view(tmv), b.vol, b.v_olo, b.v_ohi)
         E.equilibrate(scaled, temps, sp_old, p_old,
                       spv, vfs, css, b.view(peq), ice.codes, ice.params, ice.cvs, ice.gammas, b.v_olo, b.v_ohi,
                       1e-11, ice.max_iter, True)
@@ -404,7 +405,8 @@ class MPMICETasks:
         """computeLagrangianValuesMPM: m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p*
         (eq. 33), (me)^L = m cv T* with T* the cell mean of the nodal temperature advanced
         by this step's conduction, g.temperature + dt g.temperatureRate (Uintah's
-        gTemperatureStar; without a thermal model the solid's T is held); kernels.lagrangian_solid."""
+        gTemperatureStar; without a thermal model the solid's T is held); a cell with little
+        more than the floor mass keeps its step-1 vel_CC and temp_CC (kernels.lagrangian_solid)."""
         ice = self.ice
         b = ice.boxes(patch)
         dt = old_dw.get_reduction(FL.delT)
@@ -417,6 +419,7 @@ class MPMICETasks:
                            new_dw.get(M.gVelocityStar, m, patch), scratch, _NO1, vstar, _NO1)
             self._extra_vector(patch, vstar, m, b)
             K.lagrangian_solid(new_dw.get(MI.cMass, m, patch), vstar, self._temperature_star(patch, m, new_dw, dt),
+                               new_dw.get(I.vel_CC, m, patch), new_dw.get(I.temp_CC, m, patch), self.tiny * b.vol,
                                new_dw.get(I.vol_frac_CC, m, patch), pf[0], pf[1], pf[2], b.sh[0], b.sh[1], b.sh[2],
                                ice.dims, new_dw.allocate(I.mass_L_CC, m, patch, fill=None),
                                new_dw.allocate(I.mom_L_CC, m, patch, fill=None),
@@ -435,15 +438,17 @@ class MPMICETasks:
         return tstar
 
     def lagrangian_values_fluid(self, patch, matls, old_dw, new_dw):
-        """ICE::computeLagrangianValues for the fluids, plus <ADD_HEAT>: dt * coeff * rho_CC * V
+        """ICE::computeLagrangianValues for the fluids, their flow work over the cell's total
+        material volume TMV_CC (Uintah's accumulateEnergySourceSinks), plus <ADD_HEAT>: dt * coeff * rho_CC * V
         added to int_eng_L_CC where the material's volume fraction exceeds 0.001, while
         add_heat_t_start <= t <= add_heat_t_final (t: the time at the start of the step), as
         Uintah's accumulateEnergySourceSinks does."""
+        tmv = new_dw.get(I.TMV_CC, 0, patch)
         if self.add_heat is None:
-            self.ice.lagrangian_values(patch, matls, old_dw, new_dw)
+            self.ice.lagrangian_values(patch, matls, old_dw, new_dw, tmv)
             return
         keep = _KeepAllocated(new_dw)
-        self.ice.lagrangian_values(patch, matls, old_dw, keep)
+        self.ice.lagrangian_values(patch, matls, old_dw, keep, tmv)
         coeffs, t0, t1 = self.add_heat
         t = float(old_dw.get_reduction(FL.simTime))
         if not t0 <= t <= t1:
@@ -485,6 +490,18 @@ class MPMICETasks:
             temp = np.divide(new_dw.get(I.int_eng_L_ME_CC, m, patch)[o], mcv, out=np.zeros_like(mcv), where=mass > 0)
             out = new_dw.allocate(MI.Tdot, m, patch)
             out[o] = np.where(mass > 0, (temp - start.get(I.temp_CC, m, patch)[o]) / dt, 0.0)
+
+    def solid_velocity_after_exchange(self, patch, matls, old_dw, new_dw):
+        """The solids' vel_CC that the step leaves (and saves) is their exchanged velocity
+        (mu)^L_ME / m^L, as Uintah's exchange leaves it; the step's tasks read the step-1 value
+        before this one."""
+        b = self.ice.boxes(patch)
+        inner = tuple(slice(lo, hi) for lo, hi in zip(b.lo, b.hi))
+        for m in matls:
+            vel = new_dw.get_modifiable(I.vel_CC, m, patch)
+            mass = new_dw.get(I.mass_L_CC, m, patch)[inner]
+            vel[inner] = new_dw.get(I.mom_L_ME_CC, m, patch)[inner] / mass[..., None]
+            self._extra_vector(patch, vel, m, b)
 
     # -- steps 10 -> 13: the exchange's change carried back to the nodes ------------------------------
     def velocity_rates(self, patch, matls, old_dw, new_dw):
