@@ -520,13 +520,9 @@ def advect(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey,
 
 
 @njit(cache=True, error_model="numpy")
-def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey, ez, press, shs, flo, fhi, lo,
-                   hi, dt, dxs, dims, compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o,
-                   scal_o):
-    """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
-    grad, rc: scratch (3, nq, *mass.shape), (3, *mass.shape); compatible: Uintah's
-    useCompatibleFluxes."""
-    _start(mass, mom, eng, volm, tot, scal, with_e, heating, q, acc, lo, hi)
+def _fluxes_extrema(q, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, compatible, acc, buf, grad, rc):
+    """acc += the second-order fluxes of q with Uintah's limiter: q's limited gradients, then one
+    sweep per active direction (the slabs' centroids offset by the other directions' velocities)."""
     limited_gradients(q, dims, dxs, compatible, grad)
     if int(dims[0]) + int(dims[1]) + int(dims[2]) > 1:
         _slab_offsets(ux, uy, uz, shs, dims, dt, rc)
@@ -534,6 +530,17 @@ def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz,
         if dims[d]:
             uf = ux if d == 0 else (uy if d == 1 else uz)
             _sweep_extrema(q, grad, rc, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, compatible, acc, buf)
+
+
+@njit(cache=True, error_model="numpy")
+def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz, ex, ey, ez, press, shs, flo, fhi, lo,
+                   hi, dt, dxs, dims, compatible, q, acc, buf, grad, rc, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o,
+                   scal_o):
+    """advect (second order) with Uintah's limiter (<advection limiter="BarthJespersen">);
+    grad, rc: scratch (3, nq, *mass.shape), (3, *mass.shape); compatible: Uintah's
+    useCompatibleFluxes."""
+    _start(mass, mom, eng, volm, tot, scal, with_e, heating, q, acc, lo, hi)
+    _fluxes_extrema(q, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, compatible, acc, buf, grad, rc)
     _open_transfers(q, ex, ey, ez, press, with_e, shs, flo, fhi, lo, hi, dims, acc)
     _finish(acc, with_e, heating, lo, hi, vol, cv, rho_o, vel_o, temp_o, spv_o, tot_o, scal_o)
 
@@ -553,13 +560,7 @@ def outflow_fraction(vf, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, q, ac
             a, f = acc[0, i, j, k0:k0 + n], vf[i, j, k0:k0 + n]
             for k in range(n):
                 a[k] = f[k]
-    limited_gradients(q, dims, dxs, False, grad)
-    if int(dims[0]) + int(dims[1]) + int(dims[2]) > 1:
-        _slab_offsets(ux, uy, uz, shs, dims, dt, rc)
-    for d in range(3):
-        if dims[d]:
-            uf = ux if d == 0 else (uy if d == 1 else uz)
-            _sweep_extrema(q, grad, rc, uf, d, shs[d], flo[d], fhi[d], lo, hi, dt, dxs, dims, False, acc, buf)
+    _fluxes_extrema(q, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, False, acc, buf, grad, rc)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             a, f, o = acc[0, i, j, k0:k0 + n], vf[i, j, k0:k0 + n], out[i, j, k0:k0 + n]
