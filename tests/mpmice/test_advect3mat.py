@@ -32,7 +32,8 @@ DECK = HERE / "uintah_reference" / "advect3mat.ups"
 def runs(tmp_path_factory):
     from framework.archiver import DataArchive
     text = DECK.read_text(encoding="iso-8859-1")
-    text = text.replace("<max_Timesteps>     100         </max_Timesteps>", "<max_Timesteps>2</max_Timesteps>")
+    text = text.replace("<max_Timesteps>     100         </max_Timesteps>",
+                        "<max_Timesteps>2</max_Timesteps>")
     text = text.replace("<outputTimestepInterval>10</outputTimestepInterval>",
                         "<outputTimestepInterval>1</outputTimestepInterval>")
     ctl = run_deck(text, tmp_path_factory.mktemp("advect3mat"), "advect3mat")
@@ -67,8 +68,8 @@ def test_advect3mat_fields_as_uintah(runs, label, material, step):
 
 
 def test_advect3mat_solid_temperature_where_occupied(runs):
-    """Where the blocks are (volume fraction > 1e-3 after step 2, 144 cells each) their temperature is sus's
-    to round-off; the 1e-10 of the field test is in cells they do not occupy."""
+    """Where the blocks are (volume fraction > 1e-3 after step 2, 144 cells each) their
+    temperature is sus's to round-off; the 1e-10 of the field test is in cells they do not occupy."""
     da, sus = runs
     for m in (0, 1):
         where = da.read("vol_frac_CC", m, 2)[0] > 1e-3
