@@ -77,6 +77,18 @@ GEOM = {
 LATTICE_BITS = 40       # a lattice particle's ID: object number << 40, then its lattice index
 
 
+def model_kind(cm):
+    """The model Uintah builds for a <constitutive_model>: its type, with Uintah's two renames
+    (elastic_plastic with a <flow_model> is elastic_plastic_hp; comp_neo_hook with
+    <usePlasticity> is UCNH)."""
+    kind = cm.attr("type")
+    if kind == "elastic_plastic" and cm.has("flow_model"):
+        return "elastic_plastic_hp"
+    if kind == "comp_neo_hook" and cm.get("usePlasticity", "bool", False):
+        return "UCNH"
+    return kind
+
+
 def _read_affine(g):
     """Uintah's <affineTransformation_A0|A1|A2> (the rows of A) and <affineTransformation_b>: the
     particles laid on the lattice inside the piece are moved to A x + b and their domains turned
@@ -124,10 +136,7 @@ class Material:
         if kind not in MODELS:
             raise cm.error(f'constitutive_model type="{kind}" is not supported; accepted: '
                            f"{', '.join(MODELS)}")
-        if kind == "elastic_plastic" and cm.has("flow_model"):     # Uintah's: elastic_plastic_hp
-            kind = "elastic_plastic_hp"
-        if kind == "comp_neo_hook" and cm.get("usePlasticity", "bool", False):    # Uintah builds both as UCNH
-            kind = "UCNH"
+        kind = model_kind(cm)
         if kind in ("comp_neo_hook", "comp_neo_hook_plastic", "UCNH") and cm.get("useInitialStress", "bool", False):
             raise cm.child("useInitialStress").error("<useInitialStress> true (UCNH's initial pressure from "
                                                      "<initial_pressure>) is not implemented; accepted: false")

@@ -25,14 +25,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from components.ice.component import ICE
+import dataclasses
 import importlib
 
+from components.ice.component import ICE
 from components.ice.eos import (MAX_PARAMS, MURNAGHAN, SOLID_HYPER, SOLID_HYPO, SOLID_IDEAL_GAS, SOLID_JWL, SOLID_JWLPP,
                                 SOLID_RIGID, SOLID_UCNH)
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
+from components.mpm.materials import MODELS, model_kind
 from framework.grid import FACES
 from framework.gridspec import boundary_faces, sub_faces
 from framework.problemspec import Param
@@ -127,15 +129,9 @@ def _bulk(mat):
 def _asked_model(mat):
     """(deck type, Params) of an rmpmice solid's own <constitutive_model> (RigidSolid reads it as
     rigid; its EOS is the asked model's), read as MPM reads a material's (materials.py)."""
-    import dataclasses
-    from components.mpm.materials import MODELS
     node = mat.node._node if isinstance(mat.node, _RigidView) else mat.node
     cm = node.child("constitutive_model")
-    kind = mat.model_asked
-    if kind == "elastic_plastic" and cm.has("flow_model"):
-        kind = "elastic_plastic_hp"
-    if kind == "comp_neo_hook" and cm.get("usePlasticity", "bool", False):
-        kind = "UCNH"
+    kind = model_kind(cm)
     model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
     props = {"density": mat.density, "specific_heat": mat.specific_heat}
     if hasattr(model, "read_params"):
