@@ -116,10 +116,19 @@ SCENES["vortex"] = _vortex_scene
 def _cylinder_scene():
     from components.mpmice import scene_cylinder as C
 
-    def deck(n, damping=None, patches="1,1,1"):
-        """n cells across the 1.2 m domain (dx = 1.2/n; the paper's 0.025 m: n = 48)."""
-        return C.deck(n, damping=damping, patches=patches)
-    return {"deck": deck, "error": C.errors, "key": "eq43",
+    state = {"ri": C.RI, "ro": C.RO}
+
+    def deck(n, damping=None, patches="1,1,1", ri=None, ro=None, t_end=None, dz=None):
+        """n cells across the 1.2 m domain (dx = 1.2/n; the paper's 0.025 m: n = 48); ri, ro: the
+        annulus's radii in m (0.5, 1.0); t_end: the end time in s (2.5e-3); dz: the one z
+        cell's thickness in m (0.025), or dx."""
+        state["ri"] = C.RI if ri is None else float(ri)
+        state["ro"] = C.RO if ro is None else float(ro)
+        return C.deck(n, damping=damping, patches=patches, t_end=t_end, ri=state["ri"], ro=state["ro"], dz=dz)
+
+    def error(da):
+        return C.errors(da, state["ri"], state["ro"])
+    return {"deck": deck, "error": error, "key": "eq43",
             "what": "MPMICE pressurized cylinder (paper 000 sec. 4.1): eq. 43 error of s_r + s_t over all particles, "
                     "radial/hoop L1 error vs Lame (eq. 42) relative to the inner gauge pressure P"}
 

@@ -1,11 +1,15 @@
 """Pressurized cylinder (paper 000 sec. 4.1): deck at a chosen resolution and the errors
 against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
 
-    deck(n)  inputs/MPMICE/pressurized_cylinder.ups with n cells across the 1.2 m domain
-             (dx = 1.2 / n; the paper's 0.025 m is n = 48)
-    errors(da)  (a pysus DataArchive or a sus UintahArchive) at the last output: P = mean gauge pressure of the inner air (cells with
-             r < 0.4 m); over all particles, eq. 43
-                 mean | |s_r + s_t| - 2/3 P | / (2/3 P)      (ri^2 / (ro^2 - ri^2) = 1/3)
+    deck(n, ri=, ro=, t_end=, dz=)  inputs/MPMICE/pressurized_cylinder.ups with n cells
+             across the 1.2 m domain (dx = 1.2 / n; the paper's 0.025 m is n = 48), the
+             annulus's inner and outer radius (0.5 and 1.0 m), the end time (2.5 ms) and the
+             one z cell's thickness (0.025 m; "dx": as thin as dx, so that it no longer sets
+             ICE's step: the same plane-strain problem, z faces symmetric)
+    errors(da, ri=, ro=)  (a pysus DataArchive or a sus UintahArchive) at the last output:
+             P = mean gauge pressure of the inner air (cells with r < 0.8 ri); over all
+             particles, eq. 43
+                 mean | |s_r + s_t| - 2 a | / (2 a)      a = P ri^2 / (ro^2 - ri^2)
              and the L1 errors of s_r and s_t against eq. 42, relative to P.
 Used by scripts/accuracy_cost.py (scene "cylinder") and tests/mpmice/test_cylinder.py.
 """
@@ -21,11 +25,18 @@ DECK = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "MPMICE", "
 RI, RO, L, P_REF = 0.5, 1.0, 1.2, 101325.0
 
 
-def deck(n, damping=None, patches="1,1,1", t_end=None):
+def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None):
     text = open(DECK, encoding="iso-8859-1").read()
     dx = L / int(n)
-    reps = [("<spacing> [0.025,0.025,0.025] </spacing>", f"<spacing> [{dx!r},{dx!r},0.025] </spacing>"),
-            ("<patches> [2,2,1] </patches>", f"<patches> [{patches}] </patches>")]
+    ri, ro = float(ri), float(ro)
+    if not 0.0 < ri < ro < L - dx:
+        raise ValueError(f"radii {ri}, {ro}: need 0 < ri < ro < {L} - dx (air outside the annulus)")
+    dz = 0.025 if dz is None else dx if dz == "dx" else float(dz)
+    reps = [("<spacing> [0.025,0.025,0.025] </spacing>", f"<spacing> [{dx!r},{dx!r},{dz!r}] </spacing>"),
+            ("<upper> [1.2,1.2,0.025] </upper>", f"<upper> [1.2,1.2,{dz!r}] </upper>"),
+            ("<patches> [2,2,1] </patches>", f"<patches> [{patches}] </patches>"),
+            ("<radius> 1.0 </radius>", f"<radius> {ro!r} </radius>"),
+            ("<radius> 0.5 </radius>", f"<radius> {ri!r} </radius>")]
     if damping is not None:
         reps.append(("<artificial_damping_coeff> 4000.0 </artificial_damping_coeff>",
                      f"<artificial_damping_coeff> {float(damping)!r} </artificial_damping_coeff>"))
@@ -38,7 +49,7 @@ def deck(n, damping=None, patches="1,1,1", t_end=None):
     return text
 
 
-def stresses(da, i=-1):
+def stresses(da, i=-1, ri=RI):
     """(r, s_r, s_t, P) at output i: particle radius, radial and hoop stress, inner gauge pressure."""
     x, s = particle_var(da, "p.x", 0, i), particle_var(da, "p.stress", 0, i)
     r = np.hypot(x[:, 0], x[:, 1])
@@ -52,20 +63,20 @@ def stresses(da, i=-1):
     xc = (np.arange(nx) + 0.5) * dx
     yc = (np.arange(ny) + 0.5) * dy
     rc = np.hypot(xc[:, None], yc[None, :])
-    P = float(p[..., 0][rc < 0.8 * RI].mean()) - P_REF
+    P = float(p[..., 0][rc < 0.8 * ri].mean()) - P_REF
     return r, s_r, s_t, P
 
 
-def lame(r, P):
-    a = P * RI ** 2 / (RO ** 2 - RI ** 2)
-    return a * (1 - RO ** 2 / r ** 2), a * (1 + RO ** 2 / r ** 2)
+def lame(r, P, ri=RI, ro=RO):
+    a = P * ri ** 2 / (ro ** 2 - ri ** 2)
+    return a * (1 - ro ** 2 / r ** 2), a * (1 + ro ** 2 / r ** 2)
 
 
-def errors(da):
-    r, s_r, s_t, P = stresses(da)
-    er, et = lame(r, P)
-    two3 = 2.0 / 3.0 * P
-    return {"eq43": float(np.mean(np.abs(np.abs(s_r + s_t) - two3)) / two3),
+def errors(da, ri=RI, ro=RO):
+    r, s_r, s_t, P = stresses(da, ri=ri)
+    er, et = lame(r, P, ri, ro)
+    two_a = 2.0 * P * ri ** 2 / (ro ** 2 - ri ** 2)      # s_r + s_t, the same at every radius
+    return {"eq43": float(np.mean(np.abs(np.abs(s_r + s_t) - two_a)) / two_a),
             "radial": float(np.mean(np.abs(s_r - er)) / P),
             "hoop": float(np.mean(np.abs(s_t - et)) / P),
             "P_MPa": P / 1e6}
