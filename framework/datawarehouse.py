@@ -106,13 +106,14 @@ class DataWarehouse:
     def remove(self, label: VarLabel, matl: int, patch):
         self._store(label).pop((label.name, matl, patch.id), None)
 
-    def scrub(self, name: str):
-        """Free every instance of a label (all materials and patches)."""
-        for store in (self.grid, self.particles, self.perpatch):
-            for key in [k for k in store if k[0] == name]:
+    def scrub_all(self, names):
+        """Free every instance of each of these labels, in one pass over the stores."""
+        names = frozenset(names)
+        if not names:
+            return
+        for store in (self.grid, self.particles, self.perpatch, self.ghost_particles):
+            for key in [k for k in store if k[0] in names]:
                 del store[key]
-        for key in [k for k in self.ghost_particles if k[0] == name]:
-            del self.ghost_particles[key]
 
     # -- particle sets ---------------------------------------------------------------
     def create_particles(self, matl: int, patch, n: int):

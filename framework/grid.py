@@ -360,8 +360,12 @@ class Patch:
         return self.window(vt, self.level.halo[vt])
 
     def alloc_shape(self, vt: VarType):
-        lo, hi = self.alloc(vt)
-        return tuple(h - l for l, h in zip(lo, hi))
+        key = ("shape", vt, self.level.halo[vt])
+        shape = self._cache.get(key)
+        if shape is None:
+            lo, hi = self.alloc(vt)
+            shape = self._cache[key] = tuple(h - l for l, h in zip(lo, hi))
+        return shape
 
     def low_index(self, vt: VarType = VarType.CC):
         """Global index of entry [0,0,0] of a stored array of type vt."""

@@ -89,6 +89,30 @@ def _union(have, matls):
     return tuple(dict.fromkeys(have + matls))
 
 
+def _declared(task: Task, which: str):
+    """(reads, ghosted, writes) of a task in warehouse `which`: label name -> materials, the
+    widest ghost, materials written. Kept on the task (a view is made for every run of it)
+    until a declaration is added."""
+    key = (which, len(task.requires_), len(task.modifies_), len(task.computes_))
+    cache = task.__dict__.setdefault("_declared", {})
+    if key in cache:
+        return cache[key]
+    reads, ghosted, writes = {}, {}, {}
+    for dep in task.requires_:
+        if dep.dw == which:       # a label required twice (a model's extra materials): the union
+            reads[dep.label.name] = _union(reads.get(dep.label.name), dep.matls)
+            if dep.n:
+                ghosted[dep.label.name] = max(dep.n, ghosted.get(dep.label.name, 0))
+    if which == NEW:
+        for dep in task.modifies_:
+            reads[dep.label.name] = dep.matls
+            writes[dep.label.name] = dep.matls
+        for dep in task.computes_:
+            writes[dep.label.name] = dep.matls
+    cache[key] = (reads, ghosted, writes)
+    return cache[key]
+
+
 class TaskView:
     """A warehouse as one task may see it: only what it declared."""
 
@@ -98,20 +122,7 @@ class TaskView:
         self.dw = dw
         self.task = task
         self.which = which
-        self.reads = {}
-        self.ghosted = {}
-        for dep in task.requires_:
-            if dep.dw == which:       # a label required twice (a model's extra materials): the union
-                self.reads[dep.label.name] = _union(self.reads.get(dep.label.name), dep.matls)
-                if dep.n:
-                    self.ghosted[dep.label.name] = max(dep.n, self.ghosted.get(dep.label.name, 0))
-        self.writes = {}
-        if which == NEW:
-            for dep in task.modifies_:
-                self.reads[dep.label.name] = dep.matls
-                self.writes[dep.label.name] = dep.matls
-            for dep in task.computes_:
-                self.writes[dep.label.name] = dep.matls
+        self.reads, self.ghosted, self.writes = _declared(task, which)
 
     def _fail(self, what, label, matl):
         return TaskError(f"task {self.task.name} {what} {label.name} (material {matl}) in the "

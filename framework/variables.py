@@ -19,9 +19,9 @@ class VarType(Enum):
     REDUCTION = "Reduction"
     PERPATCH = "PerPatch"
 
-    @property
-    def is_grid(self) -> bool:
-        return self in GRID_TYPES
+    # identity hashing in C (members are singletons, equality is identity): the warehouse and
+    # the patches' caches hash a type hundreds of times a step, Enum's own hash is Python code
+    __hash__ = object.__hash__
 
     def node_like(self, d: int) -> bool:
         """True where this type has one more entry than cells along direction d."""
@@ -30,6 +30,8 @@ class VarType(Enum):
 
 
 GRID_TYPES = (VarType.CC, VarType.NC, VarType.SFCX, VarType.SFCY, VarType.SFCZ)
+for _vt in VarType:
+    _vt.is_grid = _vt in GRID_TYPES         # a plain attribute: read for every get and put
 
 
 class Ghost(Enum):
@@ -42,6 +44,8 @@ class Ghost(Enum):
     AROUND_FACES_X = "AroundFacesX"
     AROUND_FACES_Y = "AroundFacesY"
     AROUND_FACES_Z = "AroundFacesZ"
+
+    __hash__ = object.__hash__
 
 
 REDUCTION_OPS = ("min", "max", "sum")

@@ -85,7 +85,7 @@ class IceTasks:
     turbulence = None           # <turbulence> (turbulence.py), set by ICE.problem_setup
 
     def boxes(self, patch) -> Boxes:
-        key = (patch.id, tuple(sorted((k.value, v) for k, v in patch.level.halo.items())))
+        key = (patch.id, tuple(patch.level.halo.values()))     # the level's halo per type, in GRID_TYPES order
         b = self._geom_cache.get(key)
         if b is None:
             b = self._geom_cache[key] = Boxes(patch, self.dims)

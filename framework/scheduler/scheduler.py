@@ -20,6 +20,18 @@ from .loop import Loop, run_loop
 from .relocate import RelocationSpec, relocate, relocation_task
 
 
+def _ghosted(task: Task, which: str):
+    """The (label, layers, materials) of a task's ghosted grid and particle requirements in
+    warehouse `which`, kept on the task until a requirement is added."""
+    key = ("ghosted", which, len(task.requires_))
+    cache = task.__dict__.setdefault("_ghosted", {})
+    if key not in cache:
+        deps = [d for d in task.requires_ if d.dw == which and d.n]
+        cache[key] = ([(d.label, d.n, d.matls) for d in deps if d.label.vartype.is_grid],
+                      [(d.label, d.n, d.matls) for d in deps if d.label.vartype is VarType.PARTICLE])
+    return cache[key]
+
+
 class Scheduler:
     """What a component schedules into, and what runs the compiled graphs."""
 
@@ -159,12 +171,9 @@ class Scheduler:
                 self._run(task, old_dw, new_dw, parents)
                 self.timing[task.name] += time.perf_counter() - t0 - (self._ghost_wall - ghost0)
             self.calls[task.name] += 1
-            for name in cg.scrub_after.get(task, ()):
-                if name not in keep:
-                    new_dw.scrub(name)
+            new_dw.scrub_all([name for name in cg.scrub_after.get(task, ()) if name not in keep])
             if old_dw is not None and self.scrub_old:
-                for name in cg.scrub_old_after.get(task, ()):
-                    old_dw.scrub(name)
+                old_dw.scrub_all(cg.scrub_old_after.get(task, ()))
 
     def _run(self, task: Task, old_dw, new_dw, parents=None):
         ov = TaskView(old_dw, task, OLD) if old_dw is not None else None
@@ -177,10 +186,7 @@ class Scheduler:
         exchanges = []
         g0 = time.perf_counter()
         for which, dw in dws:
-            grid = [(d.label, d.n, d.matls) for d in task.requires_
-                    if d.dw == which and d.n and d.label.vartype.is_grid]
-            parts = [(d.label, d.n, d.matls) for d in task.requires_
-                     if d.dw == which and d.n and d.label.vartype is VarType.PARTICLE]
+            grid, parts = _ghosted(task, which)
             if grid or parts:
                 ex = Exchange(self, dw, grid, parts)
                 ex.begin()
