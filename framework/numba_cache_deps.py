@@ -41,6 +41,17 @@ def _source(path):
         return f.read()
 
 
+def _statements(body):
+    """Every statement in a list of them, nested bodies included (an import is a statement: the
+    expressions, most of a module's tree, need no visit)."""
+    todo = list(body)
+    while todo:
+        node = todo.pop()
+        yield node
+        for field in ("body", "orelse", "finalbody", "handlers", "cases"):
+            todo.extend(getattr(node, field, ()))
+
+
 @functools.lru_cache(maxsize=None)
 def direct_imports(path):
     """Repository modules that the file at path imports anywhere in it (files, sorted)."""
@@ -51,7 +62,7 @@ def direct_imports(path):
     own = _module_parts(path)
     package = own if path.endswith("__init__.py") else own[:-1]
     found = set()
-    for node in ast.walk(tree):
+    for node in _statements(tree.body):
         if isinstance(node, ast.Import):
             for alias in node.names:
                 found.add(_module_file(alias.name.split(".")))
