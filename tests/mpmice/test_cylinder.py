@@ -10,6 +10,7 @@ and down to 0.065 at n = 48 (the paper's dx): least-squares order 0.91 over n = 
 (paper: 0.89). Before the solids entered the equilibration at their EOS volume at the old
 pressure (mpmice/kernels.solids_at_old_pressure): 0.261 and 0.181, order 0.83 over 12..48.
 """
+import numpy as np
 import pytest
 
 from components.mpmice import scene_cylinder as C
@@ -29,6 +30,7 @@ def errs(tmp_path_factory):
     for n in (12, 18):
         ctl = run_deck(C.deck(n), tmp_path_factory.mktemp(f"cyl{n}"), f"cyl{n}")
         out[n] = C.errors(DataArchive(ctl.archiver.dir))
+        out[n]["steps"] = ctl.timestep
     return out
 
 
@@ -47,3 +49,30 @@ def test_error_drops(errs):
 def test_eq43_error_below_uintahs(errs):
     for n, sus in SUS_EQ43.items():
         assert errs[n]["eq43"] < sus, (n, errs[n])
+
+
+def test_one_cell_z_as_thin_as_dx(errs, tmp_path):
+    """dz = dx: the same plane-strain problem, ICE's step no longer set by the 0.025 m z cell
+    (measured at n = 12: 698 steps, eq. 43 error 0.2340, against 2774 steps and 0.2327)."""
+    from framework.archiver import DataArchive
+    ctl = run_deck(C.deck(12, dz="dx"), tmp_path, "cyl12dz")
+    e = C.errors(DataArchive(ctl.archiver.dir))
+    assert ctl.timestep < 0.3 * errs[12]["steps"]
+    assert abs(e["eq43"] - errs[12]["eq43"]) < 0.005 and 18.5 < e["P_MPa"] < 19.6
+
+
+def test_lame_other_radii():
+    """Lame's solution (eq. 42) as the errors use it: s_r = -P at ri, 0 at ro, s_r + s_t = 2 P ri^2 / (ro^2 - ri^2)."""
+    for ri, ro in ((0.5, 1.0), (0.4, 0.9), (0.6, 1.0)):
+        s_r, s_t = C.lame(np.array([ri, 0.5 * (ri + ro), ro]), 1.0, ri, ro)
+        assert s_r[0] == pytest.approx(-1.0) and s_r[2] == pytest.approx(0.0, abs=1e-12)
+        assert np.allclose(s_r + s_t, 2 * ri ** 2 / (ro ** 2 - ri ** 2))
+
+
+def test_deck_options():
+    text, dx = C.deck(24, ri=0.4, ro=0.9, dz="dx", t_end=5e-3), repr(1.2 / 24)
+    for want in (f"<spacing> [{dx},{dx},{dx}] </spacing>", f"<upper> [1.2,1.2,{dx}] </upper>", "<radius> 0.9 </radius>",
+                 "<radius> 0.4 </radius>", "<maxTime> 0.005 </maxTime>"):
+        assert want in text, want
+    with pytest.raises(ValueError):
+        C.deck(12, ro=1.15)            # no air cell outside the annulus
