@@ -10,7 +10,8 @@ against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
              P = mean gauge pressure of the inner air (cells with r < 0.8 ri); over all
              particles, eq. 43
                  mean | |s_r + s_t| - 2 a | / (2 a)      a = P ri^2 / (ro^2 - ri^2)
-             and the L1 errors of s_r and s_t against eq. 42, relative to P.
+             and the L1 errors of s_r and s_t against eq. 42, relative to P; eq43_inner: eq. 43
+             over the particles more than dx inside the steel; level: mean(|s_r + s_t|) / (2 a) - 1.
 Used by scripts/accuracy_cost.py (scene "cylinder") and tests/mpmice/test_cylinder.py.
 """
 from __future__ import annotations
@@ -76,7 +77,12 @@ def errors(da, ri=RI, ro=RO):
     r, s_r, s_t, P = stresses(da, ri=ri)
     er, et = lame(r, P, ri, ro)
     two_a = 2.0 * P * ri ** 2 / (ro ** 2 - ri ** 2)      # s_r + s_t, the same at every radius
-    return {"eq43": float(np.mean(np.abs(np.abs(s_r + s_t) - two_a)) / two_a),
+    dev = np.abs(s_r + s_t) - two_a
+    dx = L / da.read("press_CC", 0, -1)[0].shape[0]
+    inner = (r > ri + dx) & (r < ro - dx)                # the particles more than dx inside the steel
+    return {"eq43": float(np.mean(np.abs(dev)) / two_a),
             "radial": float(np.mean(np.abs(s_r - er)) / P),
             "hoop": float(np.mean(np.abs(s_t - et)) / P),
-            "P_MPa": P / 1e6}
+            "P_MPa": P / 1e6,
+            "eq43_inner": float(np.mean(np.abs(dev[inner])) / two_a),
+            "level": float(np.mean(dev) / two_a)}
