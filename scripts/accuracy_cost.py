@@ -16,6 +16,7 @@ error vs cells and vs wall time when matplotlib is importable).
     .venv/bin/python scripts/accuracy_cost.py vortex --res 16 32 64 --opt scheme=explicit,implicit \
         --opt mach=0.05
     .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 24 36 48 72 --json cylinder.json
+    .venv/bin/python scripts/accuracy_cost.py cylinder --res 12 18 24 36 --opt dz=dx --opt ri=0.4 --opt ro=0.9
     .venv/bin/python scripts/accuracy_cost.py piston --res 50 100 200 400 --opt heat=1,0 --json piston.json
     .venv/bin/python scripts/accuracy_cost.py piston --res 40 100 200 --opt gamma=1.4,1.67 --opt speed=0.001,0.002
     .venv/bin/python scripts/accuracy_cost.py piston --res 100 200 --opt heat=0 --opt stroke=0.3,0.5,0.83
