@@ -387,7 +387,8 @@ class ImplicitICE:
         self._vel_fc(patch, matls, new_dw.get(imp_P, 0, patch), lambda d, m: parent_new.get(I.FC_VEL[d], m, patch),
                     [parent_new.get(I.vol_frac_CC, m, patch) for m in matls],
                     [parent_new.get(I.sp_vol_CC, m, patch) for m in matls], parent_old.get_reduction(L.delT),
-                    lambda d, m: new_dw.allocate(imp_UF[d], m, patch), self.face_exchange_coefficients(parent_new, patch))
+                    lambda d, m: new_dw.allocate(imp_UF[d], m, patch),
+                    self.face_exchange_coefficients(parent_new, patch))
 
     def imp_rhs(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
         r, rmax = self._rhs(patch, matls, new_dw.get(imp_P, 0, patch), new_dw.get(imp_A, 0, patch),

@@ -154,7 +154,8 @@ BLOB = """<Uintah_specification><SimulationComponent type="ice"/>{solver}
 <resolution>[{n},{n},1]</resolution></Box></Level></Grid>
 <DataArchiver><filebase>blob.uda</filebase><outputTimestepInterval>{steps}</outputTimestepInterval>
 <save label="vel_CC"/><save label="press_CC"/><save label="rho_CC"/></DataArchiver>
-<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"{limiter}/><delT_activeDirectionsOnly>true</delT_activeDirectionsOnly>{implicit}</ICE></CFD>
+<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"{limiter}/>
+<delT_activeDirectionsOnly>true</delT_activeDirectionsOnly>{implicit}</ICE></CFD>
 <PhysicalConstants><gravity>[0,0,0]</gravity><reference_pressure>101325</reference_pressure></PhysicalConstants>
 <MaterialProperties><ICE>{materials}</ICE>{exchange}</MaterialProperties></Uintah_specification>"""
 BLOB_FACES = "".join(f'<Face side="{s}"><BCType id="all" label="Symmetric" var="symmetry"/></Face>'
