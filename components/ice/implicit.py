@@ -16,6 +16,14 @@ The outer iteration is a framework Loop with the PCG Loop nested in its body. de
 explicit ICE's (Uintah's one stable-timestep task serves both), with Uintah's implicit
 default knob_for_speedSound 0.5: with knob 0 it comes from the flow speed alone.
 
+The dilatation div(theta u) of the residual takes theta on the faces as explicit ICE does
+(tasks.add_dilatation): the donor cell's, or with <advection limiter="BarthJespersen"> the
+fractions advected second order with Uintah's limiter, as Uintah's setupRHS (advectQ of
+vol_frac). The operator's face coefficients keep the centred theta (a Jacobian only: the
+converged pressure is the residual's zero). As in Uintah, the face velocities (updateVel_FC)
+and the residual (setupRHS) are separate tasks, so that the residual may read its neighbours'
+face velocities.
+
 Boundary faces: a fixed face velocity (Dirichlet, symmetry) or a zero-gradient
 pressure leaves delP decoupled there; a Dirichlet pressure holds delP = 0 outside. Each
 boundary cell takes its own conditions, so a sub-face (circle, rectangle, annulus) with a
@@ -57,6 +65,7 @@ rhs = L.create("rhs", CC)
 rhs0 = L.create("rhs0", CC)
 max_RHS = L.create("max_RHS", R, reduction="max")
 imp_UF = (L.create("imp.uvel_FC", X), L.create("imp.vvel_FC", Y), L.create("imp.wvel_FC", Z))
+imp_UF0 = (L.create("imp.uvel_FC0", X), L.create("imp.vvel_FC0", Y), L.create("imp.wvel_FC0", Z))   # at P = 0
 
 SOLVERS = {"cg": "cg", "pcg": "cg", "conjugategradient": "cg", "conjugate_gradient": "cg",
            "smg": "mg", "pfmg": "mg", "gmres": "cg", "hybrid": "cg", "jacobi": "cg", "automatic": "cg"}
@@ -184,18 +193,27 @@ class ImplicitICE:
         if not self.imp_logged and sched.comm.rank == 0:
             print(self.imp_banner, file=sys.stderr)
             self.imp_logged = True
-        t = Task("ICE::setupMatrixAndRHS", self.imp_setup, matls) \
+        # the residual's ghosts: Uintah's limiter reconstructs the donors' fractions from their
+        # neighbours and offsets their slabs by their other faces' velocities
+        second = self.vol_frac_second_order(len(matls) == 1)
+        ghost_vf, ghost_uf = (2, (G, 1)) if second else (1, ())
+        t = Task("ICE::setupMatrix", self.imp_setup, matls) \
             .requires(OLD, L.delT).requires(NEW, I.vol_frac_CC, G, 1).requires(NEW, I.sp_vol_CC, G, 1) \
-            .requires(NEW, I.speedSound_CC) \
-            .computes(matrix, matls=m0).computes(imp_P0, matls=m0).computes(rhs0, matls=m0)
+            .requires(NEW, I.speedSound_CC).computes(matrix, matls=m0).computes(imp_P0, matls=m0)
         for d in dirs:
-            t.requires(NEW, I.FC_VEL[d], G, 1)
+            t.requires(NEW, I.FC_VEL[d], G, 1).computes(imp_UF0[d])
         if getattr(self, "slip", None) is not None:         # the slip model's K of each cell
             t.requires(NEW, SL.slipK_CC, G, 1, matls=m0)
-        if self.mass_exchange is not None:
-            self.mass_exchange.requires(t, NEW)
         if self.pcg.precond == "mg":
             t.computes(self.pcg.OP)
+        sched.add_task(t)
+        t = Task("ICE::setupRHS", self.imp_rhs0, matls) \
+            .requires(OLD, L.delT).requires(NEW, I.vol_frac_CC, G, ghost_vf).requires(NEW, matrix, matls=m0) \
+            .requires(NEW, imp_P0, matls=m0).computes(rhs0, matls=m0)
+        for d in dirs:
+            t.requires(NEW, imp_UF0[d], *ghost_uf)
+        if self.mass_exchange is not None:
+            self.mass_exchange.requires(t, NEW)
         sched.add_task(t)
 
         seed = Task("ICE::implicitSolveSetup", self.imp_seed, m0).requires(OLD, rhs, matls=m0) \
@@ -206,21 +224,25 @@ class ImplicitICE:
         inner = self.pcg.loop("ICE::implicitPressureSolve", imp_delP)
         upd = Task("ICE::updatePressure", self.imp_update, m0).requires(OLD, imp_P, matls=m0) \
             .requires(NEW, imp_delP, matls=m0).computes(imp_P, matls=m0)
-        fc = Task("ICE::updateVel_FC", self.imp_faces_rhs, matls) \
-            .requires(NEW, imp_P, G, 1, matls=m0).requires(NEW, imp_A, matls=m0).requires(PARENT_OLD, L.delT) \
-            .requires(PARENT_NEW, I.vol_frac_CC, G, 1).requires(PARENT_NEW, I.sp_vol_CC, G, 1) \
-            .computes(rhs, matls=m0).computes(max_RHS)
+        fc = Task("ICE::updateVel_FC", self.imp_faces, matls) \
+            .requires(NEW, imp_P, G, 1, matls=m0).requires(PARENT_OLD, L.delT) \
+            .requires(PARENT_NEW, I.vol_frac_CC, G, 1).requires(PARENT_NEW, I.sp_vol_CC, G, 1)
         for d in dirs:
             fc.requires(PARENT_NEW, I.FC_VEL[d], G, 1).computes(imp_UF[d])
         if getattr(self, "slip", None) is not None:
             fc.requires(PARENT_NEW, SL.slipK_CC, G, 1, matls=m0)
+        res = Task("ICE::setupRHS", self.imp_rhs, matls) \
+            .requires(NEW, imp_P, matls=m0).requires(NEW, imp_A, matls=m0).requires(PARENT_OLD, L.delT) \
+            .requires(PARENT_NEW, I.vol_frac_CC, G, ghost_vf).computes(rhs, matls=m0).computes(max_RHS)
+        for d in dirs:
+            res.requires(NEW, imp_UF[d], *ghost_uf)
         if self.mass_exchange is not None:
-            self.mass_exchange.requires(fc, PARENT_NEW)
+            self.mass_exchange.requires(res, PARENT_NEW)
         # rhs: the last outer iteration's residual of eq. P, handed back for <save label="rhs"> (Uintah's)
         results = {imp_P.name: (sum_imp_delP, m0), rhs.name: (rhs, m0)}
         results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
         tol = self.imp.outer_tol
-        self.outer = Loop("ICE::implicitPressureOuter", matls, [seed, inner, upd, fc],
+        self.outer = Loop("ICE::implicitPressureOuter", matls, [seed, inner, upd, fc, res],
                           init={imp_P.name: imp_P0, rhs.name: rhs0}, results=results,
                           converged=lambda dw, k, pn: dw.get_reduction(max_RHS) <= tol,
                           max_iterations=self.imp.max_outer, fail="continue")
@@ -270,16 +292,12 @@ class ImplicitICE:
                 kinds[sel == want] = kind
         return kinds
 
-    def _faces_and_rhs(self, patch, matls, P, A, get_fc, vfs, sps, dt, out_faces, coeffs, dw):
-        """Face velocities u_m(P) (exchange, BCs) and the residual of eq. P, with the models' mass
-        exchange (dw: the timestep's warehouse); returns (rhs, rr, max)."""
+    def _vel_fc(self, patch, matls, P, get_fc, vfs, sps, dt, out_faces, coeffs):
+        """Face velocities u_m(P) of the patch's faces (eq. 28 with p = p_eq + P, the exchange, the
+        boundary conditions) into out_faces(d, m), called once per direction and material; it
+        allocates with zeros, so the extra cells' faces that no task computes hold 0 as explicit ICE's."""
         b = self.boxes(patch)
         dx = patch.level.dx
-        one = len(matls) == 1
-        made = {}
-        alloc = out_faces
-        out_faces = lambda d, m: made[(d, m)] if (d, m) in made else made.setdefault((d, m), alloc(d, m))
-        div = np.zeros(patch.alloc_shape(CC))
         for d in range(3):
             if not self.dims[d]:
                 continue
@@ -295,16 +313,22 @@ class ImplicitICE:
                                  b.fhi[d], dt, *coeffs)
             for m in matls:
                 self.bcs.face_velocity(patch, outs[m], d, m, b.flo[d], b.fhi[d])
+
+    def _rhs(self, patch, matls, P, A, get_uf, vfs, dt, dw):
+        """The residual of eq. P from the face velocities get_uf(d, m), with the models' mass
+        exchange (dw: the timestep's warehouse); returns (rhs, max |rhs|)."""
+        b = self.boxes(patch)
+        one = len(matls) == 1
         dummy = np.zeros((1, 1, 1))
+        div = np.zeros(patch.alloc_shape(CC))
         for m in matls:
-            uf = [out_faces(d, m) if self.dims[d] else dummy for d in range(3)]
-            K.div_theta_u(vfs[m], one, uf[0], uf[1], uf[2], b.sh[0], b.sh[1], b.sh[2], self.dims, b.lo, b.hi,
-                          dt, dx, div)
+            self.add_dilatation(patch, vfs[m], [get_uf(d, m) if self.dims[d] else dummy for d in range(3)],
+                                one, dt, div)
         if self.mass_exchange is not None:      # Uintah's massExchTerm: sum_m m_src,m v_m / V
             div -= self.mass_exchange.term(patch, dw)
         r = np.zeros(patch.alloc_shape(CC))
-        rr, rmax = IK.pressure_rhs(A, P, div, r, b.lo, b.hi)
-        return r, rr, rmax
+        _, rmax = IK.pressure_rhs(A, P, div, r, b.lo, b.hi)
+        return r, rmax
 
     def _bc_increment(self, patch, P):
         """Extra cells of an increment: 0 behind a Dirichlet pressure, else a copy (zero gradient)."""
@@ -335,12 +359,17 @@ class ImplicitICE:
             keep = tuple(self._keep(patch, m) for m in matls)
             IK.add_exchange_faces(A, tuple(vfs), tuple(sps), self.dims, b.lo, b.hi, s, keep, atb, dt, *coeffs)
         P = new_dw.allocate(imp_P0, 0, patch)
-        r, rr, rmax = self._faces_and_rhs(
-            patch, matls, P, A, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
-            lambda d, m: np.empty(patch.alloc_shape(I.FC_VEL[d].vartype)), coeffs, new_dw)
-        new_dw.put(rhs0, 0, patch, r)
+        self._vel_fc(patch, matls, P, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
+                    lambda d, m: new_dw.allocate(imp_UF0[d], m, patch), coeffs)
         if self.pcg.precond == "mg":
             self.pcg.put_coarse_operator(patch, A, new_dw)
+
+    def imp_rhs0(self, patch, matls, old_dw, new_dw):
+        """The residual of eq. P before the first outer iteration (P = 0)."""
+        r, _ = self._rhs(patch, matls, new_dw.get(imp_P0, 0, patch), new_dw.get(matrix, 0, patch),
+                         lambda d, m: new_dw.get(imp_UF0[d], m, patch),
+                         [new_dw.get(I.vol_frac_CC, m, patch) for m in matls], old_dw.get_reduction(L.delT), new_dw)
+        new_dw.put(rhs0, 0, patch, r)
 
     def imp_seed(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
         new_dw.put(imp_A, 0, patch, parent_new.get(matrix, 0, patch))
@@ -354,15 +383,18 @@ class ImplicitICE:
         IK.add_increment(old_dw.get(imp_P, 0, patch), new_dw.get(imp_delP, 0, patch), P, b.lo, b.hi)
         self._bc_increment(patch, P)
 
-    def imp_faces_rhs(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
-        dt = parent_old.get_reduction(L.delT)
-        vfs = [parent_new.get(I.vol_frac_CC, m, patch) for m in matls]
-        sps = [parent_new.get(I.sp_vol_CC, m, patch) for m in matls]
-        r, rr, rmax = self._faces_and_rhs(
-            patch, matls, new_dw.get(imp_P, 0, patch), new_dw.get(imp_A, 0, patch),
-            lambda d, m: parent_new.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
-            lambda d, m: new_dw.allocate(imp_UF[d], m, patch, fill=None),
-            self.face_exchange_coefficients(parent_new, patch), parent_new)
+    def imp_faces(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        self._vel_fc(patch, matls, new_dw.get(imp_P, 0, patch), lambda d, m: parent_new.get(I.FC_VEL[d], m, patch),
+                    [parent_new.get(I.vol_frac_CC, m, patch) for m in matls],
+                    [parent_new.get(I.sp_vol_CC, m, patch) for m in matls], parent_old.get_reduction(L.delT),
+                    lambda d, m: new_dw.allocate(imp_UF[d], m, patch),
+                    self.face_exchange_coefficients(parent_new, patch))
+
+    def imp_rhs(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
+        r, rmax = self._rhs(patch, matls, new_dw.get(imp_P, 0, patch), new_dw.get(imp_A, 0, patch),
+                            lambda d, m: new_dw.get(imp_UF[d], m, patch),
+                            [parent_new.get(I.vol_frac_CC, m, patch) for m in matls],
+                            parent_old.get_reduction(L.delT), parent_new)
         new_dw.put(rhs, 0, patch, r)
         new_dw.put_reduction(max_RHS, rmax)
 

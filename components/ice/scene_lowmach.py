@@ -154,7 +154,8 @@ BLOB = """<Uintah_specification><SimulationComponent type="ice"/>{solver}
 <resolution>[{n},{n},1]</resolution></Box></Level></Grid>
 <DataArchiver><filebase>blob.uda</filebase><outputTimestepInterval>{steps}</outputTimestepInterval>
 <save label="vel_CC"/><save label="press_CC"/><save label="rho_CC"/></DataArchiver>
-<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"/><delT_activeDirectionsOnly>true</delT_activeDirectionsOnly>{implicit}</ICE></CFD>
+<CFD><cfl>0.4</cfl><ICE><advection type="SecondOrder"{limiter}/>
+<delT_activeDirectionsOnly>true</delT_activeDirectionsOnly>{implicit}</ICE></CFD>
 <PhysicalConstants><gravity>[0,0,0]</gravity><reference_pressure>101325</reference_pressure></PhysicalConstants>
 <MaterialProperties><ICE>{materials}</ICE>{exchange}</MaterialProperties></Uintah_specification>"""
 BLOB_FACES = "".join(f'<Face side="{s}"><BCType id="all" label="Symmetric" var="symmetry"/></Face>'
@@ -169,12 +170,13 @@ NOWHERE = '<box><min>[-2,-2,-2]</min><max>[-1,-1,-1]</max></box>'
 
 
 def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=None, tolerance=1e-10,
-              outer_tol=1e-8, materials=1, K=None, delt=None, knob=None, maxit=5000):
+              outer_tol=1e-8, materials=1, K=None, delt=None, knob=None, maxit=5000, limiter=None):
     """A hot cylinder (3x T, 1/3 rho) moving at `mach` in air at rest, symmetry walls, `steps` steps.
 
     implicit: knob_for_speedSound `knob` (default 0: delT from the flow speed);
     materials=2: the blob is a second gas (cv 1000, gamma 1.3) with exchange coefficients K;
-    delt fixes delT (delt_min = delt_max); patches default to 64^2 cells each.
+    delt fixes delT (delt_min = delt_max); patches default to 64^2 cells each; limiter: the
+    <advection limiter> (None: pysus's default).
     """
     u = mach * np.sqrt(1.4 * 101325 / 0.4)
     hot = BLOB_OBJ.format(piece=CYL, u=u, T=900.0, rho=0.4)
@@ -199,4 +201,4 @@ def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=Non
         f"<delt_init>{delt}</delt_init><delt_min>{delt}</delt_min><delt_max>{delt}</delt_max>"
     return BLOB.format(steps=steps, delt=dt, faces=BLOB_FACES, patches=patches or f"[{np_},{np_},1]", n=n,
                        implicit=imp, solver='<Solver type="hypre"/>' if implicit else "", materials=mats,
-                       exchange=exch)
+                       exchange=exch, limiter="" if limiter is None else f' limiter="{limiter}"')

@@ -409,21 +409,10 @@ class IceTasks:
         shape = patch.alloc_shape(VarType.CC)
         div, ksum = np.zeros(shape), np.zeros(shape)
         one = len(matls) == 1
-        # Uintah's advector: the volume fractions advected second order with its limiter
-        extrema = not one and self.second_order and self.limiter == A.EXTREMA
         v = b.view
         for m in matls:
             vf = new_dw.get(I.vol_frac_CC, m, patch)
-            uf = self._faces(new_dw, I.FC_VEL_ME, m, patch)
-            if extrema:
-                vshape = v(vf).shape
-                A.outflow_fraction(v(vf), *(v(uf[p]) for p in b.perm), b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt,
-                                   patch.level.dx[b.perm], self.dims[b.perm], self._scratch("q", (1,) + vshape),
-                                   self._scratch("acc", (1,) + vshape), self._scratch("buf", (1, vshape[2] + 1)),
-                                   self._scratch("grad", (3, 1) + vshape), self._scratch("rc", (3,) + vshape), v(div))
-            else:
-                K.div_theta_u(v(vf), one, *(v(uf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
-                              b.v_lo, b.v_hi, dt, b.v_dx, v(div))
+            self.add_dilatation(patch, vf, self._faces(new_dw, I.FC_VEL_ME, m, patch), one, dt, div)
             K.add_theta_kappa(v(vf), v(new_dw.get(I.sp_vol_CC, m, patch)), v(new_dw.get(I.speedSound_CC, m, patch)),
                               v(ksum), b.v_lo, b.v_hi)
         delP = new_dw.allocate(I.delP_Dilatate, 0, patch)
@@ -433,6 +422,28 @@ class IceTasks:
         if self.lodi is not None:
             self.lodi_press(patch, press, new_dw.get(I.speedSound_CC, self.lodi.matl, patch), old_dw, new_dw)
         self.press_bc(patch, press, new_dw.get(I.sp_vol_CC, self.surrounding, patch) if self.hydrostatic else None)
+
+    def vol_frac_second_order(self, one):
+        """Are the face volume fractions of the dilatation (eq. 29) advected second order with
+        Uintah's limiter (limiter="BarthJespersen", not `one` material), as Uintah's advectQ of
+        vol_frac? Otherwise they are the donor cell's (pysus's vanLeer default, first order)."""
+        return not one and self.second_order and self.limiter == A.EXTREMA
+
+    def add_dilatation(self, patch, vf, uf, one, dt, div):
+        """div += dt div(theta u) of one material (eq. 29) over the patch's cells, from its volume
+        fraction vf and face velocities uf (three arrays, a dummy for absent directions); theta on
+        the faces as vol_frac_second_order says (then vf needs 2 ghost layers, uf 1)."""
+        b = self.boxes(patch)
+        v = b.view
+        if self.vol_frac_second_order(one):
+            vshape = v(vf).shape
+            A.outflow_fraction(v(vf), *(v(uf[p]) for p in b.perm), b.v_sh, b.v_flo, b.v_fhi, b.v_lo, b.v_hi, dt,
+                               patch.level.dx[b.perm], self.dims[b.perm], self._scratch("q", (1,) + vshape),
+                               self._scratch("acc", (1,) + vshape), self._scratch("buf", (1, vshape[2] + 1)),
+                               self._scratch("grad", (3, 1) + vshape), self._scratch("rc", (3,) + vshape), v(div))
+        else:
+            K.div_theta_u(v(vf), one, *(v(uf[p]) for p in b.perm), b.v_sh[0], b.v_sh[1], b.v_sh[2], b.v_dims,
+                          b.v_lo, b.v_hi, dt, b.v_dx, v(div))
 
     def delp_mass_exchange(self, patch, matls, old_dw, new_dw):
         """Uintah's delP_MassX diagnostic, computed only when a deck saves it: what press_CC holds

@@ -111,6 +111,25 @@ MODEL_RANGES = {"bulk_modulus": (0.0, None), "shear_modulus": (None, 0.0), "K": 
                 "he_constant_2": (None, 0.0), "alpha": (None, 0.0)}
 
 
+def read_model_params(cm, model, kind):
+    """The Params of a model without sub-model nodes (no read_params) from its <constitutive_model>
+    node cm of type `kind`: a tag per field, each checked against MODEL_RANGES (a rigid model's
+    moduli act nowhere: any finite number); an unknown field is an input error."""
+    fields = dataclasses.fields(model.Params)
+    values = {}
+    for f in fields:
+        c = cm.child(f.name)
+        if c is not None:
+            kind_of = "bool" if f.type in (bool, "bool") else "float"
+            above, at_least = MODEL_RANGES.get(f.name, (None, None)) if kind != "rigid" else (None, None)
+            values[f.name] = (c.text() if f.name == "formulation"
+                              else str(c.value(kind_of, above=above, at_least=at_least)))
+    try:
+        return model.Params.from_ups(values)
+    except KeyError as e:
+        raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % f.name for f in fields)}") from None
+
+
 class Material:
     """One MPM material: properties, constitutive model module + params, geometry."""
 
@@ -122,6 +141,7 @@ class Material:
         self.damage = None                    # damage.py: <damage_model> beside the constitutive model
         self.name = node.attr("name", default=f"mpm{index}")
         props = node.read(MATERIAL)
+        self.props = props                      # what a model's read_params takes beside its node
         self.density = props["density"]
         if self.density <= 0:
             raise node.child("density").error("density must be positive")
@@ -155,24 +175,11 @@ class Material:
                 self._read_damage(node, cm, kind)
             self._finish(node, props, params, kind, with_color, geom_reader)
             return
-        fields = dataclasses.fields(self.model.Params)
-        accepted = [f.name for f in fields]
-        values = {}
-        for f in fields:
-            c = cm.child(f.name)
-            if c is not None:
-                kind_of = "bool" if f.type in (bool, "bool") else "float"
-                above, at_least = MODEL_RANGES.get(f.name, (None, None)) if kind != "rigid" else (None, None)
-                values[f.name] = (c.text() if f.name == "formulation"
-                                  else str(c.value(kind_of, above=above, at_least=at_least)))
+        self.params = read_model_params(cm, self.model, kind)
         unread = [cm.child(t) for t in getattr(self.model, "UINTAH_UNREAD", ()) if cm.has(t)]
         if unread and MPI.COMM_WORLD.Get_rank() == 0:
             print(f"pysus: note: {cm.filename}:{unread[0].line}: {', '.join('<%s>' % c.tag for c in unread)} "
                   f"of {kind} have no effect (Uintah's model does not read them either)", file=sys.stderr)
-        try:
-            self.params = self.model.Params.from_ups(values)
-        except KeyError as e:
-            raise cm.error(f"{e.args[0]}; accepted: {', '.join('<%s>' % a for a in accepted)}") from None
         if hasattr(self.model, "MATERIAL_PROPERTIES"):    # visco_scram: rho c_v of its heating
             self.params = dataclasses.replace(self.params, **{k: props[k] for k in self.model.MATERIAL_PROPERTIES})
             if props["specific_heat"] <= 0.0:

@@ -34,7 +34,7 @@ from components.ice.eos import (MAX_PARAMS, MURNAGHAN, SOLID_HYPER, SOLID_HYPO, 
 from components.mpm.bc import GridBCs
 from components.mpm.component import FLAGS, MPM
 from components.mpm.contact import Contact
-from components.mpm.materials import MODELS, model_kind
+from components.mpm.materials import MODELS, model_kind, read_model_params
 from framework.grid import FACES
 from framework.gridspec import boundary_faces, sub_faces
 from framework.problemspec import Param
@@ -121,25 +121,29 @@ NO_EOS = {"comp_mooney_rivlin": "Uintah's CompMooneyRivlin has no EOS for MPMICE
 
 
 def _bulk(mat):
-    """The solid's bulk modulus for the Murnaghan stand-in (none given: effectively incompressible)."""
+    """The solid's bulk modulus for the Murnaghan stand-in (none or 0 given: effectively
+    incompressible); a negative one is an input error (the rigid model itself reads any)."""
     K = getattr(mat.params, "bulk_modulus", 0.0) or 0.0
+    if K < 0:
+        raise mat.node.child("constitutive_model").child("bulk_modulus").error(
+            f"value '{K:g}' is out of range; accepted: a finite number >= 0 (the solid's bulk modulus in "
+            "the Murnaghan stand-in of its EOS)")
     return K if K > 0 else 1e12
 
 
 def _asked_model(mat):
     """(deck type, Params) of an rmpmice solid's own <constitutive_model> (RigidSolid reads it as
-    rigid; its EOS is the asked model's), read as MPM reads a material's (materials.py)."""
+    rigid; its EOS is the asked model's), read and range-checked as MPM reads a material's
+    (materials.py: read_params, or read_model_params)."""
     node = mat.node._node if isinstance(mat.node, _RigidView) else mat.node
     cm = node.child("constitutive_model")
     kind = model_kind(cm)
     model = importlib.import_module(f"components.mpm.constitutive.{MODELS[kind]}")
-    props = {"density": mat.density, "specific_heat": mat.specific_heat}
     if hasattr(model, "read_params"):
-        return kind, model.read_params(cm, node, props)
-    values = {f.name: cm.child(f.name).text() for f in dataclasses.fields(model.Params) if cm.has(f.name)}
-    params = model.Params.from_ups(values)
+        return kind, model.read_params(cm, node, mat.props)
+    params = read_model_params(cm, model, kind)
     if hasattr(model, "MATERIAL_PROPERTIES"):
-        params = dataclasses.replace(params, **{k: props[k] for k in model.MATERIAL_PROPERTIES})
+        params = dataclasses.replace(params, **{k: mat.props[k] for k in model.MATERIAL_PROPERTIES})
     return kind, params
 
 

@@ -127,3 +127,41 @@ def test_rmpmice_advect_periodic_as_sus(tmp_path):
             ref = sus[f"{label}{m}_{step}"]
             err = np.max(np.abs(da.read(label, m, step)[0] - ref)) / np.max(np.abs(ref))
             assert err < 1e-11, (label, m, step, err)
+
+
+@pytest.mark.parametrize("cm,stand_in,tag,words", [
+    (UCNH.format("").replace("117.0e7", "-117.0e7"), False, "bulk_modulus", "> 0"),
+    ("<constitutive_model type=\"hypo_elastic\"><G>43.8e7</G><K>nan</K></constitutive_model>", False, "K",
+     "finite number"),
+    ("<constitutive_model type=\"hypo_elastic\"><G>-43.8e7</G><K>117.0e7</K></constitutive_model>", False, "G",
+     ">= 0"),
+    (UCNH.format("").replace("117.0e7", "-117.0e7"), True, "bulk_modulus", ">= 0"),
+], ids=["ucnh_negative_K", "hypo_nan_K", "hypo_negative_G", "stand_in_negative_K"])
+def test_rmpmice_solid_model_out_of_range(tmp_path, cm, stand_in, tag, words):
+    """An rmpmice solid's own model (read as rigid by MPM, its EOS in the equilibration: setup.py
+    _asked_model, or the <bulk_modulus> of the Murnaghan stand-in without <gas_start>) with a bad
+    parameter is refused with the file, line and tag before any step."""
+    from framework.controller import Controller
+    from framework.problemspec import InputError
+    text = deck("rigid", 1).replace(CASES["rigid"][3], cm)
+    if stand_in:
+        text = text.replace("<MPMICE><gas_start>geometry</gas_start></MPMICE>", "")
+    line = next(i for i, s in enumerate(text.splitlines(), 1) if f"<{tag}>" in s)
+    (tmp_path / "bad.ups").write_text(text)
+    with pytest.raises(InputError) as e:
+        Controller(str(tmp_path / "bad.ups"), quiet=True, filebase=str(tmp_path / "bad.uda"))
+    msg = str(e.value)
+    assert f"bad.ups:{line}: <" in msg and f"{tag}>" in msg and words in msg and "\n" not in msg, msg
+
+
+def test_rmpmice_elastic_plastic_hp_solid_is_read(tmp_path):
+    """An rmpmice solid whose own model reads sub-model nodes (elastic_plastic with a <flow_model>:
+    ElasticPlasticHP) gets the material's properties it needs (melt_temp) and its HP curve's EOS."""
+    from components.ice.eos import SOLID_HYPER
+    from framework.controller import Controller
+    hp = ("<constitutive_model type=\"elastic_plastic\"><shear_modulus>43.8e7</shear_modulus>"
+          "<bulk_modulus>117.0e7</bulk_modulus><flow_model type=\"isotropic_hardening\"><K>1e8</K>"
+          "<sigma_Y>7e7</sigma_Y></flow_model><yield_condition type=\"vonMises\"/></constitutive_model>")
+    (tmp_path / "hp.ups").write_text(deck("rigid", 1).replace(CASES["rigid"][3], hp))
+    ice = Controller(str(tmp_path / "hp.ups"), quiet=True, filebase=str(tmp_path / "hp.uda")).component.ice
+    assert ice.codes[0] == SOLID_HYPER and ice.params[0, 0] == 117.0e7
