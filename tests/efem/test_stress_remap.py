@@ -55,6 +55,10 @@ def test_muscl_keeps_the_bending_moment_of_a_moving_wall(courant):
     # the volume fractions are the same for both and conserved to round-off
     assert np.array_equal(phi_u, phi_m)
     assert abs(phi_m[0].sum() - phi0[0].sum()) < 1e-12
+    # exact: the moment kept (1). Upwind kept 0.44 / 0.52 at Courant 0.1 / 0.3, MUSCL 1.15 / 1.14
+    # (above one as the volume fractions smear outward and carry the wall's edge stress out)
     kept_upwind, kept_muscl = moment(phi_u, sig_u, y) / m0, moment(phi_m, sig_m, y) / m0
     assert kept_upwind < 0.75, kept_upwind
-    assert kept_muscl > 0.9, kept_muscl
+    assert 0.9 < kept_muscl < 1.2, kept_muscl
+    # the limited face values make no new extremes of the stress
+    assert np.abs(sig_m[0, :, :, 0]).max() <= np.abs(sig0[0, :, :, 0]).max() + 1e-9
