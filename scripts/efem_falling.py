@@ -74,6 +74,30 @@ def ring_shape(da, k, r_in=0.075, r_out=0.125, sectors=16):
             float(f[inside].mean()), float(wall))
 
 
+def ring_moment(da, k, r_in=0.075, r_out=0.125):
+    """The ring's n = 2 bending moment per metre of its n = 2 shape at output k: the cos 2 theta
+    amplitude a2 of the solid's phi-weighted radius about its centroid (theta from the bottom),
+    and M2 = (1/pi) sum phi (sigma_hoop - sigma_radial) (r - r_c) cos 2 theta dA of the solid's
+    own stress (the pressure drops out of the difference). An elastic ring carries
+    M2 / a2 = mu t^3 / R, 24 N m/m per metre here; a smaller ratio is a flattening its stress
+    no longer pushes back. Returns (a2 in m, M2 / a2)."""
+    f, (x, y, _) = da.read("vol_frac_CC", 0, k)
+    s = da.read("stress_CC", 0, k)[0][:, :, 0, :]
+    f = f[:, :, 0]
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    w = f.sum()
+    dx, dy = X - (f * X).sum() / w, Y - (f * Y).sum() / w
+    r, th = np.hypot(dx, dy), np.arctan2(dx, -dy)
+    wall = f * ((r > r_in - 0.035) & (r < r_out + 0.045))
+    rc = (wall * r).sum() / wall.sum()
+    c2, ct, st = np.cos(2.0 * th), np.cos(th), np.sin(th)
+    hoop = s[..., 0] * ct * ct + s[..., 1] * st * st + 2.0 * s[..., 2] * ct * st
+    radial = s[..., 0] * st * st + s[..., 1] * ct * ct - 2.0 * s[..., 2] * ct * st
+    a2 = 2.0 * (wall * (r - rc) * c2).sum() / wall.sum()
+    m2 = (wall * (hoop - radial) * (r - rc) * c2).sum() * (x[1] - x[0]) * (y[1] - y[0]) / np.pi
+    return float(a2), float(m2 / a2) if abs(a2) > 1e-4 else float("nan")
+
+
 def bottom_y(da, k):
     """The pontoon's lowest face: over its middle columns (|x - 0.75| < 0.3 m), the lowest y at
     which the solid's column profile reaches one half, interpolated between element centres."""
@@ -142,6 +166,8 @@ def main(argv=None):
             extra = f"  bottom {bottom_y(da, k):.4f} m (rest {PONTOON_BOTTOM_REST})"
         else:
             extra = "  aspect {:.3f} spread {:.3f} hole {:.3f} wall {:.2f}".format(*ring_shape(da, k))
+            a2, ratio = ring_moment(da, k)
+            extra += f"  a2 {1000 * a2:.1f} mm M2/a2 {ratio:.1f}"
         print(f"t = {t:5.2f} s  centroid {centroid_y(da, k):.4f} m (rest {rest}){extra}  volume change "
               + ", ".join(f"{da.materials[m]} {v / v0 - 1:+.1e}" for m, (v, v0) in enumerate(zip(vols, vol0)))
               + f"  fill max {fill.max():.5f}")

@@ -56,6 +56,7 @@ class EFEM(EfemTasks, Component):
         self.settings = efem.read(SETTINGS) if efem is not None else {k: p.default for k, p in SETTINGS.items()}
         self.limiter = {"vanleer": K.LIMITER_VAN_LEER, "superbee": K.LIMITER_SUPERBEE}[
             self.settings["volume_fraction_limiter"]]
+        self.stress_muscl = self.settings["stress_remap"] == "muscl"
         sn = efem.child("pressure_solver") if efem is not None else None
         solver = sn.read(SOLVER) if sn is not None else {k: p.default for k, p in SOLVER.items()}
         pc = root.child("PhysicalConstants")

@@ -392,13 +392,16 @@ def face_velocity(d, E, T, vstar, press, rho, fill, n0, c0, N, dx, dt, fill_min,
 
 @njit(cache=True)
 def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_min, n0, c0, lo, hi, N, dx, dt,
-                walls, wall_vel, inflow_matl, limiter, phi_out, sig_out, u_out):
+                walls, wall_vel, inflow_matl, limiter, stress_muscl, phi_min, phi_out, sig_out, u_out):
     """One directional sweep of the Eulerian step (eq. 4) along mesh lines d over cells [lo, hi).
 
     phi (nm, X, Y): volume fractions, advected by MUSCL (ref. 17; `limiter`: van Leer's or
     superbee) with the face velocities of the moved mesh (face_velocity); the donor's content
     bounds each flux. sig (ns, X, Y, q): solid state (stress, hourglass forces), carried as phi_m sigma_m with the
-    material's volume flux (upwind stress). u (X, Y, 2): element velocities, carried as
+    material's volume flux: the upwind element's state, or with `stress_muscl` its van Leer-limited
+    MUSCL value at the face where the three elements about the face hold the solid at phi_min or
+    more (a bending stress varies linearly across a wall a few elements thick; first-order upwind
+    diffuses it away as the wall moves through the mesh, docs/EFEM.md). u (X, Y, 2): element velocities, carried as
     momentum sum_m rho_m phi_m u (upwind u). Walls carry nothing; an inflow face brings its
     material (volume fraction 1) at its velocity, an outflow face takes the element's
     content and, where the flow turns inward, brings the element's fluids back filled to
@@ -410,11 +413,16 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
     nf = hi[d] - lo[d] + 1
     F = np.zeros((nm, nf))
     Pm = np.zeros((nf, 2))
+    ns, nq = sig.shape[0], sig.shape[3]
+    S = np.zeros((ns, nf, nq))                 # each solid's state at the face, times its volume flux
     for T in range(lo[t], hi[t]):
         for f in range(nf):
             E = lo[d] + f                      # face between cells E-1 and E along d
             for m in range(nm):
                 F[m, f] = 0.0
+            for s in range(ns):
+                for q in range(nq):
+                    S[s, f, q] = 0.0
             Pm[f, 0] = Pm[f, 1] = 0.0
             boundary = E <= 0 or E >= N[d]
             face = 2 * d + (0 if E <= 0 else 1)
@@ -442,6 +450,9 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
                         flux = ac * phi[m, iu, ju]
                         F[m, f] = flux if c > 0.0 else -flux
                         mom += rho_m[m] * flux
+                        if solid_of[m] >= 0:
+                            for q in range(nq):
+                                S[solid_of[m], f, q] = F[m, f] * sig[solid_of[m], iu, ju, q]
                     for q in range(2):
                         Pm[f, q] = (mom if c > 0.0 else -mom) * u[iu, ju, q]
                 elif walls[face] == WALL_NONE:
@@ -482,6 +493,16 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
                 flux = min(ac * face, p_up)
                 F[m, f] = flux if c > 0.0 else -flux
                 mom += rho_m[m] * flux
+                s = solid_of[m]
+                if s < 0:
+                    continue
+                sharp = stress_muscl and has_uu and min(p_up, phi[m, idn, jdn], phi[m, iuu, juu]) >= phi_min
+                for q in range(nq):
+                    sv = sig[s, iu, ju, q]
+                    if sharp:
+                        sv += 0.5 * (1.0 - ac) * _limited_slope(sv - sig[s, iuu, juu, q], sig[s, idn, jdn, q] - sv,
+                                                                LIMITER_VAN_LEER)
+                    S[s, f, q] = F[m, f] * sv
             for q in range(2):
                 Pm[f, q] = (mom if c > 0.0 else -mom) * u[iu, ju, q]
         for k in range(nf - 1):
@@ -497,19 +518,9 @@ def remap_sweep(d, phi, sig, solid_of, rho_m, u, vstar, press, rho, fill, fill_m
                 s = solid_of[m]
                 if s < 0:
                     continue
-                # fluxes of phi_m sigma_m: the volume flux times the upwind element's stress
-                for q in range(sig.shape[3]):
-                    qin = 0.0
-                    if F[m, k] > 0.0:
-                        qin = F[m, k] * (sig[s, i - 1, j, q] if d == 0 else sig[s, i, j - 1, q])
-                    elif F[m, k] < 0.0:
-                        qin = F[m, k] * sig[s, i, j, q]
-                    qout = 0.0
-                    if F[m, k + 1] > 0.0:
-                        qout = F[m, k + 1] * sig[s, i, j, q]
-                    elif F[m, k + 1] < 0.0:
-                        qout = F[m, k + 1] * (sig[s, i + 1, j, q] if d == 0 else sig[s, i, j + 1, q])
-                    total = phi[m, i, j] * sig[s, i, j, q] + qin - qout
+                # fluxes of phi_m sigma_m: the volume flux times the face's state
+                for q in range(nq):
+                    total = phi[m, i, j] * sig[s, i, j, q] + S[s, k, q] - S[s, k + 1, q]
                     sig_out[s, i, j, q] = total / p_new if p_new > 1e-12 else 0.0
             for q in range(2):
                 mom = mass_old * u[i, j, q] + Pm[k, q] - Pm[k + 1, q]

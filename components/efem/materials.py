@@ -40,6 +40,7 @@ SETTINGS = {
     "volume_correction": Param("float", 0.25, at_least=0.0),
     "fill_correction": Param("float", 0.1, at_least=0.0),
     "volume_fraction_limiter": Param("str", "vanleer", choices=("vanleer", "superbee")),
+    "stress_remap": Param("str", "upwind", choices=("upwind", "muscl")),
 }
 SOLVER = {
     "tolerance": Param("float", 1e-10, above=0.0),

@@ -183,7 +183,7 @@ class EfemTasks:
         phi1, sig1, u1 = phi.copy(), sig.copy(), u0.copy()
         faces = (new_dw.get(E.gVelocityStar, 0, patch), new_dw.get(E.press_CC, 0, patch),
                  new_dw.get(E.rho_CC, 0, patch), new_dw.get(E.fill_CC, 0, patch), self.settings["fill_min"], f.n0, f.c0)
-        bcs = (self.walls, self.wall_vel, self.inflow_matl, self.limiter)
+        bcs = (self.walls, self.wall_vel, self.inflow_matl, self.limiter, self.stress_muscl, self.settings["solid_min"])
         K.remap_sweep(0, phi, sig, self.solid_of, self.densities, u0, *faces, xlo, xhi, f.N, f.dx, dt, *bcs,
                       phi1, sig1, u1)
         phi2, sig2, u2 = phi1.copy(), sig1.copy(), u1.copy()

@@ -59,3 +59,7 @@ def test_geometry_outside_domain(tmp_path):
 def test_unknown_limiter(tmp_path):
     _fails(tmp_path, deck(settings="<volume_fraction_limiter> minmod </volume_fraction_limiter>"),
            "volume_fraction_limiter", "superbee")
+
+
+def test_unknown_stress_remap(tmp_path):
+    _fails(tmp_path, deck(settings="<stress_remap> weno </stress_remap>"), "stress_remap", "muscl")
