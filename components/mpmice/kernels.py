@@ -255,6 +255,22 @@ def temperature_rates(eng_me, eng_L, mass_L, cv, dt, lo, hi, out):
 
 
 @njit(cache=True)
+def temperature_rates_extra(temp_me, eng_L, mass_L, cv, dt, lo, hi, olo, ohi, out):
+    """Step 10 -> 13 in the extra cells (computeCCVelAndTempRates over the extra cells):
+    dT/dt = (T_ME - T^L) / dt, T_ME the exchanged temperature the face's condition put there
+    and T^L = (me)^L / (m^L cv) the extra cell's own Lagrangian temperature (of its own nodes)."""
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                if lo[0] <= i < hi[0] and lo[1] <= j < hi[1] and lo[2] <= k < hi[2]:
+                    continue
+                m = mass_L[i, j, k]
+                if m <= 0.0:
+                    continue
+                out[i, j, k] = (temp_me[i, j, k] - eng_L[i, j, k] / (m * cv)) / dt
+
+
+@njit(cache=True)
 def cc_to_nc_scalar(q, cc_low, node_low, nlo, nhi, dims, out):
     """Step 13 for a scalar rate (interpolateCCToNC's dTdt_NC): every node [nlo, nhi) takes
     the mean of the cells around it. With the cell mass sum_w m_i of step 1 this hands

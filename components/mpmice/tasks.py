@@ -20,7 +20,7 @@ import sys
 import numpy as np
 
 from components.ice import labels as I
-from components.ice.bc import NEUMANN, SYMMETRY, bc_vector
+from components.ice.bc import NEUMANN, SYMMETRY, bc_scalar, bc_vector
 from components.ice.tasks import _press_array, _rho_micro_array, _speed_sound
 from components.mpm import labels as M
 from framework import labels as FL
@@ -607,15 +607,32 @@ class MPMICETasks:
                        .requires(NEW, MI.dTdt_CC, Ghost.AROUND_CELLS, 1).computes(MI.dTdt_NC))
 
     def temperature_rates(self, patch, matls, old_dw, new_dw):
-        """dTdt_CC = ((me)^L_ME - (me)^L) / (m^L cv dt) per solid cell (zero-gradient extra cells)."""
+        """dTdt_CC = ((me)^L_ME - (me)^L) / (m^L cv dt) per solid cell. In the extra cells of a
+        face that is not a symmetry plane, as Uintah's computeCCVelAndTempRates over the extra
+        cells, the exchanged temperature the face's Temperature condition puts there less the
+        extra cell's own Lagrangian temperature, over dt (kernels.temperature_rates_extra); on a
+        symmetry plane the interior's rate (set_if_sym_BC)."""
         b = self.ice.boxes(patch)
         dt = old_dw.get_reduction(FL.delT)
         for m in matls:
             out = new_dw.allocate(MI.dTdt_CC, m, patch)
-            if m in self.solid_heat:
-                K.temperature_rates(new_dw.get(I.int_eng_L_ME_CC, m, patch), new_dw.get(I.int_eng_L_CC, m, patch),
-                                    new_dw.get(I.mass_L_CC, m, patch), self.ice.cvs[m], dt, b.lo, b.hi, out)
-                self.ice.bcs.scalar(patch, out, "Temperature", m, b, copy=True)
+            if m not in self.solid_heat:
+                continue
+            eng_me, eng_L = new_dw.get(I.int_eng_L_ME_CC, m, patch), new_dw.get(I.int_eng_L_CC, m, patch)
+            mass_L, cv = new_dw.get(I.mass_L_CC, m, patch), self.ice.cvs[m]
+            K.temperature_rates(eng_me, eng_L, mass_L, cv, dt, b.lo, b.hi, out)
+            self.ice.bcs.scalar(patch, out, "Temperature", m, b, copy=True)
+            sym = {f: self.ice.bcs.table[f]["Velocity"][m][0] == SYMMETRY for f in patch.boundary_faces}
+            if all(sym.values()):
+                continue
+            inner = tuple(slice(lo, hi) for lo, hi in zip(b.lo, b.hi))
+            temp_me = np.zeros(out.shape)
+            temp_me[inner] = eng_me[inner] / (mass_L[inner] * cv)
+            self.ice.bcs.scalar(patch, temp_me, "Temperature", m, b)
+            K.temperature_rates_extra(temp_me, eng_L, mass_L, cv, dt, b.lo, b.hi, b.olo, b.ohi, out)
+            for name in (f for f, s in sym.items() if s):
+                i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
+                bc_scalar(out, i // 2, i % 2, 0, 0.0, 0.0, b.lo, b.hi, b.olo, b.ohi)
 
     def interpolate_temperature_rate(self, patch, matls, old_dw, new_dw):
         """dTdt_NC: the mean dTdt_CC of the cells around each node (added to the particles'
