@@ -188,8 +188,9 @@ class MPMICE(MPMICETasks, Component):
         for lab in [M.pX, M.pMass, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
             t.requires(NEW, lab, Ghost.AROUND_NODES, ng, matls=self.mpm_matls)
         sched.add_task(t)
-        sched.add_task(Task("MPMICE::initializeSolidTemperature", self.initialize_solid_temperature,
-                            self.mpm_matls).computes(I.temp_CC))
+        if self.mpm.thermal or self.models is not None:     # read by step 1 and the burn models
+            sched.add_task(Task("MPMICE::initializeSolidTemperature", self.initialize_solid_temperature,
+                                self.mpm_matls).computes(I.temp_CC))
         for model in self.ice.scalars + self.ice.tracers:      # ICE's PassiveScalar, TracerParticles models
             model.schedule_initialize(sched)
         if self.models is not None:             # the reaction models' own state (Unsteady_Burn)
