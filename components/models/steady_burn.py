@@ -98,15 +98,6 @@ class SteadyBurn(SimpleBurn):
     def tasks_after(self):
         return [("MPMICE::computeEquilibrationPressure", self._numppc_task)] + super().tasks_after()
 
-    def schedule_initialize(self, sched):
-        sched.add_task(Task(f"{self.name}::initialize", self.initialize_solid_temperature, self.comp.mpm_matls)
-                       .computes(I.temp_CC))
-
-    def initialize_solid_temperature(self, patch, matls, old_dw, new_dw):
-        """The solids' temp_CC the first step's burn reads (their object's temperature)."""
-        for m in matls:
-            new_dw.allocate(I.temp_CC, m, patch)[...] = self.comp.solid_temp[m]
-
     def _numppc_task(self):
         return Task("Steady_Burn::computeNumPPC", self.count_particles, [self.react]) \
             .requires(OLD, M.pX).computes(ML.numPPC)

@@ -19,8 +19,8 @@ is the unsteady condensed-phase solution
 scaled m* (m/m*)^Bm. b^2 < 4c stops the run (Uintah: the timestep is too large for the unsteady
 burn rate). The burned mass, its momentum and energy go to the product as in Steady_Burn
 (Cp T_solid + Qc + Qg per kg), with T_solid and the ignition temperatures of the previous
-step (Uintah reads temp_CC from the old data warehouse here; the solids' first-step value is
-their object's temperature). A burning cell's particles keep its (beta, Ts); all others go
+step (Uintah reads temp_CC from the old data warehouse here: the solids' exchanged temperature;
+before the first step MPMICE's initial one, the object's temperature near it). A burning cell's particles keep its (beta, Ts); all others go
 back to (1e12, 300). Outputs: UnsteadyBurn.BurningCell (steps burned in a row),
 UnsteadyBurn.SurfTemp, UnsteadyBurn.SurfTempGrad (per cell), UnsteadyBurn.PartSurfTemp,
 UnsteadyBurn.PartSurfTempGrad (per particle), totalMassBurned, totalHeatReleased.
@@ -74,8 +74,7 @@ class UnsteadyBurn(SteadyBurn):
     # -- scheduling ----------------------------------------------------------------------------
     def schedule_initialize(self, sched):
         c, r = self.comp, [self.react]
-        t = Task("Unsteady_Burn::initialize", self.initialize, c.mpm_matls).requires(NEW, M.pX) \
-            .computes(I.temp_CC)
+        t = Task("Unsteady_Burn::initialize", self.initialize, c.mpm_matls).requires(NEW, M.pX)
         for lab in CELL:
             t.computes(lab, matls=r)
         for final, _ in PART:
@@ -105,13 +104,12 @@ class UnsteadyBurn(SteadyBurn):
 
     # -- task bodies -----------------------------------------------------------------------------
     def initialize(self, patch, matls, old_dw, new_dw):
-        """Cells and particles that never burned; the solids' temp_CC of the first step's
-        ignition test (their object's temperature)."""
+        """Cells and particles that never burned (the solids' temp_CC of the first step's ignition
+        test is MPMICE's initial one)."""
         for m in matls:
             n = len(new_dw.get(M.pX, m, patch))
             new_dw.put(ML.ubPartSurfTemp, m, patch, np.full(n, INIT_TS))
             new_dw.put(ML.ubPartSurfTempGrad, m, patch, np.full(n, INIT_BETA))
-            new_dw.allocate(I.temp_CC, m, patch)[...] = self.comp.solid_temp[m]
             if m == self.react:
                 for lab, value in zip(CELL, (0.0, INIT_TS, INIT_BETA)):
                     new_dw.allocate(lab, m, patch)[...] = value

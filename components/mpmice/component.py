@@ -172,8 +172,8 @@ class MPMICE(MPMICETasks, Component):
         self.solid_temp = {m: mat.objects[0]["temperature"] for m, mat in enumerate(self.mpm.materials)}
         self.add_heat = _read_add_heat(root.child("CFD").child("ICE").child("ADD_HEAT"), self.ice.ice_matls)
         self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
-        # pysus's rule for fluid slivers in solid-filled cells (tasks.exchange); false: Uintah's exchange alone
-        self.trace_temperatures = node.get("trace_temperatures", "bool", True) if node is not None else True
+        # true: pysus's rule for fluid slivers in solid-filled cells (tasks.exchange); Uintah has none
+        self.trace_temperatures = node.get("trace_temperatures", "bool", False) if node is not None else False
 
     def material_names(self):
         return self.ice.material_names()
@@ -188,6 +188,9 @@ class MPMICE(MPMICETasks, Component):
         for lab in [M.pX, M.pMass, M.pVolume] + ([M.pSize] if self.mpm.kind == "gimp" else []):
             t.requires(NEW, lab, Ghost.AROUND_NODES, ng, matls=self.mpm_matls)
         sched.add_task(t)
+        if self.mpm.thermal or self.models is not None:     # read by step 1 and the burn models
+            sched.add_task(Task("MPMICE::initializeSolidTemperature", self.initialize_solid_temperature,
+                                self.mpm_matls).computes(I.temp_CC))
         for model in self.ice.scalars + self.ice.tracers:      # ICE's PassiveScalar, TracerParticles models
             model.schedule_initialize(sched)
         if self.models is not None:             # the reaction models' own state (Unsteady_Burn)
@@ -224,6 +227,10 @@ class MPMICE(MPMICETasks, Component):
             sched.add_task(Task("MPMICE::solidVelocityAfterExchange", self.solid_velocity_after_exchange,
                                 self.mpm_matls)
                            .requires(NEW, I.mass_L_CC).requires(NEW, I.mom_L_ME_CC).modifies(I.vel_CC))
+        if self.mpm.thermal:    # after every task that reads the solids' step-1 temp_CC
+            sched.add_task(Task("MPMICE::solidTemperatureAfterExchange", self.solid_temperature_after_exchange,
+                                self.mpm_matls)
+                           .requires(NEW, I.mass_L_CC).requires(NEW, I.int_eng_L_ME_CC).modifies(I.temp_CC))
 
     def _schedule_fluid_lagrangian_start(self, sched):
         """Steps 1-7: solid state at cell centres, pressure, face velocities, solid forces."""
@@ -234,6 +241,8 @@ class MPMICE(MPMICETasks, Component):
             .computes(I.temp_CC)
         for lab in (M.gMass, M.gVolume, M.gVelocity):
             t.requires(NEW, lab, G, 1)
+        if self.mpm.thermal:        # the temperature the last exchange left (Uintah's blend)
+            t.requires(OLD, I.temp_CC)
         sched.add_task(self.thermal_requires(t, "nc_to_cc"))
 
         t = Task("MPMICE::computeEquilibrationPressure", self.equilibration_pressure, alls) \

@@ -206,9 +206,13 @@ def pressure_force(interpolator):
 
 @njit(cache=True)
 def nc_to_cc_scalar(gmass, gq, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n_lo, n_hi, tiny_mass,
-                    empty, out):
-    """Step 1 for a nodal scalar (interpolateNCToCC_0's Temp_CC): out = sum_w m_i q_i / sum_w m_i
-    with the weights of nc_to_cc; `empty` where the cell holds less than tiny_mass of solid."""
+                    empty, old, out):
+    """A nodal scalar's cell mean with the weights of nc_to_cc: out = sum_w m_i q_i / sum_w m_i
+    (`empty` where the cell holds no solid). With `old` (size > 1) Uintah's interpolateNCToCC_0
+    Temp_CC instead: with the floor mass t in cMass = m + t and f = m / cMass (its one_or_zero),
+    (1 - f) old + f (sum_w m_i q_i) / cMass, the cell's last value (old) blended with the floored
+    mean, so a cell holding only a GIMP tail or the floor keeps what its last exchange left."""
+    blend = old.size > 1
     w = node_weights(max(gmass.shape), node_low, dims, sym_lo, sym_hi, n_lo, n_hi)
     na = 2 if dims[0] else 1
     nb = 2 if dims[1] else 1
@@ -232,7 +236,12 @@ def nc_to_cc_scalar(gmass, gq, node_low, cc_low, lo, hi, dims, sym_lo, sym_hi, n
                             mw = wa * wb * (w[2, z] if nc == 2 else 1.0) * gmass[x, y, z]
                             m += mw
                             s += mw * gq[x, y, z]
-                out[i, j, k] = s / m if m >= tiny_mass else empty
+                if blend:
+                    cm = m + tiny_mass
+                    one_or_zero = (cm - tiny_mass) / cm
+                    out[i, j, k] = (1.0 - one_or_zero) * old[i, j, k] + one_or_zero * (s / cm)
+                else:
+                    out[i, j, k] = s / m if m > 0.0 else empty
 
 
 @njit(cache=True)
@@ -243,6 +252,22 @@ def temperature_rates(eng_me, eng_L, mass_L, cv, dt, lo, hi, out):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
                 out[i, j, k] = (eng_me[i, j, k] - eng_L[i, j, k]) / (mass_L[i, j, k] * cv * dt)
+
+
+@njit(cache=True)
+def temperature_rates_extra(temp_me, eng_L, mass_L, cv, dt, lo, hi, olo, ohi, out):
+    """Step 10 -> 13 in the extra cells (computeCCVelAndTempRates over the extra cells):
+    dT/dt = (T_ME - T^L) / dt, T_ME the exchanged temperature the face's condition put there
+    and T^L = (me)^L / (m^L cv) the extra cell's own Lagrangian temperature (of its own nodes)."""
+    for i in range(olo[0], ohi[0]):
+        for j in range(olo[1], ohi[1]):
+            for k in range(olo[2], ohi[2]):
+                if lo[0] <= i < hi[0] and lo[1] <= j < hi[1] and lo[2] <= k < hi[2]:
+                    continue
+                m = mass_L[i, j, k]
+                if m <= 0.0:
+                    continue
+                out[i, j, k] = (temp_me[i, j, k] - eng_L[i, j, k] / (m * cv)) / dt
 
 
 @njit(cache=True)

@@ -20,7 +20,7 @@ import sys
 import numpy as np
 
 from components.ice import labels as I
-from components.ice.bc import NEUMANN, SYMMETRY, bc_vector
+from components.ice.bc import NEUMANN, SYMMETRY, bc_scalar, bc_vector
 from components.ice.tasks import _press_array, _rho_micro_array, _speed_sound
 from components.mpm import labels as M
 from framework import labels as FL
@@ -111,12 +111,13 @@ class MPMICETasks:
         K.nc_to_cc(gmass, gvol, gvel, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
                    self.tiny * b.vol, mat.density, b.vol, cmass, spv, vel, rho)
 
-    def _scalar_to_cc(self, patch, m, gmass, gq, out):
-        """Mass-weighted cell mean of a nodal scalar of solid m (cells without solid keep `out`)."""
+    def _scalar_to_cc(self, patch, m, gmass, gq, out, old=_NO1):
+        """Mass-weighted cell mean of a nodal scalar of solid m (cells without solid: its object's
+        temperature); with `old`, Uintah's blend of it with the cell's last value (kernels.nc_to_cc_scalar)."""
         b, cc_low, node_low, dims, n_lo, n_hi = self._geom(patch)
         sym_lo, sym_hi = self._sym(m)
         K.nc_to_cc_scalar(gmass, gq, node_low, cc_low, b.lo, b.hi, dims, sym_lo, sym_hi, n_lo, n_hi,
-                          self.tiny * b.vol, self.solid_temp[m], out)
+                          self.tiny * b.vol, self.solid_temp[m], old, out)
 
     def _extra_vector(self, patch, q, m, b, only_symmetry=False):
         """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere (unless
@@ -248,7 +249,9 @@ class MPMICETasks:
     def interpolate_nc_to_cc(self, patch, matls, old_dw, new_dw):
         """interpolateNCToCC_0: cMass, rho_CC, vel_CC, temp_CC and the specific volume of each
         solid at the cell centres (the specific volume is the particles' volume, which MPM
-        integrates in time through F: eq. 53 for the solid)."""
+        integrates in time through F: eq. 53 for the solid). A solid's temp_CC is, as Uintah's,
+        its nodes' mean blended with the temperature the last step's exchange left in the cell
+        in the proportion of the floor mass to cMass (a cell with no solid keeps that one)."""
         b = self.ice.boxes(patch)
         for m in matls:
             cm = new_dw.allocate(MI.cMass, m, patch)
@@ -260,7 +263,7 @@ class MPMICETasks:
                            new_dw.get(M.gVelocity, m, patch), cm, spv, vel, rho)
             if self.mpm.thermal:
                 self._scalar_to_cc(patch, m, new_dw.get(M.gMass, m, patch), new_dw.get(M.gTemperature, m, patch),
-                                   temp)
+                                   temp, old_dw.get(I.temp_CC, m, patch))
                 self.ice.bcs.scalar(patch, temp, "Temperature", m, b, copy=True)
             self.ice.bcs.scalar(patch, rho, "Density", m, b, copy=True)   # mass from particles, never the deck
             self.ice.bcs.scalar(patch, spv, "Temperature", m, b, copy=True)
@@ -376,13 +379,13 @@ class MPMICETasks:
 
     # -- step 10: the exchange, trace materials at the cell's temperature --------------------------
     def exchange(self, patch, matls, old_dw, new_dw):
-        """ICE's addExchangeToMomentumAndEnergy over solids and fluids (eqs. 38-39); then, in
-        cells where every fluid's volume fraction is below THETA_TRACE, the fluids take the
+        """ICE's addExchangeToMomentumAndEnergy over solids and fluids (eqs. 38-39), Uintah's
+        exchange alone. With <MPMICE><trace_temperatures>true (pysus's rule, not Uintah's), in
+        cells where every fluid's volume fraction is below THETA_TRACE, the fluids then take the
         temperature of the solids that exchange heat (kernels.trace_temperatures): those
         solids' temperature evolves, so the heat they give is carried to their particles.
-        A deck whose solids exchange no heat (<heat> 0) keeps its slivers adiabatic. A cell
-        where a reaction model adds mass to a fluid keeps the exchange's temperatures (Uintah's),
-        and so does every cell with <MPMICE><trace_temperatures>false (Uintah's exchange alone)."""
+        Solids that exchange no heat (<heat> 0) leave the slivers adiabatic, and a cell where a
+        reaction model adds mass to a fluid keeps the exchange's temperatures."""
         keep = _KeepAllocated(new_dw)
         self.ice.exchange_cc(patch, matls, old_dw, keep)
         if not self.solid_heat or not self.trace_temperatures:
@@ -491,6 +494,32 @@ class MPMICETasks:
             out = new_dw.allocate(MI.Tdot, m, patch)
             out[o] = np.where(mass > 0, (temp - start.get(I.temp_CC, m, patch)[o]) / dt, 0.0)
 
+    def solid_temperature_after_exchange(self, patch, matls, old_dw, new_dw):
+        """The solids' temp_CC that the step leaves (saves, and the next step's step 1 blends with)
+        is their exchanged temperature (me)^L_ME / (m^L cv), as Uintah's exchange leaves it."""
+        b = self.ice.boxes(patch)
+        inner = tuple(slice(lo, hi) for lo, hi in zip(b.lo, b.hi))
+        for m in matls:
+            temp = new_dw.get_modifiable(I.temp_CC, m, patch)
+            mcv = new_dw.get(I.mass_L_CC, m, patch)[inner] * self.ice.cvs[m]
+            temp[inner] = new_dw.get(I.int_eng_L_ME_CC, m, patch)[inner] / mcv
+            self.ice.bcs.scalar(patch, temp, "Temperature", m, b, copy=True)
+
+    def initialize_solid_temperature(self, patch, matls, old_dw, new_dw):
+        """The solids' temp_CC before the first step (Uintah's MPMMaterial::initializeCCVariables):
+        300 K, and in the cells whose centre lies within three cells of an object's bounding box
+        that object's temperature (the last such object's). Step 1 keeps it where a cell holds
+        no solid."""
+        dx, xc = patch.level.dx, patch.cell_centers()
+        for m in matls:
+            temp = new_dw.allocate(I.temp_CC, m, patch, 300.0)
+            for obj in self.mpm.materials[m].objects:
+                if "piece" not in obj:          # a membrane's particle sheet: no bounding box read
+                    continue
+                lo, hi = obj["piece"].bounds()
+                near = [(x > lo[d] - 3.0 * dx[d]) & (x < hi[d] + 3.0 * dx[d]) for d, x in enumerate(xc)]
+                temp[np.ix_(*near)] = obj["temperature"]
+
     def solid_velocity_after_exchange(self, patch, matls, old_dw, new_dw):
         """The solids' vel_CC that the step leaves (and saves) is their exchanged velocity
         (mu)^L_ME / m^L, as Uintah's exchange leaves it; the step's tasks read the step-1 value
@@ -578,15 +607,32 @@ class MPMICETasks:
                        .requires(NEW, MI.dTdt_CC, Ghost.AROUND_CELLS, 1).computes(MI.dTdt_NC))
 
     def temperature_rates(self, patch, matls, old_dw, new_dw):
-        """dTdt_CC = ((me)^L_ME - (me)^L) / (m^L cv dt) per solid cell (zero-gradient extra cells)."""
+        """dTdt_CC = ((me)^L_ME - (me)^L) / (m^L cv dt) per solid cell. In the extra cells of a
+        face that is not a symmetry plane, as Uintah's computeCCVelAndTempRates over the extra
+        cells, the exchanged temperature the face's Temperature condition puts there less the
+        extra cell's own Lagrangian temperature, over dt (kernels.temperature_rates_extra); on a
+        symmetry plane the interior's rate (set_if_sym_BC)."""
         b = self.ice.boxes(patch)
         dt = old_dw.get_reduction(FL.delT)
         for m in matls:
             out = new_dw.allocate(MI.dTdt_CC, m, patch)
-            if m in self.solid_heat:
-                K.temperature_rates(new_dw.get(I.int_eng_L_ME_CC, m, patch), new_dw.get(I.int_eng_L_CC, m, patch),
-                                    new_dw.get(I.mass_L_CC, m, patch), self.ice.cvs[m], dt, b.lo, b.hi, out)
-                self.ice.bcs.scalar(patch, out, "Temperature", m, b, copy=True)
+            if m not in self.solid_heat:
+                continue
+            eng_me, eng_L = new_dw.get(I.int_eng_L_ME_CC, m, patch), new_dw.get(I.int_eng_L_CC, m, patch)
+            mass_L, cv = new_dw.get(I.mass_L_CC, m, patch), self.ice.cvs[m]
+            K.temperature_rates(eng_me, eng_L, mass_L, cv, dt, b.lo, b.hi, out)
+            self.ice.bcs.scalar(patch, out, "Temperature", m, b, copy=True)
+            sym = {f: self.ice.bcs.table[f]["Velocity"][m][0] == SYMMETRY for f in patch.boundary_faces}
+            if all(sym.values()):
+                continue
+            inner = tuple(slice(lo, hi) for lo, hi in zip(b.lo, b.hi))
+            temp_me = np.zeros(out.shape)
+            temp_me[inner] = eng_me[inner] / (mass_L[inner] * cv)
+            self.ice.bcs.scalar(patch, temp_me, "Temperature", m, b)
+            K.temperature_rates_extra(temp_me, eng_L, mass_L, cv, dt, b.lo, b.hi, b.olo, b.ohi, out)
+            for name in (f for f, s in sym.items() if s):
+                i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
+                bc_scalar(out, i // 2, i % 2, 0, 0.0, 0.0, b.lo, b.hi, b.olo, b.ohi)
 
     def interpolate_temperature_rate(self, patch, matls, old_dw, new_dw):
         """dTdt_NC: the mean dTdt_CC of the cells around each node (added to the particles'
