@@ -85,7 +85,10 @@ def gauss_seidel(kap, F, u, b, dims, per, forward):
 
 @njit(cache=True)
 def coarsen(kap, F, cf, kc, Fc):
-    """Coarse operator: kap summed over children; faces summed, halved along coarsened d."""
+    """Coarse operator: kap summed over children; faces summed, halved along coarsened d. An
+    odd extent leaves its last coarse cell one fine cell wide: its high boundary face (fine
+    face n, odd) is the coarse boundary face; the face arrays' padding beyond a direction's
+    cells is skipped."""
     sh = kap.shape
     for i in range(sh[0]):
         a = i // 2 if cf[0] else i
@@ -100,13 +103,16 @@ def coarsen(kap, F, cf, kc, Fc):
             for j in range(F.shape[2]):
                 for k in range(F.shape[3]):
                     e = i if d == 0 else (j if d == 1 else k)
-                    if cf[d] and e % 2 == 1:
+                    if (d != 0 and i >= sh[0]) or (d != 1 and j >= sh[1]) or (d != 2 and k >= sh[2]):
+                        continue                        # padding: no cell there
+                    if cf[d] and e % 2 == 1 and e != sh[d]:
                         continue                        # interior fine face of a coarse cell
-                    a = i // 2 if cf[0] else i
-                    b = j // 2 if cf[1] else j
-                    c = k // 2 if cf[2] else k
-                    if a < Fc.shape[1] and b < Fc.shape[2] and c < Fc.shape[3]:
-                        Fc[d, a, b, c] += w * F[d, i, j, k]
+                    # cells i -> i // 2; along d the faces 2m -> m and the boundary face n -> its
+                    # coarse one, (n + 1) // 2, for n odd as well as even
+                    a = ((i + 1) // 2 if d == 0 else i // 2) if cf[0] else i
+                    b = ((j + 1) // 2 if d == 1 else j // 2) if cf[1] else j
+                    c = ((k + 1) // 2 if d == 2 else k // 2) if cf[2] else k
+                    Fc[d, a, b, c] += w * F[d, i, j, k]
 
 
 @njit(cache=True)
@@ -177,10 +183,10 @@ class Hierarchy:
         self.cfs = []
         while kap.size > COARSEST:
             sh = kap.shape
-            cf = np.array([self.dims[d] and sh[d] % 2 == 0 and sh[d] >= 4 for d in range(3)], dtype=np.int64)
+            cf = np.array([self.dims[d] and sh[d] >= 4 for d in range(3)], dtype=np.int64)
             if not cf.any():
                 break
-            csh = tuple(sh[d] // 2 if cf[d] else sh[d] for d in range(3))
+            csh = tuple((sh[d] + 1) // 2 if cf[d] else sh[d] for d in range(3))
             kc = np.zeros(csh)
             Fc = np.zeros((3,) + tuple(c + 1 for c in csh))
             coarsen(kap, F, cf, kc, Fc)
