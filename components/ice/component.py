@@ -139,11 +139,11 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         # Lagrangian phase stays Uintah's. On by default for ICE alone (MPMICE: on request);
         # "false" with limiter="BarthJespersen" is Uintah's SecondOrderAdvector
         self.dissipation_heating = adv.attr("dissipationHeating", "bool", self.n_before == 0)
-        # pysus extension under MPMICE, on request: the fluid a solid's particles displace from a
+        # pysus extension under MPMICE (the default): the fluid a solid's particles displace from a
         # cell they advance through crosses the face as open as the neighbour (docs/MPMICE.md,
-        # step 12; nothing changes where the particles are at rest); "false" (default) is
-        # Uintah's advection, the fluxes of the face velocities alone
-        self.open_faces = adv.attr("openFaceTransfers", "bool", False)
+        # step 12; nothing changes where the particles are at rest or the fluid is as dense per
+        # open volume as its neighbour's); "false" is Uintah's advection, the face velocities' fluxes
+        self.open_faces = adv.attr("openFaceTransfers", "bool", True)
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100, at_least=1)
         # Uintah's <ClampSpecificVolume>: the Lagrangian m v kept >= tiny_rho V v (MPMICE too)
         self.clamp_sp_vol = ice.get("ClampSpecificVolume", "bool", False)

@@ -406,7 +406,8 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d], G, 1, matls=self.all_matls)
         if ice.open_faces:          # the solids' own velocity across a face, the flow work's p (tasks.open_faces)
-            t.requires(NEW, I.vel_CC, G, 1, matls=self.mpm_matls).requires(NEW, I.press_CC, G, 1, matls=[0])
+            t.requires(NEW, I.vel_CC, G, 1, matls=self.mpm_matls).requires(NEW, I.press_CC, G, 1, matls=[0]) \
+                .requires(NEW, I.TMV_CC, G, 1, matls=[0])
         ice.advect_scalars(t, gadv)
         sched.add_task(t)
         for model in ice.scalars:
