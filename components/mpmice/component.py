@@ -22,7 +22,7 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
      interpolateCCToNC_T carry its dT/dt back to the nodes and particles (tasks.py).
      Fluids with thermal_conductivity > 0 conduct (ICE::computeHeatFlux).
   13 MPM grid BCs, interpolateToParticlesAndUpdate, computeStressTensor, relocation
-  12 ICE::advectAndAdvanceInTime (fluids; with <advection openFaceTransfers="true">, where a
+  12 ICE::advectAndAdvanceInTime (fluids; unless <advection openFaceTransfers="false">, where a
      solid's particles advance through a cell toward a more open neighbour, the fluid they
      displace crosses the face as open as that neighbour: tasks.open_faces, docs/MPMICE.md)
 The ICE and MPM tasks are those components' own task bodies; this module only

@@ -232,8 +232,8 @@ class ICEinMPMICE(ICE):
         return [m.name for m in self.materials]
 
     def advection_faces(self, patch, m, new_dw, dt):
-        """A fluid's advection next to the solids: Uintah's, or where the deck asks for it
-        (`<advection openFaceTransfers="true">`) MPMICE's open_faces (tasks.py)."""
+        """A fluid's advection next to the solids: MPMICE's open_faces (tasks.py), or where the
+        deck asks for it (`<advection openFaceTransfers="false">`) Uintah's."""
         if not self.open_faces:
             return super().advection_faces(patch, m, new_dw, dt)
         return self.coupling.open_faces(patch, m, new_dw, dt)
