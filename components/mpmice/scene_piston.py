@@ -15,9 +15,8 @@ bottom pressure against the adiabatic law P1 (V1/V2)^gamma (eq. 44).
                   there: just after the piston stops), its largest magnitude while the piston
                   moves ('max': from 200 cells on the start's pressure wave, about 0.024,
                   sets it) and from V1/V2 = 2 on before it stops ('late'), the mean
-                  magnitude ('mean'), the mean error over the outputs after the stop
-                  ('held': the stop sends a pressure wave of about gamma u / c = 3 % of P
-                  through the gas, which 'end' samples at one phase of it)
+                  magnitude ('mean'), the mean error over the outputs from the stop on
+                  ('held'; with heat exchange the gas at rest cools against the piston)
 The exact law assumes the trapped gas is uniform and in equilibrium: the piston moves at
 Mach 0.03, so the pressure is uniform to ~0.1 % below it. Used by scripts/piston_validation.py,
 scripts/accuracy_cost.py (scene "piston") and tests/mpmice/test_piston_validation.py.
