@@ -503,8 +503,8 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
     u o_d dt/dx. |e| <= cap on each face (a face's own bound, the same on the patches either
     side of it). Where instead the donor's fluid is the less dense per open volume (it rides
     with the solid and is not compressed with the fluid ahead of it), the neighbour's fluid
-    moves in (by more than OPEN_SAME_DENSITY too): e = the fraction (m_n o_d - m_d o_n) / (m_n (o_d + o_n)) of m_n that makes the
-    two equal, signed against u_s, |e| <= cap and |e| <= |u_s| dt/dx (what the solid swept
+    moves in (by more than OPEN_SAME_DENSITY too): e = the fraction (m_n o_d - m_d o_n) /
+    (m_n (o_d + o_n)) of m_n that makes the two equal, signed against u_s, |e| <= cap and |e| <= |u_s| dt/dx (what the solid swept
     past in the step: a solid that barely moves leaves little gas behind, and a fill beyond
     that pumped hot gas into the cold, heat-exchanged gas of a ringing steel wall's cells), and
     only where o_d >= OPEN_FILL_MIN. Nothing
