@@ -29,12 +29,9 @@ SUS = HERE / "data" / "sus_jwlppcurs2d.npz"
 
 
 def run(tmp_path, steps, usl):
-    """The deck with `steps` steps, every step saved (with usl: Uintah's stress update), and
-    Uintah's advection (MPMICE's default open-face transfers move the air the whacker
-    displaces, docs/MPMICE.md step 12, which sus's advection leaves to the face fluxes)."""
+    """The deck with `steps` steps, every step saved (with usl: Uintah's stress update)."""
     text = DECK.read_text(encoding="iso-8859-1")
     edits = [("<max_Timesteps>      250       </max_Timesteps>", f"<max_Timesteps>{steps}</max_Timesteps>"),
-             ('<advection type = "FirstOrder" />', '<advection type = "FirstOrder" openFaceTransfers = "false"/>'),
              ("<outputInterval>2.00e-7</outputInterval>", "<outputTimestepInterval>1</outputTimestepInterval>"),
              ('<checkpoint cycle = "1" timestepInterval = "100"/>', "")]
     if usl:

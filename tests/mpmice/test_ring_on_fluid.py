@@ -30,12 +30,9 @@ def test_pool_stays_at_rest_and_keeps_its_mass(run):
     for k in range(1, len(run.times)):
         f, _ = run.read("vol_frac_CC", 1, k)
         v, _ = run.read("vel_CC", 1, k)
-        # m/s; measured 0.023 at 0.02 s (the bottom row), 0.058 at 0.04 s (the surface row under
-        # the ring, along the surface: the gas the ring displaces, which MPMICE's open-face
-        # transfers move ahead of it, streams out of the gap over the pool; 0.045 with Uintah's
-        # advection, openFaceTransfers="false", where more of it rides in the ring's cells);
-        # the ring lands at 1 m/s
-        assert np.abs(v[f[..., 0] > 0.5]).max() < 0.07
+        # m/s; measured 0.023 at 0.02 s (the bottom row), 0.042 at 0.04 s (under the ring, which
+        # pushes the gas onto the surface); the ring lands at 1 m/s
+        assert np.abs(v[f[..., 0] > 0.5]).max() < 0.05
         assert run.read("rho_CC", 1, k)[0].sum() * dv == pytest.approx(m0, rel=1e-12)
 
 
