@@ -11,7 +11,7 @@ The bound 0.03 is about twice the largest of them, and far from what a wrong flo
 specific-volume evolution gives: an isothermal gas would be 21 % low at V1/V2 = 1.82.
 
 Uintah's pistonValidation.ups as shipped, 200 cells up to t = 0.8 s (V1/V2 = 5.03, where it
-stops the piston; MPMICE's open-face transfers are the default): the bottom pressure is
+stops the piston; MPMICE's open-face transfers are rmpmice's default): the bottom pressure is
 +0.0067 off the adiabat (+0.014 with heat 0, where no heat leaves the gas for the piston) and
 0.08 % of the trapped gas is in cells the piston fills (solid volume fraction > 0.99); at 50
 cells +0.050. With Uintah's advection (openFaceTransfers="false", docs/MPMICE.md, step 12) 1.5 %
@@ -76,7 +76,7 @@ def test_closer_to_the_adiabat_than_uintah_at_40_cells(stop):
 
 
 def _shipped(n, tmp):
-    """Uintah's pistonValidation.ups as shipped (no openFaceTransfers: MPMICE's default, the
+    """Uintah's pistonValidation.ups as shipped (no openFaceTransfers: rmpmice's default, the
     transfers) with n cells, to the piston's stop at t = 0.8 s (V1/V2 = 5.03)."""
     src = UINTAH_INPUTS / "MPMICE" / "pistonValidation.ups"
     if not src.exists():
