@@ -106,6 +106,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
     source_models, tracers = [], []      # <Models> of ICE alone (problem_setup)
     caloric = {}                         # {material: the model owning its caloric EOS} (gasCombustion)
     var_K = var_H = False                 # <CoefficientModel> linearVariation (problem_setup)
+    open_faces_default = False           # MPMICE hook: openFaceTransfers unless the deck says
 
     @property
     def delp_vol_frac_ghost(self):
@@ -139,11 +140,12 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         # Lagrangian phase stays Uintah's. On by default for ICE alone (MPMICE: on request);
         # "false" with limiter="BarthJespersen" is Uintah's SecondOrderAdvector
         self.dissipation_heating = adv.attr("dissipationHeating", "bool", self.n_before == 0)
-        # pysus extension under MPMICE, on request: the fluid a solid's particles displace from a
-        # cell they advance through crosses the face as open as the neighbour (docs/MPMICE.md,
-        # step 12; nothing changes where the particles are at rest); "false" (default) is
-        # Uintah's advection, the fluxes of the face velocities alone
-        self.open_faces = adv.attr("openFaceTransfers", "bool", False)
+        # pysus extension under MPMICE (the default with prescribed solids, rmpmice): the fluid a
+        # solid's particles displace from a cell they advance through crosses the face as open as
+        # the neighbour (docs/MPMICE.md, step 12; nothing changes where the particles are at rest
+        # or the fluid is as dense per open volume as its neighbour's); "false" is Uintah's
+        # advection, the face velocities' fluxes
+        self.open_faces = adv.attr("openFaceTransfers", "bool", self.open_faces_default)
         self.max_iter = ice.get("max_iteration_equilibration", "int", 100, at_least=1)
         # Uintah's <ClampSpecificVolume>: the Lagrangian m v kept >= tiny_rho V v (MPMICE too)
         self.clamp_sp_vol = ice.get("ClampSpecificVolume", "bool", False)

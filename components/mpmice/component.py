@@ -22,7 +22,8 @@ material index space. One timestep, paper 000 sec. 3.3 (Uintah's MPMICE.cc order
      interpolateCCToNC_T carry its dT/dt back to the nodes and particles (tasks.py).
      Fluids with thermal_conductivity > 0 conduct (ICE::computeHeatFlux).
   13 MPM grid BCs, interpolateToParticlesAndUpdate, computeStressTensor, relocation
-  12 ICE::advectAndAdvanceInTime (fluids; with <advection openFaceTransfers="true">, where a
+  12 ICE::advectAndAdvanceInTime (fluids; with prescribed solids unless <advection
+     openFaceTransfers="false">, else with "true", where a
      solid's particles advance through a cell toward a more open neighbour, the fluid they
      displace crosses the face as open as that neighbour: tasks.open_faces, docs/MPMICE.md)
 The ICE and MPM tasks are those components' own task bodies; this module only
@@ -155,7 +156,7 @@ class MPMICE(MPMICETasks, Component):
         if node is not None and node.has("gas_start"):      # pysus's own start (docs/MPMICE.md)
             self.gas_start = node.get("gas_start", "str", choices=("geometry", "particles"))
         # prescribed solids with pysus's particle start (unscaled: setup.solid_eos) take a Murnaghan stand-in
-        self.ice = ICEinMPMICE(self.mpm.materials, cv, self.rigid and self.gas_start == "particles")
+        self.ice = ICEinMPMICE(self.mpm.materials, cv, self.rigid and self.gas_start == "particles", self.rigid)
         self.ice.problem_setup(root, level)
         self.ice.coupling = self          # the fluids' advection next to the solids (tasks.open_faces)
         if self.ice.implicit:
@@ -415,7 +416,8 @@ class MPMICE(MPMICETasks, Component):
         for d in dirs:
             t.requires(NEW, I.FC_VEL_ME[d], G, 1, matls=self.all_matls)
         if ice.open_faces:          # the solids' own velocity across a face, the flow work's p (tasks.open_faces)
-            t.requires(NEW, I.vel_CC, G, 1, matls=self.mpm_matls).requires(NEW, I.press_CC, G, 1, matls=[0])
+            t.requires(NEW, I.vel_CC, G, 1, matls=self.mpm_matls).requires(NEW, I.press_CC, G, 1, matls=[0]) \
+                .requires(NEW, I.TMV_CC, G, 1, matls=[0])
         ice.advect_scalars(t, gadv)
         sched.add_task(t)
         for model in ice.scalars:

@@ -485,28 +485,29 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
 
 
 @njit(cache=True)
-def open_fraction(solid_vf, fluid_vf, lo, hi, out):
-    """The part of each cell [lo, hi) open to the fluids: the sum of their volume fractions,
-    exactly 1 where the solids hold less than 1e-9 of the cell (pure fluid stays bitwise ICE's).
-    solid_vf, fluid_vf: tuples of the materials' vol_frac_CC."""
+def open_fraction(fluid_vf, tmv, vol, lo, hi, out):
+    """The part of each cell [lo, hi) open to the fluids: their own volume over the cell's, the
+    sum of their volume fractions times tmv / vol. fluid_vf: a tuple of the fluids' vol_frac_CC;
+    tmv: TMV_CC, the materials' total volume before the equilibration divided each one's by it
+    (vol where nothing was divided). Where a solid's smeared fraction overlaps gas that fills
+    the cell by its own specific volume (a box and the air started from their geometry and
+    moving together), the fractions say that the cell is partly closed and its gas denser than
+    the next cell's, the gas's own volume that it is open and the gas as dense: nothing moves."""
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             for k in range(lo[2], hi[2]):
-                s = 0.0
-                for a in solid_vf:
-                    s += a[i, j, k]
-                if s < 1e-9:
-                    out[i, j, k] = 1.0
-                    continue
                 f = 0.0
                 for a in fluid_vf:
                     f += a[i, j, k]
-                out[i, j, k] = f
+                out[i, j, k] = f if tmv[i, j, k] == vol else f * (tmv[i, j, k] / vol)
 
 
 # the open part below which the solid's cell takes no fluid from its neighbour (open_face_transfers):
 # fluid moved into a cell the solid nearly fills is squeezed there and carried with the solid
 OPEN_FILL_MIN = 0.01
+# densities per open volume closer than this part of each other are equal (open_face_transfers): the
+# equilibration converges to 1e-11 of the pressure, so a uniform state differs by round-off only
+OPEN_SAME_DENSITY = 1e-9
 
 
 @njit(cache=True)
@@ -516,9 +517,10 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
     velocities from their particles at the start of the step (vel_CC, step 1) weighted by
     their volume fractions in the two cells: how fast the particles carry the solid across,
     not the exchanged face velocity (which a gas flowing through a solid at rest gives it).
-    Where the solid advances from its upwind cell (the donor, open part o_d = opn, fluid mass
-    m_d) toward a more open neighbour (o_n > o_d) in which the fluid is less dense per open
-    volume (m_n / o_n < m_d / o_d), e = min((o_n / o_d - 1) |u_s| dt/dx, the fraction of m_d
+    Where the solid advances from its upwind cell (the donor, open part o_d = opn: the fluids'
+    own volume over the cell's, open_fraction; fluid mass m_d) toward a more open neighbour
+    (o_n > o_d) in which the fluid is less dense per open volume (m_n / o_n < m_d / o_d, by
+    more than OPEN_SAME_DENSITY of it), e = min((o_n / o_d - 1) |u_s| dt/dx, the fraction of m_d
     that makes the two densities per open volume equal), signed as u_s. The solid fills the
     donor from the side away from the neighbour and displaces the fluid in its open part,
     which lies against the face, as though the face were as open as the neighbour: u_s o_n
@@ -526,15 +528,16 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
     u o_d dt/dx. |e| <= cap on each face (a face's own bound, the same on the patches either
     side of it). Where instead the donor's fluid is the less dense per open volume (it rides
     with the solid and is not compressed with the fluid ahead of it), the neighbour's fluid
-    moves in: e = the fraction (m_n o_d - m_d o_n) / (m_n (o_d + o_n)) of m_n that makes the
-    two equal, signed against u_s, |e| <= cap and |e| <= |u_s| dt/dx (what the solid swept
+    moves in (by more than OPEN_SAME_DENSITY too): e = the fraction (m_n o_d - m_d o_n) /
+    (m_n (o_d + o_n)) of m_n that makes the two equal, signed against u_s, |e| <= cap and |e| <= |u_s| dt/dx (what the solid swept
     past in the step: a solid that barely moves leaves little gas behind, and a fill beyond
     that pumped hot gas into the cold, heat-exchanged gas of a ringing steel wall's cells), and
     only where o_d >= OPEN_FILL_MIN. Nothing
     crosses a face of the domain's boundary (a cell index along d below inside_lo[d] or from
     inside_hi[d] on is an extra cell): the fluid would leave the domain or come from its
     boundary conditions. Returns whether any face moves fluid so: never where the solids'
-    particles are at rest."""
+    particles are at rest, nor where a solid and its fluid translate together (the fluid as
+    dense per open volume on both sides)."""
     moved = False
     e0, e1, e2 = (1, 0, 0) if d == 0 else ((0, 1, 0) if d == 1 else (0, 0, 1))
     for i in range(flo[0], fhi[0]):
@@ -559,11 +562,11 @@ def open_face_transfers(solid_vel, solid_vf, opn, mass, sh, d, flo, fhi, dt_dx, 
                     od, on, md, mn = opn[l0, l1, l2], opn[r0, r1, r2], mass[l0, l1, l2], mass[r0, r1, r2]
                 else:
                     od, on, md, mn = opn[r0, r1, r2], opn[l0, l1, l2], mass[r0, r1, r2], mass[l0, l1, l2]
-                if on > od and md * on > mn * od:
+                if on > od and md * on > mn * od * (1.0 + OPEN_SAME_DENSITY):
                     x = min((on / od - 1.0) * abs(us) * dt_dx, (md * on - mn * od) / (md * (od + on)), cap)
                     e[i, j, k] = x if us > 0.0 else -x
                     moved = True
-                elif on > od and od >= OPEN_FILL_MIN and mn * od > md * on:
+                elif on > od and od >= OPEN_FILL_MIN and mn * od > md * on * (1.0 + OPEN_SAME_DENSITY):
                     x = min((mn * od - md * on) / (mn * (od + on)), abs(us) * dt_dx, cap)
                     e[i, j, k] = -x if us > 0.0 else x
                     moved = True

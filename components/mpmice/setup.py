@@ -205,8 +205,13 @@ class ICEinMPMICE(ICE):
 
     press_floor = 1.0e-12       # Uintah's clamp of press_CC: solids in tension (tests/mpmice/test_hard_cases.py)
 
-    def __init__(self, mpm_materials, solid_cv, stand_in):
+    def __init__(self, mpm_materials, solid_cv, stand_in, prescribed=False):
         super().__init__()
+        # the open-face transfers by default where the solids are prescribed (rmpmice): their
+        # particles' velocity and volume are the solid's exact motion and extent, where a
+        # deformable solid's mapped ones set off transfers that blew up a solid in tension next
+        # to compressed gas (tests/mpmice/test_hard_cases.py; docs/MPMICE.md, step 12)
+        self.open_faces_default = prescribed
         self.n_before = len(mpm_materials)
         self._mpm_materials = mpm_materials
         self._solid_cv = solid_cv
@@ -236,8 +241,8 @@ class ICEinMPMICE(ICE):
         return [m.name for m in self.materials]
 
     def advection_faces(self, patch, m, new_dw, dt):
-        """A fluid's advection next to the solids: Uintah's, or where the deck asks for it
-        (`<advection openFaceTransfers="true">`) MPMICE's open_faces (tasks.py)."""
+        """A fluid's advection next to the solids: MPMICE's open_faces (tasks.py) where
+        `<advection openFaceTransfers>` (by default: the solids prescribed) holds, else Uintah's."""
         if not self.open_faces:
             return super().advection_faces(patch, m, new_dw, dt)
         return self.coupling.open_faces(patch, m, new_dw, dt)

@@ -318,7 +318,8 @@ class MPMICETasks:
     def open_faces(self, patch, m, new_dw, dt):
         """What ICE's advection of fluid m moves across the faces (ice.advection_faces): its face
         velocities, and where a solid's particles advance from a cell toward a more open
-        neighbour (the open part of a cell: the sum of the fluids' volume fractions) the further
+        neighbour (the open part of a cell: the fluids' own volume over the cell's, their volume
+        fractions times TMV_CC / V; kernels.open_fraction) the further
         fraction of the cell's fluid that the solid displaces through the face
         (kernels.open_face_transfers, at most OPEN_CAP of a cell a step). ICE's flux alone
         carries the fluid at the cell's mean density and leaves some of it in the cells a piston
@@ -333,8 +334,9 @@ class MPMICETasks:
         vf = lambda ms: tuple(new_dw.get(I.vol_frac_CC, k, patch) for k in ms)
         solid_vf = vf(self.mpm_matls)
         opn = np.empty(shape)
-        K.open_fraction(solid_vf, vf(ice.ice_matls), np.zeros(3, np.int64), np.array(shape, np.int64), opn)
         b = ice.boxes(patch)
+        K.open_fraction(vf(ice.ice_matls), new_dw.get(I.TMV_CC, 0, patch), b.vol, np.zeros(3, np.int64),
+                        np.array(shape, np.int64), opn)
         mass = new_dw.get(I.mass_L_CC, m, patch)
         cap = self.OPEN_CAP / (2 * int(np.count_nonzero(ice.dims)))        # per face: a cell's faces together
         ef = list(none)
