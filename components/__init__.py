@@ -1,6 +1,10 @@
 """numba set-up for the kernels of these packages: the faster IR inlining (inline="always"
-helpers), constant branches folded before typing, faster liveness analysis, and one compilation per kernel across processes sharing a cache."""
+helpers), constant branches folded before typing, faster liveness analysis, SSA
+reconstruction and compile-flag comparison, and one compilation per kernel across processes
+sharing a cache."""
 import framework.numba_compile_lock  # noqa: F401
 import framework.numba_inline  # noqa: F401
 import framework.numba_fold  # noqa: F401
 import framework.numba_liveness  # noqa: F401
+import framework.numba_ssa  # noqa: F401
+import framework.numba_targetconfig  # noqa: F401

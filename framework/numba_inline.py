@@ -11,7 +11,11 @@ result depends only on the callee and the compile flags, and inline_ir never mut
 copies it first), so it is built once per (callee, flags) and handed out under a fresh function
 identity, as numba's own would be. inline_ir also copies its copy once more, for a return value
 that numba's callers (up to 0.68) discard: that copy is skipped. The typed IR and the machine
-code do not change. Importing this module installs it once.
+code do not change. A helper whose arguments include compile-time constants of the caller (a
+kernel factory's interpolator kind, its active axes) has the branches on them folded and the
+code they leave unreachable dropped once per set of such constants, before it is copied
+(numba_fold would fold the same branches in the caller after the copy): each call site copies
+only its own interpolator's and axes' code. Importing this module installs it once.
 """
 from __future__ import annotations
 
@@ -24,10 +28,16 @@ import numba
 from numba.core import bytecode as _bytecode
 from numba.core import inline_closurecall as _icc
 from numba.core import ir as _ir
+from numba.core import untyped_passes as _up
+from numba.core.ir_utils import build_definitions
+
+from framework import numba_fold
 
 _memos = contextvars.ContextVar("pysus_inline_memos", default=None)
+_exact_definitions = contextvars.ContextVar("pysus_inline_exact_definitions", default=None)
 ENABLED = True          # False: numba's own copies and untyped passes (for comparison in tests)
-_untyped = {}           # callee function -> [(flags, locals, its untyped IR)]
+FOLD_AT_CALL = True     # False: callees copied whole, folded in the caller only (for comparison in tests)
+_untyped = {}           # callee function -> [(flags, locals, its untyped IR, {constants: folded IR})]
 _SKIP_UNUSED_COPY = tuple(int(v) for v in numba.__version__.split(".")[:2]) <= (0, 68)
 
 
@@ -55,20 +65,76 @@ class _SharedMemoCopy:
         return _copy.deepcopy(x, memo)
 
 
-def _callee_untyped_ir(worker, function):
-    """The callee's untyped IR as numba's run_untyped_passes gives it, built once per (callee,
-    compile flags, locals); a shallow copy under a fresh FunctionIdentity (inline_ir names the
-    inlined variables after it and deep-copies the blocks before changing anything)."""
+def _callee_entry(worker, function):
+    """(flags, locals, the callee's untyped IR as numba's run_untyped_passes gives it, {constants:
+    folded IR}), built once per (callee, compile flags, locals). A call site gets a shallow copy
+    under a fresh FunctionIdentity (inline_ir names the inlined variables after it and
+    deep-copies the blocks before changing anything)."""
     worker.flags.enable_ssa = False             # what run_untyped_passes does to the flags
     entries = _untyped.setdefault(function, [])
-    for flags, local_types, func_ir in entries:
-        if flags == worker.flags and local_types == worker.locals:
-            out = func_ir.copy()
-            out.func_id = _bytecode.FunctionIdentity.from_function(function)
-            return out
+    for entry in entries:
+        if entry[0] == worker.flags and entry[1] == worker.locals:
+            return entry
     func_ir = worker.run_untyped_passes(function)
-    entries.append((type(worker.flags)(copy_from=worker.flags), dict(worker.locals or {}), func_ir))
-    return func_ir
+    entry = (type(worker.flags)(copy_from=worker.flags), dict(worker.locals or {}), func_ir, {})
+    entries.append(entry)
+    return entry
+
+
+def _fresh_identity(func_ir, function):
+    """A shallow copy of func_ir under a new FunctionIdentity of `function`."""
+    out = func_ir.copy()
+    out.func_id = _bytecode.FunctionIdentity.from_function(function)
+    return out
+
+
+def _constant_arguments(caller_ir, call):
+    """((position, type, value), ...) of the call's positional arguments that are int or bool
+    constants of the caller (numba_fold's rules, on definitions kept exact in this pass)."""
+    memo = {}
+    out = []
+    for position, var in enumerate(call.args):
+        try:
+            value = numba_fold._value(caller_ir, var, memo)
+        except (numba_fold._NotConstant, ArithmeticError, ValueError):
+            continue
+        out.append((position, type(value), value))
+    return tuple(out)
+
+
+def _folded(func_ir, constants):
+    """A copy of the callee's untyped IR with its parameters at `constants` (by position)
+    taken as constants: branches on them folded, blocks no longer reached dropped."""
+    by_position = {position: value for position, _, value in constants}
+    known = {}
+    for block in func_ir.blocks.values():
+        for stmt in block.body:
+            if isinstance(stmt, _ir.Assign) and isinstance(stmt.value, _ir.Arg) \
+                    and stmt.value.index in by_position:
+                known[stmt.target.name] = by_position[stmt.value.index]
+    out = func_ir.copy()
+    memo = {}
+    out.blocks = {label: _copy.deepcopy(block, memo) for label, block in func_ir.blocks.items()}
+    out._definitions = build_definitions(out.blocks)
+    if not numba_fold.fold_constant_branches(out, known):
+        return func_ir
+    return out
+
+
+def _callee_for_call(worker, caller_ir, call, function):
+    """The callee's untyped IR for this call site: folded to the caller's constant arguments
+    where the caller's definitions are exact (numba's untyped inlining pass)."""
+    entry = _callee_entry(worker, function)
+    func_ir = entry[2]
+    if FOLD_AT_CALL and numba_fold.ENABLED and _exact_definitions.get() is caller_ir \
+            and not worker._permit_update_type_and_call_maps and isinstance(call, _ir.Expr) and call.op == "call":
+        constants = _constant_arguments(caller_ir, call)
+        if constants:
+            folded = entry[3].get(constants)
+            if folded is None:
+                folded = entry[3][constants] = _folded(func_ir, constants)
+            func_ir = folded
+    return _fresh_identity(func_ir, function)
 
 
 def _numba_as_expected():
@@ -102,14 +168,27 @@ def _install():
     def inline_function(self, caller_ir, block, i, function, arg_typs=None):
         if not ENABLED:
             return original_inline_function(self, caller_ir, block, i, function, arg_typs=arg_typs)
-        callee_ir = _callee_untyped_ir(self, function)
+        callee_ir = _callee_for_call(self, caller_ir, block.body[i].value, function)
         return self.inline_ir(caller_ir, block, i, callee_ir, function.__code__.co_freevars,
                               arg_typs=arg_typs)
 
+    def run_pass(self, state):
+        # the caller's definitions, rebuilt here, are kept exact by inline_ir for the pass
+        exact = ENABLED and FOLD_AT_CALL
+        if exact:
+            state.func_ir._definitions = build_definitions(state.func_ir.blocks)
+        token = _exact_definitions.set(state.func_ir if exact else None)
+        try:
+            return original_run_pass(self, state)
+        finally:
+            _exact_definitions.reset(token)
+
     original_inline_function = worker.inline_function
+    original_run_pass = _up.InlineInlinables.run_pass
     inline_ir._pysus_shared_memo = True
     worker.inline_ir = inline_ir
     worker.inline_function = inline_function
+    _up.InlineInlinables.run_pass = run_pass
     _icc.copy = _SharedMemoCopy()
 
 

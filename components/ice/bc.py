@@ -422,9 +422,17 @@ ALL_CELLS = np.zeros((0, 0), dtype=np.int64)
 
 
 @njit(cache=True)
+def _all_cells():
+    """(ALL_CELLS, 0) typed as a run's Python calls pass them (a writable array, an int64):
+    the global and the literal 0 would compile the *_part kernels a second time."""
+    return np.empty((0, 0), dtype=np.int64), np.int64(0)
+
+
+@njit(cache=True)
 def bc_scalar(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of face (d, side) of a scalar CC array."""
-    bc_scalar_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, ALL_CELLS, 0)
+    sel, want = _all_cells()
+    bc_scalar_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, sel, want)
 
 
 @njit(cache=True)
@@ -448,7 +456,8 @@ def bc_scalar_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, sel, want):
 @njit(cache=True)
 def bc_vector(q, d, side, kind, value, dx, lo, hi, olo, ohi):
     """Fill the extra-cell layer of a vector CC array (velocity)."""
-    bc_vector_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, ALL_CELLS, 0)
+    sel, want = _all_cells()
+    bc_vector_part(q, d, side, kind, value, dx, lo, hi, olo, ohi, sel, want)
 
 
 @njit(cache=True)
@@ -489,7 +498,8 @@ def bc_sp_vol_from_density(spv, vf, rho, d, side, lo, hi, olo, ohi):
 @njit(cache=True)
 def bc_face_velocity(uf, d, index, value):
     """Set every face of layer `index` (along d) of a face-velocity array to `value`."""
-    bc_face_velocity_part(uf, d, index, value, ALL_CELLS, 0)
+    sel, want = _all_cells()
+    bc_face_velocity_part(uf, d, index, value, sel, want)
 
 
 @njit(cache=True)

@@ -1,5 +1,8 @@
 """framework.numba_inline: numba's IR inlining with one deepcopy memo per callee copy gives the
-same kernels and copies far fewer IR variables."""
+same kernels and copies far fewer IR variables; a callee folded to its call site's constant
+arguments before the copy gives the same machine code as one folded in the caller after it."""
+import re
+
 import numpy as np
 from numba import njit
 from numba.core import ir
@@ -57,3 +60,48 @@ def test_shared_memo_same_kernel_fewer_copies(monkeypatch):
                        and "mid" not in ln and ".file" not in ln and "_ZN" not in ln]
     assert strip(shared_asm) == strip(plain_asm)
     assert shared_copies * 3 < plain_copies, (shared_copies, plain_copies)
+
+
+LINEAR, GIMP = 0, 1
+
+
+@njit(inline="always")
+def _weight(kind, active, x):
+    if not active:
+        return 1.0
+    if kind == LINEAR:
+        return 1.0 - abs(x)
+    return 0.75 - x * x
+
+
+@njit(inline="always")
+def _axis(kind, act, d, x):
+    return _weight(kind, act & (1 << d) != 0, x)
+
+
+def _factory_kernel(kind, act):
+    @njit
+    def kernel(xs):
+        s = 0.0
+        for x in xs:
+            s += _axis(kind, act, 0, x) * _axis(kind, act, 1, 0.5 * x) * _axis(kind, act, 2, 0.25 * x)
+        return s
+    return kernel
+
+
+def test_callee_folded_at_call_same_machine_code(monkeypatch):
+    import components  # noqa: F401
+    xs = np.linspace(-0.4, 0.4, 9)
+    for kind, act in ((LINEAR, 3), (GIMP, 7), (GIMP, 1)):
+        out = []
+        for at_call in (True, False):
+            monkeypatch.setattr(numba_inline, "FOLD_AT_CALL", at_call)
+            numba_inline._untyped.clear()
+            kernel = _factory_kernel(kind, act)
+            value = kernel(xs)
+            folded = sum(len(entry[3]) for entries in numba_inline._untyped.values() for entry in entries)
+            out.append((value, re.sub(r"_ZN[0-9A-Za-z_$]+", "", kernel.inspect_asm(kernel.signatures[0])), folded))
+        monkeypatch.undo()
+        (value, asm, folded), (plain_value, plain_asm, plain_folded) = out
+        assert value == plain_value and asm == plain_asm
+        assert folded >= 3 and plain_folded == 0, (folded, plain_folded)   # _axis at d = 0, 1, 2
