@@ -38,8 +38,9 @@ length, a twisted ring) with each interpolator and stress update, from
 components/mpm/scene_accuracy.py); nothing else here is component-specific.
 --interpolators LIST is --opt interpolator=LIST. A run that breaks down (a blown-up
 particle, particles beyond the patch's nodes) prints a FAILED row and the table goes on.
---uintah SUS runs each resolution's deck (the template's defaults, pysus-only options
-dropped, see uintah_deck) on Uintah's sus too and reads its .uda (framework/uintah_uda.py):
+--uintah SUS runs each resolution's deck on Uintah's sus too, once for each option
+combination that gives sus a deck of its own (pysus-only options are dropped, see
+uintah_deck: `--opt limiter=vanLeer,BarthJespersen` is one sus run, `--opt ri=0.5,0.6` two) and reads its .uda (framework/uintah_uda.py):
 its error and wall time (sus's start-up included) join the table, the JSON and the PNG.
 An implicit deck runs on sus's own CGSolver unless --uintah-solver names another (deck: the
 deck's own, hypre where sus has it).
@@ -242,14 +243,15 @@ def uintah_deck(text, solver="CGSolver"):
     return etree.tostring(root, encoding="unicode")
 
 
-def run_uintah(sus, scene, n, workdir, solver="CGSolver"):
-    """Run the scene's deck (template defaults) on Uintah's sus; the same row as run_case."""
+def run_uintah(sus, scene, n, workdir, solver="CGSolver", opts=None):
+    """Run the scene's deck with these options (pysus-only ones dropped by uintah_deck) on
+    Uintah's sus; the same row as run_case."""
     import glob
     import subprocess
     from framework.uintah_uda import UintahArchive
     path = os.path.join(workdir, "deck.ups")
     with open(path, "w") as f:
-        f.write(uintah_deck(scene["deck"](n), solver))
+        f.write(uintah_deck(scene["deck"](n, **(opts or {})), solver))
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     t0 = time.perf_counter()
     out = subprocess.run([sus, path], cwd=workdir, env=env, capture_output=True, text=True)
@@ -262,7 +264,20 @@ def run_uintah(sus, scene, n, workdir, solver="CGSolver"):
     steps = int(os.path.basename(da.steps[-1])[1:])
     press, _ = da.read("press_CC", 0, -1)
     return {"n": n, "cells": int(press.size), "steps": steps, "wall_s": wall, "step_s": None,
-            "errors": scene["error"](da), "opt_code": "uintah"}
+            "errors": scene["error"](da), "opt_code": "uintah",
+            **{f"opt_{k}": v for k, v in (opts or {}).items()}}
+
+
+def uintah_combos(scene, res, combos, solver):
+    """The option combinations that give sus a deck of its own (a geometry, an end time), one
+    each: combinations differing only in pysus-only options (a limiter) give sus one deck."""
+    seen, keep = set(), []
+    for opts in combos:
+        decks = tuple(uintah_deck(scene["deck"](n, **opts), solver) for n in res)
+        if decks not in seen:
+            seen.add(decks)
+            keep.append(opts)
+    return keep
 
 
 def _report_row(row, prev, n, key, label, step_column):
@@ -323,14 +338,25 @@ def main(argv=None):
             else:
                 prev = _report_row(row, prev, n, key, label, f"step={row['step_s']:8.3f}s")
             rows.append(row)
+    uintah_labels = []
     if args.uintah:
-        prev = None
-        for n in args.res:
-            with tempfile.TemporaryDirectory() as d:
-                row = run_uintah(args.uintah, scene, n, d,
-                                 None if args.uintah_solver == "deck" else args.uintah_solver)
-            prev = _report_row(row, prev, n, key, "Uintah sus", " " * 14)
-            rows.append(row)
+        solver = None if args.uintah_solver == "deck" else args.uintah_solver
+        combos = [dict(zip(names, c)) for c in (itertools.product(*values) if values else [()])]
+        sus_combos = uintah_combos(scene, args.res, combos, solver)
+        for opts in sus_combos:
+            label = "Uintah sus" + ("" if len(sus_combos) == 1 else " " + " ".join(f"{k}={v}" for k, v in opts.items()))
+            uintah_labels.append((label, opts))
+            prev = None
+            for n in args.res:
+                with tempfile.TemporaryDirectory() as d:
+                    try:
+                        row = run_uintah(args.uintah, scene, n, d, solver, opts)
+                    except RuntimeError as e:
+                        print(f"{label:24s} n={n:<5d} FAILED ({str(e)[:110]})", flush=True)
+                        prev = None
+                        continue
+                prev = _report_row(row, prev, n, key, label, " " * 14)
+                rows.append(row)
     out = {"scene": args.scene, "what": scene["what"], "rows": rows}
     if args.json:
         with open(args.json, "w") as f:
@@ -348,8 +374,9 @@ def main(argv=None):
             groups = [(" ".join(combo) or args.scene,
                        [r for r in pysus_rows if all(r.get(f"opt_{k}") == v for k, v in zip(names, combo))])
                       for combo in (itertools.product(*values) if values else [()])]
-            if args.uintah:
-                groups.append(("Uintah sus", [r for r in rows if r.get("opt_code") == "uintah"]))
+            for label, opts in uintah_labels:
+                groups.append((label, [r for r in rows if r.get("opt_code") == "uintah"
+                                       and all(r.get(f"opt_{k}") == v for k, v in opts.items())]))
             for label, sel in groups:
                 for ax, x in zip(axes, ("cells", "wall_s")):
                     ax.loglog([r[x] for r in sel], [r["errors"][key] for r in sel], "o-", label=label)
