@@ -170,13 +170,15 @@ NOWHERE = '<box><min>[-2,-2,-2]</min><max>[-1,-1,-1]</max></box>'
 
 
 def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=None, tolerance=1e-10,
-              outer_tol=1e-8, materials=1, K=None, delt=None, knob=None, maxit=5000, limiter=None):
+              outer_tol=1e-8, materials=1, K=None, delt=None, knob=None, maxit=5000, limiter=None,
+              heating=None):
     """A hot cylinder (3x T, 1/3 rho) moving at `mach` in air at rest, symmetry walls, `steps` steps.
 
     implicit: knob_for_speedSound `knob` (default 0: delT from the flow speed);
     materials=2: the blob is a second gas (cv 1000, gamma 1.3) with exchange coefficients K;
     delt fixes delT (delt_min = delt_max); patches default to 64^2 cells each; limiter: the
-    <advection limiter> (None: pysus's default).
+    <advection limiter> (None: pysus's default); heating: its dissipationHeating ("false" with
+    Uintah's limiter is Uintah's scheme).
     """
     u = mach * np.sqrt(1.4 * 101325 / 0.4)
     hot = BLOB_OBJ.format(piece=CYL, u=u, T=900.0, rho=0.4)
@@ -201,4 +203,5 @@ def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=Non
         f"<delt_init>{delt}</delt_init><delt_min>{delt}</delt_min><delt_max>{delt}</delt_max>"
     return BLOB.format(steps=steps, delt=dt, faces=BLOB_FACES, patches=patches or f"[{np_},{np_},1]", n=n,
                        implicit=imp, solver='<Solver type="hypre"/>' if implicit else "", materials=mats,
-                       exchange=exch, limiter="" if limiter is None else f' limiter="{limiter}"')
+                       exchange=exch, limiter=("" if limiter is None else f' limiter="{limiter}"')
+                       + ("" if heating is None else f' dissipationHeating="{heating}"'))
