@@ -22,7 +22,7 @@ between Borda-Carnot's 0.5 rho (1 - 0.2)^2 = 320 Pa and, with a vena contracta o
 strain E' = E / (1 - nu^2) = 5.49 MPa, I = 0.1^3 / 12): tip q L^4 / (8 E' I) = 36 to
 121 mm. Dry first mode 1.9 Hz; the water it pushes adds several times its mass.
 
-    .venv/bin/python scripts/efem_bar_in_flow.py                        # 50 x 50, about 20 min
+    .venv/bin/python scripts/efem_bar_in_flow.py                        # 50 x 50, about 18 min
     .venv/bin/python scripts/efem_bar_in_flow.py -n 24 --max-time 1.2   # coarser, shorter
     .venv/bin/python scripts/efem_bar_in_flow.py --uda bar_in_flow.uda  # an existing run
 """
