@@ -22,7 +22,7 @@ between Borda-Carnot's 0.5 rho (1 - 0.2)^2 = 320 Pa and, with a vena contracta o
 strain E' = E / (1 - nu^2) = 5.49 MPa, I = 0.1^3 / 12): tip q L^4 / (8 E' I) = 36 to
 121 mm. Dry first mode 1.9 Hz; the water it pushes adds several times its mass.
 
-    .venv/bin/python scripts/efem_bar_in_flow.py                        # 48 x 48, about 20 min
+    .venv/bin/python scripts/efem_bar_in_flow.py                        # 50 x 50, about 18 min
     .venv/bin/python scripts/efem_bar_in_flow.py -n 24 --max-time 1.2   # coarser, shorter
     .venv/bin/python scripts/efem_bar_in_flow.py --uda bar_in_flow.uda  # an existing run
 """
@@ -120,7 +120,7 @@ def beam_tip_from_load(da, k, E=5e6, nu=0.3, t=0.1, L=0.8):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--uda", default=None, help="read this run instead of running the deck")
-    ap.add_argument("-n", type=int, default=None, help="elements per direction (default the deck's 48)")
+    ap.add_argument("-n", type=int, default=None, help="elements per direction (default the deck's 50)")
     ap.add_argument("--max-time", type=float, default=None, help="end time (default the deck's 2.4 s)")
     ap.add_argument("--set", action="append", default=[], metavar="TAG=VALUE",
                     help="an <EFEM> setting, e.g. --set slide_condition=false (repeatable)")
@@ -145,7 +145,7 @@ def main(argv=None):
         ctl = Controller(DECK, quiet=True, filebase="bar_in_flow.uda", deck_text=text)
         ctl.run()
         wall = time.perf_counter() - t0
-        n = args.n or 48
+        n = args.n or 50
         print(f"wall {wall:.0f} s, {ctl.timestep} steps, {n * n * ctl.timestep / wall:,.0f} element-steps/s", flush=True)
         uda = ctl.archiver.dir
     da = DataArchive(uda)
