@@ -19,10 +19,14 @@ default knob_for_speedSound 0.5: with knob 0 it comes from the flow speed alone.
 The dilatation div(theta u) of the residual takes theta on the faces as explicit ICE does
 (tasks.add_dilatation): the donor cell's, or with <advection limiter="BarthJespersen"> the
 fractions advected second order with Uintah's limiter, as Uintah's setupRHS (advectQ of
-vol_frac). The operator's face coefficients keep the centred theta (a Jacobian only: the
-converged pressure is the residual's zero). As in Uintah, the face velocities (updateVel_FC)
-and the residual (setupRHS) are separate tasks, so that the residual may read its neighbours'
-face velocities.
+vol_frac). The operator's face coefficients take the donor cells of the last outer iteration's
+face velocities, as Uintah's setupMatrix takes the residual's upwinded vol_frac: the operator
+is then the residual's Jacobian wherever no face velocity changes sign (with the limiter, an
+approximation of it; the converged pressure is the residual's zero either way). The multigrid
+preconditioner keeps the step's first stencil. As in Uintah, the face velocities
+(updateVel_FC) and the residual (setupRHS) are separate tasks, so that the residual may read
+its neighbours' face velocities. A step whose outer iteration misses the tolerance says so
+(timestep, max|rhs|), or is recomputed with <iters_before_timestep_restart>.
 
 Boundary faces: a fixed face velocity (Dirichlet, symmetry) or a zero-gradient
 pressure leaves delP decoupled there; a Dirichlet pressure holds delP = 0 outside. Each
@@ -178,6 +182,7 @@ class ImplicitICE:
         self.imp_logged = False
         self.outer_iterations = []
         self.outer_max_rhs = 0.0        # the last outer iteration's max |rhs|
+        self._outer_first = True        # before the step's first outer iteration's test
         self._keep_cache = {}           # (patch, material) -> the boundary cells' _keep
         self._dummy = np.zeros((1, 1, 1))   # a face-velocity array of a direction the grid lacks
 
@@ -268,6 +273,7 @@ class ImplicitICE:
     def _outer_converged(self, dw, k, parent_new):
         """The outer iteration's test (max |rhs| <= outer_iteration_tolerance); keeps max |rhs|."""
         self.outer_max_rhs = dw.get_reduction(max_RHS)
+        self._outer_first = False
         return self.outer_max_rhs <= self.imp.outer_tol
 
     # -- task bodies -------------------------------------------------------------------------------
@@ -375,6 +381,7 @@ class ImplicitICE:
                                   sh, self.dims, b.lo, b.hi, s, keep, atb, dt, *coeffs)
 
     def imp_setup(self, patch, matls, old_dw, new_dw):
+        self._outer_first = True
         dt = old_dw.get_reduction(L.delT)
         A = new_dw.allocate(matrix, 0, patch)
         vfs = [new_dw.get(I.vol_frac_CC, m, patch) for m in matls]
@@ -403,7 +410,7 @@ class ImplicitICE:
         """The iteration's stencil and PCG seeds. With several materials the stencil's face fractions
         follow the donors of the last iteration's face velocities, as the residual's (Uintah rebuilds
         its matrix every outer iteration); the multigrid hierarchy stays the step's (a preconditioner)."""
-        if self._nmatls == 1:
+        if self._nmatls == 1 or self._outer_first:      # the first iteration's donors are the step's stencil's
             new_dw.put(imp_A, 0, patch, parent_new.get(matrix, 0, patch))
         else:
             ms = range(self._nmatls)

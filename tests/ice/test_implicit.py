@@ -217,7 +217,7 @@ def test_two_gas_blob_at_the_flow_speed_delT_converges_in_few_outer_iterations(t
     residual's face fractions are the donor cells' (a function of the face velocities' signs),
     so the stencil takes the same donors, rebuilt every outer iteration as Uintah's setupMatrix.
     Measured: 4, 3 outer iterations (max|rhs| 3.2, 0.13, 0.23, 5e-3, 1e-13 in the first step);
-    the centred fractions took all 20 (max|rhs| 2.5e-3 after 20)."""
+    with the centred fractions in the stencil all 20 (max|rhs| 2.5e-3 after 20)."""
     (tmp_path / "b.ups").write_text(blob_deck(64, steps=2, materials=2, implicit=True))
     c = Controller(str(tmp_path / "b.ups"), quiet=True, filebase=str(tmp_path / "b.uda"))
     c.run()
