@@ -257,7 +257,8 @@ class ImplicitICE:
         results = {imp_P.name: (sum_imp_delP, m0), rhs.name: (rhs, m0)}
         results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
         self.outer = Loop("ICE::implicitPressureOuter", matls, [seed, inner, upd, fc, res],
-                          init={imp_P.name: imp_P0, rhs.name: rhs0, **{imp_UF[d].name: imp_UF0[d] for d in dirs}}, results=results,
+                          init={imp_P.name: imp_P0, rhs.name: rhs0, **{imp_UF[d].name: imp_UF0[d] for d in dirs}},
+                          results=results,
                           converged=self._outer_converged,
                           max_iterations=self.imp.max_outer, fail="continue")
         sched.add_task(self.outer)
