@@ -19,10 +19,14 @@ default knob_for_speedSound 0.5: with knob 0 it comes from the flow speed alone.
 The dilatation div(theta u) of the residual takes theta on the faces as explicit ICE does
 (tasks.add_dilatation): the donor cell's, or with <advection limiter="BarthJespersen"> the
 fractions advected second order with Uintah's limiter, as Uintah's setupRHS (advectQ of
-vol_frac). The operator's face coefficients keep the centred theta (a Jacobian only: the
-converged pressure is the residual's zero). As in Uintah, the face velocities (updateVel_FC)
-and the residual (setupRHS) are separate tasks, so that the residual may read its neighbours'
-face velocities.
+vol_frac). The operator's face coefficients take the donor cells of the last outer iteration's
+face velocities, as Uintah's setupMatrix takes the residual's upwinded vol_frac: the operator
+is then the residual's Jacobian wherever no face velocity changes sign (with the limiter, an
+approximation of it; the converged pressure is the residual's zero either way). The multigrid
+preconditioner keeps the step's first stencil. As in Uintah, the face velocities
+(updateVel_FC) and the residual (setupRHS) are separate tasks, so that the residual may read
+its neighbours' face velocities. A step whose outer iteration misses the tolerance says so
+(timestep, max|rhs|), or is recomputed with <iters_before_timestep_restart>.
 
 Boundary faces: a fixed face velocity (Dirichlet, symmetry) or a zero-gradient
 pressure leaves delP decoupled there; a Dirichlet pressure holds delP = 0 outside. Each
@@ -177,7 +181,10 @@ class ImplicitICE:
         self.imp_banner = self.imp.describe(precond, note + f"; delT with knob_for_speedSound {self.knob:g}")
         self.imp_logged = False
         self.outer_iterations = []
+        self.outer_max_rhs = 0.0        # the last outer iteration's max |rhs|
+        self._outer_first = True        # before the step's first outer iteration's test
         self._keep_cache = {}           # (patch, material) -> the boundary cells' _keep
+        self._dummy = np.zeros((1, 1, 1))   # a face-velocity array of a direction the grid lacks
 
     # -- scheduling ------------------------------------------------------------------------------
     def schedule_implicit_pressure(self, sched, dirs, matls=None):
@@ -188,6 +195,7 @@ class ImplicitICE:
         matls = list(self.matls if matls is None else matls)
         assert matls == list(range(len(matls))), matls
         self._rank = sched.comm.rank
+        self._nmatls = len(matls)
         self._sched = sched
         self._step_seen = None
         if not self.imp_logged and sched.comm.rank == 0:
@@ -220,6 +228,13 @@ class ImplicitICE:
             .requires(PARENT_NEW, matrix, matls=m0).computes(imp_A, matls=m0)
         if self.pcg.precond == "mg":
             seed.requires(PARENT_NEW, self.pcg.OP)
+        if len(matls) > 1:      # the stencil from the last iteration's face velocities (their donors)
+            seed.requires(PARENT_OLD, L.delT).requires(PARENT_NEW, I.vol_frac_CC, G, 1, matls=matls) \
+                .requires(PARENT_NEW, I.sp_vol_CC, G, 1, matls=matls).requires(PARENT_NEW, I.speedSound_CC, matls=matls)
+            for d in dirs:
+                seed.requires(OLD, imp_UF[d], matls=matls)
+            if getattr(self, "slip", None) is not None:
+                seed.requires(PARENT_NEW, SL.slipK_CC, G, 1, matls=m0)
         self.pcg.seed_computes(seed)
         inner = self.pcg.loop("ICE::implicitPressureSolve", imp_delP)
         upd = Task("ICE::updatePressure", self.imp_update, m0).requires(OLD, imp_P, matls=m0) \
@@ -241,10 +256,10 @@ class ImplicitICE:
         # rhs: the last outer iteration's residual of eq. P, handed back for <save label="rhs"> (Uintah's)
         results = {imp_P.name: (sum_imp_delP, m0), rhs.name: (rhs, m0)}
         results.update({imp_UF[d].name: I.FC_VEL_ME[d] for d in dirs})
-        tol = self.imp.outer_tol
         self.outer = Loop("ICE::implicitPressureOuter", matls, [seed, inner, upd, fc, res],
-                          init={imp_P.name: imp_P0, rhs.name: rhs0}, results=results,
-                          converged=lambda dw, k, pn: dw.get_reduction(max_RHS) <= tol,
+                          init={imp_P.name: imp_P0, rhs.name: rhs0, **{imp_UF[d].name: imp_UF0[d] for d in dirs}},
+                          results=results,
+                          converged=self._outer_converged,
                           max_iterations=self.imp.max_outer, fail="continue")
         sched.add_task(self.outer)
         t = Task("ICE::updatePressCC", self.imp_press, m0) \
@@ -255,6 +270,12 @@ class ImplicitICE:
         if getattr(self, "hydrostatic", False):
             t.requires(NEW, I.sp_vol_CC, matls=[self.surrounding])
         sched.add_task(t)
+
+    def _outer_converged(self, dw, k, parent_new):
+        """The outer iteration's test (max |rhs| <= outer_iteration_tolerance); keeps max |rhs|."""
+        self.outer_max_rhs = dw.get_reduction(max_RHS)
+        self._outer_first = False
+        return self.outer_max_rhs <= self.imp.outer_tol
 
     # -- task bodies -------------------------------------------------------------------------------
     def _keep(self, patch, m):
@@ -339,28 +360,43 @@ class ImplicitICE:
             for kind, _, sel, want in self.bcs._parts(patch, name, "Pressure", 0):
                 bc_scalar_part(P, d, s, 1 if kind == DIRICHLET else 0, 0.0, 0.0, b.lo, b.hi, b.olo, b.ohi, sel, want)
 
-    def imp_setup(self, patch, matls, old_dw, new_dw):
+    def _stencil(self, patch, matls, A, vfs, sps, css, ufs, dt, coeffs):
+        """Eq. P's stencil into A (zeroed first); ufs[m][d]: material m's face velocities, whose
+        signs pick the donor cells of the face fractions theta_m,f as the residual's (Uintah's
+        setupMatrix with the upwinded vol_frac)."""
         b = self.boxes(patch)
-        dt = old_dw.get_reduction(L.delT)
         dx = patch.level.dx
         s = np.array([dt * dt / dx[d] ** 2 if self.dims[d] else 0.0 for d in range(3)])
         atb = np.array([patch.at_low[0], patch.at_high[0], patch.at_low[1], patch.at_high[1],
                         patch.at_low[2], patch.at_high[2]], dtype=np.int64)
+        A[...] = 0.0
+        one = len(matls) == 1
+        s_faces = np.zeros(3) if self.exchange else s        # with exchange: faces below
+        sh = np.array(b.sh, dtype=np.int64)
+        for m in matls:
+            SK.add_material(A, vfs[m], sps[m], css[m], one, self.dims, b.lo, b.hi, s_faces, self._keep(patch, m),
+                            atb, *ufs[m], sh)
+        if self.exchange:
+            keep = tuple(self._keep(patch, m) for m in matls)
+            IK.add_exchange_faces(A, tuple(vfs), tuple(sps), tuple(tuple(ufs[m][d] for m in matls) for d in range(3)),
+                                  sh, self.dims, b.lo, b.hi, s, keep, atb, dt, *coeffs)
+
+    def imp_setup(self, patch, matls, old_dw, new_dw):
+        self._outer_first = True
+        dt = old_dw.get_reduction(L.delT)
         A = new_dw.allocate(matrix, 0, patch)
         vfs = [new_dw.get(I.vol_frac_CC, m, patch) for m in matls]
         sps = [new_dw.get(I.sp_vol_CC, m, patch) for m in matls]
-        one = len(matls) == 1
-        s_faces = np.zeros(3) if self.exchange else s        # with exchange: faces below
         coeffs = self.face_exchange_coefficients(new_dw, patch)
-        for m in matls:
-            SK.add_material(A, vfs[m], sps[m], new_dw.get(I.speedSound_CC, m, patch), one, self.dims, b.lo, b.hi,
-                            s_faces, self._keep(patch, m), atb)
-        if self.exchange:
-            keep = tuple(self._keep(patch, m) for m in matls)
-            IK.add_exchange_faces(A, tuple(vfs), tuple(sps), self.dims, b.lo, b.hi, s, keep, atb, dt, *coeffs)
         P = new_dw.allocate(imp_P0, 0, patch)
-        self._vel_fc(patch, matls, P, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt,
-                    lambda d, m: new_dw.allocate(imp_UF0[d], m, patch), coeffs)
+        uf0 = [[self._dummy] * 3 for _ in matls]
+
+        def out(d, m):
+            uf0[m][d] = new_dw.allocate(imp_UF0[d], m, patch)
+            return uf0[m][d]
+        self._vel_fc(patch, matls, P, lambda d, m: new_dw.get(I.FC_VEL[d], m, patch), vfs, sps, dt, out, coeffs)
+        self._stencil(patch, matls, A, vfs, sps, [new_dw.get(I.speedSound_CC, m, patch) for m in matls], uf0, dt,
+                      coeffs)
         if self.pcg.precond == "mg":
             self.pcg.put_coarse_operator(patch, A, new_dw)
 
@@ -372,7 +408,19 @@ class ImplicitICE:
         new_dw.put(rhs0, 0, patch, r)
 
     def imp_seed(self, patch, matls, old_dw, new_dw, parent_old, parent_new):
-        new_dw.put(imp_A, 0, patch, parent_new.get(matrix, 0, patch))
+        """The iteration's stencil and PCG seeds. With several materials the stencil's face fractions
+        follow the donors of the last iteration's face velocities, as the residual's (Uintah rebuilds
+        its matrix every outer iteration); the multigrid hierarchy stays the step's (a preconditioner)."""
+        if self._nmatls == 1 or self._outer_first:      # the first iteration's donors are the step's stencil's
+            new_dw.put(imp_A, 0, patch, parent_new.get(matrix, 0, patch))
+        else:
+            ms = range(self._nmatls)
+            ufs = [[old_dw.get(imp_UF[d], m, patch) if self.dims[d] else self._dummy for d in range(3)] for m in ms]
+            self._stencil(patch, ms, new_dw.allocate(imp_A, 0, patch),
+                          [parent_new.get(I.vol_frac_CC, m, patch) for m in ms],
+                          [parent_new.get(I.sp_vol_CC, m, patch) for m in ms],
+                          [parent_new.get(I.speedSound_CC, m, patch) for m in ms], ufs,
+                          parent_old.get_reduction(L.delT), self.face_exchange_coefficients(parent_new, patch))
         if self.pcg.precond == "mg":
             self.pcg.setup_hierarchy(parent_new.get_reduction(self.pcg.OP))
         self.pcg.put_seeds(patch, old_dw.get(rhs, 0, patch), new_dw)
@@ -415,14 +463,15 @@ class ImplicitICE:
             self._step_seen = new_dw.dw
             self.outer_iterations.append(self.outer.iterations)
             limit = self.imp.restart_iters
+            step, rmax = new_dw.dw.generation, self.outer_max_rhs
             if limit is not None and (not self.outer.converged_last or self.outer.iterations > limit):
                 self._sched.request_recompute(
-                    f"ICE implicit pressure: {self.outer.iterations} outer iterations, "
-                    f"{'converged' if self.outer.converged_last else 'not converged'}; "
+                    f"ICE implicit pressure: timestep {step}: {self.outer.iterations} outer iterations, "
+                    f"{'converged' if self.outer.converged_last else 'not converged'} (max|rhs| {rmax:.3e}); "
                     f"iters_before_timestep_restart {limit}")
             elif not self.outer.converged_last and self._rank == 0:
-                print(f"pysus: warning: ICE implicit pressure: max|rhs| above outer_iteration_tolerance "
-                      f"{self.imp.outer_tol:g} after {self.outer.iterations} outer iterations; continuing",
-                      file=sys.stderr)
+                print(f"pysus: warning: ICE implicit pressure: timestep {step}: outer iteration not converged: "
+                      f"max|rhs| {rmax:.3e} above outer_iteration_tolerance {self.imp.outer_tol:g} after "
+                      f"{self.outer.iterations} outer iterations; continuing", file=sys.stderr)
 
 

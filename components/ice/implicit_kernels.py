@@ -21,7 +21,7 @@ def face_correct(u0, sp_vol, P, uf, sh, dd, flo, fhi, dt, dx):
 
 
 @njit(cache=True)
-def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K, kcell=None):
+def add_exchange_faces(A, vfs, sps, ufs, sh, dims, lo, hi, s, keep, atb, dt, K, kcell=None):
     """Face terms of eq. P with the momentum exchange: a_f += s_d sum_m theta_m,f (E v_f)_m.
 
     The exchanged face velocities are u_m = E (u* - dt v_f grad dP) (eq. 28, then eq. 38 on
@@ -31,6 +31,9 @@ def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K, kcell=Non
     keep[m] (CC, the domain's extra cells) = 0 drops material m on the domain-boundary face
     next to that extra cell (fixed face velocity).
     kcell: the slip model's coefficient per cell, as in exchange_faces.
+    ufs[d][m]: the exchanged face velocities at P = 0 (face f below cell f + sh[d]); their signs
+    pick the donor cell of theta_m,f in the sum, as the residual's div(theta u) (Uintah's upwinded
+    vol_frac); the exchange matrix keeps the centred theta, as exchange_faces.
     """
     n = len(vfs)
     a = np.empty((n, n))
@@ -60,9 +63,11 @@ def add_exchange_faces(A, vfs, sps, dims, lo, hi, s, keep, atb, dt, K, kcell=Non
                     _exchange_matrix(a, th if kcell is None else thk, sv, K, dt, n, None)
                     solve_small(a, b, n)
                     c = 0.0
+                    f0, f1, f2 = i - sh[d, 0], j - sh[d, 1], k - sh[d, 2]
                     for m in range(n):
                         if not bnd or keep[m][x0, x1, x2]:
-                            c += th[m] * b[m]
+                            below = ufs[d][m][f0, f1, f2] >= 0.0
+                            c += (vfs[m][i - di, j - dj, k - dk] if below else vfs[m][i, j, k]) * b[m]
                     c *= s[d]
                     if e > lo[d]:
                         A[i - di, j - dj, k - dk, 2 + 2 * d] += c

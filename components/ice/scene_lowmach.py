@@ -171,14 +171,14 @@ NOWHERE = '<box><min>[-2,-2,-2]</min><max>[-1,-1,-1]</max></box>'
 
 def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=None, tolerance=1e-10,
               outer_tol=1e-8, materials=1, K=None, delt=None, knob=None, maxit=5000, limiter=None,
-              heating=None):
+              heating=None, outer=20):
     """A hot cylinder (3x T, 1/3 rho) moving at `mach` in air at rest, symmetry walls, `steps` steps.
 
     implicit: knob_for_speedSound `knob` (default 0: delT from the flow speed);
     materials=2: the blob is a second gas (cv 1000, gamma 1.3) with exchange coefficients K;
     delt fixes delT (delt_min = delt_max); patches default to 64^2 cells each; limiter: the
     <advection limiter> (None: pysus's default); heating: its dissipationHeating ("false" with
-    Uintah's limiter is Uintah's scheme).
+    Uintah's limiter is Uintah's scheme); outer: max_outer_iterations.
     """
     u = mach * np.sqrt(1.4 * 101325 / 0.4)
     hot = BLOB_OBJ.format(piece=CYL, u=u, T=900.0, rho=0.4)
@@ -196,7 +196,7 @@ def blob_deck(n, mach=0.05, steps=10, implicit=None, precond="pfmg", patches=Non
                                  f"<momentum>[{K}]</momentum><heat>[{K}]</heat></exchange_coefficients></exchange_properties>")
     imp = ""
     if implicit:
-        imp = IMPLICIT.format(outer=20, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit, norm="")
+        imp = IMPLICIT.format(outer=outer, outer_tol=outer_tol, precond=precond, tol=tolerance, maxit=maxit, norm="")
         imp += TIMESTEP_CONTROL.format(knob=0.0 if knob is None else knob)
     np_ = max(1, n // 64)
     dt = "<delt_init>1</delt_init>" if delt is None else \

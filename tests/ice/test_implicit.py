@@ -3,6 +3,7 @@
 Scene: the Taylor-Green vortex at Mach 0.05 (components/ice/scene_lowmach.py), a steady
 Euler solution, so each run's error is its velocity's distance from the initial field.
 """
+import re
 from pathlib import Path
 
 import numpy as np
@@ -80,10 +81,11 @@ def test_two_materials_match_explicit_at_the_same_delT(tmp_path, K, limiter):
         # a material's velocity where it is present (a vanishing phase's velocity means little)
         out[kind] = [da.read("vel_CC", m, -1)[0][rho[m] > 1e-3 * rho[m].max()] for m in (0, 1)] \
             + [da.read("press_CC", 0, -1)[0]]
-    if K is None:
-        assert max(c.component.outer_iterations) >= 2      # donor-cell theta: not linear
-    else:       # the exchange is in eq. P's face coefficients (E v_f): one outer iteration suffices here
-        assert max(c.component.outer_iterations) == 1
+    # eq. P's face coefficients take the residual's donor-cell theta (and the exchange's E v_f): no face
+    # velocity changes sign at this delT, so the residual is linear in P and one outer iteration suffices
+    # (measured before, with the centred theta: 3 without exchange); Uintah's limiter advects the
+    # residual's fractions second order, which the donor-cell stencil approximates (3 measured)
+    assert max(c.component.outer_iterations) == (1 if limiter is None else 3)
     scale = [max(np.ptp(v) for v in out["explicit"][:2])] * 2 + [np.ptp(out["explicit"][2])]
     for e, i, s, what in zip(out["explicit"], out["implicit"], scale, ("vel0", "vel1", "press")):
         assert np.abs(e - i).max() < 1e-3 * s, what
@@ -235,3 +237,23 @@ def test_implicit_delt_is_explicit_ices_with_uintahs_default_knob(tmp_path):
     dx = x[1] - x[0]
     want = 0.4 * min((dx / (0.5 * c_sound + np.abs(vel[..., d]))).min() for d in range(2))
     assert da.times[0] == 0.0 and c.t == pytest.approx(want, rel=1e-12)
+
+
+def test_two_gas_blob_at_the_flow_speed_delT_converges_in_few_outer_iterations(tmp_path, capsys):
+    """Two gases, no exchange, 64^2, delT from the flow speed (~20x the acoustic one): the
+    residual's face fractions are the donor cells' (a function of the face velocities' signs),
+    so the stencil takes the same donors, rebuilt every outer iteration as Uintah's setupMatrix.
+    Measured: 4, 3 outer iterations (max|rhs| 3.2, 0.13, 0.23, 5e-3, 1e-13 in the first step);
+    with the centred fractions in the stencil all 20 (max|rhs| 2.5e-3 after 20)."""
+    (tmp_path / "b.ups").write_text(blob_deck(64, steps=2, materials=2, implicit=True))
+    c = Controller(str(tmp_path / "b.ups"), quiet=True, filebase=str(tmp_path / "b.uda"))
+    c.run()
+    assert max(c.component.outer_iterations) <= 5, c.component.outer_iterations
+    assert c.component.outer_max_rhs <= 1e-8
+    assert "not converged" not in capsys.readouterr().err
+    # a step the outer iteration does not converge says so, with its timestep and residual
+    (tmp_path / "one.ups").write_text(blob_deck(64, steps=1, materials=2, implicit=True, outer=1))
+    Controller(str(tmp_path / "one.ups"), quiet=True, filebase=str(tmp_path / "one.uda")).run()
+    err = capsys.readouterr().err
+    assert re.search(r"warning: ICE implicit pressure: timestep 1: outer iteration not converged: "
+                     r"max\|rhs\| \d\.\d+e[+-]\d+ above outer_iteration_tolerance 1e-08 after 1 outer", err), err

@@ -22,23 +22,27 @@ def _unit(d):
 
 
 @njit(cache=True)
-def _face_coef(vf, sp, one, a0, a1, a2, b0, b1, b2):
-    """theta_f v_f of one material on the face between cells a and b (harmonic v as eq. 28)."""
+def _face_coef(vf, sp, one, a0, a1, a2, b0, b1, b2, u):
+    """theta_f v_f of one material on the face between cells a and b with face velocity u (harmonic
+    v as eq. 28; theta_f the donor cell's, as the residual's div(theta u), Uintah's upwinded vol_frac)."""
     vL = sp[a0, a1, a2]
     vR = sp[b0, b1, b2]
     v = 2.0 * vL * vR / (vL + vR)
     if one:
         return v
-    return 0.5 * (vf[a0, a1, a2] + vf[b0, b1, b2]) * v
+    return (vf[a0, a1, a2] if u >= 0.0 else vf[b0, b1, b2]) * v
 
 
 @njit(cache=True)
-def add_material(A, vf, sp, cs, one, dims, lo, hi, s, keep, atb):
+def add_material(A, vf, sp, cs, one, dims, lo, hi, s, keep, atb, ux, uy, uz, sh):
     """Adds one material to the stencil: kap += theta v / c^2, a_f += s_d theta_f v_f.
 
     s[d] = dt^2 / dx_d^2 (eq. P below); keep (CC, the domain's extra cells) = 0 drops this
     material's face term on the boundary face next to that extra cell (fixed face velocity, or
     zero-gradient pressure); atb[2d+side] says the patch touches that domain boundary.
+    ux, uy, uz: the material's face velocities at P = 0, whose signs pick theta_f's donor cell
+    (face f of the faces' array lies below cell f + sh[d]), so that the operator is the residual's
+    Jacobian wherever no face velocity changes sign.
     Eq. P: kap dP - dt^2 div(sum_m theta_m v_m grad dP) = -(kap P + dt sum_m div(theta_m u_m)).
     """
     for i in range(lo[0], hi[0]):
@@ -50,8 +54,11 @@ def add_material(A, vf, sp, cs, one, dims, lo, hi, s, keep, atb):
                     if not dims[d]:
                         continue
                     di, dj, dk = _unit(d)
-                    cl = s[d] * _face_coef(vf, sp, one, i - di, j - dj, k - dk, i, j, k)
-                    ch = s[d] * _face_coef(vf, sp, one, i, j, k, i + di, j + dj, k + dk)
+                    uf = ux if d == 0 else (uy if d == 1 else uz)
+                    f0, f1, f2 = i - sh[d, 0], j - sh[d, 1], k - sh[d, 2]
+                    cl = s[d] * _face_coef(vf, sp, one, i - di, j - dj, k - dk, i, j, k, uf[f0, f1, f2])
+                    ch = s[d] * _face_coef(vf, sp, one, i, j, k, i + di, j + dj, k + dk,
+                                           uf[f0 + di, f1 + dj, f2 + dk])
                     e = (i, j, k)[d]
                     if e == lo[d] and atb[2 * d] and not keep[i - di, j - dj, k - dk]:
                         cl = 0.0
