@@ -4,7 +4,7 @@ every particle is burned on the patch that owns it)."""
 import numpy as np
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, pysus
+from tests.conftest import ROOT, pysus_ranks
 
 DECK = ROOT / "inputs" / "MPMICE" / "burning_container2D.ups"
 
@@ -20,7 +20,7 @@ def test_burning_container_ranks_and_patches_equal(tmp_path):
     runs = {}
     for name, deck, n in (("p1", one, 1), ("p4", four, 1), ("r2", four, 2), ("r3", four, 3)):
         uda = tmp_path / f"{name}.uda"
-        r = pysus(deck, "--filebase", uda, "--max-timesteps", 120, np_=n, timeout=600)
+        r = pysus_ranks(deck, "--filebase", uda, "--max-timesteps", 120, np_=n, timeout=600)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[name] = DataArchive(uda)
     base = runs["p1"]
@@ -45,7 +45,7 @@ def test_tracer_particles_one_and_two_ranks(tmp_path):
     runs = {}
     for n in (1, 2):
         uda = tmp_path / f"r{n}.uda"
-        r = pysus(deck, "--filebase", uda, np_=n, timeout=600)
+        r = pysus_ranks(deck, "--filebase", uda, np_=n, timeout=600)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     one, two = runs[1], runs[2]
