@@ -65,7 +65,7 @@ def test_failure_same_on_one_two_three_ranks(tmp_path):
     particles fail at the notch within 400 steps (the first at step ~360): 1, 2 and 3 ranks (4 patches) give bitwise the
     same state (the full deck: checked by hand to step 700)."""
     from framework.archiver import DataArchive
-    from tests.conftest import pysus
+    from tests.conftest import pysus_ranks
     text = open(S.DECK, encoding="iso-8859-1").read()
     for old, new in (("<D1> 0.05 </D1>", "<D1> 0.002 </D1>"),
                      ("<yield_stress> 2.0e8 </yield_stress>", "<yield_stress> 5.0e7 </yield_stress>"),
@@ -79,7 +79,7 @@ def test_failure_same_on_one_two_three_ranks(tmp_path):
     runs = []
     for n in (1, 2, 3):
         uda = tmp_path / f"r{n}.uda"
-        r = pysus(deck, "--filebase", uda, "--max-timesteps", 400, np_=n, timeout=600)
+        r = pysus_ranks(deck, "--filebase", uda, "--max-timesteps", 400, np_=n, timeout=600)
         assert r.returncode == 0, r.stderr[-2000:]
         runs.append(DataArchive(uda))
     base = runs[0]
