@@ -57,12 +57,42 @@ def pysus_ranks(*args, np_=1, timeout=300):
     return subprocess.CompletedProcess(argv, rc, out.getvalue(), err.getvalue())
 
 
-# The test files that take the most CPU seconds (PYSUS_TEST_CPU below, run on the shipped decks'
-# kernel cache), heaviest first. pytest-xdist (scripts/test: --dist loadfile
+# The test files that take the most CPU seconds, heaviest first (PYSUS_TEST_CPU below, one directory
+# at a time on the shipped decks' kernel cache: each file's first test pays the numba compilation of
+# the specialisations no shipped deck uses). pytest-xdist (scripts/test: --dist loadfile
 # --no-loadscope-reorder) hands whole files to its workers in collection order: these start first
 # and the many short files fill in behind them, so the workers finish together instead of one
 # running a long file alone at the end.
-HEAVY_FILES = (
+HEAVY_FILES = (                       # CPU s (self + children) as measured before the cuts of this list's commit
+    "tests/mpi/test_mpi_mpm.py",                         # 95
+    "tests/mpmice/test_container_rupture.py",            # 94
+    "tests/mpm/test_axisymmetric.py",                    # 69
+    "tests/mpi/test_mpi_models.py",                      # 47
+    "tests/mpi/test_mpi_ice.py",                         # 43
+    "tests/models/test_ddt1.py",                         # 42
+    "tests/mpm/test_arena_soil.py",                      # 42
+    "tests/mpm/test_damage_draws.py",                    # 35
+    "tests/models/test_gas_combustion.py",               # 35
+    "tests/mpi/test_mpi.py",                             # 33
+    "tests/mpm/test_boundary_tractions.py",              # 33
+    "tests/mpm/test_cbdi.py",                            # 32
+    "tests/mpm/test_artificial_viscosity.py",            # 28
+    "tests/mpm/test_damage.py",                          # 21
+    "tests/mpm/test_gurson.py",                          # 20
+    "tests/ice/test_implicit.py",                        # 18
+    "tests/efem/test_archimedes.py",                     # 15
+    "tests/mpm/test_disks.py",                           # 15
+    "tests/mpm/test_comp_neo_hook_plastic.py",           # 13
+    "tests/mpm/test_elastic_plastic_hp_failure.py",      # 12
+    "tests/efem/test_mpi.py",                            # 11
+    "tests/mpm/test_extrude_rt.py",                      # 11
+    "tests/ice/test_mpi_conservation.py",                # 10
+    "tests/decks/test_efem_decks.py",                    # 10
+    "tests/mpm/test_charpy.py",                          # 10
+    "tests/ice/test_data_analysis.py",                   # 9
+    "tests/ice/test_order.py",                           # 9
+    "tests/mpmice/test_advect_deck.py",                  # 8
+    "tests/ice/test_specific_heat.py",                   # 8
 )
 
 
