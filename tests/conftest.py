@@ -57,6 +57,70 @@ def pysus_ranks(*args, np_=1, timeout=300):
     return subprocess.CompletedProcess(argv, rc, out.getvalue(), err.getvalue())
 
 
+# The test files that take the most CPU seconds, heaviest first (PYSUS_TEST_CPU below, one directory
+# at a time on the shipped decks' kernel cache: each file's first test pays the numba compilation of
+# the specialisations no shipped deck uses). pytest-xdist (scripts/test: --dist loadfile
+# --no-loadscope-reorder) hands whole files to its workers in collection order: these start first
+# and the many short files fill in behind them, so the workers finish together instead of one
+# running a long file alone at the end.
+HEAVY_FILES = (                       # CPU s, self + children, before the cuts made along with this list
+    "tests/mpi/test_mpi_mpm.py",                         # 95
+    "tests/mpmice/test_container_rupture.py",            # 94
+    "tests/mpmice/test_hard_cases.py",                   # 84
+    "tests/mpm/test_axisymmetric.py",                    # 69
+    "tests/mpmice/test_mpi_mpmice.py",                   # 54
+    "tests/mpi/test_mpi_models.py",                      # 47
+    "tests/mpi/test_mpi_ice.py",                         # 43
+    "tests/models/test_ddt1.py",                         # 42
+    "tests/mpm/test_arena_soil.py",                      # 42
+    "tests/mpm/test_damage_draws.py",                    # 35
+    "tests/models/test_gas_combustion.py",               # 35
+    "tests/mpi/test_mpi.py",                             # 33
+    "tests/mpm/test_boundary_tractions.py",              # 33
+    "tests/mpm/test_cbdi.py",                            # 32
+    "tests/mpm/test_thermal.py",                         # 30
+    "tests/mpm/test_artificial_viscosity.py",            # 28
+    "tests/mpmice/test_cylinder.py",                     # 28
+    "tests/mpmice/test_piston_validation.py",            # 27
+    "tests/ice/test_uintah_decks.py",                    # 25
+    "tests/mpm/test_mpi_decks.py",                       # 23
+    "tests/mpm/test_damage.py",                          # 21
+    "tests/mpm/test_xpic.py",                            # 21
+    "tests/mpm/test_gurson.py",                          # 20
+    "tests/mpm/test_shape.py",                           # 19
+    "tests/mpm/test_half_space.py",                      # 19
+    "tests/ice/test_implicit.py",                        # 18
+    "tests/mpmice/test_heat.py",                         # 18
+    "tests/efem/test_archimedes.py",                     # 15
+    "tests/mpmice/test_guni2drt.py",                     # 15
+    "tests/mpm/test_disks.py",                           # 15
+    "tests/mpm/test_membrane.py",                        # 13
+    "tests/mpm/test_hard_cases.py",                      # 13
+    "tests/mpm/test_comp_neo_hook_plastic.py",           # 13
+    "tests/framework/test_paraview.py",                  # 12
+    "tests/mpm/test_elastic_plastic_hp_failure.py",      # 12
+    "tests/efem/test_mpi.py",                            # 11
+    "tests/mpm/test_extrude_rt.py",                      # 11
+    "tests/ice/test_mpi_conservation.py",                # 10
+    "tests/decks/test_efem_decks.py",                    # 10
+    "tests/mpmice/test_open_faces.py",                   # 10
+    "tests/mpm/test_charpy.py",                          # 10
+    "tests/framework/test_restart_finished.py",          # 9
+    "tests/ice/test_data_analysis.py",                   # 9
+    "tests/mpmice/test_pbx_cylinder.py",                 # 9
+    "tests/ice/test_order.py",                           # 9
+    "tests/framework/test_loop.py",                      # 8
+    "tests/mpmice/test_advect_deck.py",                  # 8
+    "tests/ice/test_specific_heat.py",                   # 8
+)
+
+
+def pytest_collection_modifyitems(items):
+    """Collect the files of HEAVY_FILES first, in that order; the others keep theirs."""
+    rank = {f: i for i, f in enumerate(HEAVY_FILES)}
+    items.sort(key=lambda item: rank.get(item.nodeid.split("::")[0], len(rank)))
+
+
 @pytest.fixture(autouse=True)
 def _run_in_tmp(tmp_path, monkeypatch):
     """Every test runs in its own directory: a deck's relative filebase never writes into the
@@ -71,3 +135,55 @@ def deckfile(tmp_path):
         p.write_text(text)
         return p
     return make
+
+
+
+_TEST_CPU_CSV = os.environ.get("PYSUS_TEST_CPU")
+if _TEST_CPU_CSV:
+    # PYSUS_TEST_CPU=file.csv appends a row per test: its CPU seconds (set-up, call, tear-down;
+    # this process and the processes it waited for, e.g. mpiexec's ranks), the numba kernels it
+    # compiled (cache misses) and their CPU seconds, and its wall seconds: where the suite's time
+    # goes, and which tests compile a kernel that scripts/warm_kernels did not.
+    import csv
+    import resource
+    import time
+
+    from numba.core import event as numba_event
+
+    class _CompileTimer(numba_event.Listener):
+        """The kernels this process compiles and their CPU seconds, outermost compilations only
+        (a kernel loaded from numba's cache is no event)."""
+
+        def __init__(self):
+            self.depth, self.count, self.cpu, self.t0 = 0, 0, 0.0, 0.0
+
+        def on_start(self, event):
+            if self.depth == 0:
+                self.t0 = time.process_time()
+            self.depth += 1
+
+        def on_end(self, event):
+            self.depth -= 1
+            if self.depth == 0:
+                self.count += 1
+                self.cpu += time.process_time() - self.t0
+
+    _compiles = _CompileTimer()
+    numba_event.register("numba:compile", _compiles)
+
+    @pytest.hookimpl(hookwrapper=True)
+    def pytest_runtest_protocol(item, nextitem):
+        kids0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu0, wall0 = time.process_time(), time.perf_counter()
+        n0, c0 = _compiles.count, _compiles.cpu
+        yield
+        kids1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        kids = (kids1.ru_utime + kids1.ru_stime) - (kids0.ru_utime + kids0.ru_stime)
+        row = [item.nodeid, f"{time.process_time() - cpu0:.3f}", f"{kids:.3f}",
+               _compiles.count - n0, f"{_compiles.cpu - c0:.3f}", f"{time.perf_counter() - wall0:.3f}"]
+        new = not os.path.exists(_TEST_CPU_CSV)
+        with open(_TEST_CPU_CSV, "a", newline="") as f:
+            if new:
+                csv.writer(f).writerow(["test", "cpu_self_s", "cpu_children_s", "kernels_compiled",
+                                        "compile_cpu_s", "wall_s"])
+            csv.writer(f).writerow(row)

@@ -4,7 +4,7 @@ into the pool, checkpointed at step 10, restarted to step 20 on 2 ranks, equals 
 import numpy as np
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus
+from tests.conftest import pysus, pysus_ranks
 
 from .decks import deck
 from .test_conservation import BLOCK
@@ -14,7 +14,7 @@ from .test_mpi import FIELDS
 def test_restart_equals_straight_run(tmp_path):
     path = tmp_path / "fall.ups"
     path.write_text(deck(res=(20, 20), patches=(2, 2), steps=20, block=BLOCK, every=10, checkpoint=(10, 2)))
-    r = pysus(path, "--filebase", tmp_path / "a.uda")
+    r = pysus_ranks(path, "--filebase", tmp_path / "a.uda")
     assert r.returncode == 0, r.stderr[-2000:]
     r = pysus("-restart", tmp_path / "a.uda", "-t", "0", "--filebase", tmp_path / "b.uda", np_=2)
     assert r.returncode == 0, r.stderr[-2000:]

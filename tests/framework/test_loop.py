@@ -6,7 +6,7 @@ from framework.archiver import DataArchive
 from framework.scheduler.compile import GraphError
 from framework.scheduler.loop import Loop, LoopError
 from tests.components.examples.test_examples import heat_error
-from tests.conftest import pysus, run_deck
+from tests.conftest import pysus_ranks, run_deck
 from tests.framework import decks
 
 
@@ -63,7 +63,7 @@ def test_implicit_solve_on_ranks_matches_one_rank(tmp_path, nranks):
     text = decks.heat(n=32, patches="[3,2,1]", maxTime=0.05, implicit=True, cfl=3.2, tolerance=1e-12)
     (tmp_path / "d.ups").write_text(text)
     for n in (1, nranks):
-        r = pysus(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
+        r = pysus_ranks(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
         assert r.returncode == 0, r.stderr
     t1 = DataArchive(tmp_path / "n1.uda").read("temp_CC", 0, -1)[0]
     tn = DataArchive(tmp_path / f"n{nranks}.uda").read("temp_CC", 0, -1)[0]

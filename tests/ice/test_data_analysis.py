@@ -108,13 +108,13 @@ def test_turbulent_fluxes_restart_continues_the_sums(tmp_path):
     deck from its step-5 checkpoint gives step 10's means and variances bit for bit."""
     import pathlib
     from framework.archiver import DataArchive
-    from tests.conftest import pysus
+    from tests.conftest import pysus, pysus_ranks
     ref = pathlib.Path(__file__).parent / "uintah_reference" / "impVortices_smag_explicit.ups"
     text = ref.read_text().replace('      <save label="vel_CC"/>',
                                    '      <checkpoint timestepInterval="5" cycle="2"/>\n      <save label="vel_CC"/>')
     deck = tmp_path / "d.ups"
     deck.write_text(text)
-    r = pysus(deck, "--filebase", tmp_path / "a.uda")
+    r = pysus_ranks(deck, "--filebase", tmp_path / "a.uda")
     assert r.returncode == 0, r.stderr[-2000:]
     r = pysus("-restart", tmp_path / "a.uda", "-t", "0", "--filebase", tmp_path / "b.uda")
     assert r.returncode == 0, r.stderr[-2000:]

@@ -13,7 +13,7 @@ from components.ice.scene_lowmach import blob_deck, vortex_deck, vortex_errors
 from framework.archiver import DataArchive
 from framework.controller import Controller
 from framework.problemspec import InputError
-from tests.conftest import pysus
+from tests.conftest import pysus_ranks
 
 N = 16
 DATA = Path(__file__).parent / "data"
@@ -96,7 +96,7 @@ def test_implicit_ice_on_ranks_matches_one_rank(tmp_path, nranks):
     (tmp_path / "d.ups").write_text(vortex_deck(N, implicit=True, patches="[2,2,1]", tolerance=1e-12,
                                                 max_timesteps=4))
     for n in (1, nranks):
-        r = pysus(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
+        r = pysus_ranks(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
         assert r.returncode == 0, r.stderr
     for lab in ("vel_CC", "press_CC"):
         a = DataArchive(tmp_path / "n1.uda").read(lab, 0, -1)[0]

@@ -108,12 +108,12 @@ def test_statistics_restart_continues_the_sums(tmp_path):
     """The sums and the step count are carried in checkpoints: restarting from the step-5
     checkpoint (two steps into the window) gives step 6's statistics bit for bit."""
     from framework.archiver import DataArchive
-    from tests.conftest import pysus
+    from tests.conftest import pysus, pysus_ranks
     text = DECK.read_text(encoding="iso-8859-1").replace(
         '      <save label="vel_CC"/>', '      <checkpoint timestepInterval="5" cycle="2"/>\n      <save label="vel_CC"/>', 1)
     deck = tmp_path / "d.ups"
     deck.write_text(text, encoding="iso-8859-1")
-    r = pysus(deck, "--filebase", tmp_path / "a.uda")
+    r = pysus_ranks(deck, "--filebase", tmp_path / "a.uda")
     assert r.returncode == 0, r.stderr[-2000:]
     r = pysus("-restart", tmp_path / "a.uda", "-t", "0", "--filebase", tmp_path / "b.uda")
     assert r.returncode == 0, r.stderr[-2000:]

@@ -137,14 +137,14 @@ def test_germano_two_ranks_equal_one_rank(tmp_path):
     is bitwise the one-rank answer (5 steps, 2 of them sampled by planeAvgTurbFluxes)."""
     import pathlib
     from framework.archiver import DataArchive
-    from tests.conftest import pysus
+    from tests.conftest import pysus_ranks
     deck = pathlib.Path(__file__).parent / "uintah_reference" / "impVortices_dyn_explicit.ups"
     text = deck.read_text().replace("<max_Timesteps>  10 <", "<max_Timesteps>  5 <")
     path = tmp_path / "dyn.ups"
     path.write_text(text)
     runs = {}
     for n in (1, 2):
-        r = pysus(path, "--filebase", tmp_path / f"r{n}.uda", np_=n)
+        r = pysus_ranks(path, "--filebase", tmp_path / f"r{n}.uda", np_=n)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(tmp_path / f"r{n}.uda")
     for lab in ("vel_CC", "press_CC", "temp_CC", "turb_viscosity_CC", "total_viscosity_CC", "SGS_ReynoldsStress",

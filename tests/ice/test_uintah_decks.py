@@ -486,7 +486,7 @@ def test_lodi_pulse_two_ranks_as_one(tmp_path):
     """The LODI faces use only the patch's own cells and one reduction (the faces' Mach
     numbers): 2 ranks give bitwise the one-rank answer (40 steps, 4 patches)."""
     from framework.archiver import DataArchive
-    from tests.conftest import pysus
+    from tests.conftest import pysus_ranks
     deck = (REF / "Lodi_pulse_coarse.ups").read_text()
     deck = deck.replace("<max_Timesteps>        240   </max_Timesteps>", "<max_Timesteps>        40   </max_Timesteps>")
     deck = deck.replace("<outputTimestepInterval> 80 </outputTimestepInterval>",
@@ -494,7 +494,7 @@ def test_lodi_pulse_two_ranks_as_one(tmp_path):
     (tmp_path / "d.ups").write_text(deck)
     runs = []
     for n in (1, 2):
-        r = pysus(tmp_path / "d.ups", "--filebase", tmp_path / f"r{n}.uda", np_=n)
+        r = pysus_ranks(tmp_path / "d.ups", "--filebase", tmp_path / f"r{n}.uda", np_=n)
         assert r.returncode == 0, r.stderr[-2000:]
         runs.append(DataArchive(tmp_path / f"r{n}.uda"))
     assert list(runs[0].times) == list(runs[1].times) and len(runs[0].times) == 2

@@ -2,7 +2,7 @@
 import numpy as np
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus
+from tests.conftest import pysus, pysus_ranks
 
 from .test_simple_burn import DECK
 
@@ -14,7 +14,7 @@ def test_restart_mid_burn_equals_straight_run(tmp_path):
     deck = tmp_path / "burn.ups"
     deck.write_text(text)
     straight = tmp_path / "straight.uda"
-    r = pysus(deck, "--filebase", straight)
+    r = pysus_ranks(deck, "--filebase", straight)
     assert r.returncode == 0, r.stderr[-2000:]
     r = pysus("-restart", straight, "-t", 0, "--filebase", tmp_path / "again.uda")
     assert r.returncode == 0, r.stderr[-2000:]

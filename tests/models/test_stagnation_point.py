@@ -102,13 +102,13 @@ def test_bad_model_input(tmp_path, old, new, words):
 def test_tracers_restart_equals_straight_run(tmp_path):
     """A restart at step 3 (between the injections of steps 2 and 5) gives the run that never
     stopped: the particles, their cell counts nPPC and the injection clock are in the checkpoint."""
-    from tests.conftest import pysus
+    from tests.conftest import pysus, pysus_ranks
     from framework.archiver import DataArchive
     deck = tmp_path / "stag.ups"
     deck.write_text(DECK.read_text().replace('<save label="TotalEng_src"/>', '<save label="TotalEng_src"/>'
                                              '<checkpoint timestepInterval="3" cycle="2"/>'))
     straight = tmp_path / "straight.uda"
-    r = pysus(deck, "--filebase", straight)
+    r = pysus_ranks(deck, "--filebase", straight)
     assert r.returncode == 0, r.stderr[-2000:]
     r = pysus("-restart", straight, "-t", 0, "--filebase", tmp_path / "again.uda")
     assert r.returncode == 0, r.stderr[-2000:]

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus
+from tests.conftest import pysus, pysus_ranks
 from tests.framework import decks
 
 SAVE = ('<save label="p.x"/><save label="p.particleID"/><save label="p.mass"/><save label="g.mass"/>'
@@ -42,16 +42,28 @@ def same(a, b, steps=(-1,)):
 def serial(tmp_path_factory):
     d = tmp_path_factory.mktemp("serial")
     (d / "deck.ups").write_text(deck())
-    r = pysus(d / "deck.ups", "--filebase", d / "one.uda")
+    r = pysus_ranks(d / "deck.ups", "--filebase", d / "one.uda")
     assert r.returncode == 0, r.stderr
     return d
 
 
+@pytest.fixture(scope="module")
+def ranks(serial):
+    """ranks(n): the deck's uda on n ranks, run once for the tests that read it."""
+    udas = {}
+
+    def uda(n):
+        if n not in udas:
+            udas[n] = serial / f"n{n}.uda"
+            r = pysus(serial / "deck.ups", "--filebase", udas[n], np_=n)
+            assert r.returncode == 0, r.stderr
+        return udas[n]
+    return uda
+
+
 @pytest.mark.parametrize("nranks", [2, 3])
-def test_ranks_equal_one_rank(serial, tmp_path, nranks):
-    uda = tmp_path / f"n{nranks}.uda"
-    r = pysus(serial / "deck.ups", "--filebase", uda, np_=nranks)
-    assert r.returncode == 0, r.stderr
+def test_ranks_equal_one_rank(serial, ranks, nranks):
+    uda = ranks(nranks)
     same(serial / "one.uda", uda, steps=(1, 3, -1))
     # sums over patches are added in patch order on any number of ranks: bitwise equal
     t1, h1 = DataArchive(serial / "one.uda").reduction("TotalHeat")
@@ -62,11 +74,8 @@ def test_ranks_equal_one_rank(serial, tmp_path, nranks):
     assert sum(f.endswith(".h5") for f in files) == nranks
 
 
-def test_particles_cross_ranks_without_loss_or_duplicates(serial, tmp_path):
-    uda = tmp_path / "p.uda"
-    r = pysus(serial / "deck.ups", "--filebase", uda, np_=3)
-    assert r.returncode == 0, r.stderr
-    da = DataArchive(uda)
+def test_particles_cross_ranks_without_loss_or_duplicates(ranks):
+    da = DataArchive(ranks(3))
     p0, p1 = da.particles(0, 0), da.particles(0, -1)
     assert len(np.unique(p1["p.particleID"])) == len(p1["p.particleID"])
     # nothing leaves this domain: count and total mass are kept exactly
@@ -78,12 +87,9 @@ def test_particles_cross_ranks_without_loss_or_duplicates(serial, tmp_path):
 
 
 @pytest.mark.parametrize("onto", [3, 1])
-def test_restart_from_two_ranks_onto_other_counts(serial, tmp_path, onto):
-    first = tmp_path / "two.uda"
-    r = pysus(serial / "deck.ups", "--filebase", first, np_=2)
-    assert r.returncode == 0, r.stderr
+def test_restart_from_two_ranks_onto_other_counts(serial, ranks, tmp_path, onto):
     again = tmp_path / "again.uda"
-    r = pysus("-restart", first, "-t", "0", "--filebase", again, np_=onto)
+    r = pysus_ranks("-restart", ranks(2), "-t", "0", "--filebase", again, np_=onto)
     assert r.returncode == 0, r.stderr
     same(serial / "one.uda", again)
 

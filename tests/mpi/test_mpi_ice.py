@@ -10,9 +10,13 @@ from framework.archiver import DataArchive
 from tests.conftest import ROOT, UINTAH_INPUTS, pysus_ranks
 
 CASES = {
-    # deck, replacements making it small and giving it enough patches for 3 ranks, labels
+    # deck, replacements making it small and giving it enough patches for 3 ranks, labels.
+    # riemann_sm: cells as deep as they are long (its 1 mm depth set delT), 146 steps instead of
+    # 816; its rarefaction and shock still cross the patch boundaries at x = 1/3 and 2/3
     "riemann_sm": (UINTAH_INPUTS / "ICE" / "riemann_sm.ups",
-                   [("[1,1,1]    </patches>", "[3,1,1]    </patches>")], ["rho_CC", "press_CC", "vel_CC"]),
+                   [("[1,1,1]    </patches>", "[3,1,1]    </patches>"), ("[250,1,1]", "[102,1,1]"),
+                    ("[1,0.001,0.001]", "[1,0.01,0.01]")],
+                   ["rho_CC", "press_CC", "vel_CC"]),
     "hotBlob2mat": (UINTAH_INPUTS / "ICE" / "hotBlob2mat.ups",
                     [("[1,1,1]         </patches>", "[2,2,1]         </patches>"),
                      ("0.001         </maxTime>", "0.0002         </maxTime>")], ["rho_CC", "temp_CC", "vel_CC"]),

@@ -21,7 +21,7 @@ import numpy as np
 
 from framework.archiver import DataArchive
 from framework.controller import Controller
-from tests.conftest import pysus
+from tests.conftest import pysus_ranks
 
 HERE = pathlib.Path(__file__).parent
 TOL_X = 1e-12           # m; measured 2.2e-16 (step 3), 5.7e-14 (step 5)
@@ -103,7 +103,7 @@ def test_extrude_rt_unchanged_two_ranks_bitwise(tmp_path):
     runs = {}
     for n in (1, 2):
         uda = tmp_path / f"run{n}.uda"
-        r = pysus(path, "--filebase", uda, np_=n, timeout=300)
+        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
         assert r.returncode == 0, r.stderr[-2000:]
         runs[n] = DataArchive(uda)
     a, b = runs[1].particles(0, -1), runs[2].particles(0, -1)

@@ -23,7 +23,7 @@ import pytest
 
 from components.mpmice import scene_piston as S
 from framework.archiver import DataArchive
-from tests.conftest import UINTAH_INPUTS, pysus, run_deck
+from tests.conftest import UINTAH_INPUTS, pysus, pysus_ranks, run_deck
 
 N, T_END = 40, 0.45        # piston faces on cell faces; 20 cells a patch (multigrid applies)
 
@@ -141,7 +141,7 @@ def test_piston_moves_as_prescribed_and_each_step_converges(run):
 def test_two_ranks_match_one_rank_to_solver_tolerance(tmp_path):
     (tmp_path / "d.ups").write_text(S.deck(N, t_end=0.1, output=0.05), encoding="iso-8859-1")
     for n in (1, 2):
-        r = pysus(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
+        r = pysus_ranks(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
         assert r.returncode == 0, r.stderr[-2000:]
     a, b = DataArchive(tmp_path / "n1.uda"), DataArchive(tmp_path / "n2.uda")
     assert np.array_equal(a.times, b.times) and len(a.times) >= 3
