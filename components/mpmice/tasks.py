@@ -410,7 +410,7 @@ class MPMICETasks:
         """computeLagrangianValuesMPM: m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p*
         (eq. 33), (me)^L = m cv T* with T* the cell mean of the nodal temperature advanced
         by this step's conduction, g.temperature + dt g.temperatureRate (Uintah's
-        gTemperatureStar, the Temperature BCs applied; without a thermal model the solid's T is held); a cell with little
+        gTemperatureStar; without a thermal model the solid's T is held); a cell with little
         more than the floor mass keeps its step-1 vel_CC and temp_CC (kernels.lagrangian_solid)."""
         ice = self.ice
         b = ice.boxes(patch)
@@ -439,8 +439,6 @@ class MPMICETasks:
             return temp
         tstar = temp.copy()
         gT = new_dw.get(M.gTemperature, m, patch) + dt * new_dw.get(M.gTemperatureRate, m, patch)
-        if self.mpm.temperature_bcs:
-            self.mpm.bcs.apply_temperature(patch, m, gT, ghosts=True)
         self._scalar_to_cc(patch, m, new_dw.get(M.gMass, m, patch), gT, tstar)
         return tstar
 
@@ -588,8 +586,6 @@ class MPMICETasks:
         if self.solid_heat:
             self.mpm.thermal_rates = (MI.dTdt_NC,)
         self.mpm.thermal_setup()
-        if self.mpm.thermal:       # Uintah's MPM sets them on gTemperature and gTemperatureStar in MPMICE too
-            self.mpm.temperature_bcs = self.mpm.bcs.use_temperature_bcs()
         self.mpm._carried()
 
     def thermal_requires(self, t, step):
