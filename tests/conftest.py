@@ -142,7 +142,7 @@ _TEST_CPU_CSV = os.environ.get("PYSUS_TEST_CPU")
 if _TEST_CPU_CSV:
     # PYSUS_TEST_CPU=file.csv appends a row per test: its CPU seconds (set-up, call, tear-down;
     # this process and the processes it waited for, e.g. mpiexec's ranks), the numba kernels it
-    # compiled (cache misses) and their CPU seconds, and its wall seconds: where the suite's time
+    # compiled (cache misses) with their CPU seconds, and its wall seconds: where the suite's time
     # goes, and which tests compile a kernel that scripts/warm_kernels did not.
     import csv
     import resource
@@ -156,6 +156,7 @@ if _TEST_CPU_CSV:
 
         def __init__(self):
             self.depth, self.count, self.cpu, self.t0 = 0, 0, 0.0, 0.0
+            self.names = []
 
         def on_start(self, event):
             if self.depth == 0:
@@ -166,7 +167,10 @@ if _TEST_CPU_CSV:
             self.depth -= 1
             if self.depth == 0:
                 self.count += 1
-                self.cpu += time.process_time() - self.t0
+                seconds = time.process_time() - self.t0
+                self.cpu += seconds
+                py = event.data["dispatcher"].py_func
+                self.names.append(f"{py.__module__}.{py.__qualname__}={seconds:.2f}")
 
     _compiles = _CompileTimer()
     numba_event.register("numba:compile", _compiles)
@@ -176,14 +180,16 @@ if _TEST_CPU_CSV:
         kids0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu0, wall0 = time.process_time(), time.perf_counter()
         n0, c0 = _compiles.count, _compiles.cpu
+        del _compiles.names[:]
         yield
         kids1 = resource.getrusage(resource.RUSAGE_CHILDREN)
         kids = (kids1.ru_utime + kids1.ru_stime) - (kids0.ru_utime + kids0.ru_stime)
         row = [item.nodeid, f"{time.process_time() - cpu0:.3f}", f"{kids:.3f}",
-               _compiles.count - n0, f"{_compiles.cpu - c0:.3f}", f"{time.perf_counter() - wall0:.3f}"]
+               _compiles.count - n0, f"{_compiles.cpu - c0:.3f}", f"{time.perf_counter() - wall0:.3f}",
+               " ".join(_compiles.names)]
         new = not os.path.exists(_TEST_CPU_CSV)
         with open(_TEST_CPU_CSV, "a", newline="") as f:
             if new:
                 csv.writer(f).writerow(["test", "cpu_self_s", "cpu_children_s", "kernels_compiled",
-                                        "compile_cpu_s", "wall_s"])
+                                        "compile_cpu_s", "wall_s", "kernels"])
             csv.writer(f).writerow(row)
