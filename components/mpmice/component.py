@@ -175,6 +175,8 @@ class MPMICE(MPMICETasks, Component):
         self.slip = SlipTasks(self) if self.ice.slip is not None else None   # <Model type="slip">
         # true: pysus's rule for fluid slivers in solid-filled cells (tasks.exchange); Uintah has none
         self.trace_temperatures = node.get("trace_temperatures", "bool", False) if node is not None else False
+        # true: a compressed ideal gas's flow work at most the adiabat's (adiabatic.py); Uintah has none
+        self.adiabatic_compression = node.get("adiabatic_compression", "bool", False) if node is not None else False
 
     def material_names(self):
         return self.ice.material_names()

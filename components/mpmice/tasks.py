@@ -29,6 +29,8 @@ from framework.task import NEW, OLD, Task
 from framework.variables import Ghost, VarType
 
 from components.ice import equilibration as E
+from components.ice.eos import IDEAL_GAS
+from . import adiabatic as AD
 from . import kernels as K
 from . import labels as MI
 
@@ -444,16 +446,21 @@ class MPMICETasks:
 
     def lagrangian_values_fluid(self, patch, matls, old_dw, new_dw):
         """ICE::computeLagrangianValues for the fluids, their flow work over the cell's total
-        material volume TMV_CC (Uintah's accumulateEnergySourceSinks), plus <ADD_HEAT>: dt * coeff * rho_CC * V
+        material volume TMV_CC (Uintah's accumulateEnergySourceSinks), with <adiabatic_compression>
+        a compressed ideal gas's work at most the adiabat's (adiabatic.py), plus <ADD_HEAT>: dt * coeff * rho_CC * V
         added to int_eng_L_CC where the material's volume fraction exceeds 0.001, while
         add_heat_t_start <= t <= add_heat_t_final (t: the time at the start of the step), as
         Uintah's accumulateEnergySourceSinks does."""
         tmv = new_dw.get(I.TMV_CC, 0, patch)
-        if self.add_heat is None:
+        if self.add_heat is None and not self.adiabatic_compression:
             self.ice.lagrangian_values(patch, matls, old_dw, new_dw, tmv)
             return
         keep = _KeepAllocated(new_dw)
         self.ice.lagrangian_values(patch, matls, old_dw, keep, tmv)
+        if self.adiabatic_compression:
+            self._limit_compression_work(patch, matls, old_dw, new_dw, keep, tmv)
+        if self.add_heat is None:
+            return
         coeffs, t0, t1 = self.add_heat
         t = float(old_dw.get_reduction(FL.simTime))
         if not t0 <= t <= t1:
@@ -468,6 +475,21 @@ class MPMICETasks:
             rho = old_dw.get(I.rho_CC, m, patch)[sl]
             vf = new_dw.get(I.vol_frac_CC, m, patch)[sl]
             eng[sl] += np.where(vf > 0.001, (coeffs[m] * dt * b.vol) * rho, 0.0)
+
+    def _limit_compression_work(self, patch, matls, old_dw, new_dw, keep, tmv):
+        """adiabatic.limit_compression_work on the int_eng_L_CC of each ideal gas with a constant cv."""
+        ice = self.ice
+        b = ice.boxes(patch)
+        lo, hi = np.array(b.lo, np.int64), np.array(b.hi, np.int64)
+        press, delP = new_dw.get(I.press_CC, 0, patch), new_dw.get(I.delP_Dilatate, 0, patch)
+        for m in matls:
+            if ice.codes[m] != IDEAL_GAS or ice._cv_model(m) is not None or m in ice.caloric:
+                continue
+            new = lambda lab: new_dw.get(lab, m, patch)
+            AD.limit_compression_work(old_dw.get(I.rho_CC, m, patch), old_dw.get(I.temp_CC, m, patch),
+                                      new(I.vol_frac_CC), new(I.sp_vol_CC), new(I.speedSound_CC), press, delP, tmv,
+                                      keep.arrays[(I.int_eng_L_CC.name, m)], lo, hi, float(ice.cvs[m]),
+                                      float(ice.gammas[m]))
 
     # -- diagnostics: Uintah's source and rate labels (scheduled only when saved) -----------------
     def source_sinks(self, patch, matls, old_dw, new_dw):
