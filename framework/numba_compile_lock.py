@@ -5,7 +5,9 @@ the same kernels at once (the same CPU spent N times, N times the memory). A fil
 the kernel's cache index (`<index>.lock`, in numba's cache directory) serialises numba's
 Dispatcher.compile across processes: the first compiles and saves, the next finds the kernel
 in the cache. Kernels without cache=True, recursion within one process and file systems
-without flock compile as before. Importing this module installs it once.
+without flock compile as before. A kernel already in the cache is loaded without the lock (ranks
+starting together on a warm cache do not queue behind each other). Importing this module
+installs it once.
 """
 from __future__ import annotations
 
@@ -26,6 +28,16 @@ def _lock_path(disp):
     return None if index is None else index + ".lock"
 
 
+def _in_cache(disp, sig):
+    """Whether numba's cache index holds this signature (then loading needs no lock)."""
+    try:
+        cache = disp._cache
+        key = cache._index_key(sig, disp.targetctx.codegen())
+        return key in cache._cache_file._load_index()
+    except Exception:                       # numba's private API moved: take the lock
+        return False
+
+
 def _acquire(path):
     """An exclusive flock on path, or None where the file system does not allow it."""
     try:
@@ -33,7 +45,7 @@ def _acquire(path):
         fd = os.open(path, os.O_CREAT | os.O_RDWR, 0o666)
     except OSError:
         return None
-    start, pause = time.monotonic(), 0.02
+    start, pause = time.monotonic(), 0.002
     while True:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -60,7 +72,7 @@ def _install():
         if path is None or path in _held:
             return original(self, sig)
         args, _ = _sigutils.normalize_signature(sig)
-        if self.overloads.get(tuple(args)) is not None:
+        if self.overloads.get(tuple(args)) is not None or _in_cache(self, sig):
             return original(self, sig)
         fd = _acquire(path)
         if fd is None:

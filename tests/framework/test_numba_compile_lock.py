@@ -56,3 +56,23 @@ def test_without_the_lock_all_compile(tmp_path):
     """The race above is real: without the lock the processes compile side by side."""
     misses, hits = _race(tmp_path, "plain", n=2)
     assert misses >= 2
+
+
+def test_a_cached_kernel_loads_while_another_process_holds_the_lock(tmp_path):
+    """Ranks starting together on a warm cache load their kernels side by side: a process that
+    finds the kernel in the cache does not wait for the lock (held here by the test itself,
+    as a process compiling another signature of the kernel would hold it)."""
+    import fcntl
+    _race(tmp_path, "lock", n=1)                              # the kernel is now in the cache
+    work = tmp_path / "lock"
+    (lock_file,) = [p for p in (work / "cache").rglob("*.nbi.lock")]
+    fd = os.open(lock_file, os.O_RDWR)
+    fcntl.flock(fd, fcntl.LOCK_EX)
+    try:
+        env = dict(os.environ, NUMBA_CACHE_DIR=str(work / "cache"), PYTHONPATH=os.pathsep.join([str(ROOT), str(work)]))
+        p = subprocess.run([sys.executable, str(work / "driver.py"), str(ROOT), str(work / "go"), "lock"],
+                           capture_output=True, text=True, env=env, cwd=work, timeout=120)
+    finally:
+        fcntl.flock(fd, fcntl.LOCK_UN)
+        os.close(fd)
+    assert json.loads(p.stdout.strip().splitlines()[-1]) == {"misses": 0, "hits": 1}
