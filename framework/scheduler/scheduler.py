@@ -206,28 +206,35 @@ class Scheduler:
         for p in patches:
             if p.id in remote:
                 self._call(task, p, views, new_dw)
+        in_patch_order = {}
         for dep in task.computes_:
             if dep.label.vartype is VarType.REDUCTION:
                 for m in dep.matls:
                     key = (dep.label.name, m)
                     if dep.label.reduction == "sum" and dep.label.patch_order:
-                        new_dw.reductions[key] = self._sum_in_patch_order(new_dw.patch_sums.pop(key, {}), dep.label)
+                        in_patch_order[key] = (dep.label, new_dw.patch_sums.pop(key, {}))
                         continue
                     v = new_dw.reductions.get(key, new_dw.identity(dep.label))
                     new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
+        if in_patch_order:
+            new_dw.reductions.update(self._sums_in_patch_order(in_patch_order))
 
-    def _sum_in_patch_order(self, parts, label):
-        """The sum of every patch's contribution, added in patch-id order whatever rank holds
-        each patch, so saved sums are bitwise the same on any number of ranks."""
+    def _sums_in_patch_order(self, sums):
+        """{key: sum} of every patch's contribution to each of a task's sums ({key: (label,
+        {patch id: part})}), added in patch-id order whatever rank holds each patch, so saved
+        sums are bitwise the same on any number of ranks; one allgather for all of them."""
+        parts = {key: dict(p) for key, (_, p) in sums.items()}
         if self.comm.size > 1:
-            merged = {}
-            for d in self.comm.allgather(parts):
-                merged.update(d)
-            parts = merged
-        total = DataWarehouse.identity(label)
-        for pid in sorted(parts):
-            total = total + parts[pid]
-        return total
+            for d in self.comm.allgather({key: p for key, (_, p) in sums.items()}):
+                for key, p in d.items():
+                    parts[key].update(p)
+        out = {}
+        for key, (label, _) in sums.items():
+            total = DataWarehouse.identity(label)
+            for pid in sorted(parts[key]):
+                total = total + parts[key][pid]
+            out[key] = total
+        return out
 
     def _call(self, task, patch, views, new_dw):
         new_dw.reduction_patch = patch.id
