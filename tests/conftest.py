@@ -43,10 +43,10 @@ def pysus(*args, np_=1, env=None, timeout=300, cwd=None):
 
 
 def pysus_ranks(*args, np_=1, timeout=300):
-    """pysus(*args, np_=n) for the comparisons of rank counts: the one-rank run in this process
-    through framework.cli.main (what the pysus command runs on one rank: the same serial code and
-    kernels), without a second Python start-up and loading of the kernels (~1.4 CPU s a run);
-    more ranks under mpiexec. Returns a CompletedProcess (returncode, stdout, stderr)."""
+    """pysus(*args, np_=n) with the one-rank run in this process through framework.cli.main (what
+    the pysus command runs on one rank: the same serial code and kernels, its exit code, output
+    and error lines), without a second Python start-up and loading of the kernels (0.7-1.0 CPU s
+    a run); more ranks under mpiexec. Returns a CompletedProcess (returncode, stdout, stderr)."""
     if np_ > 1:
         return pysus(*args, np_=np_, timeout=timeout)
     from framework.cli import main

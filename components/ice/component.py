@@ -28,6 +28,7 @@ from framework import labels as L
 from framework.component import Component, register
 from framework.geometry import GeometryReader
 from framework.problemspec import Param
+from framework.scheduler.comm import world_rank
 from framework.task import NEW, OLD, Task
 from framework.variables import Ghost
 
@@ -86,12 +87,6 @@ class Material:
 
 
 LIMITERS = {"vanLeer": VAN_LEER, "BarthJespersen": EXTREMA}    # <advection limiter="...">
-
-
-def _rank():
-    """This process's MPI rank (notes are printed once, by rank 0)."""
-    from mpi4py import MPI
-    return MPI.COMM_WORLD.Get_rank()
 
 
 @register("ice")
@@ -413,7 +408,7 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         cv = props["specific_heat"] if cv_model is None else cv_model.cv(values["temperature"])
         p_eos = float(eos_press_eos(eos.code, params, values["density"], values["temperature"], cv, props["gamma"])[0])
         p_deck = values["pressure"]
-        if abs(p_eos - p_deck) > 1e-6 * max(abs(p_deck), abs(p_eos)) and _rank() == 0:
+        if abs(p_eos - p_deck) > 1e-6 * max(abs(p_deck), abs(p_eos)) and world_rank() == 0:
             node = go.child("pressure")
             print(f"pysus: note: {node.filename}:{node.line}: <pressure> {p_deck:g} Pa is not the EOS pressure "
                   f"{p_eos:g} Pa at <density> {values['density']:g} and <temperature> {values['temperature']:g}; "

@@ -31,6 +31,7 @@ import numpy as np
 
 from framework.grid import FACES
 from framework.gridspec import boundary_faces, sub_faces
+from framework.scheduler.comm import world_rank
 from framework.variables import VarType
 
 from . import kernels
@@ -41,8 +42,7 @@ ICE_LABELS = ("Pressure", "Density", "SpecificVol")
 
 def _note(bc, text):
     """A one-line note on a read <BCType> that is not applied (rank 0 prints it)."""
-    from mpi4py import MPI
-    if MPI.COMM_WORLD.Get_rank() == 0:
+    if world_rank() == 0:
         print(f"pysus: note: {bc.filename}:{bc.line}: {text}", file=sys.stderr)
 
 

@@ -15,10 +15,10 @@ import importlib
 import sys
 
 import numpy as np
-from mpi4py import MPI
 
 from framework.geometry import GeometryReader, Null, SmoothCylinder
 from framework.problemspec import Param
+from framework.scheduler.comm import world_rank
 
 from .constitutive import damage
 
@@ -177,7 +177,7 @@ class Material:
             return
         self.params = read_model_params(cm, self.model, kind)
         unread = [cm.child(t) for t in getattr(self.model, "UINTAH_UNREAD", ()) if cm.has(t)]
-        if unread and MPI.COMM_WORLD.Get_rank() == 0:
+        if unread and world_rank() == 0:
             print(f"pysus: note: {cm.filename}:{unread[0].line}: {', '.join('<%s>' % c.tag for c in unread)} "
                   f"of {kind} have no effect (Uintah's model does not read them either)", file=sys.stderr)
         if hasattr(self.model, "MATERIAL_PROPERTIES"):    # visco_scram: rho c_v of its heating

@@ -8,9 +8,8 @@ outputs nobody needs are pruned.
 """
 from __future__ import annotations
 
+import heapq
 from dataclasses import dataclass, field
-
-import networkx as nx
 
 from ..task import NEW, OLD, Task
 from ..variables import VarType
@@ -29,10 +28,19 @@ class CompiledGraph:
     pruned: list
     carried: set
     computed: set
-    graph: nx.DiGraph | None = None
     scrub_after: dict = field(default_factory=dict)
     scrub_old_after: dict = field(default_factory=dict)
     halo: dict = field(default_factory=dict)
+    patch_graph_of: tuple | None = field(default=None, repr=False)   # task_patch_graph's arguments
+
+    @property
+    def graph(self):
+        """The (task, patch) graph (networkx), built when first asked for (the time loop needs only
+        the task order, and a run then starts without importing networkx); None when compiled
+        without it."""
+        if self.patch_graph_of is not None and not hasattr(self, "_graph"):
+            self._graph = task_patch_graph(*self.patch_graph_of)
+        return getattr(self, "_graph", None)
 
 
 def _writers(tasks):
@@ -101,30 +109,25 @@ def compile_graph(name, tasks: list[Task], patches, level, needed: set, old_avai
             if not prev:
                 raise GraphError(f"task {t.name} modifies {dep.label.name}, which no earlier task computes")
 
-    # Task-level dependency graph (cycle check, order, pruning).
-    tg = nx.DiGraph()
-    for t in tasks:
-        tg.add_node(t)
+    # Task-level dependency graph (cycle check, order, pruning): edges (writer, reader, label).
+    edges = []
     for t in tasks:
         for dep in t.requires_:
             if dep.dw == NEW:
                 w = _bind(t, dep.label.name, writers)
                 if w is not t:
-                    tg.add_edge(w, t, label=dep.label.name)
+                    edges.append((w, t, dep.label.name))
         for dep in t.modifies_:
             prev = [w for w, _ in writers[dep.label.name] if w.order < t.order]
-            tg.add_edge(prev[-1], t, label=dep.label.name)
+            edges.append((prev[-1], t, dep.label.name))
             # readers of the earlier version must run before this modification
             for r in tasks:
                 if r is not t and r.order < t.order and any(
                         d.dw == NEW and d.label.name == dep.label.name for d in r.requires_):
-                    tg.add_edge(r, t, label=dep.label.name)
-    try:
-        order = list(nx.lexicographical_topological_sort(tg, key=lambda t: t.order))
-    except nx.NetworkXUnfeasible:
-        cyc = nx.find_cycle(tg)
-        path = " -> ".join(f"{a.name} ({tg.edges[a, b]['label']})" for a, b in cyc)
-        raise GraphError(f"cycle in graph {name}: {path} -> {cyc[0][0].name}") from None
+                    edges.append((r, t, dep.label.name))
+    order = _task_order(tasks, edges)
+    if order is None:
+        raise GraphError(_cycle_message(name, tasks, edges))
 
     # Pruning: keep tasks that (transitively) produce a needed label.
     want = set(needed)
@@ -152,8 +155,44 @@ def compile_graph(name, tasks: list[Task], patches, level, needed: set, old_avai
     cg = CompiledGraph(name, kept, pruned, carried, computed)
     _scrub_points(cg, needed if protect is None else protect)
     if build_patch_graph:
-        cg.graph = task_patch_graph(kept, writers, patches, level)
+        cg.patch_graph_of = (kept, writers, patches, level)
     return cg
+
+
+def _task_order(tasks, edges):
+    """The tasks in an order that runs every edge's writer before its reader, of the tasks ready
+    the one added first (networkx's lexicographical_topological_sort keyed by add order, Kahn's
+    algorithm with a heap); None when the edges make a cycle."""
+    after = {t: {} for t in tasks}          # a dict: each successor once, as a graph's edge
+    for w, r, _ in edges:
+        after[w][r] = None
+    waiting = dict.fromkeys(tasks, 0)
+    for t in tasks:
+        for r in after[t]:
+            waiting[r] += 1
+    ready = [(t.order, t) for t in tasks if not waiting[t]]
+    heapq.heapify(ready)
+    order = []
+    while ready:
+        _, t = heapq.heappop(ready)
+        order.append(t)
+        for r in after[t]:
+            waiting[r] -= 1
+            if not waiting[r]:
+                heapq.heappush(ready, (r.order, r))
+    return order if len(order) == len(tasks) else None
+
+
+def _cycle_message(name, tasks, edges):
+    """The error for a graph with a cycle: the cycle networkx finds, each edge with its label."""
+    import networkx as nx
+    tg = nx.DiGraph()
+    tg.add_nodes_from(tasks)
+    for w, r, label in edges:
+        tg.add_edge(w, r, label=label)
+    cyc = nx.find_cycle(tg)
+    path = " -> ".join(f"{a.name} ({tg.edges[a, b]['label']})" for a, b in cyc)
+    return f"cycle in graph {name}: {path} -> {cyc[0][0].name}"
 
 
 def _scrub_points(cg: CompiledGraph, needed: set):
@@ -171,8 +210,10 @@ def _scrub_points(cg: CompiledGraph, needed: set):
         cg.scrub_old_after.setdefault(t, []).append(lbl)
 
 
-def task_patch_graph(tasks, writers, patches, level) -> nx.DiGraph:
-    """The (task, patch) graph with edges across patches where ghosts are required."""
+def task_patch_graph(tasks, writers, patches, level):
+    """The (task, patch) graph (a networkx DiGraph) with edges across patches where ghosts are
+    required."""
+    import networkx as nx
     g = nx.DiGraph()
     g.add_nodes_from((t.name, p.id) for t in tasks for p in patches)
     edges = []

@@ -64,3 +64,33 @@ def test_dependencies_follow_numba_modules_only():
     assert all(p.endswith(".py") for p in found)
     before = deps.digest(eq)
     assert before == deps.digest(eq) and len(before) == 64
+
+
+def test_imports_come_from_the_record_of_the_same_source_and_again_from_an_edited_one(tmp_path, monkeypatch):
+    """The modules a file imports are parsed once per version of the file: a later process reads
+    the record kept under the source's sha256 (shown by a record altered by hand), an edited file
+    is parsed again."""
+    import json
+
+    from framework import numba_cache_deps as deps
+    monkeypatch.setattr(deps, "ROOT", str(tmp_path))
+    (tmp_path / "pkg").mkdir()
+    for name in ("__init__", "b", "c"):
+        _write(tmp_path / "pkg" / f"{name}.py", "")
+    a = str(tmp_path / "pkg" / "a.py")
+    _write(a, "from . import b\n")
+    assert deps._imported_modules(a) == [["pkg"], ["pkg", "b"]]
+    with open(deps._record(a)) as f:
+        record = json.load(f)
+    record["modules"] = [["pkg", "c"]]
+    with open(deps._record(a), "w") as f:
+        json.dump(record, f)
+    assert deps._imported_modules(a) == [["pkg", "c"]]
+    _write(a, "import pkg.c\n")
+    deps._source.cache_clear()
+    deps._sha256.cache_clear()
+    assert deps._imported_modules(a) == [["pkg", "c"]] and json.load(open(deps._record(a)))["sha256"] == deps._sha256(a)
+    _write(a, "from .b import x\n")
+    deps._source.cache_clear()
+    deps._sha256.cache_clear()
+    assert deps._imported_modules(a) == [["pkg", "b"], ["pkg", "b", "x"]]

@@ -3,7 +3,7 @@ import pytest
 
 from framework.problemspec import InputError, Param, ProblemSpec
 from tests.framework import decks
-from tests.conftest import pysus
+from tests.conftest import pysus_ranks
 
 
 def spec(text):
@@ -60,7 +60,7 @@ BAD = {
 def test_cli_bad_input_is_one_line_exit_2(case, deckfile):
     text, expect = BAD[case]
     path = deckfile(text)
-    r = pysus(path)
+    r = pysus_ranks(path)
     assert r.returncode == 2, r.stderr
     assert "Traceback" not in r.stderr
     lines = [l for l in r.stderr.splitlines() if l.strip()]
@@ -68,7 +68,7 @@ def test_cli_bad_input_is_one_line_exit_2(case, deckfile):
 
 
 def test_missing_deck_file_is_clean():
-    r = pysus("/nonexistent/deck.ups")
+    r = pysus_ranks("/nonexistent/deck.ups")
     assert r.returncode == 2 and "Traceback" not in r.stderr and "cannot read" in r.stderr
 
 

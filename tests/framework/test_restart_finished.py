@@ -1,19 +1,25 @@
 """Restarting a finished run: one clean line saying so, and --maxTime to continue it; the
 continued run matches the uninterrupted one (up to the step cut short at the old maxTime)."""
-import subprocess
-import sys
+import os
 from pathlib import Path
 
 import numpy as np
 
 from framework.archiver import DataArchive
+from tests.conftest import pysus_ranks
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def _pysus(cwd, *args):
-    return subprocess.run([sys.executable, "-m", "framework", "-q", *args], cwd=cwd,
-                          capture_output=True, text=True, timeout=600)
+    """`pysus -q ARGS` run from the directory cwd, in this process (tests/conftest.py pysus_ranks:
+    the command's own main, without a Python start-up and loading of the kernels a run)."""
+    here = os.getcwd()
+    os.chdir(cwd)
+    try:
+        return pysus_ranks(*args)
+    finally:
+        os.chdir(here)
 
 
 def test_restart_of_finished_run_says_so_and_maxtime_continues_it(tmp_path):

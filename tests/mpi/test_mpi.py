@@ -49,13 +49,17 @@ def serial(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def ranks(serial):
-    """ranks(n): the deck's uda on n ranks, run once for the tests that read it."""
+    """ranks(n): the deck's uda on n ranks, run once for the tests that read it; 2 ranks through
+    `pysus --np 2` (pysus relaunching itself under mpiexec), 3 through `mpiexec -n 3 pysus`."""
     udas = {}
 
     def uda(n):
         if n not in udas:
             udas[n] = serial / f"n{n}.uda"
-            r = pysus(serial / "deck.ups", "--filebase", udas[n], np_=n)
+            if n == 2:
+                r = pysus(serial / "deck.ups", "--filebase", udas[n], "--np", "2")
+            else:
+                r = pysus(serial / "deck.ups", "--filebase", udas[n], np_=n)
             assert r.returncode == 0, r.stderr
         return udas[n]
     return uda
@@ -108,11 +112,11 @@ def test_error_on_one_rank_ends_all_ranks_and_keeps_checkpoint(serial, tmp_path)
     same(serial / "one.uda", tmp_path / "resumed.uda")
 
 
-def test_np_option_relaunches_under_mpiexec(serial, tmp_path):
-    uda = tmp_path / "np.uda"
-    r = pysus(serial / "deck.ups", "--filebase", uda, "--np", "2")
-    assert r.returncode == 0, r.stderr
+def test_np_option_relaunches_under_mpiexec(serial, ranks):
+    uda = ranks(2)                  # run with --np 2
     same(serial / "one.uda", uda)
+    files = os.listdir(uda / DataArchive(uda).index["timesteps"][-1]["dir"])
+    assert sum(f.endswith(".h5") for f in files) == 2           # written by two ranks
 
 
 def test_rebalancing_keeps_the_answer(serial, tmp_path):

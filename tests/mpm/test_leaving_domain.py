@@ -9,13 +9,13 @@ import os
 import numpy as np
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus
+from tests.conftest import pysus_ranks
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "leaving_block.ups")
 
 
 def test_leaving_particles_are_reported_and_their_mass_accounted(tmp_path):
-    r = pysus(DECK, "--filebase", tmp_path / "run.uda")
+    r = pysus_ranks(DECK, "--filebase", tmp_path / "run.uda")
     assert r.returncode == 0, r.stderr
     warnings = [l for l in r.stderr.splitlines() if "left the domain" in l]
     assert len(warnings) >= 3 and all(l.startswith("pysus: warning: timestep ") for l in warnings)
@@ -34,7 +34,7 @@ def test_leaving_particles_can_stop_the_run(tmp_path):
                                      "</particles_leaving_domain>")
     deck = tmp_path / "stop.ups"
     deck.write_text(text)
-    r = pysus(deck, "--filebase", tmp_path / "run.uda")
+    r = pysus_ranks(deck, "--filebase", tmp_path / "run.uda")
     assert r.returncode == 1
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and "left the domain" in lines[0] and "particles_leaving_domain" in lines[0], r.stderr

@@ -15,7 +15,7 @@ import pytest
 
 from framework.archiver import DataArchive
 from framework.problemspec import InputError
-from tests.conftest import pysus, pysus_ranks, run_deck
+from tests.conftest import pysus_ranks, run_deck
 
 from .helpers import MPM_INPUTS, deck_text, run
 
@@ -106,7 +106,7 @@ def test_two_ranks_bitwise(tmp_path, gradient, gimp):
 def _graph(tmp_path, text):
     path = tmp_path / "g.ups"
     path.write_text(text)
-    r = pysus("--graph", path)
+    r = pysus_ranks("--graph", path)
     assert r.returncode == 0, r.stderr
     return r.stdout
 
@@ -140,7 +140,7 @@ def test_conduction_gradient_refuses_other_values(tmp_path):
     text = _with_gradient(deck_text(BAR), "later")
     path.write_text(text)
     line = text[:text.index("<conduction_gradient>later")].count("\n") + 1
-    r = pysus("-validate", path)
+    r = pysus_ranks("-validate", path)
     assert r.returncode != 0
     assert r.stderr.strip() == (f"pysus: error: {path}:{line}: <Uintah_specification/MPM/conduction_gradient> "
                                 "value 'later' is not accepted; accepted: previous, current")
@@ -158,9 +158,9 @@ def test_restart_carries_the_temperature(tmp_path, gradient):
     path = tmp_path / "bar.ups"
     path.write_text(_with_gradient(deck_text(BAR), gradient).replace('<save label="ThermalEnergy"/>',
                                            '<save label="ThermalEnergy"/><checkpoint timestepInterval="100"/>'))
-    r = pysus(path, "--filebase", tmp_path / "a.uda")
+    r = pysus_ranks(path, "--filebase", tmp_path / "a.uda")
     assert r.returncode == 0, r.stderr[-2000:]
-    r = pysus("-restart", tmp_path / "a.uda", "--filebase", tmp_path / "b.uda")
+    r = pysus_ranks("-restart", tmp_path / "a.uda", "--filebase", tmp_path / "b.uda")
     assert r.returncode == 0, r.stderr[-2000:]
     a, b = DataArchive(tmp_path / "a.uda"), DataArchive(tmp_path / "b.uda")
     assert b.times[-1] == a.times[-1]

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus, pysus_ranks, run_deck
+from tests.conftest import pysus_ranks, run_deck
 
 N, DX = 10, 0.01
 RHO_S, CV_S, T_S = 10.0, 100.0, 600.0
@@ -89,7 +89,7 @@ def test_no_heat_coefficient_no_temperature_tasks(tmp_path):
     text = deck(heat="0").replace('<save label="p.temperature"/>', "").replace('<save label="ThermalEnergy"/>', "")
     path = tmp_path / "g.ups"
     path.write_text(text)
-    r = pysus("--graph", path)
+    r = pysus_ranks("--graph", path)
     assert r.returncode == 0, r.stderr
     assert "Temperature" not in r.stdout and "computeCCTempRates" not in r.stdout and "dTdt" not in r.stdout
 
@@ -122,7 +122,7 @@ def test_gas_conduction_is_scheduled_and_conserves(tmp_path):
     text = deck(steps=200, k_gas=50.0)
     path = tmp_path / "g.ups"
     path.write_text(text)
-    r = pysus("--graph", path)
+    r = pysus_ranks("--graph", path)
     assert r.returncode == 0, r.stderr
     assert "ICE::computeHeatFlux" in r.stdout
     da = DataArchive(run_deck(text, tmp_path).archiver.dir)

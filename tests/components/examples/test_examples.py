@@ -4,7 +4,7 @@ import pytest
 
 from components.examples import gaussian
 from framework.archiver import DataArchive
-from tests.conftest import pysus, run_deck
+from tests.conftest import pysus_ranks, run_deck
 from tests.framework import decks
 
 
@@ -110,7 +110,7 @@ def test_only_the_physics_asked_for_is_scheduled(tmp_path):
 def test_graph_cli_lists_tasks_in_order(tmp_path, deckfile):
     path = deckfile(decks.heat(n=8, particles=True, extra_save='<save label="g.mass"/>'))
     dot = tmp_path / "g.dot"
-    r = pysus("--graph", path, "--dot", dot)
+    r = pysus_ranks("--graph", path, "--dot", dot)
     assert r.returncode == 0, r.stderr
     out = r.stdout
     assert out.index("advectParticles") < out.index("relocateParticles")
@@ -140,5 +140,5 @@ def test_output_opens_as_xdmf_and_hdf5(tmp_path):
 
 
 def test_progress_display_quiet_off_terminal(tmp_path, deckfile):
-    r = pysus(deckfile(decks.heat(n=8, maxTime=0.01)))
+    r = pysus_ranks(deckfile(decks.heat(n=8, maxTime=0.01)))
     assert r.returncode == 0 and "\r" not in r.stdout
