@@ -62,9 +62,17 @@ class DataWarehouse:
 
     def allocate(self, label: VarLabel, matl: int, patch, fill=0.0) -> np.ndarray:
         """Allocate and put a grid or particle variable; returns the array to fill."""
-        if label.vartype.is_grid:
-            shape = patch.alloc_shape(label.vartype) + label.shape
-        elif label.vartype is VarType.PARTICLE:
+        if label.vartype.is_grid:       # put's checks without its shape check: the shape is right
+            a = np.empty(patch.alloc_shape(label.vartype) + label.shape, dtype=label.dtype)
+            if fill is not None:
+                a.fill(fill)
+            key = (label.name, matl, patch.id)
+            if key in self.grid:
+                self._put_twice(label, matl, patch)
+            self.grid[key] = a
+            self.halo_valid.pop((label.name, matl), None)
+            return a
+        if label.vartype is VarType.PARTICLE:
             shape = (self.num_particles(matl, patch),) + label.shape
         else:
             raise WarehouseError(f"cannot allocate {label.name} ({label.vartype.value})")
@@ -78,8 +86,7 @@ class DataWarehouse:
         store = self._store(label)
         key = (label.name, matl, patch.id)
         if key in store:
-            raise WarehouseError(f"{label.name} (material {matl}, patch {patch.id}) put twice: "
-                                 "the warehouse is single-assignment; declare modifies instead")
+            self._put_twice(label, matl, patch)
         if label.vartype.is_grid:
             want = patch.alloc_shape(label.vartype) + label.shape
             if value.shape != want:
@@ -91,6 +98,11 @@ class DataWarehouse:
         store[key] = value
         self.halo_valid.pop((label.name, matl), None)
 
+    @staticmethod
+    def _put_twice(label, matl, patch):
+        raise WarehouseError(f"{label.name} (material {matl}, patch {patch.id}) put twice: "
+                             "the warehouse is single-assignment; declare modifies instead")
+
     def replace(self, label: VarLabel, matl: int, patch, value):
         """Swap in a new array for a variable the caller declared to modify."""
         self._store(label)[(label.name, matl, patch.id)] = value
@@ -98,7 +110,7 @@ class DataWarehouse:
 
     def get(self, label: VarLabel, matl: int, patch) -> np.ndarray:
         try:
-            return self._store(label)[(label.name, matl, patch.id)]
+            return (self.grid if label.vartype.is_grid else self._store(label))[(label.name, matl, patch.id)]
         except KeyError:
             raise WarehouseError(f"{label.name} (material {matl}, patch {patch.id}) is not in the "
                                  f"warehouse of generation {self.generation}") from None
