@@ -9,6 +9,8 @@ becomes the old one of step n+1.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .labels import VarLabel
@@ -20,6 +22,18 @@ _COMBINE = {"min": min, "max": max, "sum": lambda a, b: a + b}
 
 class WarehouseError(Exception):
     pass
+
+
+def _filled(shape, dtype, fill):
+    """A new array of this shape filled with fill (None: left unset); a fill of +0 comes zeroed
+    from the allocator (np.zeros), in half the time of np.empty and fill on a small array."""
+    if fill is None:
+        return np.empty(shape, dtype=dtype)
+    if fill == 0 and math.copysign(1.0, fill) > 0.0:
+        return np.zeros(shape, dtype=dtype)
+    a = np.empty(shape, dtype=dtype)
+    a.fill(fill)
+    return a
 
 
 class DataWarehouse:
@@ -63,9 +77,7 @@ class DataWarehouse:
     def allocate(self, label: VarLabel, matl: int, patch, fill=0.0) -> np.ndarray:
         """Allocate and put a grid or particle variable; returns the array to fill."""
         if label.vartype.is_grid:       # put's checks without its shape check: the shape is right
-            a = np.empty(patch.alloc_shape(label.vartype) + label.shape, dtype=label.dtype)
-            if fill is not None:
-                a.fill(fill)
+            a = _filled(patch.alloc_shape(label.vartype) + label.shape, label.dtype, fill)
             key = (label.name, matl, patch.id)
             if key in self.grid:
                 self._put_twice(label, matl, patch)
@@ -76,9 +88,7 @@ class DataWarehouse:
             shape = (self.num_particles(matl, patch),) + label.shape
         else:
             raise WarehouseError(f"cannot allocate {label.name} ({label.vartype.value})")
-        a = np.empty(shape, dtype=label.dtype)
-        if fill is not None:
-            a.fill(fill)
+        a = _filled(shape, label.dtype, fill)
         self.put(label, matl, patch, a)
         return a
 
