@@ -9,6 +9,8 @@ becomes the old one of step n+1.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .labels import VarLabel
@@ -20,6 +22,18 @@ _COMBINE = {"min": min, "max": max, "sum": lambda a, b: a + b}
 
 class WarehouseError(Exception):
     pass
+
+
+def _filled(shape, dtype, fill):
+    """A new array of this shape filled with fill (None: left unset); a fill of +0 comes zeroed
+    from the allocator (np.zeros), in half the time of np.empty and fill on a small array."""
+    if fill is None:
+        return np.empty(shape, dtype=dtype)
+    if fill == 0 and math.copysign(1.0, fill) > 0.0:
+        return np.zeros(shape, dtype=dtype)
+    a = np.empty(shape, dtype=dtype)
+    a.fill(fill)
+    return a
 
 
 class DataWarehouse:
@@ -62,15 +76,19 @@ class DataWarehouse:
 
     def allocate(self, label: VarLabel, matl: int, patch, fill=0.0) -> np.ndarray:
         """Allocate and put a grid or particle variable; returns the array to fill."""
-        if label.vartype.is_grid:
-            shape = patch.alloc_shape(label.vartype) + label.shape
-        elif label.vartype is VarType.PARTICLE:
+        if label.vartype.is_grid:       # put's checks without its shape check: the shape is right
+            a = _filled(patch.alloc_shape(label.vartype) + label.shape, label.dtype, fill)
+            key = (label.name, matl, patch.id)
+            if key in self.grid:
+                self._put_twice(label, matl, patch)
+            self.grid[key] = a
+            self.halo_valid.pop((label.name, matl), None)
+            return a
+        if label.vartype is VarType.PARTICLE:
             shape = (self.num_particles(matl, patch),) + label.shape
         else:
             raise WarehouseError(f"cannot allocate {label.name} ({label.vartype.value})")
-        a = np.empty(shape, dtype=label.dtype)
-        if fill is not None:
-            a.fill(fill)
+        a = _filled(shape, label.dtype, fill)
         self.put(label, matl, patch, a)
         return a
 
@@ -78,8 +96,7 @@ class DataWarehouse:
         store = self._store(label)
         key = (label.name, matl, patch.id)
         if key in store:
-            raise WarehouseError(f"{label.name} (material {matl}, patch {patch.id}) put twice: "
-                                 "the warehouse is single-assignment; declare modifies instead")
+            self._put_twice(label, matl, patch)
         if label.vartype.is_grid:
             want = patch.alloc_shape(label.vartype) + label.shape
             if value.shape != want:
@@ -91,6 +108,11 @@ class DataWarehouse:
         store[key] = value
         self.halo_valid.pop((label.name, matl), None)
 
+    @staticmethod
+    def _put_twice(label, matl, patch):
+        raise WarehouseError(f"{label.name} (material {matl}, patch {patch.id}) put twice: "
+                             "the warehouse is single-assignment; declare modifies instead")
+
     def replace(self, label: VarLabel, matl: int, patch, value):
         """Swap in a new array for a variable the caller declared to modify."""
         self._store(label)[(label.name, matl, patch.id)] = value
@@ -98,7 +120,7 @@ class DataWarehouse:
 
     def get(self, label: VarLabel, matl: int, patch) -> np.ndarray:
         try:
-            return self._store(label)[(label.name, matl, patch.id)]
+            return (self.grid if label.vartype.is_grid else self._store(label))[(label.name, matl, patch.id)]
         except KeyError:
             raise WarehouseError(f"{label.name} (material {matl}, patch {patch.id}) is not in the "
                                  f"warehouse of generation {self.generation}") from None

@@ -55,7 +55,13 @@ class LoadBalancer:
         self.version = 0
 
     def local_patches(self):
-        return [p for p in self.level.patches if self.rank_of[p.id] == self.rank]
+        """This rank's patches, in level order (kept until the assignment changes: the
+        scheduler asks for them at every task)."""
+        kept = getattr(self, "_local", None)
+        if kept is None or kept[0] != self.version or kept[1] is not self.rank_of or kept[2] is not self.level.patches:
+            kept = self._local = (self.version, self.rank_of, self.level.patches,
+                                  [p for p in self.level.patches if self.rank_of[p.id] == self.rank])
+        return kept[3]
 
     def due(self, timestep: int) -> bool:
         return self.interval > 0 and timestep > 0 and timestep % self.interval == 0

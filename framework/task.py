@@ -118,11 +118,11 @@ class TaskView:
 
     __slots__ = ("dw", "task", "which", "reads", "writes", "puts", "ghosted")
 
-    def __init__(self, dw, task: Task, which: str):
+    def __init__(self, dw, task: Task, which: str, declared=None):
         self.dw = dw
         self.task = task
         self.which = which
-        self.reads, self.ghosted, self.writes = _declared(task, which)
+        self.reads, self.ghosted, self.writes = declared if declared is not None else _declared(task, which)
 
     def _fail(self, what, label, matl):
         return TaskError(f"task {self.task.name} {what} {label.name} (material {matl}) in the "
@@ -141,7 +141,9 @@ class TaskView:
     # -- reads ---------------------------------------------------------------------
     def get(self, label: VarLabel, matl: int, patch):
         """The variable; grid arrays include the halo, particles include declared ghosts."""
-        self._check_read(label, matl)
+        m = self.reads.get(label.name)          # _check_read, inline: the most frequent call of a task
+        if m is None or (matl not in m and matl != -1 and m):
+            raise self._fail("reads", label, matl)
         if label.vartype is VarType.PARTICLE and label.name in self.ghosted:
             a = self.dw.ghost_particles[(label.name, matl, patch.id, self.ghosted[label.name])]
             return a if isinstance(a, np.ndarray) else a.merged()
@@ -188,7 +190,9 @@ class TaskView:
 
     # -- writes --------------------------------------------------------------------
     def allocate(self, label: VarLabel, matl: int, patch, fill=0.0):
-        self._check_write(label, matl)
+        m = self.writes.get(label.name)         # _check_write, inline
+        if m is None or (matl not in m and matl != -1 and m):
+            raise self._fail("writes", label, matl)
         return self.dw.allocate(label, matl, patch, fill)
 
     def put(self, label: VarLabel, matl: int, patch, value):

@@ -523,6 +523,9 @@ class BoundaryConditions:
         self.lodi = table.pop("LODI", None)
         self.subfaces = table.pop("subfaces", {})
         self._sel = {}                  # (patch id, face, sub-faces, array box): each boundary cell's part
+        self._scalar_calls = {}         # (patch id, variable, material, Boxes, copy, dims): scalar()'s kernel calls
+        self._velocity_parts = {}       # (patch id, material, Boxes, dims): velocity()'s conditions per face
+        self._face_velocity_parts = {}  # (patch id, direction, material, halo): face_velocity()'s
         self.table = table
         self.level = level
 
@@ -572,6 +575,17 @@ class BoundaryConditions:
 
         copy=True: zero-gradient copy whatever the condition (specific volume at t = 0).
         """
+        key = (patch.id, var, m, b, copy, tuple(dims))
+        calls = self._scalar_calls.get(key)
+        if calls is None:
+            calls = self._scalar_calls[key] = self._scalar_plan(patch, var, m, b, copy, dims)
+        for d, s, kind, v, dx, lo, hi, olo, ohi, sel, want in calls:
+            bc_scalar_part(q, d, s, kind, v, dx, lo, hi, olo, ohi, sel, want)
+
+    def _scalar_plan(self, patch, var, m, b, copy, dims):
+        """The bc_scalar_part calls of scalar() but its array, kept per patch, variable, material
+        and Boxes: a task fills a dozen arrays' extra cells a step."""
+        calls = []
         for name, d, s in self._faces(patch):
             if not dims[d]:
                 continue
@@ -581,30 +595,32 @@ class BoundaryConditions:
                     continue
                 v = 0.0 if value is None else value
                 if kind == DIRICHLET:
-                    bc_scalar_part(q, d, s, 1, v, 0.0, b.lo, b.hi, b.olo, b.ohi, sel, want)
+                    calls.append((d, s, 1, v, 0.0, b.lo, b.hi, b.olo, b.ohi, sel, want))
                 else:
-                    bc_scalar_part(q, d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], b.lo, b.hi, b.olo,
-                                   b.ohi, sel, want)
+                    calls.append((d, s, 0, v if kind == NEUMANN else 0.0, self.level.dx[d], b.lo, b.hi, b.olo, b.ohi,
+                                  sel, want))
+        return calls
 
     def velocity(self, patch, q, m, b, initial=False, dims=(True, True, True)):
         """vel_CC's extra cells (of the faces of the directions where dims is true). initial: at
         t = 0 the inlet profiles leave them as the initialization made them (Uintah sets those
         only from the first step)."""
         lv = self.level
-        for name, d, s in self._faces(patch):
-            if not dims[d]:
+        key = (patch.id, m, b, tuple(dims))
+        parts = self._velocity_parts.get(key)
+        if parts is None:
+            parts = self._velocity_parts[key] = [
+                (d, s, kind, np.zeros(3) if value is None else value, sel, want)
+                for name, d, s in self._faces(patch) if dims[d]
+                for kind, value, sel, want in self._parts(patch, name, "Velocity", m) if kind != LODI]
+        for d, s, kind, v, sel, want in parts:
+            if kind in INLET:
+                if not initial:
+                    ip = self.inlet
+                    bc_inlet(q, d, s, kind, v, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
+                             lv.dx, b.lo, b.hi, b.olo, b.ohi, sel, want)
                 continue
-            for kind, value, sel, want in self._parts(patch, name, "Velocity", m):
-                v = np.zeros(3) if value is None else value
-                if kind == LODI:
-                    continue
-                if kind in INLET:
-                    if not initial:
-                        ip = self.inlet
-                        bc_inlet(q, d, s, kind, v, ip.vdir, ip.params(), lv.anchor + np.array(patch.lo) * lv.dx,
-                                 lv.dx, b.lo, b.hi, b.olo, b.ohi, sel, want)
-                    continue
-                bc_vector_part(q, d, s, kind, v, lv.dx[d], b.lo, b.hi, b.olo, b.ohi, sel, want)
+            bc_vector_part(q, d, s, kind, v, lv.dx[d], b.lo, b.hi, b.olo, b.ohi, sel, want)
 
     def hydrostatic_pressure(self, patch, press, sp_vol, g, b):
         """Uintah's HydrostaticPressureAdjustment of press_CC's extra cells (after the first
@@ -678,17 +694,20 @@ class BoundaryConditions:
 
     def face_velocity(self, patch, uf, d, m, flo, fhi):
         """Boundary faces of direction d: Dirichlet -> value[d], symmetry and FreeSlipWall -> 0."""
-        for s, at in ((0, patch.at_low[d]), (1, patch.at_high[d])):
-            if not at:
-                continue
+        vt = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)[d]
+        key = (patch.id, d, m, patch.level.halo[vt])       # the sub-faces' cells depend on the halo
+        parts = self._face_velocity_parts.get(key)
+        if parts is None:
+            parts = self._face_velocity_parts[key] = [
+                (s, part) for s, at in ((0, patch.at_low[d]), (1, patch.at_high[d])) if at
+                for part in self._parts(patch, FACE_NAMES[2 * d + s], "Velocity", m, vt)]
+        for s, (kind, value, sel, want) in parts:
             idx = flo[d] if s == 0 else fhi[d] - 1
-            vt = (VarType.SFCX, VarType.SFCY, VarType.SFCZ)[d]
-            for kind, value, sel, want in self._parts(patch, FACE_NAMES[2 * d + s], "Velocity", m, vt):
-                if kind == DIRICHLET:
-                    bc_face_velocity_part(uf, d, idx, float(value[d]), sel, want)
-                elif kind in (SYMMETRY, FREE_SLIP):
-                    bc_face_velocity_part(uf, d, idx, 0.0, sel, want)
-                elif kind in INLET:
-                    ip, lv = self.inlet, self.level
-                    bc_inlet_face(uf, d, idx, kind, float(value[d]), ip.vdir, ip.params(), lv.anchor, lv.dx,
-                                  int(patch.low_index(vt)[ip.vdir]), sel, want)
+            if kind == DIRICHLET:
+                bc_face_velocity_part(uf, d, idx, float(value[d]), sel, want)
+            elif kind in (SYMMETRY, FREE_SLIP):
+                bc_face_velocity_part(uf, d, idx, 0.0, sel, want)
+            elif kind in INLET:
+                ip, lv = self.inlet, self.level
+                bc_inlet_face(uf, d, idx, kind, float(value[d]), ip.vdir, ip.params(), lv.anchor, lv.dx,
+                              int(patch.low_index(vt)[ip.vdir]), sel, want)

@@ -5,6 +5,7 @@ bc.py) and puts its results. Index boxes of a patch are cached in `_boxes`.
 """
 from __future__ import annotations
 
+import math
 import operator
 
 import numpy as np
@@ -95,7 +96,7 @@ class IceTasks:
         """A work array of this shape: a view of one buffer per name, kept between calls and
         grown when a larger patch needs it (tasks run one at a time on a rank)."""
         cache = self.__dict__.setdefault("_scratch_arrays", {})
-        size = int(np.prod(shape))
+        size = int(math.prod(shape))
         a = cache.get(name)
         if a is None or a.size < size:
             a = cache[name] = np.empty(size)

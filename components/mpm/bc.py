@@ -138,6 +138,7 @@ class GridBCs:
                 named[geom] = ms
         self.sub_faces = list(named)
         self._masks = {}
+        self._apply_ops = {}            # (patch id, material, symmetric_only, shape, halo, mirror_extra): apply's work
 
         def place(items, nvals):
             out = []
@@ -191,9 +192,35 @@ class GridBCs:
         """Apply every condition of this material on the faces `patch` touches."""
         if not self.items:
             return
-        lo_all, hi_all = (0, 0, 0), gvs.shape[:3]
+        key = (patch.id, matl, symmetric_only, gvs.shape, patch.level.halo[VarType.NC], self.mirror_extra)
+        ops = self._apply_ops.get(key)
+        if ops is None:
+            ops = self._apply_ops[key] = self._ops(patch, matl, gvs.shape, symmetric_only)
+        for d, lo, hi, comps, value, mirrors, sl, mask in ops:
+            if mask is None:
+                kernels.velocity_bc(gvs, gacc, gvel, dt, lo, hi, comps, value)
+                for sl_e, sl_s in mirrors:
+                    # extra node beyond the face takes the velocity of the node as far inside, its d
+                    # component negated (Uintah's Symmetric condition for GIMP and CPDI)
+                    v = gvs[sl_s].copy()
+                    v[..., d] = -v[..., d]
+                    gvs[sl_e] = v
+                    gacc[sl_e] = (v - gvel[sl_e]) / dt
+                continue
+            vs, acc, v = gvs[sl], gacc[sl], gvel[sl]
+            for c in comps:     # velocity_bc on the selected nodes
+                vs[..., c][mask] = value[c]
+                acc[..., c][mask] = (value[c] - v[..., c][mask]) / dt
+
+    def _ops(self, patch, matl, shape, symmetric_only):
+        """apply's work on one patch and material for arrays of this shape, kept (per halo):
+        per condition its direction, its node box [lo, hi) and components for velocity_bc with the
+        (extra node, mirrored node) slices of a symmetry face (mirror_extra), or the box's slices
+        and the node mask of a sub-face with the components it sets."""
+        lo_all, hi_all = (0, 0, 0), shape[:3]
         own_lo, own_hi = patch.owned_local(VarType.NC)
         base = patch.low_index(VarType.NC)
+        ops = []
         for d, s, comps, value, mats, where in self.items:
             if matl not in mats or not (patch.at_high if s else patch.at_low)[d]:
                 continue
@@ -213,33 +240,25 @@ class GridBCs:
             lo = np.maximum(lo, lo_all)
             hi = np.minimum(hi, hi_all)
             if where is None:
-                kernels.velocity_bc(gvs, gacc, gvel, dt, np.asarray(lo, np.int64), np.asarray(hi, np.int64),
-                                    comps, value)
-                if self.mirror_extra and comps.sum() == 1 and not value.any():
-                    self._mirror(gvs, gacc, gvel, dt, d, s, lo, hi, face)
+                mirrors = self._mirrors(shape, d, s, lo, hi, face) \
+                    if self.mirror_extra and comps.sum() == 1 and not value.any() else []
+                ops.append((d, np.asarray(lo, np.int64), np.asarray(hi, np.int64), comps, value, mirrors, None, None))
                 continue
             sl = tuple(slice(a, b) for a, b in zip(lo, hi))
-            mask = self._where(patch, where, d, lo, hi)
-            vs, acc, v = gvs[sl], gacc[sl], gvel[sl]
-            for c in np.flatnonzero(comps):     # velocity_bc on the selected nodes
-                vs[..., c][mask] = value[c]
-                acc[..., c][mask] = (value[c] - v[..., c][mask]) / dt
+            ops.append((d, lo, hi, list(np.flatnonzero(comps)), value, None, sl, self._where(patch, where, d, lo, hi)))
+        return ops
 
     @staticmethod
-    def _mirror(gvs, gacc, gvel, dt, d, s, lo, hi, face):
-        """Extra node e beyond the face node takes the velocity of the node as far inside, its
-        d component negated (Uintah's Symmetric condition for GIMP and CPDI)."""
-        extra = range(lo[d], face) if s == 0 else range(face + 1, hi[d])
-        for e in extra:
+    def _mirrors(shape, d, s, lo, hi, face):
+        """(extra node, node as far inside) slices of the extra nodes e beyond the face node."""
+        out = []
+        for e in (range(lo[d], face) if s == 0 else range(face + 1, hi[d])):
             src = 2 * face - e
-            if not 0 <= src < gvs.shape[d]:
+            if not 0 <= src < shape[d]:
                 continue
-            sl_e = tuple(slice(lo[c], hi[c]) if c != d else e for c in range(3))
-            sl_s = tuple(slice(lo[c], hi[c]) if c != d else src for c in range(3))
-            v = gvs[sl_s].copy()
-            v[..., d] = -v[..., d]
-            gvs[sl_e] = v
-            gacc[sl_e] = (v - gvel[sl_e]) / dt
+            out.append((tuple(slice(lo[c], hi[c]) if c != d else e for c in range(3)),
+                        tuple(slice(lo[c], hi[c]) if c != d else src for c in range(3))))
+        return out
 
     def _face_nodes(self, patch, d, s, shape):
         """The slices of a patch's node array on face (d, s): the face nodes and the extra

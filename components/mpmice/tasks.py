@@ -40,6 +40,7 @@ _REDIRECT = {I.rho_CC.name: I.rho_CC, I.vel_CC.name: I.vel_CC, I.temp_CC.name: I
 THETA_TRACE = 1e-6      # fluids all below this: they take the heat-exchanging solids' temperature (step 10)
 _NO3 = np.zeros((1, 1, 1, 3))
 _NO1 = np.zeros((1, 1, 1))
+_ZERO3 = np.zeros(3)            # _extra_vector's value: its kinds (symmetry, zero gradient) add nothing
 
 
 class StartOfStep:
@@ -90,21 +91,28 @@ class MPMICETasks:
 
     # -- helpers ---------------------------------------------------------------------------
     def _geom(self, patch):
-        """(boxes, cc_low, node_low, dims, first and last domain node) of a patch."""
+        """(boxes, cc_low, node_low, dims, first and last domain node) of a patch, kept per Boxes
+        (a patch and the level's halos)."""
         b = self.ice.boxes(patch)
-        lv = patch.level
-        inner = lv.interior_box(NC)
-        return (b, np.array(patch.low_index(CC), np.int64), np.array(patch.low_index(NC), np.int64),
-                self.dims_i, np.array(inner[0], np.int64), np.array(inner[1], np.int64) - 1)
+        cache = self.__dict__.setdefault("_geom_arrays", {})
+        geom = cache.get(b)
+        if geom is None:
+            inner = patch.level.interior_box(NC)
+            geom = cache[b] = (b, np.array(patch.low_index(CC), np.int64), np.array(patch.low_index(NC), np.int64),
+                               self.dims_i, np.array(inner[0], np.int64), np.array(inner[1], np.int64) - 1)
+        return geom
 
     def _sym(self, m):
-        """Per direction: is the low / high domain face a symmetry plane for material m."""
-        lo, hi = np.zeros(3, np.bool_), np.zeros(3, np.bool_)
-        for name, face in self.ice.bcs.table.items():
-            i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
-            if face["Velocity"][m][0] == SYMMETRY:
-                (hi if i % 2 else lo)[i // 2] = True
-        return lo, hi
+        """Per direction: is the low / high domain face a symmetry plane for material m (kept)."""
+        cache = self.__dict__.setdefault("_sym_faces", {})
+        if m not in cache:
+            lo, hi = np.zeros(3, np.bool_), np.zeros(3, np.bool_)
+            for name, face in self.ice.bcs.table.items():
+                i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
+                if face["Velocity"][m][0] == SYMMETRY:
+                    (hi if i % 2 else lo)[i // 2] = True
+            cache[m] = lo, hi
+        return cache[m]
 
     def _nc_to_cc(self, patch, m, gmass, gvol, gvel, cmass, spv, vel, rho):
         b, cc_low, node_low, dims, n_lo, n_hi = self._geom(patch)
@@ -124,12 +132,17 @@ class MPMICETasks:
     def _extra_vector(self, patch, q, m, b, only_symmetry=False):
         """Extra cells of a CC vector: reflected on symmetry planes, copied elsewhere (unless
         only_symmetry)."""
-        for name in patch.boundary_faces:
-            i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
-            kind = SYMMETRY if self.ice.bcs.table[name]["Velocity"][m][0] == SYMMETRY else NEUMANN
-            if only_symmetry and kind != SYMMETRY:
-                continue
-            bc_vector(q, i // 2, i % 2, kind, np.zeros(3), 0.0, b.lo, b.hi, b.olo, b.ohi)
+        key = (patch.id, m, only_symmetry)
+        faces = self.__dict__.setdefault("_extra_vector_faces", {}).get(key)
+        if faces is None:
+            faces = self._extra_vector_faces[key] = []
+            for name in patch.boundary_faces:
+                i = ("x-", "x+", "y-", "y+", "z-", "z+").index(name)
+                kind = SYMMETRY if self.ice.bcs.table[name]["Velocity"][m][0] == SYMMETRY else NEUMANN
+                if not (only_symmetry and kind != SYMMETRY):
+                    faces.append((i // 2, i % 2, kind))
+        for d, s, kind in faces:
+            bc_vector(q, d, s, kind, _ZERO3, 0.0, b.lo, b.hi, b.olo, b.ohi)
 
     # -- initialization: the fluids from their geometry (or what the particles leave) -------
     def initialize_fluids(self, patch, matls, old_dw, new_dw):

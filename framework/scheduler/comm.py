@@ -130,6 +130,9 @@ class Exchange:
                 todo.append((label, g, m))
         for label, g, m in todo:
             plan = ex.grid_plan(label.vartype, g)
+            if not (plan.local or plan.sends or plan.recvs):      # no ghost of this rank's patches is another's
+                dw.halo_valid[(label.name, m)] = g
+                continue
             for p, q, dst, src in plan.local:
                 dw.get(label, m, p)[dst] = dw.get(label, m, q)[src]
             for r, items in plan.sends.items():
@@ -183,8 +186,12 @@ class Exchange:
             return
         idl = ex.particle_id_label
         outgoing, sources, ghosts, send = {}, set(), {}, {}
-        for (g, m), lbls in labels.items():
+        for (g, m), lbls in list(labels.items()):
             plan = particle_plan(ex, g)
+            if not (plan.boxes or plan.sources):      # no patch of this rank sends or gets ghosts of width g
+                self._store_own(g, m, lbls)
+                del labels[(g, m)]
+                continue
             sources |= plan.sources
             self.remote_patches |= plan.remote_dst
             # the ID order of owned+ghost particles is found once per warehouse, then reused
@@ -202,6 +209,17 @@ class Exchange:
                 remote.setdefault(key, []).append(data)
         for (g, m), lbls in labels.items():
             self._store_ghosts(g, m, lbls, send[(g, m)], ghosts, remote)
+
+    def _store_own(self, g, m, lbls):
+        """_store_ghosts where no local patch has ghosts: each holds its own particles only."""
+        dw = self.dw
+        first = (m, g) not in dw.ghost_seen
+        dw.ghost_seen.add((m, g))
+        for p in self.ex.local_patches:
+            if first:
+                dw.ghost_order[(m, p.id, g)] = (None, None)
+            for l in dict.fromkeys(lbls):
+                dw.ghost_particles[(l.name, m, p.id, g)] = dw.get(l, m, p)
 
     def _store_ghosts(self, g, m, lbls, sent, ghosts, remote):
         """Put (owned, ghost, ID order) of every label of (g, m) in the warehouse, for each local patch."""

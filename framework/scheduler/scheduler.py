@@ -12,7 +12,7 @@ from collections import defaultdict
 
 from ..datawarehouse import DataWarehouse
 from ..labels import delT as delT_label
-from ..task import NEW, OLD, PARENT_NEW, PARENT_OLD, Task, TaskError, TaskView
+from ..task import NEW, OLD, PARENT_NEW, PARENT_OLD, Task, TaskError, TaskView, _declared
 from ..variables import VarType
 from .comm import Comm, Exchange, GridPlan
 from .compile import CompiledGraph, GraphError, compile_graph, halo_widths
@@ -32,6 +32,49 @@ def _ghosted(task: Task, which: str):
     return cache[key]
 
 
+_TASK, _LOOP, _RELOCATION = 0, 1, 2
+
+
+def _graph_plan(cg: CompiledGraph, keep):
+    """(task, kind, labels to scrub from the new and the old warehouse after it) for each task of
+    a compiled graph, kept on the graph per set of kept labels: execute runs it every step."""
+    keep = frozenset(keep)
+    key = (keep, len(cg.tasks))
+    cache = cg.__dict__.setdefault("_plans", {})
+    plan = cache.get(key)
+    if plan is None:
+        plan = cache[key] = [
+            (task, _RELOCATION if hasattr(task, "relocation") else _LOOP if isinstance(task, Loop) else _TASK,
+             frozenset(name for name in cg.scrub_after.get(task, ()) if name not in keep),
+             frozenset(cg.scrub_old_after.get(task, ()))) for task in cg.tasks]
+    return plan
+
+
+def _task_plan(task: Task, loop_body: bool):
+    """What running a task needs at every step, from its declarations: its views' declarations
+    (old, new and, in a loop body, the parents' warehouses), its ghosted requirements per
+    warehouse (index into those four, grid, particles), the grid, particle and per-patch
+    computes that each patch must have put (store index, name, materials) and its reduction
+    computes. Kept on the task until a declaration is added."""
+    key = (loop_body, len(task.requires_), len(task.computes_), len(task.modifies_))
+    cache = task.__dict__.setdefault("_run_plan", {})
+    plan = cache.get(key)
+    if plan is None:
+        which = (OLD, NEW, PARENT_OLD, PARENT_NEW) if loop_body else (OLD, NEW)
+        decl = tuple(_declared(task, w) for w in which)
+        ghosted = [(i, *_ghosted(task, w)) for i, w in enumerate(which)]
+        ghosted = [g for g in ghosted if g[1] or g[2]]
+        checks, reductions = [], []
+        for dep in task.computes_:
+            vt = dep.label.vartype
+            if vt is VarType.REDUCTION:
+                reductions.append(dep)
+            else:
+                checks.append((0 if vt.is_grid else 1 if vt is VarType.PARTICLE else 2, dep.label.name, dep.matls))
+        plan = cache[key] = (decl, ghosted, checks, reductions)
+    return plan
+
+
 class Scheduler:
     """What a component schedules into, and what runs the compiled graphs."""
 
@@ -44,7 +87,8 @@ class Scheduler:
         self.position_label = None
         self.particle_id_label = None
         self.timing: dict = defaultdict(float)
-        self.overhead: dict = defaultdict(float)   # time in execute outside the task bodies: ghost exchange, relocation
+        # time in execute outside the task bodies: ghost exchange, relocation
+        self.overhead: dict = defaultdict(float, {"ghost exchange": 0.0})
         self._ghost_wall = 0.0
         self.calls: dict = defaultdict(int)
         self.particles_removed = 0
@@ -158,64 +202,68 @@ class Scheduler:
         """Run every task of the graph on this rank's patches (parents: a loop body's timestep DWs)."""
         if old_dw is not None:
             new_dw.pre_counts = dict(old_dw.nparticles)
-        for task in cg.tasks:
+        for task, kind, scrub_new, scrub_old in _graph_plan(cg, keep):
             t0 = time.perf_counter()
-            ghost0 = self._ghost_wall
-            if hasattr(task, "relocation"):
+            if kind == _RELOCATION:
                 for spec in task.relocation:
                     relocate(self, spec, new_dw)
                 self.overhead["relocation"] += time.perf_counter() - t0
-            elif isinstance(task, Loop):
+            elif kind == _LOOP:
                 run_loop(self, task, old_dw, new_dw)     # its body's tasks have their own rows
             else:
+                ghost0 = self._ghost_wall
                 self._run(task, old_dw, new_dw, parents)
                 self.timing[task.name] += time.perf_counter() - t0 - (self._ghost_wall - ghost0)
             self.calls[task.name] += 1
-            new_dw.scrub_all([name for name in cg.scrub_after.get(task, ()) if name not in keep])
-            if old_dw is not None and self.scrub_old:
-                old_dw.scrub_all(cg.scrub_old_after.get(task, ()))
+            if scrub_new:
+                new_dw.scrub_all(scrub_new)
+            if scrub_old and old_dw is not None and self.scrub_old:
+                old_dw.scrub_all(scrub_old)
 
     def _run(self, task: Task, old_dw, new_dw, parents=None):
-        ov = TaskView(old_dw, task, OLD) if old_dw is not None else None
-        nv = TaskView(new_dw, task, NEW)
+        decl, ghosted, checks, reductions = _task_plan(task, parents is not None)
+        ov = TaskView(old_dw, task, OLD, decl[0]) if old_dw is not None else None
+        nv = TaskView(new_dw, task, NEW, decl[1])
         views = (ov, nv)
-        dws = [(OLD, old_dw), (NEW, new_dw)]
+        dws = (old_dw, new_dw)
         if parents is not None:
-            views = (ov, nv, TaskView(parents[0], task, PARENT_OLD), TaskView(parents[1], task, PARENT_NEW))
-            dws += [(PARENT_OLD, parents[0]), (PARENT_NEW, parents[1])]
-        exchanges = []
-        g0 = time.perf_counter()
-        for which, dw in dws:
-            grid, parts = _ghosted(task, which)
-            if grid or parts:
-                ex = Exchange(self, dw, grid, parts)
+            views = (ov, nv, TaskView(parents[0], task, PARENT_OLD, decl[2]),
+                     TaskView(parents[1], task, PARENT_NEW, decl[3]))
+            dws = (old_dw, new_dw, parents[0], parents[1])
+        patches = self.local_patches
+        if not ghosted:
+            for p in patches:
+                self._call(task, p, views, new_dw, checks)
+        else:
+            exchanges = []
+            g0 = time.perf_counter()
+            for i, grid, parts in ghosted:
+                ex = Exchange(self, dws[i], grid, parts)
                 ex.begin()
                 exchanges.append(ex)
-        g1 = time.perf_counter()
-        remote = set().union(*(ex.remote_patches for ex in exchanges)) if exchanges else set()
-        patches = self.local_patches
-        for p in patches:
-            if p.id not in remote:
-                self._call(task, p, views, new_dw)
-        g2 = time.perf_counter()
-        for ex in exchanges:
-            ex.finish()
-        ghost = (g1 - g0) + (time.perf_counter() - g2)
-        self._ghost_wall += ghost
-        self.overhead["ghost exchange"] += ghost
-        for p in patches:
-            if p.id in remote:
-                self._call(task, p, views, new_dw)
+            g1 = time.perf_counter()
+            remote = set().union(*(ex.remote_patches for ex in exchanges))
+            for p in patches:
+                if p.id not in remote:
+                    self._call(task, p, views, new_dw, checks)
+            g2 = time.perf_counter()
+            for ex in exchanges:
+                ex.finish()
+            ghost = (g1 - g0) + (time.perf_counter() - g2)
+            self._ghost_wall += ghost
+            self.overhead["ghost exchange"] += ghost
+            for p in patches:
+                if p.id in remote:
+                    self._call(task, p, views, new_dw, checks)
         in_patch_order = {}
-        for dep in task.computes_:
-            if dep.label.vartype is VarType.REDUCTION:
-                for m in dep.matls:
-                    key = (dep.label.name, m)
-                    if dep.label.reduction == "sum" and dep.label.patch_order:
-                        in_patch_order[key] = (dep.label, new_dw.patch_sums.pop(key, {}))
-                        continue
-                    v = new_dw.reductions.get(key, new_dw.identity(dep.label))
-                    new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
+        for dep in reductions:
+            for m in dep.matls:
+                key = (dep.label.name, m)
+                if dep.label.reduction == "sum" and dep.label.patch_order:
+                    in_patch_order[key] = (dep.label, new_dw.patch_sums.pop(key, {}))
+                    continue
+                v = new_dw.reductions.get(key, new_dw.identity(dep.label))
+                new_dw.reductions[key] = self.comm.allreduce(v, dep.label.reduction)
         if in_patch_order:
             new_dw.reductions.update(self._sums_in_patch_order(in_patch_order))
 
@@ -236,7 +284,7 @@ class Scheduler:
             out[key] = total
         return out
 
-    def _call(self, task, patch, views, new_dw):
+    def _call(self, task, patch, views, new_dw, checks=None):
         new_dw.reduction_patch = patch.id
         try:
             task.fn(patch, task.matls, *views)
@@ -246,15 +294,16 @@ class Scheduler:
             raise
         finally:
             new_dw.reduction_patch = None
-        for dep in task.computes_:
-            vt = dep.label.vartype
-            if vt is VarType.REDUCTION:
-                continue
-            store = new_dw.grid if vt.is_grid else (new_dw.particles if vt is VarType.PARTICLE else new_dw.perpatch)
-            for m in dep.matls:
-                if (dep.label.name, m, patch.id) not in store:
-                    raise TaskError(f"task {task.name} declared it computes {dep.label.name} "
-                                    f"(material {m}) but did not put it on patch {patch.id}")
+        if checks is None:
+            checks = _task_plan(task, False)[2]
+        stores = (new_dw.grid, new_dw.particles, new_dw.perpatch)
+        pid = patch.id
+        for which, name, matls in checks:
+            store = stores[which]
+            for m in matls:
+                if (name, m, pid) not in store:
+                    raise TaskError(f"task {task.name} declared it computes {name} "
+                                    f"(material {m}) but did not put it on patch {pid}")
 
     # -- helpers for the controller ----------------------------------------------------
     def reduce_delT(self, dw) -> float:
