@@ -2,6 +2,7 @@
 (framework/numba_cache_path.py), and again for a directory that has gone."""
 import importlib.util
 import shutil
+import sys
 import tempfile
 
 import framework.numba_cache_path  # noqa: F401
@@ -30,6 +31,7 @@ def _load(path, name):
 
 def test_cache_directory_checked_once_and_again_when_gone(tmp_path, monkeypatch):
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    monkeypatch.setattr(sys, "dont_write_bytecode", True)    # else importing kern_b remakes __pycache__ for its .pyc
     made = []
     real = tempfile.TemporaryFile
 
