@@ -189,9 +189,11 @@ def test_kernel_follows_sus_step_by_step():
 
 
 def _deck(**edits):
-    """const_test_nhp.ups saving F too, with optional (old, new) text edits."""
+    """const_test_nhp.ups saving F and g.volume too (p2g then computes the volume, the variant of
+    inputs/MPM/adiabatic_copper_jc.ups: no p2g of this file's own), with optional (old, new) text edits."""
     text = open(DECK).read().replace('<save label = "p.stress"/>',
-                                     '<save label = "p.stress"/><save label = "p.deformationMeasure"/>')
+                                     '<save label = "p.stress"/><save label = "p.deformationMeasure"/>'
+                                     '<save label = "g.volume"/>')
     for old, new in edits.values():
         assert old in text
         text = text.replace(old, new)
