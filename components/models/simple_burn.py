@@ -298,7 +298,7 @@ class SimpleBurn(IceSources):
             px = old_dw.get(M.pX, m, patch)
             n = len(px)
             frac = np.empty(n)
-            g2p_heat(kind, act, px, np.zeros(n), np.zeros(n), mpm._lp(old_dw, m, patch, n), lv.anchor, lv.dx,
+            g2p_heat(kind, act, px, np.zeros(n), np.zeros(n), mpm._lp_read_only(old_dw, m, patch, n), lv.anchor, lv.dx,
                      node_low, frac_nc, 1.0, frac, 0.0, frac_nc, np.empty((0, 3)))
             size = new_dw.get_modifiable(M.pSizePre, m, patch) if M.pSizePre.name in carried else np.empty((0, 3))
             K.burn_particles(frac, mpm.flags["minimum_particle_mass"], new_dw.get_modifiable(M.pMassPre, m, patch),

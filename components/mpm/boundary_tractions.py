@@ -131,7 +131,8 @@ class BoundaryTractionTasks:
             px = old_dw.get(L.pX, m, patch)
             gsv = np.zeros(shape + (3, 3))           # sum S sigma_p V_p
             kernels.p2g_stress(kind, self.act, px, old_dw.get(L.pVolume, m, patch), old_dw.get(L.pStress, m, patch),
-                               self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, base, np.zeros(shape), gsv)
+                               self._lp_read_only(old_dw, m, patch, len(px)), lv.anchor, lv.dx, base, np.zeros(shape),
+                               gsv)
             gvol = new_dw.get(L.gVolume, m, patch)
             fint = new_dw.get(L.gIntForce, m, patch)
             for f, (face, own) in faces.items():

@@ -91,6 +91,16 @@ class MPMTasks:
             return dw.get(L.pSize, m, patch)
         return self._domains(dw.get(L.pF, m, patch), dw.get(self._size_label, m, patch))
 
+    def _lp_read_only(self, dw, m, patch, n):
+        """_lp as a read-only array, the numba type of linear's stand-in (_zeros3): the kernels that
+        take the interpolator as a run-time value (kernels.p2g_stress, transfer.mass_gradient, the
+        heat kernels) then compile once for linear and GIMP, not once for each."""
+        lp = self._lp(dw, m, patch, n)
+        if lp.flags.writeable:
+            lp = lp.view()
+            lp.flags.writeable = False
+        return lp
+
     @property
     def _size_label(self):
         """What CPDI's domains and p.scalefactor read: p.size, or p.sizeMatrix (<smoothcyl>)."""
@@ -322,7 +332,8 @@ class MPMTasks:
             gm = np.zeros(shape)
             gs = np.zeros(shape + (3, 3))
             kernels.p2g_stress(kind, self.act, px, old_dw.get(L.pMass, m, patch), old_dw.get(L.pStress, m, patch),
-                               self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, np.array(alo) - pad, gm, gs)
+                               self._lp_read_only(old_dw, m, patch, len(px)), lv.anchor, lv.dx, np.array(alo) - pad,
+                               gm, gs)
             out = new_dw.allocate(L.gStressFS, m, patch, None)
             kernels.divide_by_mass(np.ascontiguousarray(gm[inner]), np.ascontiguousarray(gs[inner]), out)
 
@@ -424,7 +435,7 @@ class MPMTasks:
             if self.axisymmetric:
                 weight = weight / old_dw.get(L.pVolume, m, patch)
             transfer.mass_gradient(kind, self.act, px, weight,
-                                   self._lp(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, g[m])
+                                   self._lp_read_only(old_dw, m, patch, len(px)), lv.anchor, lv.dx, low, g[m])
             if self.axisymmetric:
                 g[m][..., :2] *= np.asarray(lv.dx)[:2]
                 g[m][..., 2] = 0.0
@@ -463,7 +474,7 @@ class MPMTasks:
         px = old_dw.get(L.pX, m, patch)
         gs = np.zeros(shape + (3, 3))
         kernels.p2g_stress(transfer.INTERPOLATORS[self.kind], self.act, px, np.ones(len(px)),
-                           old_dw.get(L.pStress, m, patch), self._lp(old_dw, m, patch, len(px)), lv.anchor,
+                           old_dw.get(L.pStress, m, patch), self._lp_read_only(old_dw, m, patch, len(px)), lv.anchor,
                            lv.dx, np.array(alo) - pad, np.zeros(shape), gs)
         gs = gs[tuple(slice(p, p + h - l) for p, l, h in zip(pad, alo, ahi))]
         tn = np.ascontiguousarray(np.einsum("...i,...ij,...j->...", n, gs, n))

@@ -357,8 +357,9 @@ class ThermalTasks:
 
     def _heat_stencil(self):
         """The heat kernels' weights: the run's interpolator (shape.LINEAR, GIMP or CPDI, whose
-        particles visit their domain's corners) and what its weights read of each particle."""
-        return {"linear": LINEAR, "gimp": GIMP}.get(self.kind, CPDI), self._lp
+        particles visit their domain's corners) and what its weights read of each particle, read-only
+        (MPMTasks._lp_read_only: one compilation of each heat kernel for every interpolator)."""
+        return {"linear": LINEAR, "gimp": GIMP}.get(self.kind, CPDI), self._lp_read_only
 
     def interpolate_temperature(self, patch, matls, old_dw, new_dw):
         """g.temperature = sum S m T / m_i from the owned and ghost particles."""

@@ -189,20 +189,27 @@ def test_kernel_follows_sus_step_by_step():
 
 
 def _deck(**edits):
-    """const_test_nhp.ups saving F too, with optional (old, new) text edits."""
+    """const_test_nhp.ups saving F and g.volume too (p2g then computes the volume, the variant of
+    inputs/MPM/adiabatic_copper_jc.ups: no p2g of this file's own), with optional (old, new) text edits."""
     text = open(DECK).read().replace('<save label = "p.stress"/>',
-                                     '<save label = "p.stress"/><save label = "p.deformationMeasure"/>')
+                                     '<save label = "p.stress"/><save label = "p.deformationMeasure"/>'
+                                     '<save label = "g.volume"/>')
     for old, new in edits.values():
         assert old in text
         text = text.replace(old, new)
     return text
 
 
+USL = ("<time_integrator>explicit</time_integrator>",
+       "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>")
+
+
 def test_const_test_nhp_deck(tmp_path):
-    """The deck, unchanged but for saving F (pysus's default MUSL stress update): sigma_zz
-    on the expected curve (the free sides oscillate a little: sigma_xx is not exactly 0)
-    and the strain energy as sus's at the same time."""
-    _, da = run(_deck(), tmp_path)
+    """The deck, unchanged but for saving F and Uintah's USL stress update (the curve does not
+    depend on the update; on this 3D grid USL's kernels are inputs/MPM/adiabatic_copper_jc.ups's,
+    MUSL's would be this file's own): sigma_zz on the expected curve (the free sides oscillate a
+    little: sigma_xx is not exactly 0) and the strain energy as sus's at the same time."""
+    _, da = run(_deck(usl=USL), tmp_path)
     assert da.times[-1] >= 0.5 and len(da.times) == 6
     sus = np.load(SUS)
     t, se = da.reduction("StrainEnergy")
@@ -221,8 +228,7 @@ def test_const_test_nhp_steps_as_sus(tmp_path):
     (USL): with <stress_update>usl</stress_update>, pysus takes sus's 235 steps (the same
     times) and every tenth step has sus's p.stress (to the nine digits puda prints), through
     yield and hardening, and so has the strain energy."""
-    text = _deck(usl=("<time_integrator>explicit</time_integrator>",
-                      "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>"),
+    text = _deck(usl=USL,
                  out=("<outputInterval>.1</outputInterval>", "<outputTimestepInterval>10</outputTimestepInterval>"))
     _, da = run(text, tmp_path)
     sus = np.load(SUS)

@@ -107,8 +107,13 @@ def test_draw_formulas():
 
 
 def threshold_deck(patches="[2,2,1]"):
-    """The deck unchanged but for one step written and its patch layout."""
+    """The deck unchanged but for one step written, its patch layout and run A's interpolator and
+    stress update (GIMP, USL): the draws at t = 0 do not depend on them (sus drew them with the
+    deck's fast CPDI and MUSL), and run A's kernels serve the step instead of three more."""
     return edit(open(DISK).read(),
+                ("fast_cpdi", "gimp"),
+                ("<time_integrator>explicit  </time_integrator>",
+                 "<time_integrator>explicit</time_integrator><stress_update>usl</stress_update>"),
                 ("<maxTime>0.30</maxTime>", "<maxTime>0.30</maxTime><max_Timesteps>1</max_Timesteps>"),
                 ("<outputInterval>.01</outputInterval>", "<outputTimestepInterval>1</outputTimestepInterval>"),
                 ("<patches>[2,2,1]</patches>", f"<patches>{patches}</patches>"))
@@ -116,7 +121,7 @@ def threshold_deck(patches="[2,2,1]"):
 
 @pytest.mark.parametrize("patches,key", [("[2,2,1]", "epsf_2x2"), ("[1,1,1]", "epsf_1x1")])
 def test_gauss_thresholds_are_sus(tmp_path, patches, key):
-    """The unchanged deck (MUSL, fast CPDI): every particle's p.epsf at t = 0 is bitwise sus's on
+    """The deck (threshold_deck): every particle's p.epsf at t = 0 is bitwise sus's on
     the same patch layout (measured: 0 difference); the draw depends on the layout (the two
     layouts give other numbers to 85 % of the particles)."""
     _, da = run(threshold_deck(patches), tmp_path)

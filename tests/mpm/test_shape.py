@@ -13,14 +13,22 @@ from components.mpm.transfer import kernels, one_run
 from framework.scheduler.particle_kernels import runs
 
 CASES = [(k, a) for k in ("linear", "gimp") for a in (1, 3, 7, 5)]     # 5: an xz plane
-# The fused transfer kernels are one numba compilation per (interpolator, axes, update) and
-# argument types (minutes each, cold): by default they are tested on the combinations the
-# shipped decks compile anyway (scripts/warm_kernels), with the tasks' argument types;
-# PYSUS_TEST_VARIANTS=all tests every combination above.
+# The fused transfer kernels are one numba compilation per (interpolator, axes, update, p2g's
+# flags) and argument types (minutes each, cold): by default they are tested on the combinations
+# the shipped decks compile anyway (scripts/warm_kernels), with the tasks' argument types and
+# flags; PYSUS_TEST_VARIANTS=all tests every combination above, with every flag.
 ALL_VARIANTS = os.environ.get("PYSUS_TEST_VARIANTS") == "all"
-P2G_CASES = CASES if ALL_VARIANTS else [("linear", 1), ("linear", 3), ("linear", 7), ("gimp", 3)]
-USL_CASES = CASES if ALL_VARIANTS else [("linear", 3), ("linear", 7), ("gimp", 3)]
+# p2g's (has_fext, has_volume) of the shipped decks: inputs/MPMICE/piston.ups (linear, x),
+# inputs/MPM/thick_cylinder.ups (linear, xy), adiabatic_copper_jc.ups (linear, xyz),
+# inputs/MPMICE/pressurized_cylinder.ups (GIMP, xy)
+SHIPPED_P2G = {("linear", 1): (False, True), ("linear", 3): (True, True), ("linear", 7): (False, True),
+               ("gimp", 3): (False, True)}
+P2G_CASES = CASES if ALL_VARIANTS else list(SHIPPED_P2G)
+# USL's g2p (L and F in the same pass) of the shipped decks: adiabatic_copper_jc.ups (linear, xyz);
+# the others update with MUSL, whose L and F the grad pass computes (GRAD_CASES)
+USL_CASES = CASES if ALL_VARIANTS else [("linear", 7)]
 MUSL_CASES = [("linear", 3), ("gimp", 7)] if ALL_VARIANTS else [("linear", 3), ("gimp", 3)]
+GRAD_CASES = CASES if ALL_VARIANTS else [("linear", 3), ("gimp", 3)]
 
 
 @njit(cache=True)
@@ -163,11 +171,11 @@ def test_gimp_weights_match_formula():
         assert np.isclose(dS[p, 0, 0], fd, atol=1e-5)
 
 
-def _p2g(kind, act, parts, order_runs, shape, anchor, dx, lo):
+def _p2g(kind, act, parts, order_runs, shape, anchor, dx, lo, has_f):
     p2g = kernels(kind, act)[0]
     g = [np.zeros(shape), np.zeros(shape + (3,)), np.zeros(shape), np.zeros(shape + (3,)), np.zeros(shape + (3,))]
     own, ghost = parts
-    p2g(own, ghost, order_runs, True, True, anchor, dx, lo, *g)
+    p2g(own, ghost, order_runs, has_f, True, anchor, dx, lo, *g)
     return g
 
 
@@ -180,11 +188,12 @@ def test_p2g_conserves_and_runs_equal_merged(kind, act):
     pm, pvol = rng.random(n) + 0.5, rng.random(n) + 0.1
     pv, pf, ps = rng.random((n, 3)), rng.random((n, 3)), rng.random((n, 3, 3))
     part = (px, pm, pv, pvol, ps, pf, lp)
-    gm, gp, gvol, ge, gi = _p2g(kind, act, (part, part), one_run(n), shape, anchor, dx, lo)
+    has_f = ALL_VARIANTS or SHIPPED_P2G[kind, act][0]
+    gm, gp, gvol, ge, gi = _p2g(kind, act, (part, part), one_run(n), shape, anchor, dx, lo, has_f)
     assert np.isclose(gm.sum(), pm.sum(), rtol=1e-13)
     assert np.isclose(gvol.sum(), pvol.sum(), rtol=1e-13)
     assert np.allclose(gp.sum((0, 1, 2)), (pm[:, None] * pv).sum(0), rtol=1e-13)
-    assert np.allclose(ge.sum((0, 1, 2)), pf.sum(0), rtol=1e-13)
+    assert np.allclose(ge.sum((0, 1, 2)), pf.sum(0) if has_f else 0.0, rtol=1e-13)
     assert np.allclose(gi.sum((0, 1, 2)), 0.0, atol=1e-10)  # sum dS = 0
     ni, S, dS = weights(kind, act, px, lp, anchor, dx, lo)
     rm, ri = np.zeros(shape), np.zeros(shape + (3,))
@@ -200,20 +209,26 @@ def test_p2g_conserves_and_runs_equal_merged(kind, act):
     split = tuple(select(part, sel) for sel in (mine, ~mine))
     r = runs(order, int(mine.sum()))
     assert len(r) > 2
-    for a, b in zip(_p2g(kind, act, split, r, shape, anchor, dx, lo), (gm, gp, gvol, ge, gi)):
+    for a, b in zip(_p2g(kind, act, split, r, shape, anchor, dx, lo, has_f), (gm, gp, gvol, ge, gi)):
         assert np.array_equal(a, b)
+
+
+def _linear_field(kind, act):
+    """Particles on a patch, a nodal velocity v = A x + b linear along the active axes, A, b."""
+    on, anchor, dx, lo, shape = make_grid(act)
+    px, lp = make_particles(on, anchor, dx, 6, seed=1, kind=kind)
+    A = np.array([[0.3, -1.2, 0.7], [2.0, 0.5, -0.4], [-0.8, 1.1, 0.9]]) * on   # varies along active axes
+    b = np.array([1.0, -2.0, 0.5])
+    idx = np.stack(np.meshgrid(*[np.arange(s) for s in shape], indexing="ij"), -1)
+    gvel = np.ascontiguousarray((anchor + (idx + lo) * dx) @ A.T + b)
+    return px, lp, anchor, dx, lo, shape, gvel, A, b
 
 
 @pytest.mark.parametrize("kind,act", USL_CASES)
 def test_g2p_linear_field_reproduced(kind, act):
     """USL: a linear nodal velocity field is interpolated exactly, with its gradient."""
-    on, anchor, dx, lo, shape = make_grid(act)
-    px, lp = make_particles(on, anchor, dx, 6, seed=1, kind=kind)
+    px, lp, anchor, dx, lo, shape, gvel, A, b = _linear_field(kind, act)
     n = len(px)
-    A = np.array([[0.3, -1.2, 0.7], [2.0, 0.5, -0.4], [-0.8, 1.1, 0.9]]) * on   # varies along active axes
-    b = np.array([1.0, -2.0, 0.5])
-    idx = np.stack(np.meshgrid(*[np.arange(s) for s in shape], indexing="ij"), -1)
-    gvel = np.ascontiguousarray((anchor + (idx + lo) * dx) @ A.T + b)
     pv, pm, dt = np.random.default_rng(2).random((n, 3)), np.ones(n), 0.1
     x, v, L, F, V = np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3, 3)), np.empty(n)
     g2p = kernels(kind, act)[1]
@@ -223,6 +238,28 @@ def test_g2p_linear_field_reproduced(kind, act):
     vexact = px @ A.T + b
     assert np.allclose(x, px + dt * vexact, atol=1e-12)
     assert np.allclose(v, pv + dt * 2 * vexact, atol=1e-12)
+    assert np.allclose(L, np.broadcast_to(A, (n, 3, 3)), atol=1e-11)
+    assert np.allclose(F, np.eye(3) + dt * A, atol=1e-12) and np.allclose(V, np.linalg.det(np.eye(3) + dt * A))
+
+
+@pytest.mark.parametrize("kind,act", GRAD_CASES)
+def test_musl_linear_field_reproduced(kind, act):
+    """MUSL: g2p moves the particles with a linear nodal velocity field exactly; the grad pass
+    gives its gradient exactly, and F = I + dt A, V = m / rho0 det F."""
+    px, lp, anchor, dx, lo, shape, gvel, A, b = _linear_field(kind, act)
+    n = len(px)
+    pv, pm, dt = np.random.default_rng(2).random((n, 3)), np.ones(n), 0.1
+    x, v, gmom = np.empty((n, 3)), np.empty((n, 3)), np.zeros(shape + (3,))
+    _, g2p, grad = kernels(kind, act)
+    own = (px, pv, pm, lp)
+    g2p(True, own, own, one_run(n), anchor, dx, lo, gvel, 2.0 * gvel, dt, x, v, np.zeros((1, 3, 3)), gmom,
+        np.zeros(8), 0.0, np.inf, False, np.zeros((1, 3, 3)), np.zeros((1, 3, 3)), np.zeros(1), 1.0)
+    vexact = px @ A.T + b
+    assert np.allclose(x, px + dt * vexact, atol=1e-12)
+    assert np.allclose(v, pv + dt * 2 * vexact, atol=1e-12)
+    L, F, V = np.empty((n, 3, 3)), np.empty((n, 3, 3)), np.empty(n)
+    grad(px, lp, anchor, dx, lo, gvel, L, True, dt, pm, 1.0, np.tile(np.eye(3), (n, 1, 1)), F, V, 0, 0.0, 0.0,
+         pv, np.zeros((n, 3, 3)), np.zeros(n))
     assert np.allclose(L, np.broadcast_to(A, (n, 3, 3)), atol=1e-11)
     assert np.allclose(F, np.eye(3) + dt * A, atol=1e-12) and np.allclose(V, np.linalg.det(np.eye(3) + dt * A))
 
@@ -257,11 +294,11 @@ def test_g2p_musl_owned_written_all_remapped(kind, act):
 
 
 def test_out_of_patch_raises():
-    on, anchor, dx, lo, shape = make_grid(3)
+    on, anchor, dx, lo, shape = make_grid(7)          # USL on xyz: adiabatic_copper_jc.ups's g2p
     px = np.array([[anchor[0] - 5 * dx[0], anchor[1], anchor[2]]])
     from components.mpm.tasks import _zeros3
     own = (px, np.zeros((1, 3)), np.ones(1), _zeros3(1))
-    g2p = kernels("linear", 3)[1]
+    g2p = kernels("linear", 7)[1]
     with pytest.raises(IndexError):
         g2p(False, own, own, one_run(1), anchor, dx, lo, np.zeros(shape + (3,)), np.zeros(shape + (3,)), 0.1,
             np.empty((1, 3)), np.empty((1, 3)), np.zeros((1, 3, 3)), np.zeros((1, 1, 1, 3)), np.zeros(8), 0.0,

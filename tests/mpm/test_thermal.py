@@ -67,6 +67,8 @@ def _square(patches, gimp=False):
                      outputInterval="0.01", interpolator="gimp" if gimp else "linear",
                      extraCells="[1,1,0]" if gimp else "[0,0,0]")
     text = text.replace("<upper>[1.0,0.01,0.01]</upper>", "<upper>[1.0,1.0,0.01]</upper>")
+    if gimp:        # p2g with the volume: inputs/MPMICE/pressurized_cylinder.ups's GIMP variant, none of its own
+        text = text.replace('<save label="p.x"/>', '<save label="p.x"/><save label="g.volume"/>')
     start, end = text.index("<geom_object>"), text.rindex("</geom_object>") + len("</geom_object>")
     return text[:start] + objs + text[end:]
 
