@@ -546,11 +546,13 @@ def advect_extrema(mass, mom, eng, volm, tot, scal, with_e, heating, ux, uy, uz,
 
 
 @njit(cache=True, error_model="numpy")
-def outflow_fraction(vf, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, q, acc, buf, grad, rc, out):
+def outflow_fraction(vf, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, compatible, q, acc, buf, grad, rc, out):
     """out += the volume fraction that second-order advection with Uintah's limiter carries out of
     each cell of [lo, hi) over the step, net of what it carries in: the fraction itself is
     reconstructed (its limited gradient at the outflow slab's centroid), as Uintah's advectQ of
     vol_frac in computeDelPressAndUpdatePressCC (term2, the dilatation of eq. 29).
+    compatible: False (Uintah's), an argument so that _fluxes_extrema gets advect_extrema's types
+    (a literal False compiled it and its helpers a second time, ~8 CPU s);
     q, acc: scratch (1, *vf.shape); buf (1, row length + 1); grad (3, 1, *vf.shape), rc (3, *vf.shape)."""
     q[0] = vf
     n = hi[2] - lo[2]
@@ -560,7 +562,7 @@ def outflow_fraction(vf, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, q, ac
             a, f = acc[0, i, j, k0:k0 + n], vf[i, j, k0:k0 + n]
             for k in range(n):
                 a[k] = f[k]
-    _fluxes_extrema(q, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, False, acc, buf, grad, rc)
+    _fluxes_extrema(q, ux, uy, uz, shs, flo, fhi, lo, hi, dt, dxs, dims, compatible, acc, buf, grad, rc)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
             a, f, o = acc[0, i, j, k0:k0 + n], vf[i, j, k0:k0 + n], out[i, j, k0:k0 + n]
