@@ -228,9 +228,13 @@ def failure_summary(exc, ctl) -> str:
 
 
 def _exit(comm, code):
-    """End every rank promptly: one rank's error aborts the whole job, never a hang."""
+    """End every rank promptly: one rank's error aborts the whole job, never a hang. The pause
+    lets mpiexec forward the last lines (the failure summary) before the abort ends its
+    forwarding: without it a loaded machine lost the summary now and then."""
     sys.stderr.flush()
     if comm.size > 1:
+        import time
+        time.sleep(0.3)
         comm.mpi.Abort(code)
     return code
 
