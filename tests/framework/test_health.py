@@ -42,3 +42,28 @@ def test_unstable_diffusion_stops_at_first_negative_temperature(tmp_path):
     from framework.archiver import DataArchive
     temp, _ = DataArchive(tmp_path / "quickstart.uda").read("temp_CC", 0, -1)
     assert np.nanmin(temp) < 0.0
+
+
+def test_check_schedule_is_fixed(tmp_path, monkeypatch):
+    """The check's schedule does not depend on measured times: every step by default (the first
+    negative step, the same on every run), every N steps with PYSUS_CHECK_STATE=N (the first
+    checked step at or after it), and a value that is not a count is a clear error."""
+    import pytest
+
+    from framework.errors import RunStopped
+    from framework.problemspec import InputError
+    from tests.conftest import run_deck
+    deck = (ROOT / "inputs/examples/quickstart.ups").read_text(encoding="latin-1")
+    deck = deck.replace("<cfl>   0.4  </cfl>", "<cfl>   5.0  </cfl>").replace(
+        "<alpha> 0.01 </alpha>", "<alpha> 0.1 </alpha>")
+    steps = []
+    for i, every in enumerate(("1", "1", "4")):
+        monkeypatch.setenv("PYSUS_CHECK_STATE", every)
+        with pytest.raises(RunStopped) as stop:
+            run_deck(deck, tmp_path, f"blow{i}")
+        steps.append(int(str(stop.value).split("blew up at timestep ")[1].split(":")[0]))
+    assert steps[0] == steps[1]
+    assert steps[0] <= steps[2] < steps[0] + 4
+    monkeypatch.setenv("PYSUS_CHECK_STATE", "often")
+    with pytest.raises(InputError, match="PYSUS_CHECK_STATE"):
+        run_deck(deck, tmp_path, "bad")
