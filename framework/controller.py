@@ -116,9 +116,18 @@ def check_output_dir(path, node=None, filename=None):
                     "accepted: a path under a writable directory")
 
 
-def _health_interval() -> int:
-    """Steps between state checks from PYSUS_CHECK_STATE (default 1: every step; 0: off)."""
-    text = os.environ.get("PYSUS_CHECK_STATE", "1").strip()
+HEALTH_CELLS = 2000          # grids this large are checked every step; smaller ones less often
+
+
+def _health_interval(ncells) -> int:
+    """Steps between state checks: PYSUS_CHECK_STATE=N (0: off), else every step on a grid of
+    HEALTH_CELLS cells or more and every ceil(HEALTH_CELLS / cells) steps (at most 10) on a
+    smaller one, whose steps are so short that the check's fixed cost would be a large share of
+    them. Fixed by the deck, never by measured times: a run stops at the same step on any
+    machine, loaded or not, and on any number of ranks."""
+    text = os.environ.get("PYSUS_CHECK_STATE", "").strip()
+    if not text:
+        return max(1, min(10, math.ceil(HEALTH_CELLS / max(1, math.prod(ncells)))))
     try:
         every = int(text)
     except ValueError:
@@ -436,7 +445,7 @@ class Controller:
         tm = self.time
         progress.begin(self.timestep, self.t, self.init_wall)
         first = self.restart_info is None
-        self._health_every = _health_interval()
+        self._health_every = _health_interval(self.level.ncells)
         self._next_health_check, self._last_healthy = self.timestep + 1, self.timestep
         step_wall = []
         while self.t < tm["maxTime"] * (1 - 1e-14) and self.timestep < tm["max_Timesteps"]:
@@ -511,10 +520,10 @@ class Controller:
         state; the bad step is written as an output timestep so a viewer shows where it went
         wrong, and no checkpoint is written from it.
 
-        The check runs every step (PYSUS_CHECK_STATE=N: every N steps, and always before an
-        output or a checkpoint is written; 0: off), a fixed schedule, so whether a run stops never
-        depends on the machine's load (it cost 0-6 % of a step on the shipped decks, the most on
-        the smallest MPMICE decks, whose steps are short)."""
+        The check runs on a schedule the deck fixes (_health_interval: every step on grids of
+        HEALTH_CELLS cells or more; PYSUS_CHECK_STATE=N every N steps, 0 off), and always before
+        an output or a checkpoint is written, so whether a run stops never depends on the
+        machine's load."""
         every = self._health_every
         if every == 0:
             return
