@@ -167,10 +167,9 @@ def test_tiny_edge_masses_need_musl(tmp_path, monkeypatch):
     """disks_50x50 (edges sweep over nodes with tiny mass) with Uintah's USL stress
     update loses 5 % energy by t = 1.6 (4.9996 % measured, with delT from the velocity each
     step starts with, as Uintah's); the MUSL default keeps 3 % (test_disks.py).
-    USL inverts a particle for a step now and then (p.volume -8.9e-4 at step 504), which
-    pysus's state check stops at whenever it samples that step (it skips steps on cheap
-    steps, by their measured cost, so whether it does depends on the machine's load); sus has
-    no such check, so it is off here and the run goes on to t = 1.6 as sus's."""
+    USL inverts a particle for a step now and then (p.volume -8.9e-4 at step 504), where
+    pysus's state check (every step on this 2,500-cell grid) stops the run; sus has no such
+    check, so it is off here and the run goes on to t = 1.6 as sus's."""
     monkeypatch.setenv("PYSUS_CHECK_STATE", "0")
     text = deck_text(MPM_INPUTS / "disks_50x50.ups", maxTime=1.6).replace(
         "<interpolator>linear</interpolator>", "<interpolator>linear</interpolator><stress_update>usl</stress_update>")
