@@ -271,11 +271,10 @@ class Scheduler:
         """{key: sum} of every patch's contribution to each of a task's sums ({key: (label,
         {patch id: part})}), added in patch-id order whatever rank holds each patch, so saved
         sums are bitwise the same on any number of ranks; one allgather for all of them."""
-        parts = {key: dict(p) for key, (_, p) in sums.items()}
-        if self.comm.size > 1:
-            for d in self.comm.allgather({key: p for key, (_, p) in sums.items()}):
-                for key, p in d.items():
-                    parts[key].update(p)
+        parts = {key: {} for key in sums}
+        for d in self.comm.allgather({key: p for key, (_, p) in sums.items()}):   # [own] on one rank
+            for key, p in d.items():
+                parts[key].update(p)
         out = {}
         for key, (label, _) in sums.items():
             total = DataWarehouse.identity(label)
