@@ -260,10 +260,10 @@ class GridBCs:
                         tuple(slice(lo[c], hi[c]) if c != d else src for c in range(3))))
         return out
 
-    def _face_nodes(self, patch, d, s, shape):
+    def _face_nodes(self, patch, d, s, shape, ghosts=False):
         """The slices of a patch's node array on face (d, s): the face nodes and the extra
-        nodes beyond them, within the patch's owned nodes."""
-        own_lo, own_hi = patch.owned_local(VarType.NC)
+        nodes beyond them, within the patch's owned nodes (ghosts: its every node)."""
+        own_lo, own_hi = ((0, 0, 0), shape[:3]) if ghosts else patch.owned_local(VarType.NC)
         base = patch.low_index(VarType.NC)
         lo, hi = list(own_lo), list(own_hi)
         if s == 0:
@@ -274,15 +274,16 @@ class GridBCs:
         hi = np.minimum(hi, shape[:3])
         return tuple(slice(a, b) for a, b in zip(lo, hi))
 
-    def apply_temperature(self, patch, matl, temperature):
-        """Set the temperature conditions of this material on the faces `patch` touches."""
+    def apply_temperature(self, patch, matl, temperature, ghosts=False):
+        """Set the temperature conditions of this material on the faces `patch` touches (ghosts:
+        also on its ghost nodes along the face, as their owner sets them)."""
         for d, s, neumann, value, mats, where in self.temperature_items:
             if where is not None and not _on_level_face(patch, d, s):
                 if where[0] is not None:
                     continue
                 where = None
             if matl in mats and (patch.at_high if s else patch.at_low)[d]:
-                sl = self._face_nodes(patch, d, s, temperature.shape)
+                sl = self._face_nodes(patch, d, s, temperature.shape, ghosts)
                 mask = None if where is None else self._where(patch, where, d, [x.start for x in sl],
                                                               [x.stop for x in sl])
                 if not neumann:

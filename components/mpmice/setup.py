@@ -59,16 +59,21 @@ class ContactWithICE(Contact):
 
 
 class GridBCsWithICE(GridBCs):
-    """MPM grid BCs from an MPMICE deck: Dirichlet velocity and symmetry act on the nodes.
+    """MPM grid BCs from an MPMICE deck: Dirichlet velocity and symmetry act on the nodes, and a
+    Temperature condition naming a solid (id="all" or its index) on its nodal temperature (bc.py),
+    as Uintah's MPM applies it to gTemperature and gTemperatureStar in MPMICE too.
 
-    Neumann velocity (free) and the ICE-only labels (Pressure, Temperature, Density,
-    SpecificVol) have no nodal meaning for the solid; ICE reads and applies them.
+    Neumann velocity (free) and the ICE-only labels (Pressure, Density, SpecificVol) have no
+    nodal meaning for the solid; ICE reads and applies them.
     """
 
     n_all = 1
 
     def __init__(self, root, level, nmat):
         self.items = []
+        self.temperature_items = []
+        # held until MPMICE knows whether the solid carries a temperature (use_temperature_bcs)
+        self.solid_temperature_items = []
         grid = root.child("Grid")
         bcs = grid.child("BoundaryConditions") if grid is not None else None
         if bcs is None:
@@ -78,16 +83,28 @@ class GridBCsWithICE(GridBCs):
             d, s = FACES.index(side) // 2, FACES.index(side) % 2
             for bc in face.children("BCType"):
                 ident, var, label = bc.attr("id"), bc.attr("var"), bc.attr("label")
+                mats = tuple(range(nmat)) if ident == "all" else tuple(m for m in (int(ident),) if m < nmat)
+                if label == "Temperature" and var in ("Dirichlet", "Neumann"):
+                    if mats and not level.collapsed[d] and not level.periodic[d]:
+                        self.temperature_node = bc
+                        self.temperature_items.append((d, s, var == "Neumann", bc.get("value", "float"), mats,
+                                                       geom))
+                    continue
                 if var == "symmetry":
                     comps, value = np.eye(3, dtype=np.bool_)[d], np.zeros(3)
                 elif var == "Dirichlet" and label == "Velocity":
                     comps, value = np.ones(3, np.bool_), np.array(bc.get("value", "vector"), float)
                 else:
                     continue
-                mats = tuple(range(nmat)) if ident == "all" else tuple(m for m in (int(ident),) if m < nmat)
                 if mats and not level.collapsed[d] and not level.periodic[d]:
                     self.items.append((d, s, comps, value, mats, geom))
         self._place_sub_faces(faces, nmat)
+        self.solid_temperature_items, self.temperature_items = self.temperature_items, []
+
+    def use_temperature_bcs(self):
+        """Apply the Temperature conditions to the solid's nodes (it carries p.temperature)."""
+        self.temperature_items = self.solid_temperature_items
+        return bool(self.temperature_items)
 
 
 class MPMinMPMICE(MPM):

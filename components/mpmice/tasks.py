@@ -424,9 +424,10 @@ class MPMICETasks:
     def lagrangian_values_mpm(self, patch, matls, old_dw, new_dw):
         """computeLagrangianValuesMPM: m^L = cMass, (mu)^L = sum_w m_i v*_i - dt V theta grad p*
         (eq. 33), (me)^L = m cv T* with T* the cell mean of the nodal temperature advanced
-        by this step's conduction, g.temperature + dt g.temperatureRate (Uintah's
-        gTemperatureStar; without a thermal model the solid's T is held); a cell with little
-        more than the floor mass keeps its step-1 vel_CC and temp_CC (kernels.lagrangian_solid)."""
+        by this step's conduction, g.temperature + dt g.temperatureRate with the Temperature face
+        conditions applied (Uintah's gTemperatureStar; without a thermal model the solid's T is
+        held); a cell with little more than the floor mass keeps its step-1 vel_CC and temp_CC
+        (kernels.lagrangian_solid)."""
         ice = self.ice
         b = ice.boxes(patch)
         dt = old_dw.get_reduction(FL.delT)
@@ -448,12 +449,15 @@ class MPMICETasks:
                                patch.level.dx, dt, ice.cvs[m])
 
     def _temperature_star(self, patch, m, new_dw, dt):
-        """The solid's cell temperature after this step's conduction (temp_CC without it)."""
+        """The solid's cell temperature after this step's conduction (temp_CC without it); the
+        Temperature face conditions set on the ghost nodes too, as their owner sets them."""
         temp = new_dw.get(I.temp_CC, m, patch)
         if m not in self.mpm.conducting:
             return temp
         tstar = temp.copy()
         gT = new_dw.get(M.gTemperature, m, patch) + dt * new_dw.get(M.gTemperatureRate, m, patch)
+        if self.mpm.temperature_bcs:
+            self.mpm.bcs.apply_temperature(patch, m, gT, ghosts=True)
         self._scalar_to_cc(patch, m, new_dw.get(M.gMass, m, patch), gT, tstar)
         return tstar
 
@@ -621,6 +625,8 @@ class MPMICETasks:
         if self.solid_heat:
             self.mpm.thermal_rates = (MI.dTdt_NC,)
         self.mpm.thermal_setup()
+        if self.mpm.thermal:       # Uintah's MPM sets them on gTemperature and gTemperatureStar in MPMICE too
+            self.mpm.temperature_bcs = self.mpm.bcs.use_temperature_bcs()
         self.mpm._carried()
 
     def thermal_requires(self, t, step):

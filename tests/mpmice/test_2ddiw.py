@@ -14,15 +14,17 @@ Measured (pysus against sus): the times 1.2e-11; the air's density 5.1e-10 and t
 400 K gives 101325.00005 Pa, where pysus's air starts at 101325 Pa (0.8844710196); that 5e-5 Pa
 moves sus's air and block by 1e-8 m/s in step 1 (pysus's stay at rest) and gives sus's particles a
 stress of 4.9e-7 Pa there (pysus 0). After step 2 the air's velocity is sus's to 4.2e-7 m/s (its
-largest 2.6e-4 m/s), its temperature 1.8e-11, the block's density 3e-12, its temp_CC 1.2e-7 where it fills the
-cells at least half, and in the cells it fills less (the row above the block, the columns beside
-it; sus saves its exchanged temperature there, 300.04-300.05 K, as pysus does) 5.7e-11 K after
-step 1; p.x 1.6e-11 m, p.temperature 2.8e-10 K (step 1). Not yet looked into: after step 2 the
-block's bottom row (the cells and particles along the domain's y- face) is warmer than sus's, its
-temp_CC by 6.8e-5 K and its particles by 1.3e-4 K at the corners (its other cells to 1.3e-10
-K), and p.stress is 3.0e-3 Pa off sus's 5.6e-3 Pa (the xx components 0.37 to 3.8 times sus's,
-same sign). The firstLawThermo energies equal sus's to 5.1e-10 (air) and 2e-13 (block); the
-energy flux is 0 in pysus and 4.3e-3 J in sus (from sus's 1e-8 m/s, against 7.1e5 J in all).
+largest 2.6e-4 m/s), its temperature 5.8e-12, the block's density 3e-12, its temp_CC 1.5e-13 where
+it fills the cells at least half (4.5e-11 K), and in the cells it fills less (the row above the
+block, the columns beside it; sus saves its exchanged temperature there, 300.04-300.05 K, as pysus
+does) 5.7e-11 K after step 1 and 8.2e-11 K after step 2; p.x 1.6e-11 m, p.temperature 2.8e-10 K
+(step 1) and 4.4e-10 K (step 2). The block stands on the y- face, whose Neumann <Temperature>
+condition (id="all") sets the solid's face and extra nodes too (bc.py, on its g.temperature and
+g.temperatureStar, as Uintah's MPMBoundCond in MPMICE); leaving those nodes free makes the block's
+bottom row 6.8e-5 K warmer than sus's after step 2. Not yet looked into: p.stress is 3.0e-3 Pa off
+sus's 5.6e-3 Pa after step 2 (the xx components 0.37 to 3.8 times sus's, same sign). The
+firstLawThermo energies equal sus's to 5.1e-10 (air) and 1.3e-14 (block); the energy flux is 0 in
+pysus and 4.3e-3 J in sus (from sus's 1e-8 m/s, against 7.1e5 J in all).
 """
 import pathlib
 
@@ -51,7 +53,7 @@ def test_2ddiw_air_as_uintah(runs):
     """Time step, pressure and the air's density, temperature, volume fraction and velocity."""
     da, sus, _ = runs
     assert np.allclose(da.times[1:], sus["times"], rtol=5e-11, atol=0)
-    for step, press_tol, temp_tol, vel_tol in ((1, 1e-9, 1e-11, 2e-8), (2, 1e-9, 1e-10, 1e-6)):
+    for step, press_tol, temp_tol, vel_tol in ((1, 1e-9, 1e-11, 2e-8), (2, 1e-9, 2e-11, 1e-6)):
         assert _rel(da.read("press_CC", 0, step)[0][:, :, 0], sus[f"press_CC_step{step}"]) < press_tol
         air = sus[f"vol_frac_CC_1_step{step}"] > 1e-3
         for label, tol in (("rho_CC", 1e-9), ("vol_frac_CC", 5e-10), ("temp_CC", temp_tol)):
@@ -65,15 +67,16 @@ def test_2ddiw_air_as_uintah(runs):
 def test_2ddiw_block_as_uintah(runs):
     """The solid's cell fields and its particles."""
     da, sus, _ = runs
-    for step, temp_tol, edge_tol, ptemp_tol, stress_tol in ((1, 1e-11, 1e-9, 1e-9, 1e-6),
-                                                            (2, 5e-7, 1e-4, 3e-4, 5e-3)):
+    for step, temp_tol, edge_tol, ptemp_tol, stress_tol in ((1, 1e-11, 1e-10, 1e-9, 1e-6),
+                                                            (2, 1e-12, 2e-10, 1e-9, 5e-3)):
         vf = sus[f"vol_frac_CC_0_step{step}"]
         solid, edge = vf > 0.5, (vf > 1e-3) & (vf <= 0.5)
         assert _rel(da.read("rho_CC", 0, step)[0][:, :, 0], sus[f"rho_CC_0_step{step}"], vf > 1e-3) < 1e-11
         assert _rel(da.read("vol_frac_CC", 0, step)[0][:, :, 0], vf, solid) < 1e-12
         temp, want = da.read("temp_CC", 0, step)[0][:, :, 0], sus[f"temp_CC_0_step{step}"]
         assert _rel(temp, want, solid) < temp_tol
-        assert np.abs(temp - want)[edge].max() < edge_tol            # step 2: the bottom row (module doc)
+        assert np.abs(temp - want)[edge].max() < edge_tol
+        assert np.abs(temp - want)[solid].max() < 1e-10              # the bottom row too (module doc)
         p = da.particles(0, step)
         assert len(p["p.x"]) == sus[f"n_particles_step{step}"] == 768
         order = np.lexsort(np.round(p["p.x"], 6).T[::-1])[::16]
@@ -94,6 +97,6 @@ def test_2ddiw_first_law_thermo_as_uintah(runs):
     assert ours.shape == theirs.shape == (1, 5)
     assert np.allclose(ours[:, 0], theirs[:, 0], rtol=5e-11, atol=0)
     assert np.allclose(ours[:, 1], theirs[:, 1], rtol=1e-9, atol=0)
-    assert np.allclose(ours[:, 2], theirs[:, 2], rtol=5e-13, atol=0)
+    assert np.allclose(ours[:, 2], theirs[:, 2], rtol=5e-14, atol=0)
     assert np.allclose(ours[:, 3], theirs[:, 3], rtol=1e-9, atol=0)
     assert abs(ours[0, 4] - theirs[0, 4]) < 5e-3                     # sus's 1e-8 m/s (module doc)

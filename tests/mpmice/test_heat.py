@@ -9,6 +9,8 @@ T_eq = (m_s cv_s T_s + m_g cv_g T_g) / (m_s cv_s + m_g cv_g) in both materials, 
 heat sum m cv T over both materials is constant (the small p dV work between the gas
 and the stiff solid is below 1e-4 of it).
 """
+import re
+
 import numpy as np
 import pytest
 
@@ -92,6 +94,18 @@ def test_no_heat_coefficient_no_temperature_tasks(tmp_path):
     r = pysus_ranks("--graph", path)
     assert r.returncode == 0, r.stderr
     assert "Temperature" not in r.stdout and "computeCCTempRates" not in r.stdout and "dTdt" not in r.stdout
+
+
+def test_deck_without_boundary_conditions_runs(tmp_path):
+    """A periodic deck without <BoundaryConditions> whose solid carries a temperature sets up and
+    runs: no Temperature face condition reaches the solid's nodes (mpmice/setup.py GridBCsWithICE)."""
+    text = re.sub(r"<BoundaryConditions>.*</BoundaryConditions>", "", deck(steps=2), flags=re.S)
+    text = text.replace("</Box></Level>", "</Box><periodic>[1,1,1]</periodic></Level>")
+    assert "<BoundaryConditions>" not in text and "<Face" not in text
+    ctl = run_deck(text, tmp_path)
+    assert ctl.component.mpm.thermal and not ctl.component.mpm.temperature_bcs
+    T = DataArchive(ctl.archiver.dir).particles(0, -1)["p.temperature"]
+    assert np.all(T < T_S) and np.all(T > T_G)          # the plates cool toward the gas
 
 
 def test_one_two_three_ranks_bitwise(tmp_path):
