@@ -24,12 +24,17 @@ from tests.conftest import ROOT, run_deck
 DECK = ROOT / "inputs" / "MPMICE" / "beam_crossflow.ups"
 
 
-@pytest.fixture(scope="module")
-def run(tmp_path_factory):
+def _run(tmp_path_factory, patches="[2,1,1]"):
     text = DECK.read_text(encoding="iso-8859-1").replace("<outputInterval> 2.5e-3 </outputInterval>",
                                                          "<outputTimestepInterval> 60 </outputTimestepInterval>")
+    text = text.replace("<patches> [2,1,1] </patches>", f"<patches> {patches} </patches>")
     ctl = run_deck(text, tmp_path_factory.mktemp("beam"), "beam", max_timesteps=60)
     return DataArchive(ctl.archiver.dir)
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    return _run(tmp_path_factory)
 
 
 def _displacement(da, band):
@@ -62,3 +67,16 @@ def test_beam_warms_and_keeps_its_mass(run):
     assert e[-1] > e[0] * (1 + 1e-4)
     gas_T, _ = run.read("temp_CC", material=1, timestep=-1)
     assert np.all(np.isfinite(gas_T)) and gas_T.min() > 250.0 and gas_T.max() < 450.0
+
+
+def test_four_patches_bitwise(run, tmp_path_factory):
+    """On four patches (a patch edge along the beam's upstream side, x = 1 m) the 60 steps are
+    bitwise the two patches' run: the floor's Temperature condition on g.temperatureStar is set on
+    the ghost nodes as their owner sets them (set on the owned nodes alone, the runs part)."""
+    four = _run(tmp_path_factory, "[4,1,1]")
+    a, b = run.particles(0, -1), four.particles(0, -1)
+    oa, ob = np.argsort(a["p.particleID"]), np.argsort(b["p.particleID"])
+    for lab in ("p.temperature", "p.x"):
+        assert np.array_equal(a[lab][oa], b[lab][ob]), lab
+    for m in (0, 1):
+        assert np.array_equal(run.read("temp_CC", m, -1)[0], four.read("temp_CC", m, -1)[0])

@@ -33,8 +33,8 @@ CASES = {
                     ('<save label = "p.x"/>', '<save label = "p.x"/>' + PID)]),
 }
 CC = ("press_CC", "vel_CC", "rho_CC", "vol_frac_CC", "temp_CC", "sp_vol_CC", "eng_L_ME_CC", "mom_L_ME_CC")
-PARTS = ("p.x", "p.velocity", "p.stress", "p.volume", "p.pressure", "UnsteadyBurn.PartSurfTemp",
-         "UnsteadyBurn.PartSurfTempGrad")
+PARTS = ("p.x", "p.velocity", "p.temperature", "p.stress", "p.volume", "p.pressure",
+         "UnsteadyBurn.PartSurfTemp", "UnsteadyBurn.PartSurfTempGrad")
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
