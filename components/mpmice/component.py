@@ -163,6 +163,8 @@ class MPMICE(MPMICETasks, Component):
             self.may_recompute = self.ice.may_recompute      # iters_before_timestep_restart
         if self.ice.conserve_energy:
             raise self.ice._conserve_node.error("<conserveTotalEnergy> is not available with MPMICE")
+        # false: the Temperature face conditions leave the solids' nodes free (Uintah sets them: tasks.py)
+        self.solid_temperature_bcs = node.get("solid_temperature_bcs", "bool", True) if node is not None else True
         self.setup_solid_heat()           # p.temperature and the solid's heat exchange (tasks.py)
         self.all_matls = list(range(n_all))
         self.materials = self.ice.materials

@@ -625,8 +625,8 @@ class MPMICETasks:
         if self.solid_heat:
             self.mpm.thermal_rates = (MI.dTdt_NC,)
         self.mpm.thermal_setup()
-        if self.mpm.thermal:       # Uintah's MPM sets them on gTemperature and gTemperatureStar in MPMICE too
-            self.mpm.temperature_bcs = self.mpm.bcs.use_temperature_bcs()
+        if self.mpm.thermal and self.solid_temperature_bcs:    # Uintah's MPM sets them on gTemperature and
+            self.mpm.temperature_bcs = self.mpm.bcs.use_temperature_bcs()   # gTemperatureStar in MPMICE too
         self.mpm._carried()
 
     def thermal_requires(self, t, step):
