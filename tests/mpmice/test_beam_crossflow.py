@@ -28,7 +28,8 @@ def _run(tmp_path_factory, patches="[2,1,1]", mpmice=""):
     text = DECK.read_text(encoding="iso-8859-1").replace("<outputInterval> 2.5e-3 </outputInterval>",
                                                          "<outputTimestepInterval> 60 </outputTimestepInterval>")
     text = text.replace("<patches> [2,1,1] </patches>", f"<patches> {patches} </patches>")
-    text = text.replace("  <MPM>\n", f"  <MPMICE>{mpmice}</MPMICE>\n  <MPM>\n", 1)
+    if mpmice:
+        text = text.replace("  <MPM>\n", f"  <MPMICE>{mpmice}</MPMICE>\n  <MPM>\n", 1)
     ctl = run_deck(text, tmp_path_factory.mktemp("beam"), "beam", max_timesteps=60)
     return DataArchive(ctl.archiver.dir)
 
