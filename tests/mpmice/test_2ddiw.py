@@ -20,8 +20,9 @@ block, the columns beside it; sus saves its exchanged temperature there, 300.04-
 does) 5.7e-11 K after step 1 and 8.2e-11 K after step 2; p.x 1.6e-11 m, p.temperature 2.8e-10 K
 (step 1) and 4.4e-10 K (step 2). The block stands on the y- face, whose Neumann <Temperature>
 condition (id="all") sets the solid's face and extra nodes too (bc.py, on its g.temperature and
-g.temperatureStar, as Uintah's MPMBoundCond in MPMICE); leaving those nodes free makes the block's
-bottom row 6.8e-5 K warmer than sus's after step 2. Not yet looked into: p.stress is 3.0e-3 Pa off
+g.temperatureStar, as Uintah's MPMBoundCond in MPMICE); leaving those nodes free
+(<MPMICE><solid_temperature_bcs>false) makes the block's bottom row up to 6.8e-5 K warmer than
+sus's after step 2. Not yet looked into: p.stress is 3.0e-3 Pa off
 sus's 5.6e-3 Pa after step 2 (the xx components 0.37 to 3.8 times sus's, same sign). The
 firstLawThermo energies equal sus's to 5.1e-10 (air) and 1.3e-14 (block); the energy flux is 0 in
 pysus and 4.3e-3 J in sus (from sus's 1e-8 m/s, against 7.1e5 J in all).
