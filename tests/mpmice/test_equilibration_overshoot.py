@@ -82,3 +82,36 @@ def test_binary_search_is_uintahs(max_iter):
     assert p == uintah_binary_search(rho, p_old, max_iter)
     if max_iter == 100:
         assert abs(1.0 - rho * RT / p) <= 100 * DBL_EPSILON
+
+
+# A cell full of steel with the 1e-12 air traces of the 12-cell pressurized cylinder (its deck,
+# components/mpmice/scene_cylinder.py deck(12, dz="dx"), at step 100, the steel stretched to
+# 0.09 Pa): rho_m, T_m, the specific volumes the iteration starts from (the steel's at the old
+# pressure), the old pressure
+STEEL_CELL = ((8899.873740587738, 1.2123853489959332e-12, 1.212385349849578e-12),
+              (300.0000000308535, 299.9978061849824, 299.9978060550776),
+              (0.00011236090309147895, 886313.6724170145, 886313.6723989265), 0.0931496288186199)
+
+
+def test_steel_cell_converges_by_uintahs_test():
+    """Uintah's MPMICE stops where |sum theta - 1| < 100 DBL_EPSILON after an iterate; there one ulp
+    of the steel's rho_micro moves p by about 1e-5 Pa, 1e-4 of p, and pysus ICE's |dp| <= 1e-11 p
+    is never met (the iterate cycles at round-off to max_iter). Uintah's sus takes 1 to 4
+    iterations in the cylinder's cells; so does MPMICE's equilibration here."""
+    rhos, temps, sp_old, p_old = STEEL_CELL
+    params = np.zeros((3, MAX_PARAMS))
+    params[0, :4] = (117e9, 8900.0, 101325.0, 1.0)
+    shape = (1, 1, 1)
+    results = {}
+    for uintah in (False, True):
+        out = [tuple(np.zeros(shape) for _ in range(3)) for _ in range(3)]
+        press = np.zeros(shape)
+        it = equilibrate(tuple(np.full(shape, r) for r in rhos), tuple(np.full(shape, t) for t in temps),
+                         tuple(np.full(shape, v) for v in sp_old), np.full(shape, p_old), out[0], out[1], out[2],
+                         press, np.array([SOLID_UCNH, IDEAL_GAS, IDEAL_GAS]), params, np.full(3, CV),
+                         np.array([1.0, 1.4, 1.4]), np.zeros(3, np.int64), np.ones(3, np.int64), 1e-11, 100, uintah)
+        results[uintah] = (it, press[0, 0, 0], sum(f[0, 0, 0] for f in out[1]))
+    assert results[False][0] == 100                      # the round-off cycle, taken at once
+    it, p, theta = results[True]
+    assert it <= 4 and abs(theta - 1.0) < 100 * DBL_EPSILON
+    assert p == pytest.approx(results[False][1], rel=1e-3)
