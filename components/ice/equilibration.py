@@ -199,16 +199,6 @@ def _binary_search_cell(c, p_old, P, R, T, RM, PE, DP, codes, params, cvs, gamma
     return count
 
 
-@njit(cache=True, error_model="numpy", inline="always")
-def _theta_sum_converged(R, RM, c):
-    """Uintah's MPMICE test of convergence at the new iterate: |sum_m rho_m / rho_micro_m - 1| below
-    100 DBL_EPSILON (a cell full of a stiff solid meets it where |dp| <= tol p cannot be met)."""
-    s = 0.0
-    for m in range(R.shape[0]):
-        s += R[m, c] / RM[m, c]
-    return abs(s - 1.0) < UINTAH_CONVERGENCE
-
-
 @njit(cache=True, error_model="numpy")
 def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_iter, rm1, rm2, uintah_mpmice):
     """Iterations 2.. of one cell of equilibrate (its state after iteration 1 in P, RM, PE,
@@ -242,9 +232,6 @@ def _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_it
             RM[m, c] = _rho_micro(codes[m], params, m, p, T[m, c], cvs[m], gammas[m], RM[m, c])
             PE[m, c], DP[m, c], _ = _press_eos(codes[m], params, m, RM[m, c], T[m, c], cvs[m], gammas[m])
         if abs(dp) <= tol * abs(p) + 1e-300 and abs(A - 1.0) < 1e-9:
-            P[c] = p
-            return it, True
-        if uintah_mpmice and _theta_sum_converged(R, RM, c):
             P[c] = p
             return it, True
         same = p == p2
@@ -286,10 +273,7 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
     eos_sound_speed2). Every
     cell does the plain per-cell iteration's operations in its order: bitwise its results.
     uintah_mpmice: MPMICE's equilibration as Uintah's where the iterate would fall below 0 and
-    where it does not converge (_next_iterate, _binary_search_cell), and converged also by
-    Uintah's test, |sum theta - 1| < 100 DBL_EPSILON at the new iterate (_theta_sum_converged:
-    a cell full of steel at a low pressure, where one ulp of its rho_micro moves p by more than
-    tol p, stops there instead of cycling or going to the binary search); else pysus ICE's.
+    where it does not converge (_next_iterate, _binary_search_cell); else pysus ICE's.
     Returns the largest iteration count (max_iter where a cell cycles)."""
     n = len(rhos)
     k0 = lo[2]
@@ -341,8 +325,7 @@ def equilibrate(rhos, temps, sp_old, p_guess, sp_new, vfs, css, press, codes, pa
                     _rho_micro_row(codes[m], params, m, P, T[m], cvs[m], gammas[m], RM[m])
                     _eos_row(codes[m], params, m, RM[m], T[m], cvs[m], gammas[m], PE[m], DP[m])
                 for c in range(nk):
-                    if (abs(D[c]) <= tol * abs(P[c]) + 1e-300 and abs(A[c] - 1.0) < 1e-9) or \
-                            (uintah_mpmice and _theta_sum_converged(R, RM, c)):
+                    if abs(D[c]) <= tol * abs(P[c]) + 1e-300 and abs(A[c] - 1.0) < 1e-9:
                         worst = max(worst, 1)
                     else:
                         it, done = _newton_cell(c, P, R, T, RM, PE, DP, codes, params, cvs, gammas, tol, max_iter,
