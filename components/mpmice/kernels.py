@@ -464,8 +464,8 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
     tmv is the materials' total volume before the scaling (Uintah's TMV_CC, m^3), which the
     fluids' flow work takes as the cell's volume. sp_start[m] of a solid is 1 / rho_micro_m(p_old),
     the specific volume its Newton iteration starts from (Uintah's rho_micro start): from the
-    particles' own, inconsistent with the scaled density, a cell full of steel stepped to
-    p ~ 0 and took some 40 iterations back."""
+    particles' own, which the mapping's noise sets apart from the scaled density, a cell full
+    of steel with a trace of air steps to p ~ 0 and takes some 40 iterations back."""
     n = len(rhos)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
