@@ -1,7 +1,8 @@
 """numba set-up for the kernels of these packages: the faster IR inlining (inline="always"
 helpers), constant branches folded before typing, faster liveness analysis, SSA
-reconstruction and compile-flag comparison, and one compilation per kernel across processes
-sharing a cache."""
+reconstruction and compile-flag comparison, one compilation per kernel across processes
+sharing a cache, and a kernel loaded from the cache without numba's whole target set-up."""
+import framework.numba_cache_load  # noqa: F401
 import framework.numba_compile_lock  # noqa: F401
 import framework.numba_inline  # noqa: F401
 import framework.numba_fold  # noqa: F401

@@ -448,7 +448,7 @@ def lagrangian_solid(cmass, vstar, temp, vel_sur, temp_sur, tiny_mass, vf, px, p
 
 @njit(cache=True)
 def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params, cvs, gammas, fluids_too,
-                           out, tmv, vol, lo, hi):
+                           out, sp_start, tmv, vol, lo, hi):
     """The solids' densities the equilibration starts from (Uintah's computeEquilibrationPressure,
     its Docs/MPMICE.txt): a solid's volume in a cell is its EOS volume at the old pressure,
     rho_m / rho_micro_m(p_old), not the particles' mass mapped to the cell over their mapped
@@ -462,7 +462,10 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
     scaled as well, so that the geometric gas and the particles' smeared solid start by filling
     the cell at the old pressure. out[m] is written for the materials scaled; with fluids_too
     tmv is the materials' total volume before the scaling (Uintah's TMV_CC, m^3), which the
-    fluids' flow work takes as the cell's volume."""
+    fluids' flow work takes as the cell's volume. sp_start[m] of a solid is 1 / rho_micro_m(p_old),
+    the specific volume its Newton iteration starts from (Uintah's rho_micro start): from the
+    particles' own, which the mapping's noise sets apart from the scaled density, a cell full
+    of steel with a trace of air steps to p ~ 0 and takes some 40 iterations back."""
     n = len(rhos)
     for i in range(lo[0], hi[0]):
         for j in range(lo[1], hi[1]):
@@ -472,8 +475,10 @@ def solids_at_old_pressure(rhos, temps, sp_vols, press_old, solid, codes, params
                 for m in range(n):
                     r = rhos[m][i, j, k]
                     if solid[m]:
-                        solid_vol += r / _rho_micro(codes[m], params, m, press_old[i, j, k], temps[m][i, j, k],
-                                                    cvs[m], gammas[m], 1.0 / sp_vols[m][i, j, k])
+                        rm = _rho_micro(codes[m], params, m, press_old[i, j, k], temps[m][i, j, k], cvs[m],
+                                        gammas[m], 1.0 / sp_vols[m][i, j, k])
+                        sp_start[m][i, j, k] = 1.0 / rm
+                        solid_vol += r / rm
                     else:
                         fluid += r * sp_vols[m][i, j, k]
                 scale = 1.0 / (fluid + solid_vol) if solid_vol > 0.0 else 1.0

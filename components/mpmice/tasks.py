@@ -304,15 +304,16 @@ class MPMICETasks:
         # deck model's EOS: sus's press_CC to 1e-12 on a rigid slab in 10 atm air,
         # tests/mpmice/test_solid_eos_decks.py); with pysus's particle start, their default, scaling the
         # solids alone by their stand-in EOS collapsed the Mach 3 wedge's time step (4e-8 s, not 5.7e-6)
-        scaled = rhos
+        scaled, sp_start = rhos, sp_old
         tmv = new_dw.allocate(I.TMV_CC, 0, patch, fill=b.vol)
         if not self.rigid or self.gas_start == "geometry":
             solid = np.array([m in self.mpm_matls for m in matls])
             fluids_too = self.gas_start == "geometry"
             scaled = tuple(r.copy() if s or fluids_too else r for r, s in zip(rhos, solid))
+            sp_start = tuple(np.empty_like(v) if s else v for v, s in zip(sp_old, solid))
             K.solids_at_old_pressure(rhos, temps, sp_old, p_old, solid, ice.codes, ice.params, ice.cvs, ice.gammas,
-                                     fluids_too, scaled, b.view(tmv), b.vol, b.v_olo, b.v_ohi)
-        E.equilibrate(scaled, temps, sp_old, p_old,
+                                     fluids_too, scaled, sp_start, b.view(tmv), b.vol, b.v_olo, b.v_ohi)
+        E.equilibrate(scaled, temps, sp_start, p_old,
                       spv, vfs, css, b.view(peq), ice.codes, ice.params, ice.cvs, ice.gammas, b.v_olo, b.v_ohi,
                       1e-11, ice.max_iter, True)
         ice.bcs.scalar(patch, peq, "Pressure", 0, b)

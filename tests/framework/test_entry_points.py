@@ -3,6 +3,8 @@ import os
 import subprocess
 import sys
 
+import numpy as np
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
@@ -44,3 +46,37 @@ def test_warm_writes_the_bytecode_of_pysus_modules():
             _, flags, mtime, size = struct.unpack("<4sIII", f.read(16))
         st = os.stat(src)
         assert flags == 0 and mtime == int(st.st_mtime) & 0xFFFFFFFF and size == st.st_size & 0xFFFFFFFF
+
+
+END_OF_RUN = """
+import atexit, sys
+from framework.cli import main
+
+
+class Teardown:
+    def __del__(self):
+        print("torn down", flush=True)
+
+
+kept = Teardown()                     # freed only by the interpreter's teardown
+atexit.register(lambda: print("atexit ran"))
+sys.argv = ["pysus", "inputs/examples/quickstart.ups", "--max-timesteps", "2", "--filebase", sys.argv[1]]
+sys.exit(main())
+"""
+
+
+def test_command_ends_after_its_run_without_the_teardown(tmp_path):
+    """The pysus command's process, once its run is written, runs the atexit handlers, flushes its
+    output and ends without the interpreter's teardown (cli._end_process); the uda is complete."""
+    from framework.archiver import DataArchive
+    env = dict(os.environ, PYTHONPATH=ROOT)
+    uda = str(tmp_path / "run.uda")
+    r = subprocess.run([sys.executable, "-c", END_OF_RUN, uda], capture_output=True, text=True, env=env,
+                       cwd=ROOT, timeout=300)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.strip().splitlines()
+    assert lines[-2].startswith("pysus: 2 timesteps") and lines[-1] == "atexit ran"
+    assert "torn down" not in r.stdout
+    da = DataArchive(uda)
+    temp, _ = da.read("temp_CC", 0, -1)
+    assert da.timesteps == [0] and temp.size == 64 * 64 and np.isfinite(temp).all()

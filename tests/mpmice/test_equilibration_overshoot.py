@@ -82,3 +82,47 @@ def test_binary_search_is_uintahs(max_iter):
     assert p == uintah_binary_search(rho, p_old, max_iter)
     if max_iter == 100:
         assert abs(1.0 - rho * RT / p) <= 100 * DBL_EPSILON
+
+
+# A cell full of steel (comp_neo_hook, <useModifiedEOS>) with 1e-12 air traces from the 12-cell
+# pressurized cylinder (components/mpmice/scene_cylinder.py deck(12, dz="dx"), step 200): the
+# steel's density scaled to fill the cell at the old pressure, the air's, their temperatures, the
+# densities the particles give the steel and the air's own, and the old pressure
+CYLINDER_CELL = ((8900.03639730968, 1.1793442473375e-12, 1.179345789360752e-12),
+                 (300.00009305916865, 517.2384481804248, 521.6244399184691),
+                 (8899.69987141428, 3.8933657374870405, 3.8608202702359153), 579805.579607289)
+
+
+def test_solid_starts_at_its_eos_volume():
+    """The solid's Newton iteration starts, as Uintah's, from rho_micro(p_old), the density its
+    scaled volume was taken at (mpmice/kernels.solids_at_old_pressure writes it): from the
+    particles' own density, 4e-5 below it, the first step of this cell lands near p = 0 and the
+    iterate doubles back for some 40 iterations; from the EOS density it converges in a few, to
+    the same pressure."""
+    from components.mpmice.kernels import solids_at_old_pressure
+    rhos, temps, rm_particles, p_old = CYLINDER_CELL
+    params = np.zeros((3, MAX_PARAMS))
+    K, rho0, p_ref = 117e9, 8900.0, 101325.0
+    params[0, :4] = (K, rho0, p_ref, 1.0)
+    codes, cvs, gammas = np.array([SOLID_UCNH, IDEAL_GAS, IDEAL_GAS]), np.full(3, CV), np.array([1.0, 1.4, 1.4])
+    shape = (1, 1, 1)
+    cell = lambda x: np.full(shape, float(x))
+    lo, hi = np.zeros(3, np.int64), np.ones(3, np.int64)
+    sp_particles = tuple(cell(1.0 / r) for r in rm_particles)
+    scaled = tuple(cell(r) for r in rhos)
+    sp_start = (cell(0.0),) + sp_particles[1:]
+    solids_at_old_pressure(tuple(cell(r) for r in rhos), tuple(cell(t) for t in temps), sp_particles, cell(p_old),
+                           np.array([True, False, False]), codes, params, cvs, gammas, False, scaled, sp_start,
+                           cell(1.0), 1.0, lo, hi)
+    g = p_old - p_ref                                 # comp_neo_hook's rho_micro above p_ref (Uintah's computeRhoMicroCM)
+    assert sp_start[0][0, 0, 0] == pytest.approx(1.0 / (rho0 / K * (g + np.sqrt(K * K + g * g))), rel=1e-15)
+    assert sp_start[1] is sp_particles[1] and sp_start[2] is sp_particles[2]
+    results = []
+    for sp in (sp_particles, sp_start):
+        out = [tuple(np.zeros(shape) for _ in range(3)) for _ in range(3)]
+        press = np.zeros(shape)
+        it = equilibrate(tuple(cell(r) for r in rhos), tuple(cell(t) for t in temps), sp, cell(p_old), out[0], out[1],
+                         out[2], press, codes, params, cvs, gammas, lo, hi, 1e-11, 100, True)
+        results.append((it, press[0, 0, 0]))
+    assert results[0][0] > 30 and results[1][0] <= 4
+    assert results[1][1] == pytest.approx(results[0][1], rel=1e-10)
