@@ -255,7 +255,7 @@ def _prefetch_nodes(kind, act, i, j, k, sh1, sh2, flat):
     base node (i, j, k): the first and last value of each run of nodes contiguous in memory."""
     na, nb, nc = _counts(kind, act)
     for a in range(na):
-        if nc == 1:
+        if not act & 4:         # nc == 1, as a test numba_fold takes before typing
             f = np.uint64(3 * (((i + a) * sh1 + j) * sh2 + k))
             _prefetch(flat, f)
             _prefetch(flat, f + np.uint64(3 * (nb - 1) * sh2 + 2))

@@ -18,7 +18,7 @@ could alias the node arrays), and does all the work that particle needs at its n
 CPDI particles visit the linear stencils of their domain's corners in turn (shape._corners; one
 stencil for linear and GIMP, the loop folded away), each corner's weights and gradients
 carried in the same per-axis values, so every kernel below serves all interpolators. The loop
-over one stencil's nodes is shape._over_nodes, each kernel with its node function (_g2p_node,
+over one stencil's nodes is shape._over_nodes, each kernel with its node function (_g2p_node, _g2p_usl_node,
 _velocity_gradient_node, _gather_node, _scatter_node, ...), inlined; but p2g's (_p2g_one), whose
 internal force came out of it with other fused multiply-adds in 2D (not bitwise).
 
@@ -312,10 +312,10 @@ def _velocity_gradient_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, 
 
 @njit(cache=True, fastmath=FM, inline="always")
 def _g2p_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
-    """g2p's sums at one node: += S a_i, S v*_i and (USL) v*_i (x) grad S_i; args = (v*, a, musl)
-    (flat); acc the 15 running sums."""
-    a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = acc
-    fv, fa, musl = args
+    """g2p's sums at one node: += S a_i, S v*_i; args = (v*, a) (flat); acc the 6 running sums
+    (MUSL's: its L is the grad pass's)."""
+    a0, a1, a2, v0, v1, v2 = acc
+    fv, fa = args
     S = wa * wb * wc
     f3 = np.uint64(3) * np.uint64(n)
     a0 += S * fa[f3]
@@ -324,9 +324,17 @@ def _g2p_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
     v0 += S * fv[f3]
     v1 += S * fv[f3 + np.uint64(1)]
     v2 += S * fv[f3 + np.uint64(2)]
-    if not musl:
-        L00, L01, L02, L10, L11, L12, L20, L21, L22 = _velocity_gradient_node(
-            (L00, L01, L02, L10, L11, L12, L20, L21, L22), fv, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha)
+    return a0, a1, a2, v0, v1, v2
+
+
+@njit(cache=True, fastmath=FM, inline="always")
+def _g2p_usl_node(acc, args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha):
+    """USL's sums at one node: _g2p_node's and v*_i (x) grad S_i; acc the 15 running sums (MUSL
+    carries no L terms: 9 fewer values through every inlined level, less to type and lower)."""
+    a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = acc
+    a0, a1, a2, v0, v1, v2 = _g2p_node((a0, a1, a2, v0, v1, v2), args, act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha)
+    L00, L01, L02, L10, L11, L12, L20, L21, L22 = _velocity_gradient_node(
+        (L00, L01, L02, L10, L11, L12, L20, L21, L22), args[0], act, x, y, z, n, wa, wb, wc, ga, gb, gc, ha)
     return a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22
 
 
@@ -386,9 +394,15 @@ def _g2p_rows(kind, act, musl, xpic, part, first, end, owned, grid, outs, lim, a
             L00 = L01 = L02 = L10 = L11 = L12 = L20 = L21 = L22 = 0.0
             for cq in range(nq):
                 q = (p - c0) * nq + cq
-                a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = _over_nodes(
-                    _g2p_node, kind, act, (sb[0, q], sb[1, q], sb[2, q]), sh, _stencil_get(kind, act, q, ih, sw),
-                    False, (a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22), (fv, fa, musl))
+                ijk = (sb[0, q], sb[1, q], sb[2, q])
+                if musl:
+                    a0, a1, a2, v0, v1, v2 = _over_nodes(_g2p_node, kind, act, ijk, sh,
+                                                         _stencil_get(kind, act, q, ih, sw), False,
+                                                         (a0, a1, a2, v0, v1, v2), (fv, fa))
+                else:
+                    a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22 = _over_nodes(
+                        _g2p_usl_node, kind, act, ijk, sh, _stencil_get(kind, act, q, ih, sw), False,
+                        (a0, a1, a2, v0, v1, v2, L00, L01, L02, L10, L11, L12, L20, L21, L22), (fv, fa))
             if xpic:        # XPIC(2) (Hammerquist & Nairn 2017): v = 2 v+ - v++ + a dt
                 s0 = s1 = s2 = ss0 = ss1 = ss2 = 0.0
                 for cq in range(nq):
@@ -545,11 +559,20 @@ INTERPOLATORS = {"linear": LINEAR, "gimp": GIMP, "cpdi": CPDI, "fast_cpdi": CPDI
 
 
 @functools.lru_cache(maxsize=None)
-def _p2g_variant(interpolator, axes, has_fext, has_volume):
+def _p2g_variant(interpolator, axes, has_fext, has_volume, projection=False):
     """p2g without its two flags for one interpolator, mask and pair of flags, each compiled only
     where a run uses it (the three pairs in one entry cost three copies of the loop in every
-    compile; the flags as run-time values made the pass 20-30 % slower)."""
+    compile; the flags as run-time values made the pass 20-30 % slower). projection: Uintah's
+    gradient-enhanced one, with the owned and ghost particles' velocity gradients after grid_fint."""
     kind = INTERPOLATORS[interpolator]
+
+    if projection:
+        @njit(cache=True, fastmath=FM)
+        def p2g_projected(owned, ghost, runs, anchor, dx, node_low, grid_mass, grid_momentum, grid_volume, grid_fext,
+                          grid_fint, grad_owned, grad_ghost):
+            _p2g(kind, axes, owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum,
+                 grid_volume, grid_fext, grid_fint, True, grad_owned, grad_ghost)
+        return p2g_projected
 
     @njit(cache=True, fastmath=FM)
     def p2g(owned, ghost, runs, anchor, dx, node_low, grid_mass, grid_momentum, grid_volume, grid_fext, grid_fint):
@@ -564,23 +587,10 @@ def _p2g_entry(interpolator, axes, projection=False):
     """p2g (signature above) for one interpolator and active-axis mask; with projection (Uintah's
     UseGradientEnhancedVelocityProjection) it takes the owned and ghost particles' velocity
     gradients after grid_fint (and always computes g.volume)."""
-    kind = INTERPOLATORS[interpolator]
-
-    if projection:
-        @njit(cache=True, fastmath=FM)
-        def p2g_projected(owned, ghost, runs, has_fext, has_volume, anchor, dx, node_low, grid_mass, grid_momentum,
-                          grid_volume, grid_fext, grid_fint, grad_owned, grad_ghost):
-            if has_fext:
-                _p2g(kind, axes, owned, ghost, runs, True, True, anchor, dx, node_low, grid_mass, grid_momentum,
-                     grid_volume, grid_fext, grid_fint, True, grad_owned, grad_ghost)
-            else:
-                _p2g(kind, axes, owned, ghost, runs, False, True, anchor, dx, node_low, grid_mass, grid_momentum,
-                     grid_volume, grid_fext, grid_fint, True, grad_owned, grad_ghost)
-        return p2g_projected
-
     def p2g(owned, ghost, runs, has_fext, has_volume, *grid):
         has_fext = bool(has_fext)
-        _p2g_variant(interpolator, axes, has_fext, has_fext or bool(has_volume))(owned, ghost, runs, *grid)
+        has_volume = projection or has_fext or bool(has_volume)
+        _p2g_variant(interpolator, axes, has_fext, has_volume, projection)(owned, ghost, runs, *grid)
     return p2g
 
 

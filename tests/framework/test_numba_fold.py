@@ -5,6 +5,7 @@ import numpy as np
 from numba import njit
 
 import framework.numba_fold as numba_fold
+import framework.numba_inline as numba_inline
 
 LINEAR, GIMP = 0, 1
 
@@ -48,8 +49,9 @@ def test_folded_branches_same_numbers(monkeypatch):
     for kind, act in ((LINEAR, 3), (GIMP, 3), (GIMP, 7), (LINEAR, 1)):
         monkeypatch.setattr(numba_fold, "fold_constant_branches", counting)
         counts.clear()
+        numba_inline._untyped.clear()      # the helpers built anew (not from an earlier case's constants)
         folded = _kernel(kind, act)(xs)
-        assert sum(counts) >= 4, counts      # each helper's tests of kind and of its axis bit
+        assert sum(counts) >= 2, counts      # _weight's tests of its axis bit and of kind
         monkeypatch.setattr(numba_fold, "ENABLED", False)
         plain = _kernel(kind, act)(xs)
         monkeypatch.undo()
