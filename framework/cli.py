@@ -97,7 +97,9 @@ def relaunch(args, argv):
     os.execv(cmd[0], cmd)
 
 
-def main(argv=None):
+def main(argv=None, comm=None):
+    """Run the pysus command line argv; comm: the communicator of the ranks to run on (a
+    framework.scheduler.comm.Comm; default MPI's world under mpiexec, else serial)."""
     argv = sys.argv[1:] if argv is None else argv
     from .uda_tools import COMMANDS
     if argv and argv[0] in COMMANDS:        # pysus info|extract|plot RUN.uda (framework/uda_tools.py)
@@ -117,7 +119,7 @@ def main(argv=None):
             sys.modules["numba"].config.reload_config()
     if args.warm:
         return warm(args)
-    comm = make_comm()
+    comm = comm or make_comm()
     from .problemspec import InputError
     from .scheduler.compile import GraphError
     try:

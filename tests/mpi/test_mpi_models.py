@@ -5,7 +5,7 @@ it)."""
 import numpy as np
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, pysus_ranks
+from tests.conftest import ROOT, pysus_ranks, pysus_runs
 
 DECK = ROOT / "inputs" / "MPMICE" / "burning_container2D.ups"
 
@@ -18,12 +18,13 @@ def test_burning_container_ranks_and_patches_equal(tmp_path):
     one.write_text(text.replace("<patches> [2,2,1] </patches>", "<patches> [1,1,1] </patches>"))
     four = tmp_path / "four.ups"
     four.write_text(text)
+    names = ("p1", "p4", "r2", "r3")
+    out = pysus_runs([((deck, "--filebase", tmp_path / f"{name}.uda", "--max-timesteps", 60), n)
+                      for name, deck, n in zip(names, (one, four, four, four), (1, 1, 2, 3))], tmp_path)
     runs = {}
-    for name, deck, n in (("p1", one, 1), ("p4", four, 1), ("r2", four, 2), ("r3", four, 3)):
-        uda = tmp_path / f"{name}.uda"
-        r = pysus_ranks(deck, "--filebase", uda, "--max-timesteps", 60, np_=n, timeout=600)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[name] = DataArchive(uda)
+    for name, (rc, err) in zip(names, out):
+        assert rc == 0, err[-2000:]
+        runs[name] = DataArchive(tmp_path / f"{name}.uda")
     base = runs["p1"]
     assert base.particles(1, -1)["p.mass"].sum() < base.particles(1, 0)["p.mass"].sum()   # it burned
     for name in ("p4", "r2", "r3"):
