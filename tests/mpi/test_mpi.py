@@ -156,8 +156,9 @@ def test_a_rank_killed_ends_the_others(tmp_path):
         ranks = [pid for pid in _pids_running(str(tmp_path / "long.ups")) if pid != job.pid and _is_rank(pid)]
         time.sleep(0.5)
     assert len(ranks) == 2, "both ranks started"
-    time.sleep(3.0)                                         # into the time loop
-    assert job.poll() is None
+    while not (tmp_path / "long.uda" / "t00004").exists() and time.time() < deadline:
+        time.sleep(0.1)                                     # into the time loop: its output of step 4
+    assert (tmp_path / "long.uda" / "t00004").exists() and job.poll() is None
     t0 = time.time()
     os.kill(ranks[1], signal.SIGKILL)
     try:
