@@ -66,8 +66,9 @@ def pysus_launch(runs, workdir, timeout=600):
     import json
     spec = Path(workdir) / "pysus_runs.json"
     spec.write_text(json.dumps([[list(map(str, args)), n] for args, n in runs]))
-    # as a module from the repository root: run as a script, Python would put tests/ first on
-    # sys.path, where the test packages tests/framework and tests/components hide pysus's own
+    # as a module (tests.pysus_runs, found through PYTHONPATH): run as a script, Python would put
+    # tests/ first on sys.path, where the test packages tests/framework and tests/components hide
+    # pysus's own (and numba's cache index of every kernel would be rewritten)
     cmd = [str(BIN / "mpiexec"), "-n", str(max(n for _, n in runs)), sys.executable, "-m", "tests.pysus_runs", str(spec)]
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, (str(ROOT), os.environ.get("PYTHONPATH")))))
     return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=workdir, env=env)

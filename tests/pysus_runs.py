@@ -4,7 +4,8 @@ RUNS.json holds a list of [argv, n]: each run is the pysus command line argv (fr
 what the pysus command runs) on the first n ranks, in a communicator split off MPI's world; the
 runs go one after another. One launch instead of one per run spares every run after the first
 the start of n Python processes and the loading of the kernels (about 1 CPU s a rank). Exits
-with the first non-zero exit code of a run (rank 0 names the run on stderr).
+with the first non-zero exit code of a run (rank 0 names the run on stderr); a run that raises
+ends the whole launch, as pysus on several ranks does (framework/cli.py _exit).
 """
 import json
 import sys
