@@ -97,9 +97,10 @@ def relaunch(args, argv):
     os.execv(cmd[0], cmd)
 
 
-def main(argv=None):
-    """Run the command line argv (sys.argv's when None: the pysus command itself, whose process
-    ends in _end_process once a run has finished)."""
+def main(argv=None, comm=None):
+    """Run the pysus command line argv (sys.argv's when None: the pysus command itself, whose process
+    ends in _end_process once a run has finished); comm: the communicator of the ranks to run on
+    (a framework.scheduler.comm.Comm; default MPI's world under mpiexec, else serial)."""
     command_line = argv is None
     argv = sys.argv[1:] if argv is None else argv
     from .uda_tools import COMMANDS
@@ -120,7 +121,7 @@ def main(argv=None):
             sys.modules["numba"].config.reload_config()
     if args.warm:
         return warm(args)
-    comm = make_comm()
+    comm = comm or make_comm()
     from .problemspec import InputError
     from .scheduler.compile import GraphError
     try:

@@ -57,6 +57,42 @@ def pysus_ranks(*args, np_=1, timeout=300):
     return subprocess.CompletedProcess(argv, rc, out.getvalue(), err.getvalue())
 
 
+def pysus_launch(runs, workdir, timeout=600):
+    """The pysus runs [(args, n), ...], each on n ranks, one after another in ONE mpiexec launch
+    of the largest n processes (tests/pysus_runs.py: each run through framework.cli.main on the
+    first n ranks): the 2- and 3-rank runs of a file's decks start Python and load their kernels
+    once per rank, not once per run and rank (about 1 CPU s each). Returns the CompletedProcess
+    (returncode: the first failed run's, which rank 0 names on stderr)."""
+    import json
+    spec = Path(workdir) / "pysus_runs.json"
+    spec.write_text(json.dumps([[list(map(str, args)), n] for args, n in runs]))
+    # as a module (tests.pysus_runs, found through PYTHONPATH): run as a script, Python would put
+    # tests/ first on sys.path, where the test packages tests/framework and tests/components hide
+    # pysus's own (and numba's cache index of every kernel would be rewritten)
+    cmd = [str(BIN / "mpiexec"), "-n", str(max(n for _, n in runs)), sys.executable, "-m", "tests.pysus_runs", str(spec)]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, (str(ROOT), os.environ.get("PYTHONPATH")))))
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=workdir, env=env)
+
+
+def pysus_runs(runs, workdir, timeout=1200):
+    """The pysus runs [(args, n), ...] in workdir: those on one rank in this process, first (the
+    kernels they compile, numba's cache then hands to the ranks), then all the others in one
+    pysus_launch. Returns each run's (return code, stderr) in the order of runs (the ranks' runs
+    share their launch's)."""
+    out = [None] * len(runs)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(workdir)
+        for i, (args, n) in enumerate(runs):
+            if n == 1:
+                r = pysus_ranks(*args)
+                out[i] = (r.returncode, r.stderr)
+    ranks = [(args, n) for args, n in runs if n > 1]
+    if ranks:
+        r = pysus_launch(ranks, workdir, timeout=timeout)
+        out = [o or (r.returncode, r.stderr) for o in out]
+    return out
+
+
 # The test files that take the most CPU seconds, heaviest first (PYSUS_TEST_CPU below, one directory
 # at a time on the shipped decks' kernel cache: each file's first test pays the numba compilation of
 # the specialisations no shipped deck uses). pytest-xdist (scripts/test: --dist loadfile

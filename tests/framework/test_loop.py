@@ -6,7 +6,7 @@ from framework.archiver import DataArchive
 from framework.scheduler.compile import GraphError
 from framework.scheduler.loop import Loop, LoopError
 from tests.components.examples.test_examples import heat_error
-from tests.conftest import pysus_ranks, run_deck
+from tests.conftest import pysus_runs, run_deck
 from tests.framework import decks
 
 
@@ -58,13 +58,20 @@ def test_body_reading_an_unseeded_variable_is_refused():
         s.compile(set(), None)
 
 
+@pytest.fixture(scope="module")
+def on_ranks(tmp_path_factory):
+    """The implicit heat deck on 1 rank in this process, then on 2 and 3 ranks in one mpiexec
+    launch: the directory of n1.uda, n2.uda, n3.uda and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("loop_ranks")
+    (d / "d.ups").write_text(decks.heat(n=32, patches="[3,2,1]", maxTime=0.05, implicit=True, cfl=3.2, tolerance=1e-12))
+    return d, pysus_runs([((d / "d.ups", "--filebase", d / f"n{n}.uda"), n) for n in (1, 2, 3)], d)
+
+
 @pytest.mark.parametrize("nranks", [2, 3])
-def test_implicit_solve_on_ranks_matches_one_rank(tmp_path, nranks):
-    text = decks.heat(n=32, patches="[3,2,1]", maxTime=0.05, implicit=True, cfl=3.2, tolerance=1e-12)
-    (tmp_path / "d.ups").write_text(text)
-    for n in (1, nranks):
-        r = pysus_ranks(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
-        assert r.returncode == 0, r.stderr
-    t1 = DataArchive(tmp_path / "n1.uda").read("temp_CC", 0, -1)[0]
-    tn = DataArchive(tmp_path / f"n{nranks}.uda").read("temp_CC", 0, -1)[0]
+def test_implicit_solve_on_ranks_matches_one_rank(on_ranks, nranks):
+    d, out = on_ranks
+    for rc, err in (out[0], out[nranks - 1]):
+        assert rc == 0, err
+    t1 = DataArchive(d / "n1.uda").read("temp_CC", 0, -1)[0]
+    tn = DataArchive(d / f"n{nranks}.uda").read("temp_CC", 0, -1)[0]
     assert np.abs(t1 - tn).max() < 1e-10 * np.abs(t1).max()

@@ -13,7 +13,7 @@ from components.ice.scene_lowmach import blob_deck, vortex_deck, vortex_errors
 from framework.archiver import DataArchive
 from framework.controller import Controller
 from framework.problemspec import InputError
-from tests.conftest import pysus_ranks
+from tests.conftest import pysus_runs
 
 N = 16
 DATA = Path(__file__).parent / "data"
@@ -91,16 +91,23 @@ def test_two_materials_match_explicit_at_the_same_delT(tmp_path, K, limiter):
         assert np.abs(e - i).max() < 1e-3 * s, what
 
 
+@pytest.fixture(scope="module")
+def on_ranks(tmp_path_factory):
+    """The implicit vortex on 1 rank in this process, then on 2 and 3 ranks in one mpiexec
+    launch: the directory of n1.uda, n2.uda, n3.uda and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("implicit_ranks")
+    (d / "d.ups").write_text(vortex_deck(N, implicit=True, patches="[2,2,1]", tolerance=1e-12, max_timesteps=4))
+    return d, pysus_runs([((d / "d.ups", "--filebase", d / f"n{n}.uda"), n) for n in (1, 2, 3)], d)
+
+
 @pytest.mark.parametrize("nranks", [2, 3])
-def test_implicit_ice_on_ranks_matches_one_rank(tmp_path, nranks):
-    (tmp_path / "d.ups").write_text(vortex_deck(N, implicit=True, patches="[2,2,1]", tolerance=1e-12,
-                                                max_timesteps=4))
-    for n in (1, nranks):
-        r = pysus_ranks(tmp_path / "d.ups", "--filebase", tmp_path / f"n{n}.uda", np_=n)
-        assert r.returncode == 0, r.stderr
+def test_implicit_ice_on_ranks_matches_one_rank(on_ranks, nranks):
+    d, out = on_ranks
+    for rc, err in (out[0], out[nranks - 1]):
+        assert rc == 0, err
     for lab in ("vel_CC", "press_CC"):
-        a = DataArchive(tmp_path / "n1.uda").read(lab, 0, -1)[0]
-        b = DataArchive(tmp_path / f"n{nranks}.uda").read(lab, 0, -1)[0]
+        a = DataArchive(d / "n1.uda").read(lab, 0, -1)[0]
+        b = DataArchive(d / f"n{nranks}.uda").read(lab, 0, -1)[0]
         ref = np.abs(a).max() if lab == "vel_CC" else np.ptp(a)
         assert np.abs(a - b).max() < 1e-9 * ref, lab
 

@@ -4,7 +4,7 @@ the saved total energy equal to round-off (a sum over ranks)."""
 import numpy as np
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus_ranks
+from tests.conftest import pysus_runs
 
 from .test_conservation import deck, totals
 
@@ -14,12 +14,11 @@ LABELS = ("rho_CC", "temp_CC", "vel_CC", "sp_vol_CC")
 def test_two_gases_conserving_energy_ranks_equal_one_rank(tmp_path):
     path = tmp_path / "blast2.ups"
     path.write_text(deck(2, 1e10, steps=20, every=20, saves=LABELS))
+    out = pysus_runs([((path, "--filebase", tmp_path / f"r{n}.uda"), n) for n in (1, 2, 3)], tmp_path)
     runs = {}
-    for n in (1, 2, 3):
-        uda = tmp_path / f"r{n}.uda"
-        r = pysus_ranks(path, "--filebase", uda, np_=n)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[n] = DataArchive(uda)
+    for n, (rc, err) in zip((1, 2, 3), out):
+        assert rc == 0, err[-2000:]
+        runs[n] = DataArchive(tmp_path / f"r{n}.uda")
     for n in (2, 3):
         for lab in LABELS:
             for m in (0, 1):

@@ -1,7 +1,7 @@
 """Runs under mpiexec -n 2 and -n 3 equal the one-rank answer; restart across rank counts.
 
-Each test launches `mpiexec -n N pysus` (oversubscribed on small machines is fine)
-and compares the archives bitwise: the example component's sums are ordered by
+The tests run pysus under mpiexec (oversubscribed on small machines is fine; the 3-rank runs
+share one launch, conftest.pysus_launch) and compare the archives bitwise: the example component's sums are ordered by
 particle ID and ghost cells are exact copies, so no round-off differs.
 """
 import os
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus, pysus_ranks
+from tests.conftest import pysus, pysus_launch, pysus_ranks
 from tests.framework import decks
 
 SAVE = ('<save label="p.x"/><save label="p.particleID"/><save label="p.mass"/><save label="g.mass"/>'
@@ -47,20 +47,31 @@ def serial(tmp_path_factory):
     return d
 
 
+def rebalancing_deck():
+    return deck().replace("<DataArchiver>", '<LoadBalancer type="DLB"><timestepInterval>3</timestepInterval>'
+                                            '</LoadBalancer>\n  <DataArchiver>')
+
+
 @pytest.fixture(scope="module")
 def ranks(serial):
     """ranks(n): the deck's uda on n ranks, run once for the tests that read it; 2 ranks through
-    `pysus --np 2` (pysus relaunching itself under mpiexec), 3 through `mpiexec -n 3 pysus`."""
+    `pysus --np 2` (pysus relaunching itself under mpiexec); 3 in one mpiexec launch with this
+    file's other 3-rank runs (pysus_launch): the restart of the 2-rank run from its first
+    checkpoint (again3.uda) and the deck with rebalancing (lb.uda), all in serial's directory."""
     udas = {}
 
     def uda(n):
         if n not in udas:
-            udas[n] = serial / f"n{n}.uda"
             if n == 2:
-                r = pysus(serial / "deck.ups", "--filebase", udas[n], "--np", "2")
+                r = pysus(serial / "deck.ups", "--filebase", serial / "n2.uda", "--np", "2")
+                assert r.returncode == 0, r.stderr
             else:
-                r = pysus(serial / "deck.ups", "--filebase", udas[n], np_=n)
-            assert r.returncode == 0, r.stderr
+                (serial / "lb.ups").write_text(rebalancing_deck())
+                r = pysus_launch([((serial / "deck.ups", "--filebase", serial / "n3.uda"), 3),
+                                  (("-restart", uda(2), "-t", "0", "--filebase", serial / "again3.uda"), 3),
+                                  ((serial / "lb.ups", "--filebase", serial / "lb.uda"), 3)], serial)
+                assert r.returncode == 0, r.stderr
+            udas[n] = serial / f"n{n}.uda"
         return udas[n]
     return uda
 
@@ -92,9 +103,13 @@ def test_particles_cross_ranks_without_loss_or_duplicates(ranks):
 
 @pytest.mark.parametrize("onto", [3, 1])
 def test_restart_from_two_ranks_onto_other_counts(serial, ranks, tmp_path, onto):
-    again = tmp_path / "again.uda"
-    r = pysus_ranks("-restart", ranks(2), "-t", "0", "--filebase", again, np_=onto)
-    assert r.returncode == 0, r.stderr
+    if onto == 3:
+        ranks(3)                    # restarted in the 3-rank launch
+        again = serial / "again3.uda"
+    else:
+        again = tmp_path / "again.uda"
+        r = pysus_ranks("-restart", ranks(2), "-t", "0", "--filebase", again)
+        assert r.returncode == 0, r.stderr
     same(serial / "one.uda", again)
 
 
@@ -119,15 +134,9 @@ def test_np_option_relaunches_under_mpiexec(serial, ranks):
     assert sum(f.endswith(".h5") for f in files) == 2           # written by two ranks
 
 
-def test_rebalancing_keeps_the_answer(serial, tmp_path):
-    text = deck().replace("<DataArchiver>", '<LoadBalancer type="DLB"><timestepInterval>3</timestepInterval>'
-                                            '</LoadBalancer>\n  <DataArchiver>')
-    path = tmp_path / "lb.ups"
-    path.write_text(text)
-    uda = tmp_path / "lb.uda"
-    r = pysus(path, "--filebase", uda, np_=3)
-    assert r.returncode == 0, r.stderr
-    same(serial / "one.uda", uda, steps=(1, -1))
+def test_rebalancing_keeps_the_answer(serial, ranks):
+    ranks(3)                        # the rebalancing deck runs in the 3-rank launch
+    same(serial / "one.uda", serial / "lb.uda", steps=(1, -1))
 
 
 def test_a_rank_killed_ends_the_others(tmp_path):
@@ -147,8 +156,9 @@ def test_a_rank_killed_ends_the_others(tmp_path):
         ranks = [pid for pid in _pids_running(str(tmp_path / "long.ups")) if pid != job.pid and _is_rank(pid)]
         time.sleep(0.5)
     assert len(ranks) == 2, "both ranks started"
-    time.sleep(3.0)                                         # into the time loop
-    assert job.poll() is None
+    while not (tmp_path / "long.uda" / "t00004").exists() and time.time() < deadline:
+        time.sleep(0.1)                                     # into the time loop: its output of step 4
+    assert (tmp_path / "long.uda" / "t00004").exists() and job.poll() is None
     t0 = time.time()
     os.kill(ranks[1], signal.SIGKILL)
     try:

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus_ranks
+from tests.conftest import ROOT, UINTAH_INPUTS, pysus_runs
 
 CASES = {
     # deck, replacements making it small and giving it enough patches for 3 ranks, labels.
@@ -26,26 +26,30 @@ CASES = {
 }
 
 
-def prepared(tmp_path, case):
-    src, repl, labels = CASES[case]
-    text = src.read_text()
-    for a, b in repl:
-        assert a in text, (case, a)
-        text = text.replace(a, b)
-    path = tmp_path / f"{case}.ups"
-    path.write_text(text)
-    return path, labels
+@pytest.fixture(scope="module")
+def launched(tmp_path_factory):
+    """Every case's deck on 1 rank in this process, then on 2 and 3 ranks in one mpiexec launch:
+    the directory of the udas and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("ice_ranks")
+    for case, (src, repl, _) in CASES.items():
+        text = src.read_text()
+        for a, b in repl:
+            assert a in text, (case, a)
+            text = text.replace(a, b)
+        (d / f"{case}.ups").write_text(text)
+    runs = [(case, n) for case in sorted(CASES) for n in (1, 2, 3)]
+    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
+    return d, dict(zip(runs, out))
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
-def test_ice_ranks_equal_one_rank(tmp_path, case):
-    path, labels = prepared(tmp_path, case)
-    runs = {}
+def test_ice_ranks_equal_one_rank(launched, case):
+    d, out = launched
+    labels = CASES[case][2]
     for n in (1, 2, 3):
-        uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus_ranks(path, "--filebase", uda, np_=n)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[n] = DataArchive(uda)
+        rc, err = out[case, n]
+        assert rc == 0, err[-2000:]
+    runs = {n: DataArchive(d / f"{case}_{n}.uda") for n in (1, 2, 3)}
     nm = len(runs[1].materials)
     compared = 0
     for n in (2, 3):

@@ -3,27 +3,43 @@ burning (the explosive starts above ThresholdTemp): bitwise the same answer (the
 cell sums the cell's particles in ID order, and every particle is burned on the patch that owns
 it)."""
 import numpy as np
+import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, pysus_ranks
+from tests.conftest import ROOT, pysus_runs
 
 DECK = ROOT / "inputs" / "MPMICE" / "burning_container2D.ups"
 
 
-def test_burning_container_ranks_and_patches_equal(tmp_path):
+@pytest.fixture(scope="module")
+def launched(tmp_path_factory):
+    """The burning container on 1 and 4 patches and the tracers' deck (t1), each on 1 rank in this
+    process, then the container on 2 and 3 ranks and the tracers on 2 (t2), all three in one
+    mpiexec launch: the directory of the udas (NAME.uda) and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("models_ranks")
     text = DECK.read_text().replace("<outputTimestepInterval> 100 </outputTimestepInterval>",
                                     "<outputTimestepInterval> 60 </outputTimestepInterval>") \
         .replace('<save label="p.x"/>', '<save label="p.x"/><save label="p.particleID"/>')
-    one = tmp_path / "one.ups"
+    one, four = d / "one.ups", d / "four.ups"
     one.write_text(text.replace("<patches> [2,2,1] </patches>", "<patches> [1,1,1] </patches>"))
-    four = tmp_path / "four.ups"
     four.write_text(text)
-    runs = {}
-    for name, deck, n in (("p1", one, 1), ("p4", four, 1), ("r2", four, 2), ("r3", four, 3)):
-        uda = tmp_path / f"{name}.uda"
-        r = pysus_ranks(deck, "--filebase", uda, "--max-timesteps", 60, np_=n, timeout=600)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[name] = DataArchive(uda)
+    tracers = ROOT / "tests" / "ice" / "uintah_reference" / "stagnationPoint_explicit.ups"
+    runs = [("p1", (one, "--max-timesteps", 60), 1), ("p4", (four, "--max-timesteps", 60), 1), ("t1", (tracers,), 1),
+            ("r2", (four, "--max-timesteps", 60), 2), ("r3", (four, "--max-timesteps", 60), 3), ("t2", (tracers,), 2)]
+    out = pysus_runs([((*args, "--filebase", d / f"{name}.uda"), n) for name, args, n in runs], d)
+    return d, {name: o for (name, _, _), o in zip(runs, out)}
+
+
+def archives(launched, names):
+    d, out = launched
+    for name in names:
+        rc, err = out[name]
+        assert rc == 0, err[-2000:]
+    return {name: DataArchive(d / f"{name}.uda") for name in names}
+
+
+def test_burning_container_ranks_and_patches_equal(launched):
+    runs = archives(launched, ("p1", "p4", "r2", "r3"))
     base = runs["p1"]
     assert base.particles(1, -1)["p.mass"].sum() < base.particles(1, 0)["p.mass"].sum()   # it burned
     for name in ("p4", "r2", "r3"):
@@ -38,19 +54,13 @@ def test_burning_container_ranks_and_patches_equal(tmp_path):
                 assert np.array_equal(b[lab][ob], o[lab][oo]), (name, m, lab)
 
 
-def test_tracer_particles_one_and_two_ranks(tmp_path):
+def test_tracer_particles_one_and_two_ranks(launched):
     """TracerParticles (components/models/tracer_particles.py) on the stagnation-point deck, 6
     steps with injection, on 1 and 2 ranks: the flow, the particle count and every particle's
     variables (by ID) are bitwise the same; the particles cross patch and rank boundaries only
     by relocation, and each rank injects into its own patches."""
-    deck = ROOT / "tests" / "ice" / "uintah_reference" / "stagnationPoint_explicit.ups"
-    runs = {}
-    for n in (1, 2):
-        uda = tmp_path / f"r{n}.uda"
-        r = pysus_ranks(deck, "--filebase", uda, np_=n, timeout=600)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[n] = DataArchive(uda)
-    one, two = runs[1], runs[2]
+    runs = archives(launched, ("t1", "t2"))
+    one, two = runs["t1"], runs["t2"]
     assert np.array_equal(one.times, two.times)
     for k in range(len(one.times)):
         for lab in ("press_CC", "vel_CC", "scalar-f"):

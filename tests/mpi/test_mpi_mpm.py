@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus_ranks
+from tests.conftest import ROOT, UINTAH_INPUTS, pysus_runs
 
 CASES = {
     "disks_sulsky": (UINTAH_INPUTS / "MPM" / "disks_sulsky.ups",
@@ -42,22 +42,30 @@ CASES = {
 }
 
 
+@pytest.fixture(scope="module")
+def launched(tmp_path_factory):
+    """Every case's deck on 1 rank in this process, then on 2 and 3 ranks in one mpiexec launch:
+    the directory of the udas and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("mpm_ranks")
+    (d / "spin.txt").write_text("0 0 0 0 0 0 0 0 0 50\n9.9 0 0 0 0 0 0 0 0 50\n")
+    for case, (src, repl) in CASES.items():
+        text = src.read_text()
+        for a, b in repl:
+            assert a in text, (case, a)
+            text = text.replace(a, b)
+        (d / f"{case}.ups").write_text(text)
+    runs = [(case, n) for case in sorted(CASES) for n in (1, 2, 3)]
+    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
+    return d, dict(zip(runs, out))
+
+
 @pytest.mark.parametrize("case", sorted(CASES))
-def test_mpm_ranks_equal_one_rank(tmp_path, case):
-    src, repl = CASES[case]
-    text = src.read_text()
-    for a, b in repl:
-        assert a in text, (case, a)
-        text = text.replace(a, b)
-    path = tmp_path / f"{case}.ups"
-    path.write_text(text)
-    (tmp_path / "spin.txt").write_text("0 0 0 0 0 0 0 0 0 50\n9.9 0 0 0 0 0 0 0 0 50\n")
-    runs = {}
+def test_mpm_ranks_equal_one_rank(launched, case):
+    d, out = launched
     for n in (1, 2, 3):
-        uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=600)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[n] = DataArchive(uda)
+        rc, err = out[case, n]
+        assert rc == 0, err[-2000:]
+    runs = {n: DataArchive(d / f"{case}_{n}.uda") for n in (1, 2, 3)}
     base = {m: runs[1].particles(m, -1) for m in range(len(runs[1].materials))}
     assert sum(len(b["p.x"]) for b in base.values()) > 0
     for n in (2, 3):

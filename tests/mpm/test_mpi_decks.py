@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus_ranks
+from tests.conftest import pysus_runs
 
 from .helpers import MPM_INPUTS, deck_text
 
@@ -27,20 +27,28 @@ CASES = {
 }
 
 
+@pytest.fixture(scope="module")
+def launched(tmp_path_factory):
+    """Every case's deck on 1 rank in this process, then on 2 ranks in one mpiexec launch: the
+    directory of the udas and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("mpm_decks_ranks")
+    for case in CASES:
+        text = deck_text(MPM_INPUTS / f"{case}.ups", **CASES[case])
+        saves = "".join(f'<save label="{lab}"/>' for lab in ("p.x", "p.particleID", "p.velocity", "p.stress")
+                        if f'"{lab}"' not in text)
+        (d / f"{case}.ups").write_text(text.replace("</DataArchiver>", saves + "</DataArchiver>", 1))
+    runs = [(case, n) for case in sorted(CASES) for n in (1, 2)]
+    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
+    return d, dict(zip(runs, out))
+
+
 @pytest.mark.parametrize("case", sorted(CASES))
-def test_deck_two_ranks_bitwise(tmp_path, case):
-    text = deck_text(MPM_INPUTS / f"{case}.ups", **CASES[case])
-    saves = "".join(f'<save label="{lab}"/>' for lab in ("p.x", "p.particleID", "p.velocity", "p.stress")
-                    if f'"{lab}"' not in text)
-    text = text.replace("</DataArchiver>", saves + "</DataArchiver>", 1)
-    path = tmp_path / f"{case}.ups"
-    path.write_text(text)
-    runs = {}
+def test_deck_two_ranks_bitwise(launched, case):
+    d, out = launched
     for n in (1, 2):
-        uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[n] = DataArchive(uda)
+        rc, err = out[case, n]
+        assert rc == 0, err[-2000:]
+    runs = {n: DataArchive(d / f"{case}_{n}.uda") for n in (1, 2)}
     assert np.array_equal(runs[1].times, runs[2].times)
     total = 0
     for m in range(len(runs[1].materials)):

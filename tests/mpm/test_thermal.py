@@ -15,7 +15,7 @@ import pytest
 
 from framework.archiver import DataArchive
 from framework.problemspec import InputError
-from tests.conftest import pysus_ranks, run_deck
+from tests.conftest import pysus_ranks, pysus_runs, run_deck
 
 from .helpers import MPM_INPUTS, deck_text, run
 
@@ -89,18 +89,32 @@ def test_plate_conserves_heat_and_is_independent_of_patches(tmp_path, gimp, grad
     assert abs(e[0] - 300.0 * 1.0 * 1.0 * 0.01) < 1e-9      # sum m cv T = rho V cv <T>
 
 
-@pytest.mark.parametrize("gradient, gimp", [(None, False), ("current", True)])
-def test_two_ranks_bitwise(tmp_path, gradient, gimp):
+RANK_CASES = [(None, False), ("current", True)]
+
+
+@pytest.fixture(scope="module")
+def on_ranks(tmp_path_factory):
+    """Each case's plate on 1 rank in this process, then on 2 ranks, both in one mpiexec launch:
+    the directory of the udas and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("thermal_ranks")
+    for i, (gradient, gimp) in enumerate(RANK_CASES):
+        (d / f"plate{i}.ups").write_text(_with_gradient(_square("[2,2,1]", gimp), gradient))
+    runs = [(i, n) for i in range(len(RANK_CASES)) for n in (1, 2)]
+    out = pysus_runs([((d / f"plate{i}.ups", "--filebase", d / f"p{i}r{n}.uda"), n) for i, n in runs], d)
+    return d, dict(zip(runs, out))
+
+
+@pytest.mark.parametrize("gradient, gimp", RANK_CASES)
+def test_two_ranks_bitwise(on_ranks, gradient, gimp):
     """1 and 2 ranks agree bitwise; with <conduction_gradient>current and GIMP the grad T of a
     ghost particle reads g.temperature 4 nodes beyond the patch, from the other rank."""
-    path = tmp_path / "plate.ups"
-    path.write_text(_with_gradient(_square("[2,2,1]", gimp), gradient))
+    d, runs = on_ranks
+    i = RANK_CASES.index((gradient, gimp))
     out = {}
     for n in (1, 2):
-        uda = tmp_path / f"r{n}.uda"
-        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
-        assert r.returncode == 0, r.stderr[-2000:]
-        out[n] = DataArchive(uda).particles(0, -1)
+        rc, err = runs[i, n]
+        assert rc == 0, err[-2000:]
+        out[n] = DataArchive(d / f"p{i}r{n}.uda").particles(0, -1)
     oa, ob = (np.argsort(out[n]["p.particleID"]) for n in (1, 2))
     assert np.array_equal(out[1]["p.temperature"][oa], out[2]["p.temperature"][ob])
 

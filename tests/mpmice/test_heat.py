@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus_ranks, run_deck
+from tests.conftest import pysus_ranks, pysus_runs, run_deck
 
 N, DX = 10, 0.01
 RHO_S, CV_S, T_S = 10.0, 100.0, 600.0
@@ -112,11 +112,10 @@ def test_one_two_three_ranks_bitwise(tmp_path):
     path = tmp_path / "heat.ups"
     path.write_text(deck(steps=40, patches=3))
     out = {}
-    for n in (1, 2, 3):
-        uda = tmp_path / f"r{n}.uda"
-        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=300)
-        assert r.returncode == 0, r.stderr[-2000:]
-        da = DataArchive(uda)
+    runs = pysus_runs([((path, "--filebase", tmp_path / f"r{n}.uda"), n) for n in (1, 2, 3)], tmp_path)
+    for n, (rc, err) in zip((1, 2, 3), runs):
+        assert rc == 0, err[-2000:]
+        da = DataArchive(tmp_path / f"r{n}.uda")
         p = da.particles(0, -1)
         out[n] = (p["p.temperature"][np.argsort(p["p.particleID"])], da.read("temp_CC", material=1, timestep=-1)[0])
     for n in (2, 3):

@@ -1,8 +1,8 @@
 """MPMICE decks on 2 and 3 ranks give bitwise the one-rank answer (4 patches in every run).
 
 The slab at rest, the gas-driven piston, Uintah's TBurner_2dRT (its 3-step test copy: Unsteady_Burn,
-semi-implicit pressure) and Uintah's symAnnulus.ups (shortened) run under
-`mpiexec -n 1, 2, 3`: cell-centred fields of every material and the particles (sorted by
+semi-implicit pressure) and Uintah's symAnnulus.ups (shortened) run on 1 rank in the test's
+process, then on 2 and 3 ranks, all in one mpiexec launch: cell-centred fields of every material and the particles (sorted by
 particle ID) are compared with np.array_equal. The arithmetic does not depend on the rank
 count: each patch computes its own cells and nodes from its own data plus ghosts, particle
 sums run in particle-ID order, and the only cross-rank sums are the delT minimum.
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus_ranks
+from tests.conftest import ROOT, UINTAH_INPUTS, pysus_runs
 
 PID = '<save label="p.particleID"/>'
 CASES = {
@@ -37,23 +37,34 @@ PARTS = ("p.x", "p.velocity", "p.temperature", "p.stress", "p.volume", "p.pressu
          "UnsteadyBurn.PartSurfTemp", "UnsteadyBurn.PartSurfTempGrad")
 
 
+@pytest.fixture(scope="module")
+def launched(tmp_path_factory):
+    """Every case's deck (where it is available) on 1 rank in this process, then on 2 and 3 ranks
+    in one mpiexec launch: the directory of the udas and each run's (return code, stderr)."""
+    d = tmp_path_factory.mktemp("mpmice_ranks")
+    cases = sorted(case for case, (src, _) in CASES.items() if src.exists())
+    for case in cases:
+        src, repl = CASES[case]
+        text = src.read_text(encoding="iso-8859-1")
+        for a, b in repl:
+            assert a in text, (case, a)
+            text = text.replace(a, b)
+        (d / f"{case}.ups").write_text(text, encoding="iso-8859-1")
+    runs = [(case, n) for case in cases for n in (1, 2, 3)]
+    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
+    return d, dict(zip(runs, out))
+
+
 @pytest.mark.parametrize("case", sorted(CASES))
-def test_mpmice_ranks_equal_one_rank(tmp_path, case):
-    src, repl = CASES[case]
+def test_mpmice_ranks_equal_one_rank(launched, case):
+    src, _ = CASES[case]
     if not src.exists():
         pytest.skip(f"{src} not available")
-    text = src.read_text(encoding="iso-8859-1")
-    for a, b in repl:
-        assert a in text, (case, a)
-        text = text.replace(a, b)
-    path = tmp_path / f"{case}.ups"
-    path.write_text(text, encoding="iso-8859-1")
-    runs = {}
+    d, out = launched
     for n in (1, 2, 3):
-        uda = tmp_path / f"{case}_{n}.uda"
-        r = pysus_ranks(path, "--filebase", uda, np_=n, timeout=600)
-        assert r.returncode == 0, r.stderr[-2000:]
-        runs[n] = DataArchive(uda)
+        rc, err = out[case, n]
+        assert rc == 0, err[-2000:]
+    runs = {n: DataArchive(d / f"{case}_{n}.uda") for n in (1, 2, 3)}
     one = runs[1]
     assert len(one.times) >= 2
     nmat = len(one.materials)

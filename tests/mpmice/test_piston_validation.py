@@ -23,7 +23,7 @@ import pytest
 
 from components.mpmice import scene_piston as S
 from framework.archiver import DataArchive
-from tests.conftest import UINTAH_INPUTS, pysus, pysus_ranks, run_deck
+from tests.conftest import UINTAH_INPUTS, pysus_ranks, run_deck
 
 N, T_END = 40, 0.45        # piston faces on cell faces; 20 cells a patch (multigrid applies)
 
@@ -160,7 +160,7 @@ def test_uintah_deck_starts_unchanged(tmp_path):
     old = "<maxTime>            1.2      </maxTime>"
     assert old in text
     (tmp_path / "u.ups").write_text(text.replace(old, "<maxTime> 0.012 </maxTime>"), encoding="iso-8859-1")
-    r = pysus(tmp_path / "u.ups", "--filebase", tmp_path / "u.uda")
+    r = pysus_ranks(tmp_path / "u.ups", "--filebase", tmp_path / "u.uda")
     assert r.returncode == 0, r.stderr[-2000:]
     assert "no effect: shear_modulus, yield_stress, hardening_modulus, alpha" in r.stderr
     assert "ICE implicit pressure" in r.stderr

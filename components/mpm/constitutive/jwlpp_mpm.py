@@ -129,30 +129,34 @@ def burn(P, J_old, J, f_old0, p_old0, dt):
     Jn = J_old
     f_old, p_old = f_old0, p_old0
     f, p = f_old0, p_old0
+    # p^b of the current p, each power taken once: the sub-steps (up to dt / 1e-12 of them) are
+    # the model's whole cost
+    pb = p ** b
     for _ in range(ncyc):
         Jn *= dJ
         pM = _murnaghan(Jn, K, n)
         pJ = _jwl(Jn, A, B, C, R1, R2, om)
         if fast:                                   # two-stage backward Euler
-            fac = dtc * G * p_old ** b
+            fac = dtc * G * pb
             f = (f_old + fac) / (1.0 + fac)
             if f > fmax:
                 f = fmax
             p = pM * (1.0 - f) + pJ * f
+            pb = p ** b
         else:                                      # Newton on (f, p), from the old state
-            f, p = f_old, p_old
-            g0 = f - f_old - G * (1.0 - f) * p ** b * dtc
+            g0 = f - f_old - G * (1.0 - f) * pb * dtc
             g1 = p - (1.0 - f) * pM - f * pJ
             it = 0
             while True:
-                fac = G * p ** b * dtc
+                fac = G * pb * dtc
                 a00 = 1.0 + fac
                 a01 = b * (1.0 - f) * (fac / p)
                 a10 = pM - pJ
                 det = a00 - a01 * a10                # a11 = 1
                 f -= (g0 - a01 * g1) / det
                 p -= (-a10 * g0 + a00 * g1) / det
-                g0 = f - f_old - G * (1.0 - f) * p ** b * dtc
+                pb = p ** b
+                g0 = f - f_old - G * (1.0 - f) * pb * dtc
                 g1 = p - (1.0 - f) * pM - f * pJ
                 it += 1
                 if not (np.sqrt(g0 * g0 + g1 * g1) > tol and it < itmax):
