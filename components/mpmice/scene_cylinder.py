@@ -69,6 +69,8 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, in
         steel = steel.replace("</geom_object>", f"  <numLevelsParticleFilling> {int(fill)} </numLevelsParticleFilling>\n"
                                                 "        </geom_object>")
     text = text[:a] + steel + text[b:]
+    if geom not in (None, "lattice", "smooth"):
+        raise ValueError(f"geom {geom!r}: lattice (the deck's) or smooth")
     if geom == "smooth":
         text = _smooth_steel(text, dx / (2 if ppc is None else int(ppc)), ri, ro, dz)
     return text
