@@ -66,8 +66,8 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, in
     if ppc is not None:
         steel = steel.replace("<res> [2,2,1] </res>", f"<res> [{int(ppc)},{int(ppc)},1] </res>")
     if fill is not None:
-        steel = steel.replace("</geom_object>", f"  <numLevelsParticleFilling> {int(fill)} </numLevelsParticleFilling>\n"
-                                                "        </geom_object>")
+        steel = steel.replace("</geom_object>", f"  <numLevelsParticleFilling> {int(fill)} "
+                                                "</numLevelsParticleFilling>\n        </geom_object>")
     text = text[:a] + steel + text[b:]
     if geom not in (None, "lattice", "smooth"):
         raise ValueError(f"geom {geom!r}: lattice (the deck's) or smooth")
