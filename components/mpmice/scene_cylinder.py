@@ -1,17 +1,23 @@
 """Pressurized cylinder (paper 000 sec. 4.1): deck at a chosen resolution and the errors
 against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
 
-    deck(n, ri=, ro=, t_end=, dz=)  inputs/MPMICE/pressurized_cylinder.ups with n cells
+    deck(n, ri=, ro=, t_end=, dz=, ...)  inputs/MPMICE/pressurized_cylinder.ups with n cells
              across the 1.2 m domain (dx = 1.2 / n; the paper's 0.025 m is n = 48), the
              annulus's inner and outer radius (0.5 and 1.0 m), the end time (2.5 ms) and the
              one z cell's thickness (0.025 m; "dx": as thin as dx, so that it no longer sets
-             ICE's step: the same plane-strain problem, z faces symmetric)
+             ICE's step: the same plane-strain problem, z faces symmetric); the steel's
+             particles per cell per direction (ppc, the deck's <res> 2), its
+             <numLevelsParticleFilling> (fill), <DoPressureStabilization> (stab: true, each
+             cell's particles take the cell's mean J), <interpolator>, the artificial damping
+             coefficient, and geom="smooth": the steel laid in rings (a <smoothcyl>; MPM takes it
+             with the linear interpolator only) rather than on the cell lattice
     errors(da, ri=, ro=)  (a pysus DataArchive or a sus UintahArchive) at the last output:
              P = mean gauge pressure of the inner air (cells with r < 0.8 ri); over all
              particles, eq. 43
                  mean | |s_r + s_t| - 2 a | / (2 a)      a = P ri^2 / (ro^2 - ri^2)
              and the L1 errors of s_r and s_t against eq. 42, relative to P; eq43_inner: eq. 43
-             over the particles more than dx inside the steel; level: mean(|s_r + s_t|) / (2 a) - 1.
+             over the particles more than dx inside the steel, eq43_surf over the others (the
+             surface layers); level: mean(|s_r + s_t|) / (2 a) - 1.
 Used by scripts/accuracy_cost.py (scene "cylinder") and tests/mpmice/test_cylinder.py.
 """
 from __future__ import annotations
@@ -26,7 +32,8 @@ DECK = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "MPMICE", "
 RI, RO, L, P_REF = 0.5, 1.0, 1.2, 101325.0
 
 
-def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None):
+def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, interpolator=None, ppc=None,
+         fill=None, stab=None, geom=None):
     text = open(DECK, encoding="iso-8859-1").read()
     dx = L / int(n)
     ri, ro = float(ri), float(ro)
@@ -44,9 +51,45 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None):
     if t_end is not None:
         reps += [("<maxTime> 2.5e-3 </maxTime>", f"<maxTime> {float(t_end)!r} </maxTime>"),
                  ("<outputInterval> 2.5e-3 </outputInterval>", f"<outputInterval> {float(t_end)!r} </outputInterval>")]
+    if interpolator is not None:
+        reps.append(("<interpolator>gimp</interpolator>", f"<interpolator>{interpolator}</interpolator>"))
+    if stab is not None:
+        reps.append(("<time_integrator>explicit</time_integrator>",
+                     "<time_integrator>explicit</time_integrator>\n"
+                     f"    <DoPressureStabilization> {str(stab).lower()} </DoPressureStabilization>"))
     for old, new in reps:
         assert old in text, old
         text = text.replace(old, new)
+    a = text.index('<material name="steel">')
+    b = text.index("</material>", a)
+    steel = text[a:b]
+    if ppc is not None:
+        steel = steel.replace("<res> [2,2,1] </res>", f"<res> [{int(ppc)},{int(ppc)},1] </res>")
+    if fill is not None:
+        steel = steel.replace("</geom_object>", f"  <numLevelsParticleFilling> {int(fill)} "
+                                                "</numLevelsParticleFilling>\n        </geom_object>")
+    text = text[:a] + steel + text[b:]
+    if geom not in (None, "lattice", "smooth"):
+        raise ValueError(f"geom {geom!r}: lattice (the deck's) or smooth")
+    if geom == "smooth":
+        text = _smooth_steel(text, dx / (2 if ppc is None else int(ppc)), ri, ro, dz)
+    return text
+
+
+def _smooth_steel(text, dr, ri, ro, dz):
+    """The steel laid in rings of width dr (a <smoothcyl>, constant particle volumes) instead of
+    on the cell lattice: the annulus's surfaces are circles, not staircases."""
+    a = text.index("<difference>", text.index('<material name="steel">'))
+    b = text.index("</difference>", a) + len("</difference>")
+    nr = max(1, round((ro - ri) / dr))
+    text = text[:a] + (f"<smoothcyl><discretization_scheme>constant_particle_volumes</discretization_scheme>"
+                       f"<bottom>[0,0,0]</bottom><top>[0,0,{dz!r}]</top><outer_radius>{ro!r}</outer_radius>"
+                       f"<inner_radius>{ri!r}</inner_radius><num_radial>{nr}</num_radial><num_axial>1</num_axial>"
+                       f"<arc_start_angle>0</arc_start_angle><arc_angle>90</arc_angle></smoothcyl>") + text[b:]
+    for label, r in (("outer cylinder", ro), ("inner cylinder", ri)):
+        text = text.replace(f'<cylinder label="{label}"/>',
+                            f'<cylinder label="{label}"><bottom>[0,0,-1]</bottom><top>[0,0,1]</top>'
+                            f'<radius>{r!r}</radius></cylinder>', 1)
     return text
 
 
@@ -85,4 +128,5 @@ def errors(da, ri=RI, ro=RO):
             "hoop": float(np.mean(np.abs(s_t - et)) / P),
             "P_MPa": P / 1e6,
             "eq43_inner": float(np.mean(np.abs(dev[inner])) / two_a),
+            "eq43_surf": float(np.mean(np.abs(dev[~inner])) / two_a),
             "level": float(np.mean(dev) / two_a)}
