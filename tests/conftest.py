@@ -93,61 +93,49 @@ def pysus_runs(runs, workdir, timeout=1200):
     return out
 
 
-# The test files that take the most CPU seconds, heaviest first (PYSUS_TEST_CPU below, one directory
-# at a time on the shipped decks' kernel cache: each file's first test pays the numba compilation of
-# the specialisations no shipped deck uses). pytest-xdist (scripts/test: --dist loadfile
+# The test files that take the most CPU seconds, heaviest first (PYSUS_TEST_CPU below, in a
+# fresh-clone run of the whole suite after the shipped decks' warm-up: a file's figure includes the
+# numba compilation of the specialisations it was first to need). pytest-xdist (scripts/test: --dist loadfile
 # --no-loadscope-reorder) hands whole files to its workers in collection order: these start first
 # and the many short files fill in behind them, so the workers finish together instead of one
 # running a long file alone at the end.
-HEAVY_FILES = (                       # CPU s, self + children, before the cuts made along with this list
-    "tests/mpi/test_mpi_mpm.py",                         # 95
-    "tests/mpmice/test_container_rupture.py",            # 94
-    "tests/mpmice/test_hard_cases.py",                   # 84
-    "tests/mpm/test_axisymmetric.py",                    # 69
-    "tests/mpmice/test_mpi_mpmice.py",                   # 54
-    "tests/mpi/test_mpi_models.py",                      # 47
-    "tests/mpi/test_mpi_ice.py",                         # 43
-    "tests/models/test_ddt1.py",                         # 42
-    "tests/mpm/test_arena_soil.py",                      # 42
-    "tests/mpm/test_damage_draws.py",                    # 35
-    "tests/models/test_gas_combustion.py",               # 35
-    "tests/mpi/test_mpi.py",                             # 33
-    "tests/mpm/test_boundary_tractions.py",              # 33
-    "tests/mpm/test_cbdi.py",                            # 32
-    "tests/mpm/test_thermal.py",                         # 30
-    "tests/mpm/test_artificial_viscosity.py",            # 28
-    "tests/mpmice/test_cylinder.py",                     # 28
-    "tests/mpmice/test_piston_validation.py",            # 27
-    "tests/ice/test_uintah_decks.py",                    # 25
-    "tests/mpm/test_mpi_decks.py",                       # 23
-    "tests/mpm/test_damage.py",                          # 21
-    "tests/mpm/test_xpic.py",                            # 21
-    "tests/mpm/test_gurson.py",                          # 20
-    "tests/mpm/test_shape.py",                           # 19
-    "tests/mpm/test_half_space.py",                      # 19
-    "tests/ice/test_implicit.py",                        # 18
-    "tests/mpmice/test_heat.py",                         # 18
-    "tests/efem/test_archimedes.py",                     # 15
-    "tests/mpmice/test_guni2drt.py",                     # 15
-    "tests/mpm/test_disks.py",                           # 15
-    "tests/mpm/test_membrane.py",                        # 13
-    "tests/mpm/test_hard_cases.py",                      # 13
-    "tests/mpm/test_comp_neo_hook_plastic.py",           # 13
-    "tests/framework/test_paraview.py",                  # 12
-    "tests/mpm/test_elastic_plastic_hp_failure.py",      # 12
-    "tests/efem/test_mpi.py",                            # 11
-    "tests/mpm/test_extrude_rt.py",                      # 11
-    "tests/ice/test_mpi_conservation.py",                # 10
-    "tests/decks/test_efem_decks.py",                    # 10
-    "tests/mpmice/test_open_faces.py",                   # 10
-    "tests/mpm/test_charpy.py",                          # 10
-    "tests/framework/test_restart_finished.py",          # 9
-    "tests/ice/test_data_analysis.py",                   # 9
-    "tests/mpmice/test_pbx_cylinder.py",                 # 9
-    "tests/ice/test_order.py",                           # 9
-    "tests/framework/test_loop.py",                      # 8
-    "tests/mpmice/test_advect_deck.py",                  # 8
-    "tests/ice/test_specific_heat.py",                   # 8
+HEAVY_FILES = (                       # CPU s, self + children, in a fresh-clone run of the suite
+    "tests/mpi/test_mpi_mpm.py",                         # 37
+    "tests/mpm/test_arena_soil.py",                      # 31
+    "tests/mpm/test_axisymmetric.py",                    # 31
+    "tests/mpmice/test_container_rupture.py",            # 30
+    "tests/models/test_ddt1.py",                         # 25
+    "tests/models/test_gas_combustion.py",               # 24
+    "tests/mpm/test_artificial_viscosity.py",            # 22
+    "tests/mpm/test_disks.py",                           # 17
+    "tests/mpm/test_cbdi.py",                            # 17
+    "tests/ice/test_uintah_decks.py",                    # 17
+    "tests/mpi/test_mpi_models.py",                      # 17
+    "tests/mpm/test_damage_draws.py",                    # 17
+    "tests/mpmice/test_mpi_mpmice.py",                   # 15
+    "tests/mpm/test_boundary_tractions.py",              # 15
+    "tests/mpmice/test_piston_validation.py",            # 15
+    "tests/mpmice/test_cylinder.py",                     # 15
+    "tests/mpm/test_xpic.py",                            # 14
+    "tests/mpm/test_half_space.py",                      # 14
+    "tests/mpm/test_thermal.py",                         # 13
+    "tests/mpm/test_gurson.py",                          # 12
+    "tests/mpmice/test_open_faces.py",                   # 12
+    "tests/mpmice/test_guni2drt.py",                     # 11
+    "tests/mpm/test_damage.py",                          # 11
+    "tests/mpm/test_hard_cases.py",                      # 9
+    "tests/mpm/test_membrane.py",                        # 9
+    "tests/efem/test_archimedes.py",                     # 9
+    "tests/mpm/test_disks_complex.py",                   # 9
+    "tests/framework/test_numba_compile_lock.py",        # 8
+    "tests/mpm/test_shape.py",                           # 8
+    "tests/mpm/test_extrude_rt.py",                      # 7
+    "tests/framework/test_geometry_tri.py",              # 7
+    "tests/ice/test_order.py",                           # 7
+    "tests/mpi/test_mpi.py",                             # 7
+    "tests/ice/test_implicit.py",                        # 7
+    "tests/mpm/test_mpi_decks.py",                       # 6
+    "tests/mpi/test_mpi_ice.py",                         # 6
 )
 
 
