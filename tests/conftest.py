@@ -93,12 +93,31 @@ def pysus_runs(runs, workdir, timeout=1200):
     return out
 
 
+def edited_deck(src, edits, dest):
+    """The deck src with each (old, new) of edits replaced (old must be in it), written to dest
+    byte for byte otherwise (Latin-1 in and out)."""
+    text = Path(src).read_text(encoding="iso-8859-1")
+    for old, new in edits:
+        assert old in text, (str(src), old)
+        text = text.replace(old, new)
+    Path(dest).write_text(text, encoding="iso-8859-1")
+
+
+def run_cases(workdir, cases, ranks):
+    """Each case's deck workdir/CASE.ups on every rank count of ranks (pysus_runs; its uda
+    workdir/CASE_N.uda): {(case, n): (return code, stderr)}."""
+    d = Path(workdir)
+    runs = [(case, n) for case in cases for n in ranks]
+    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
+    return dict(zip(runs, out))
+
+
 # The test files that take the most CPU seconds, heaviest first (PYSUS_TEST_CPU below, in a
-# fresh-clone run of the whole suite after the shipped decks' warm-up: a file's figure includes the
-# numba compilation of the specialisations it was first to need). pytest-xdist (scripts/test: --dist loadfile
-# --no-loadscope-reorder) hands whole files to its workers in collection order: these start first
-# and the many short files fill in behind them, so the workers finish together instead of one
-# running a long file alone at the end.
+# fresh-clone run of the whole suite after the shipped decks' warm-up: a file's figure includes
+# the numba compilation of the specialisations it was first to need). pytest-xdist (scripts/test:
+# --dist loadfile --no-loadscope-reorder) hands whole files to its workers in collection order:
+# these start first and the many short files fill in behind them, so the workers finish together
+# instead of one running a long file alone at the end.
 HEAVY_FILES = (                       # CPU s, self + children, in a fresh-clone run of the suite
     "tests/mpi/test_mpi_mpm.py",                         # 37
     "tests/mpm/test_arena_soil.py",                      # 31

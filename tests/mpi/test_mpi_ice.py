@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus_runs
+from tests.conftest import ROOT, UINTAH_INPUTS, edited_deck, run_cases
 
 CASES = {
     # deck, replacements making it small and giving it enough patches for 3 ranks, labels.
@@ -32,14 +32,8 @@ def launched(tmp_path_factory):
     the directory of the udas and each run's (return code, stderr)."""
     d = tmp_path_factory.mktemp("ice_ranks")
     for case, (src, repl, _) in CASES.items():
-        text = src.read_text()
-        for a, b in repl:
-            assert a in text, (case, a)
-            text = text.replace(a, b)
-        (d / f"{case}.ups").write_text(text)
-    runs = [(case, n) for case in sorted(CASES) for n in (1, 2, 3)]
-    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
-    return d, dict(zip(runs, out))
+        edited_deck(src, repl, d / f"{case}.ups")
+    return d, run_cases(d, sorted(CASES), (1, 2, 3))
 
 
 @pytest.mark.parametrize("case", sorted(CASES))

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus_runs
+from tests.conftest import ROOT, UINTAH_INPUTS, edited_deck, run_cases
 
 CASES = {
     "disks_sulsky": (UINTAH_INPUTS / "MPM" / "disks_sulsky.ups",
@@ -49,14 +49,8 @@ def launched(tmp_path_factory):
     d = tmp_path_factory.mktemp("mpm_ranks")
     (d / "spin.txt").write_text("0 0 0 0 0 0 0 0 0 50\n9.9 0 0 0 0 0 0 0 0 50\n")
     for case, (src, repl) in CASES.items():
-        text = src.read_text()
-        for a, b in repl:
-            assert a in text, (case, a)
-            text = text.replace(a, b)
-        (d / f"{case}.ups").write_text(text)
-    runs = [(case, n) for case in sorted(CASES) for n in (1, 2, 3)]
-    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
-    return d, dict(zip(runs, out))
+        edited_deck(src, repl, d / f"{case}.ups")
+    return d, run_cases(d, sorted(CASES), (1, 2, 3))
 
 
 @pytest.mark.parametrize("case", sorted(CASES))

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import pysus_runs
+from tests.conftest import run_cases
 
 from .helpers import MPM_INPUTS, deck_text
 
@@ -37,9 +37,7 @@ def launched(tmp_path_factory):
         saves = "".join(f'<save label="{lab}"/>' for lab in ("p.x", "p.particleID", "p.velocity", "p.stress")
                         if f'"{lab}"' not in text)
         (d / f"{case}.ups").write_text(text.replace("</DataArchiver>", saves + "</DataArchiver>", 1))
-    runs = [(case, n) for case in sorted(CASES) for n in (1, 2)]
-    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
-    return d, dict(zip(runs, out))
+    return d, run_cases(d, sorted(CASES), (1, 2))
 
 
 @pytest.mark.parametrize("case", sorted(CASES))

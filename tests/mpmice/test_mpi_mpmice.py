@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from framework.archiver import DataArchive
-from tests.conftest import ROOT, UINTAH_INPUTS, pysus_runs
+from tests.conftest import ROOT, UINTAH_INPUTS, edited_deck, run_cases
 
 PID = '<save label="p.particleID"/>'
 CASES = {
@@ -45,14 +45,8 @@ def launched(tmp_path_factory):
     cases = sorted(case for case, (src, _) in CASES.items() if src.exists())
     for case in cases:
         src, repl = CASES[case]
-        text = src.read_text(encoding="iso-8859-1")
-        for a, b in repl:
-            assert a in text, (case, a)
-            text = text.replace(a, b)
-        (d / f"{case}.ups").write_text(text, encoding="iso-8859-1")
-    runs = [(case, n) for case in cases for n in (1, 2, 3)]
-    out = pysus_runs([((d / f"{case}.ups", "--filebase", d / f"{case}_{n}.uda"), n) for case, n in runs], d)
-    return d, dict(zip(runs, out))
+        edited_deck(src, repl, d / f"{case}.ups")
+    return d, run_cases(d, cases, (1, 2, 3))
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
