@@ -505,6 +505,11 @@ class GeometryReader:
                 raise node.child("radius").error("radius must be positive")
             if np.allclose(b, t):
                 raise node.error("<bottom> and <top> coincide")
+            with np.errstate(over="ignore"):
+                length2 = float(np.subtract(t, b) @ np.subtract(t, b))
+            if not np.isfinite(length2):
+                raise node.error(f"<bottom> {b} and <top> {t} are too far apart: the axis's length squared "
+                                 "overflows a double; accepted: a distance below 1e154")
             return Cylinder(b, t, r)
         if tag == "tri":
             return _read_tri(node)

@@ -74,3 +74,12 @@ def test_deck_text_is_encoded_as_declared():
     assert deck_bytes("<a>\xb5</a>") == "<a>\xb5</a>".encode()
     with pytest.raises(InputError, match="declared encoding"):
         deck_bytes('<?xml version="1.0" encoding="ascii"?><a>\xb5</a>', "d.ups")
+
+
+def test_cylinder_axis_overflowing_is_refused_by_name(scratch):
+    """A cylinder end at 1e300 m: its axis's length squared overflows, which the deck reader
+    refuses on the cylinder's line instead of letting inf reach the particle fill."""
+    m = next(m for m in MUTATIONS if m.kind == "number -> huge" and m.what.split(" = ")[0].endswith("cylinder/bottom"))
+    outcome, text = validate(m, str(scratch))
+    assert outcome == "clean line", text
+    assert "/cylinder> <bottom>" in text and "too far apart" in text and "RuntimeWarning" not in text
