@@ -238,9 +238,14 @@ def _end_process(code):
     among them) and the standard streams are flushed, but the interpreter's teardown, which
     frees every module and numba's and LLVM's objects one at a time, is skipped (0.15 CPU s, a
     tenth of a small deck's whole run: the 12-cell pressurized cylinder). Every file a run
-    writes is closed when the run returns (the archiver writes each in a `with`)."""
+    writes is closed when the run returns (the archiver writes each in a `with`). MPI is
+    finalized here: mpi4py does it in the interpreter's teardown, and a rank that leaves without
+    it lets mpiexec end the ranks still running (tests/framework/test_entry_points.py)."""
     import atexit
     atexit._run_exitfuncs()
+    mpi = sys.modules.get("mpi4py.MPI")
+    if mpi is not None and mpi.Is_initialized() and not mpi.Is_finalized():
+        mpi.Finalize()
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

@@ -80,3 +80,26 @@ def test_command_ends_after_its_run_without_the_teardown(tmp_path):
     da = DataArchive(uda)
     temp, _ = da.read("temp_CC", 0, -1)
     assert da.timesteps == [0] and temp.size == 64 * 64 and np.isfinite(temp).all()
+
+
+RANKS_ENDING_APART = """
+import sys, time
+from mpi4py import MPI
+from framework.cli import _end_process
+if MPI.COMM_WORLD.Get_rank() == 1:
+    time.sleep(1.0)
+    print("rank 1 finished its run", flush=True)
+_end_process(0)
+"""
+
+
+def test_ranks_ending_apart_each_finish(tmp_path):
+    """Under mpiexec a rank that ends its process first must not end the others: _end_process
+    finalizes MPI before skipping the teardown (where mpi4py would finalize); without it mpiexec
+    ended rank 1 in its last second, its final output unwritten."""
+    from tests.conftest import BIN
+    env = dict(os.environ, PYTHONPATH=ROOT)
+    r = subprocess.run([str(BIN / "mpiexec"), "-n", "2", sys.executable, "-c", RANKS_ENDING_APART],
+                       capture_output=True, text=True, env=env, cwd=tmp_path, timeout=120)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "rank 1 finished its run" in r.stdout
