@@ -71,16 +71,13 @@ def _value(func_ir, var, memo, depth=0):
     return v
 
 
-def fold_constant_branches(func_ir, known=None):
+def fold_constant_branches(func_ir):
     """Replace each branch on a compile-time constant condition by a jump and delete the
-    blocks no longer reached; returns the number of branches replaced. `known`: {variable
-    name: int or bool} taken as constants besides the IR's own (an inlined helper's
-    parameters that are constants at its call site), each where it has one definition."""
+    blocks no longer reached; returns the number of branches replaced."""
     total = 0
     while True:
         func_ir._definitions = build_definitions(func_ir.blocks)
-        memo = {name: v for name, v in (known or {}).items()
-                if type(v) in (int, bool) and len(func_ir._definitions.get(name, ())) == 1}
+        memo = {}
         folded = 0
         for block in func_ir.blocks.values():
             term = block.body[-1] if block.body else None

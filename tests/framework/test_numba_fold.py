@@ -41,8 +41,8 @@ def test_folded_branches_same_numbers(monkeypatch):
     counts = []
     fold = numba_fold.fold_constant_branches
 
-    def counting(func_ir, known=None):
-        counts.append(fold(func_ir, known))
+    def counting(func_ir):
+        counts.append(fold(func_ir))
         return counts[-1]
 
     xs = np.linspace(-0.4, 0.4, 9)
