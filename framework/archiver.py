@@ -52,6 +52,31 @@ def _atype(shape):
     return {(): SCALAR, (3,): VECTOR, (3, 3): TENSOR}.get(tuple(shape), SCALAR)
 
 
+def _link_create():
+    """HDF5's link-creation property: the groups on a dataset's path are made with it."""
+    lcpl = h5py.h5p.create(h5py.h5p.LINK_CREATE)
+    lcpl.set_create_intermediate_group(True)
+    return lcpl
+
+
+_LCPL = _link_create()
+
+
+def _put(group, name, arr, **attrs):
+    """group[name] = arr (contiguous, with attributes) through HDF5's own calls: the same file
+    as h5py's create_dataset and attrs, at 0.4x their cost per dataset (an output writes one per
+    variable, material and patch, and that cost was most of writing it)."""
+    arr = np.ascontiguousarray(arr)
+    space = h5py.h5s.create_simple(arr.shape) if arr.ndim else h5py.h5s.create(h5py.h5s.SCALAR)
+    ds = h5py.h5d.create(group.id, name.encode(), h5py.h5t.py_create(arr.dtype, logical=True), space, lcpl=_LCPL)
+    if arr.size:
+        ds.write(h5py.h5s.ALL, h5py.h5s.ALL, arr)
+    for key, value in attrs.items():
+        v = np.asarray(value)
+        h5py.h5a.create(ds, key.encode(), h5py.h5t.py_create(v.dtype, logical=True),
+                        h5py.h5s.create_simple(v.shape)).write(v)
+
+
 def _write_dw(h5, dw, level, patches, names, region):
     """Write the named variables of `dw` for `patches` into an open HDF5 file.
 
@@ -71,19 +96,18 @@ def _write_dw(h5, dw, level, patches, names, region):
             if box is None:
                 continue
             data = arr[p.slices(vt, box)]
-            ds = g.create_dataset(f"{name}/{m}", data=_zyx(data, label.shape))
-            ds.attrs["low"], ds.attrs["high"] = box[0], box[1]
+            _put(g, f"{name}/{m}", _zyx(data, label.shape), low=box[0], high=box[1])
             pm["grid"].setdefault(name, {})[m] = (list(box[0]), list(box[1]))
         for (name, m, pid), arr in dw.particles.items():
             if pid != p.id or name not in names:
                 continue
-            g.create_dataset(f"particles/{m}/{name}", data=arr)
+            _put(g, f"particles/{m}/{name}", arr)
             pm["particles"].setdefault(str(m), []).append(name)
         for (m, pid), n in dw.nparticles.items():
             if pid == p.id:
                 g.require_group(f"particles/{m}").attrs["n"] = n
                 if region == "interior" and n:      # XDMF Polyvertex connectivity (framework/xdmf.py)
-                    g.create_dataset(f"particles/{m}/{CONNECTIVITY}", data=np.arange(n, dtype=np.int32))
+                    _put(g, f"particles/{m}/{CONNECTIVITY}", np.arange(n, dtype=np.int32))
                 pm.setdefault("np", {})[str(m)] = n
         meta[p.id] = pm
     return meta

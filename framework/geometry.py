@@ -663,7 +663,9 @@ def cell_fractions(piece, level, box, res):
     """Fraction of each cell of an index box inside `piece`, from res samples per direction.
 
     Returns an array over the box; collapsed directions use one sample per cell. The
-    box is sampled one x-slab at a time so memory stays bounded on big patches.
+    box is sampled a group of x-slabs at a time (about SAMPLES_PER_CALL points), so that
+    memory stays bounded on big patches and a piece made of many parts (a union of boxes)
+    is not called once per slab.
     """
     shape = tuple(h - l for l, h in zip(*box))
     axes = []
@@ -673,11 +675,16 @@ def cell_fractions(piece, level, box, res):
         cells = np.arange(box[0][d], box[1][d])
         axes.append(level.anchor[d] + (cells[:, None] + off[None, :]) * level.dx[d])
     out = np.empty(shape)
-    Y = axes[1][:, None, :, None]
-    Z = axes[2][None, :, None, :]
-    for i in range(shape[0]):
-        X = axes[0][i][None, None, None, None, :]
-        Xb, Yb, Zb = np.broadcast_arrays(X, Y[..., None], Z[..., None])
+    per_slab = max(1, axes[0].shape[1] * axes[1].size * axes[2].size)
+    slabs = max(1, SAMPLES_PER_CALL // per_slab)
+    Y = axes[1][None, :, None, :, None, None]
+    Z = axes[2][None, None, :, None, :, None]
+    for i in range(0, shape[0], slabs):
+        X = axes[0][i:i + slabs][:, None, None, None, None, :]
+        Xb, Yb, Zb = np.broadcast_arrays(X, Y, Z)
         pts = np.stack([Xb.ravel(), Yb.ravel(), Zb.ravel()], axis=1)
-        out[i] = piece.inside(pts).reshape(Xb.shape).mean(axis=(2, 3, 4))
+        out[i:i + slabs] = piece.inside(pts).reshape(Xb.shape).mean(axis=(3, 4, 5))
     return out
+
+
+SAMPLES_PER_CALL = 1 << 18

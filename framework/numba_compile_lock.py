@@ -55,7 +55,7 @@ def _acquire(path):
                 os.close(fd)
                 return None
             time.sleep(pause)
-            pause = min(0.5, 2 * pause)
+            pause = min(0.02, 2 * pause)    # the holder's release is seen within 20 ms
         except OSError:
             os.close(fd)
             return None

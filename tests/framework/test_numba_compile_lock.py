@@ -22,6 +22,7 @@ if sys.argv[3] == "lock":
     import framework.numba_compile_lock  # noqa: F401
 import numpy as np
 import kernelmod
+open(sys.argv[2] + f".ready{os.getpid()}", "w").close()
 while not os.path.exists(sys.argv[2]):
     time.sleep(0.005)
 kernelmod.kernel(np.ones((3, 3)))
@@ -41,7 +42,9 @@ def _race(tmp_path, mode, n=3):
                PYTHONPATH=os.pathsep.join([str(ROOT), str(work)]))
     procs = [subprocess.Popen([sys.executable, str(work / "driver.py"), str(ROOT), str(go), mode],
                               stdout=subprocess.PIPE, text=True, env=env, cwd=work) for _ in range(n)]
-    time.sleep(3.0)                     # every process imported numba and waits
+    deadline = time.monotonic() + 120
+    while len(list(work.glob("go.ready*"))) < n and time.monotonic() < deadline:
+        time.sleep(0.01)                # until every process imported numba and waits
     go.write_text("")
     out = [json.loads(p.communicate(timeout=300)[0].strip().splitlines()[-1]) for p in procs]
     return sum(o["misses"] for o in out), sum(o["hits"] for o in out)
