@@ -72,6 +72,11 @@ GEOM = {
     "numLevelsParticleFilling": Param("int", 0, doc="|n| > 1: Uintah's recursive filling of the object's "
                                       "surface cells with particles of half the spacing, n - 1 times "
                                       "(fill_levels); n < 0 first removes the particles that stick out"),
+    "cut_cell_particles": Param("bool", False, doc="pysus: a particle whose lattice sub-cell the object's "
+                                "surface cuts holds the part inside, with that part's volume, mass and "
+                                "centroid (cut_cells), so that the particles hold the object's volume; "
+                                "Uintah's (false): a particle where the sub-cell's centre is inside, with "
+                                "the whole sub-cell's volume"),
 }
 
 LATTICE_BITS = 40       # a lattice particle's ID: object number << 40, then its lattice index
@@ -268,6 +273,14 @@ class Material:
             if spec["affine"] is not None and abs(spec["numLevelsParticleFilling"]) > 1:
                 raise g.child("numLevelsParticleFilling").error(
                     "the filling of an affine-transformed object is not implemented; accepted: -1 .. 1")
+            if spec["cut_cell_particles"]:
+                for other, why in (("numLevelsParticleFilling", abs(spec["numLevelsParticleFilling"]) > 1),
+                                   ("smoothcyl", spec["smooth"]), ("affineTransformation_b", spec["affine"] is not None)):
+                    if why:
+                        raise g.child("cut_cell_particles").error(
+                            f"cut_cell_particles lays the lattice's particles itself: accepted with neither "
+                            f"numLevelsParticleFilling beyond -1 .. 1, a <smoothcyl> nor an affine transformation "
+                            f"(this object has {other})")
             self.objects.append(spec)
         if not self.objects:
             raise node.error("a material needs at least one <geom_object>")
@@ -358,6 +371,12 @@ class Material:
                 if surface:
                     out[-1]["surf"] = on_surface(out[-1]["x"], obj["piece"], lv.dx / res,
                                                  ~np.asarray(lv.collapsed)).astype(float)
+                continue
+            if obj.get("cut_cell_particles"):
+                sub, x, fraction = cut_cells(obj["piece"], patch, res)
+                out.append(self._lattice_particles(obj, patch, obj_base + k, res, 0, sub, x, pressure, surface,
+                                                   axisymmetric))
+                out[-1]["vol"] = out[-1]["vol"] * fraction     # axisymmetric: r_centroid * area, Pappus
                 continue
             for level, sub, x in fill_levels(obj["piece"], patch, res, obj.get("numLevelsParticleFilling", 0)):
                 out.append(self._lattice_particles(obj, patch, obj_base + k, res, level, sub, x, pressure,
@@ -466,6 +485,56 @@ def lattice_positions(anchor, dx, r, sub):
     return ((anchor + dx * cell) + dxpp * 0.5) + dxpp * idx
 
 
+CUT_SAMPLES = 8         # samples per active direction in a cut sub-cell (cut_cells)
+
+
+def _patch_lattice(patch, r):
+    """Sub-cell indices (n, 3) of a patch's lattice of r per cell, x fastest, and their points."""
+    lv = patch.level
+    axes = [np.arange(patch.lo[d] * r[d], patch.hi[d] * r[d]) for d in range(3)]
+    I, J, K = np.meshgrid(*axes, indexing="ij")
+    sub = np.stack([I.ravel(order="F"), J.ravel(order="F"), K.ravel(order="F")], axis=1)
+    return sub, lattice_positions(lv.anchor, lv.dx, r, sub)
+
+
+def cut_cells(piece, patch, res, chunk=4096):
+    """The <res> lattice's sub-cells of a patch that hold part of `piece`: (sub-cell index (n, 3),
+    position (n, 3), volume fraction (n,)). A sub-cell whose centre and corners are all inside is
+    whole (fraction 1, at its centre, the lattice point); one the surface cuts (some of its centre
+    and corners inside, some not) is sampled at CUT_SAMPLES points per active direction and
+    holds the inside part's fraction at that part's centroid, which lies in the sub-cell (the
+    lattice point where every sample is inside). The
+    particles then hold the object's volume to the sampling's resolution where the lattice's
+    centres hold it to a sub-cell per surface cell (the pressurized cylinder's eq. 43 error:
+    docs/MPMICE.md)."""
+    lv = patch.level
+    sub, x = _patch_lattice(patch, res)
+    h = np.asarray(lv.dx, float) / res
+    act = ~np.asarray(lv.collapsed)
+    signs = np.array([[a, b, c] for a in (-0.5, 0.5) for b in (-0.5, 0.5) for c in (-0.5, 0.5)])
+    corners = np.unique(signs * act, axis=0) * h
+    centre = piece.inside(x)
+    corner_in = piece.inside((x[:, None, :] + corners[None]).reshape(-1, 3)).reshape(len(x), len(corners))
+    whole = centre & corner_in.all(axis=1)
+    cut = np.nonzero((centre | corner_in.any(axis=1)) & ~whole)[0]
+    offsets = [((np.arange(CUT_SAMPLES) + 0.5) / CUT_SAMPLES - 0.5) * h[d] if act[d] else np.zeros(1)
+               for d in range(3)]
+    samples = np.stack(np.meshgrid(*offsets, indexing="ij"), axis=-1).reshape(-1, 3)
+    fraction = whole.astype(float)
+    pos = x.copy()
+    for a in range(0, len(cut), chunk):
+        idx = cut[a:a + chunk]
+        pts = x[idx, None, :] + samples[None]
+        inside = piece.inside(pts.reshape(-1, 3)).reshape(len(idx), len(samples))
+        count = inside.sum(axis=1)
+        fraction[idx] = count / len(samples)
+        part = (count > 0) & (count < len(samples))     # every sample inside: the lattice point stays
+        centroid = (pts[part] * inside[part, :, None]).sum(axis=1) / count[part, None]
+        pos[idx[part][:, None], np.nonzero(act)[0][None, :]] = centroid[:, act]    # a collapsed axis keeps its point
+    keep = fraction > 0.0
+    return sub[keep], pos[keep], fraction[keep]
+
+
 def fill_levels(piece, patch, res, fill):
     """The lattice points of a patch inside `piece`, per fill level: [(level, sub-cell index (n, 3)
     on that level's lattice, position (n, 3))]. Level 0 is the <res> lattice. With |fill| > 1
@@ -477,10 +546,7 @@ def fill_levels(piece, patch, res, fill):
     out = []
     for level in range(max(abs(fill), 1)):
         r = res * 2 ** level
-        axes = [np.arange(patch.lo[d] * r[d], patch.hi[d] * r[d]) for d in range(3)]
-        I, J, K = np.meshgrid(*axes, indexing="ij")
-        sub = np.stack([I.ravel(order="F"), J.ravel(order="F"), K.ravel(order="F")], axis=1)
-        x = lattice_positions(lv.anchor, lv.dx, r, sub)
+        sub, x = _patch_lattice(patch, r)
         inside = piece.inside(x)
         sub, x = sub[inside], x[inside]
         if level:

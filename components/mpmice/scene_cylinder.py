@@ -9,8 +9,9 @@ against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
              particles per cell per direction (ppc, the deck's <res> 2), its
              <numLevelsParticleFilling> (fill), <DoPressureStabilization> (stab: true, each
              cell's particles take the cell's mean J), <interpolator>, the artificial damping
-             coefficient, and geom="smooth": the steel laid in rings (a <smoothcyl>; MPM takes it
-             with the linear interpolator only) rather than on the cell lattice
+             coefficient, geom="smooth": the steel laid in rings (a <smoothcyl>; MPM takes it
+             with the linear interpolator only) rather than on the cell lattice, and cut: the
+             steel's <cut_cell_particles> (its surface sub-cells' particles hold the part inside)
     errors(da, ri=, ro=)  (a pysus DataArchive or a sus UintahArchive) at the last output:
              P = mean gauge pressure of the inner air (cells with r < 0.8 ri); over all
              particles, eq. 43
@@ -33,7 +34,7 @@ RI, RO, L, P_REF = 0.5, 1.0, 1.2, 101325.0
 
 
 def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, interpolator=None, ppc=None,
-         fill=None, stab=None, geom=None):
+         fill=None, stab=None, geom=None, cut=None):
     text = open(DECK, encoding="iso-8859-1").read()
     dx = L / int(n)
     ri, ro = float(ri), float(ro)
@@ -68,6 +69,9 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, in
     if fill is not None:
         steel = steel.replace("</geom_object>", f"  <numLevelsParticleFilling> {int(fill)} "
                                                 "</numLevelsParticleFilling>\n        </geom_object>")
+    if cut is not None:
+        steel = steel.replace("</geom_object>", f"  <cut_cell_particles> {str(cut).lower()} "
+                                                "</cut_cell_particles>\n        </geom_object>")
     text = text[:a] + steel + text[b:]
     if geom not in (None, "lattice", "smooth"):
         raise ValueError(f"geom {geom!r}: lattice (the deck's) or smooth")
