@@ -274,8 +274,10 @@ class Material:
                 raise g.child("numLevelsParticleFilling").error(
                     "the filling of an affine-transformed object is not implemented; accepted: -1 .. 1")
             if spec["cut_cell_particles"]:
-                for other, why in (("numLevelsParticleFilling", abs(spec["numLevelsParticleFilling"]) > 1),
-                                   ("smoothcyl", spec["smooth"]), ("affineTransformation_b", spec["affine"] is not None)):
+                for other, why in ((f"numLevelsParticleFilling {spec['numLevelsParticleFilling']}",
+                                    abs(spec["numLevelsParticleFilling"]) > 1),
+                                   ("a <smoothcyl>", spec["smooth"]),
+                                   ("an affine transformation", spec["affine"] is not None)):
                     if why:
                         raise g.child("cut_cell_particles").error(
                             f"cut_cell_particles lays the lattice's particles itself: accepted with neither "
@@ -497,40 +499,42 @@ def _patch_lattice(patch, r):
     return sub, lattice_positions(lv.anchor, lv.dx, r, sub)
 
 
-def cut_cells(piece, patch, res, chunk=4096):
+def cut_cells(piece, patch, res, chunk=1 << 15):
     """The <res> lattice's sub-cells of a patch that hold part of `piece`: (sub-cell index (n, 3),
     position (n, 3), volume fraction (n,)). A sub-cell whose centre and corners are all inside is
     whole (fraction 1, at its centre, the lattice point); one the surface cuts (some of its centre
     and corners inside, some not) is sampled at CUT_SAMPLES points per active direction and
     holds the inside part's fraction at that part's centroid, which lies in the sub-cell (the
-    lattice point where every sample is inside). The
-    particles then hold the object's volume to the sampling's resolution where the lattice's
-    centres hold it to a sub-cell per surface cell (the pressurized cylinder's eq. 43 error:
-    docs/MPMICE.md)."""
+    lattice point where every sample is inside). The particles then hold the object's volume to
+    the sampling's resolution where the lattice's centres hold it to a sub-cell per surface cell
+    (the pressurized cylinder's eq. 43 error: docs/MPMICE.md). `chunk` sub-cells at a time."""
     lv = patch.level
     sub, x = _patch_lattice(patch, res)
     h = np.asarray(lv.dx, float) / res
     act = ~np.asarray(lv.collapsed)
     signs = np.array([[a, b, c] for a in (-0.5, 0.5) for b in (-0.5, 0.5) for c in (-0.5, 0.5)])
     corners = np.unique(signs * act, axis=0) * h
-    centre = piece.inside(x)
-    corner_in = piece.inside((x[:, None, :] + corners[None]).reshape(-1, 3)).reshape(len(x), len(corners))
-    whole = centre & corner_in.all(axis=1)
-    cut = np.nonzero((centre | corner_in.any(axis=1)) & ~whole)[0]
     offsets = [((np.arange(CUT_SAMPLES) + 0.5) / CUT_SAMPLES - 0.5) * h[d] if act[d] else np.zeros(1)
                for d in range(3)]
     samples = np.stack(np.meshgrid(*offsets, indexing="ij"), axis=-1).reshape(-1, 3)
-    fraction = whole.astype(float)
+    fraction = np.zeros(len(x))
     pos = x.copy()
-    for a in range(0, len(cut), chunk):
-        idx = cut[a:a + chunk]
-        pts = x[idx, None, :] + samples[None]
-        inside = piece.inside(pts.reshape(-1, 3)).reshape(len(idx), len(samples))
-        count = inside.sum(axis=1)
-        fraction[idx] = count / len(samples)
-        part = (count > 0) & (count < len(samples))     # every sample inside: the lattice point stays
-        centroid = (pts[part] * inside[part, :, None]).sum(axis=1) / count[part, None]
-        pos[idx[part][:, None], np.nonzero(act)[0][None, :]] = centroid[:, act]    # a collapsed axis keeps its point
+    for a in range(0, len(x), chunk):
+        xs = x[a:a + chunk]
+        centre = piece.inside(xs)
+        corner_in = piece.inside((xs[:, None, :] + corners[None]).reshape(-1, 3)).reshape(len(xs), len(corners))
+        whole = centre & corner_in.all(axis=1)
+        fraction[a:a + chunk] = whole
+        cut = np.nonzero((centre | corner_in.any(axis=1)) & ~whole)[0]
+        for c in range(0, len(cut), max(1, chunk // len(samples))):
+            idx = a + cut[c:c + max(1, chunk // len(samples))]
+            pts = x[idx, None, :] + samples[None]
+            inside = piece.inside(pts.reshape(-1, 3)).reshape(len(idx), len(samples))
+            count = inside.sum(axis=1)
+            fraction[idx] = count / len(samples)
+            part = (count > 0) & (count < len(samples))     # every sample inside: the lattice point stays
+            centroid = (pts[part] * inside[part, :, None]).sum(axis=1) / count[part, None]
+            pos[idx[part][:, None], np.nonzero(act)[0][None, :]] = centroid[:, act]   # collapsed axes keep theirs
     keep = fraction > 0.0
     return sub[keep], pos[keep], fraction[keep]
 
