@@ -51,3 +51,18 @@ def test_sphere_volume_and_centroid_3d():
     c = (fraction[:, None] * x).sum(axis=0) / fraction.sum()
     assert np.allclose(c, [0.5, 0.45, 0.52], atol=1e-4)
     assert CUT_SAMPLES == 8
+
+
+def test_ring_of_revolution_pappus():
+    """Axisymmetric particles hold r_centroid * area per radian (materials.Material.create): for a
+    disk of radius 0.23 at r = 0.5, z = 0.4 in the (r, z) plane, the cut-cell particles' sum of
+    fraction * dr dz * r is Pappus's pi R^2 r0 to 0.3 % (measured 0.22 %, as their area), the
+    lattice centres' 2.3 % off."""
+    disk = Cylinder([0.5, 0.4, -1], [0.5, 0.4, 1], 0.23)
+    patch = _patch((10, 10, 1), (0.1, 0.1, 0.1), (False, False, True))
+    res = np.array([2, 2, 1])
+    exact = np.pi * 0.23 ** 2 * 0.5
+    sub, x, fraction = cut_cells(disk, patch, res)
+    ((_, _, x0),) = fill_levels(disk, patch, res, 0)
+    assert abs((fraction * x[:, 0]).sum() * 0.05 * 0.05 / exact - 1.0) < 3e-3
+    assert abs(x0[:, 0].sum() * 0.05 * 0.05 / exact - 1.0) > 1e-2
