@@ -66,9 +66,9 @@ def _put(group, name, arr, **attrs):
     """group[name] = arr (contiguous, with attributes) through HDF5's own calls: the same file
     as h5py's create_dataset and attrs, at 0.4x their cost per dataset (an output writes one per
     variable, material and patch, and that cost was most of writing it)."""
-    arr = np.ascontiguousarray(arr)
-    space = h5py.h5s.create_simple(arr.shape) if arr.ndim else h5py.h5s.create(h5py.h5s.SCALAR)
-    ds = h5py.h5d.create(group.id, name.encode(), h5py.h5t.py_create(arr.dtype, logical=True), space, lcpl=_LCPL)
+    arr = np.ascontiguousarray(arr)                 # at least 1-D
+    ds = h5py.h5d.create(group.id, name.encode(), h5py.h5t.py_create(arr.dtype, logical=True),
+                         h5py.h5s.create_simple(arr.shape), lcpl=_LCPL)
     if arr.size:
         ds.write(h5py.h5s.ALL, h5py.h5s.ALL, arr)
     for key, value in attrs.items():
