@@ -11,7 +11,8 @@ against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
              cell's particles take the cell's mean J), <interpolator>, the artificial damping
              coefficient, geom="smooth": the steel laid in rings (a <smoothcyl>; MPM takes it
              with the linear interpolator only) rather than on the cell lattice, and cut: the
-             steel's <cut_cell_particles> (its surface sub-cells' particles hold the part inside)
+             steel's <cut_cell_particles> (its surface sub-cells' particles hold the part inside),
+             and heat: the steel's heat exchange coefficient with the airs (the deck's 1e6)
     errors(da, ri=, ro=)  (a pysus DataArchive or a sus UintahArchive) at the last output:
              P = mean gauge pressure of the inner air (cells with r < 0.8 ri); over all
              particles, eq. 43
@@ -34,7 +35,7 @@ RI, RO, L, P_REF = 0.5, 1.0, 1.2, 101325.0
 
 
 def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, interpolator=None, ppc=None,
-         fill=None, stab=None, geom=None, cut=None):
+         fill=None, stab=None, geom=None, cut=None, heat=None):
     text = open(DECK, encoding="iso-8859-1").read()
     dx = L / int(n)
     ri, ro = float(ri), float(ro)
@@ -46,6 +47,8 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, in
             ("<patches> [2,2,1] </patches>", f"<patches> [{patches}] </patches>"),
             ("<radius> 1.0 </radius>", f"<radius> {ro!r} </radius>"),
             ("<radius> 0.5 </radius>", f"<radius> {ri!r} </radius>")]
+    if heat is not None:         # the steel's heat exchange coefficient with each air (the airs' own stays)
+        reps.append(("<heat> [1e6, 1e6, 1e10] </heat>", f"<heat> [{float(heat)!r}, {float(heat)!r}, 1e10] </heat>"))
     if damping is not None:
         reps.append(("<artificial_damping_coeff> 4000.0 </artificial_damping_coeff>",
                      f"<artificial_damping_coeff> {float(damping)!r} </artificial_damping_coeff>"))

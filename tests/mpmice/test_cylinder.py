@@ -101,6 +101,7 @@ def test_deck_options():
     assert "<DoPressureStabilization> true </DoPressureStabilization>" in text
     assert "<res> [4,4,1] </res>" in steel and text.count("<res> [2,2,1] </res>") == 2     # the airs keep theirs
     assert "<numLevelsParticleFilling> -2 </numLevelsParticleFilling>" in steel
+    assert "<heat> [0.0, 0.0, 1e10] </heat>" in C.deck(12, heat=0)
     cut = C.deck(12, cut=True)
     assert cut.count("<cut_cell_particles> true </cut_cell_particles>") == 1    # the steel's only
     import importlib.util
