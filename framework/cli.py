@@ -234,8 +234,8 @@ def failure_summary(exc, ctl) -> str:
 
 
 def _end_process(code):
-    """End the pysus command's process after its run: the atexit handlers run (MPI's finalize
-    among them) and the standard streams are flushed, but the interpreter's teardown, which
+    """End the pysus command's process after its run: the atexit handlers run, MPI is finalized
+    and the standard streams are flushed, but the interpreter's teardown, which
     frees every module and numba's and LLVM's objects one at a time, is skipped (0.15 CPU s, a
     tenth of a small deck's whole run: the 12-cell pressurized cylinder). Every file a run
     writes is closed when the run returns (the archiver writes each in a `with`). MPI is

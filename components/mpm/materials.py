@@ -526,8 +526,9 @@ def cut_cells(piece, patch, res, chunk=1 << 15):
         whole = centre & corner_in.all(axis=1)
         fraction[a:a + chunk] = whole
         cut = np.nonzero((centre | corner_in.any(axis=1)) & ~whole)[0]
-        for c in range(0, len(cut), max(1, chunk // len(samples))):
-            idx = a + cut[c:c + max(1, chunk // len(samples))]
+        step = max(1, chunk // len(samples))           # sub-cells sampled at a time
+        for c in range(0, len(cut), step):
+            idx = a + cut[c:c + step]
             pts = x[idx, None, :] + samples[None]
             inside = piece.inside(pts.reshape(-1, 3)).reshape(len(idx), len(samples))
             count = inside.sum(axis=1)
