@@ -1,11 +1,18 @@
 """The fused particle passes give bitwise the numbers of the separate ones: the grad pass
 with the comp_neo_hook stress (MUSL) against grad, then comp_neo_hook.kernel; p2g without
-g.volume against p2g with it; relocation's block gather against the row-by-row one."""
+g.volume against p2g with it; relocation's block gather against the row-by-row one.
+
+The kernels allow multiply-adds to be contracted (fastmath 'contract'), so "bitwise" holds for
+two kernels compiled at one optimisation level, as every run's are. The suite compiles what the
+shipped decks' warm-up did not at NUMBA_OPT=2 (scripts/test), so one of a pair may be the warm-up's
+(full level) and the other the suite's: below the full level the pair must agree to 1e-14 of the
+largest value instead (a contraction's rounding), which a wrong sum still fails."""
 import numpy as np
 import pytest
 
 from components.mpm.constitutive import comp_neo_hook
 from components.mpm.transfer import NEO_HOOKE, kernels, one_run
+from framework.numba_cache_opt import FULL_LEVEL, opt_level
 from framework.scheduler.particle_kernels import gather_merged, gather_runs, runs
 
 from .test_shape import P2G_CASES, make_grid, make_particles
@@ -18,6 +25,14 @@ def _state(kind, on, anchor, dx, shape, seed=5):
     F = np.tile(np.eye(3), (n, 1, 1)) + 0.05 * rng.standard_normal((n, 3, 3))
     gvel = rng.standard_normal(shape + (3,))
     return px, lp, rng.random(n) + 0.5, F, gvel, rng.standard_normal((n, 3))
+
+
+def same(a, b):
+    """Bitwise at numba's full optimisation level; within contraction's rounding below it."""
+    a, b = np.asarray(a), np.asarray(b)
+    if opt_level() >= FULL_LEVEL:
+        return np.array_equal(a, b)
+    return a.shape == b.shape and np.allclose(a, b, rtol=0.0, atol=1e-14 * max(np.abs(a).max(initial=0.0), 1e-300))
 
 
 # P2G_CASES: the shipped decks' combinations with the tasks' argument types (test_shape; these
@@ -37,7 +52,7 @@ def test_grad_with_neo_hooke_stress_equals_separate_passes(kind, act):
     F2, V2, s2, e2 = np.empty((n, 3, 3)), np.empty(n), np.empty((n, 3, 3)), np.empty(n)
     w2 = grad(px, lp, anchor, dx, lo, gvel, L, False, dt, pm, rho0, F, F2, V2, NEO_HOOKE, K, mu, vel, s2, e2)
     for a, b in ((F1, F2), (V1, V2), (s1, s2), (e1, e2), (w1, np.array(w2))):
-        assert np.array_equal(a, b)
+        assert same(a, b)
 
 
 @pytest.mark.parametrize("kind,act", P2G_CASES)
@@ -57,7 +72,7 @@ def test_p2g_without_volume_same_other_sums(kind, act):
         out.append(g)
     assert out[0][2].sum() > 0.0 and not out[1][2].any()
     for k in (0, 1, 3, 4):
-        assert np.array_equal(out[0][k], out[1][k])
+        assert same(out[0][k], out[1][k])
 
 
 @pytest.mark.parametrize("cols,dtype", [(9, np.float64), (3, np.float64), (1, np.int64)])
