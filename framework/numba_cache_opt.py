@@ -23,6 +23,13 @@ def opt_level():
     return FULL_LEVEL if getattr(level, "is_opt_max", False) else int(level)
 
 
+def load_keys(cache, sig, codegen):
+    """The index keys a kernel may be loaded under in this process, in the order tried."""
+    own = cache._index_key(sig, codegen)
+    full = getattr(cache, "_pysus_full_key", None)
+    return (own,) if full is None else (full(sig, codegen), own)
+
+
 def _install():
     cache = _caching.Cache
     if getattr(cache._index_key, "_pysus_opt_apart", False) or opt_level() >= FULL_LEVEL:
@@ -37,8 +44,7 @@ def _install():
     def load_full_level_first(self, sig, target_context):
         if not self._enabled:
             return None
-        codegen = target_context.codegen()
-        for key in (full_key(self, sig, codegen), key_at_this_level(self, sig, codegen)):
+        for key in load_keys(self, sig, target_context.codegen()):
             data = self._cache_file.load(key)
             if data is not None:
                 return self._impl.rebuild(target_context, data)
@@ -46,6 +52,7 @@ def _install():
 
     key_at_this_level._pysus_opt_apart = True
     cache._index_key = key_at_this_level
+    cache._pysus_full_key = full_key
     cache._load_overload = load_full_level_first
 
 

@@ -18,6 +18,8 @@ import time
 from numba.core import dispatcher as _dispatcher
 from numba.core import sigutils as _sigutils
 
+from framework.numba_cache_opt import load_keys
+
 WAIT_LIMIT_S = 900.0        # a holder that long (stopped, hung) is passed: compile regardless
 _held = set()               # lock files this process holds (nested and recursive compiles)
 
@@ -32,8 +34,8 @@ def _in_cache(disp, sig):
     """Whether numba's cache index holds this signature (then loading needs no lock)."""
     try:
         cache = disp._cache
-        key = cache._index_key(sig, disp.targetctx.codegen())
-        return key in cache._cache_file._load_index()
+        index = cache._cache_file._load_index()
+        return any(key in index for key in load_keys(cache, sig, disp.targetctx.codegen()))
     except Exception:                       # numba's private API moved: take the lock
         return False
 
