@@ -517,6 +517,7 @@ def cut_cells(piece, patch, res, chunk=1 << 15):
     offsets = [((np.arange(CUT_SAMPLES) + 0.5) / CUT_SAMPLES - 0.5) * h[d] if act[d] else np.zeros(1)
                for d in range(3)]
     samples = np.stack(np.meshgrid(*offsets, indexing="ij"), axis=-1).reshape(-1, 3)
+    active = np.nonzero(act)[0]
     fraction = np.zeros(len(x))
     pos = x.copy()
     for a in range(0, len(x), chunk):
@@ -535,7 +536,7 @@ def cut_cells(piece, patch, res, chunk=1 << 15):
             fraction[idx] = count / len(samples)
             part = (count > 0) & (count < len(samples))     # every sample inside: the lattice point stays
             centroid = (pts[part] * inside[part, :, None]).sum(axis=1) / count[part, None]
-            pos[idx[part][:, None], np.nonzero(act)[0][None, :]] = centroid[:, act]   # collapsed axes keep theirs
+            pos[idx[part][:, None], active[None, :]] = centroid[:, active]      # collapsed axes keep theirs
     keep = fraction > 0.0
     return sub[keep], pos[keep], fraction[keep]
 

@@ -82,8 +82,6 @@ def test_heat_conduction_with_axisymmetric(tmp_path):
     _fails(tmp_path, text, "axisymmetric", "heat conduction", "accepted")
 
 
-
-
 def test_cut_cell_particles_alone(tmp_path):
     """<cut_cell_particles> lays the lattice's particles itself: not with Uintah's finer filling."""
     text = open(SULSKY).read().replace("<res>", "<cut_cell_particles> true </cut_cell_particles>"
