@@ -37,6 +37,14 @@ def _zero_rows(n):
 _ZERO_ROWS = _zero_rows(0)
 
 
+def _read_only(a):
+    """a, or a read-only view of it."""
+    if a.flags.writeable:
+        a = a.view()
+        a.flags.writeable = False
+    return a
+
+
 def _zeros3(n):
     """A read-only (n, 3) array of zeros, C-contiguous for every n: rows of one shared buffer,
     grown when needed. (A stride-0 broadcast view is C-contiguous for n <= 1 only, so numba
@@ -95,11 +103,7 @@ class MPMTasks:
         """_lp as a read-only array, the numba type of linear's stand-in (_zeros3): the kernels that
         take the interpolator as a run-time value (kernels.p2g_stress, transfer.mass_gradient, the
         heat kernels) then compile once for linear and GIMP, not once for each."""
-        lp = self._lp(dw, m, patch, n)
-        if lp.flags.writeable:
-            lp = lp.view()
-            lp.flags.writeable = False
-        return lp
+        return _read_only(self._lp(dw, m, patch, n))
 
     @property
     def _size_label(self):
@@ -368,7 +372,8 @@ class MPMTasks:
         kernels.lr_alpha(gmass, possible, rigid, alpha, n_matls)
         px = {m: old_dw.get(L.pX, m, patch) for m in matls}
         size = {m: old_dw.get(L.pSize, m, patch) for m in matls}
-        lp = {m: size[m] if self.kind == "gimp" else _zeros3(len(px[m])) for m in matls}
+        # read-only as the other kernels with the interpolator at run time: one compilation each
+        lp = {m: _read_only(size[m]) if self.kind == "gimp" else _zeros3(len(px[m])) for m in matls}
         count = np.zeros((nn, nm), np.int64)
         for k, m in enumerate(matls):         # particles of each material near each node
             col = np.zeros(nn, np.int64)
