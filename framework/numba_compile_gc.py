@@ -3,18 +3,19 @@
 A compile builds hundreds of thousands of small objects (IR nodes, types, llvmlite
 instructions), so the collector runs over and over during it and scans the whole heap at
 every full collection: about a fifth of a kernel's compile (MPM's g2p, GIMP, 3D, MUSL: 3.9 ->
-3.2 CPU s). The outermost Dispatcher.compile of a process turns the collector off and back
-on when it returns (nested compiles of the kernels it calls run inside it); the cycles it
-left are collected afterwards as usual. Nothing else changes: the same typed IR and machine
-code. Importing this module installs it once.
+3.2 CPU s). The outermost Dispatcher.compile of a thread turns the collector off (where it
+is on) and back on when it returns (nested compiles of the kernels it calls run inside it);
+the cycles it left are collected afterwards as usual. Nothing else changes: the same typed
+IR and machine code. Importing this module installs it once.
 """
 from __future__ import annotations
 
 import gc
+import threading
 
 from numba.core import dispatcher as _dispatcher
 
-_depth = 0              # Dispatcher.compile calls under way in this thread of the process
+_state = threading.local()      # depth: Dispatcher.compile calls under way in this thread
 
 
 def _install():
@@ -24,15 +25,15 @@ def _install():
     original = cls.compile
 
     def compile(self, sig):
-        global _depth
-        pause = _depth == 0 and gc.isenabled()
+        depth = getattr(_state, "depth", 0)
+        pause = depth == 0 and gc.isenabled()
         if pause:
             gc.disable()
-        _depth += 1
+        _state.depth = depth + 1
         try:
             return original(self, sig)
         finally:
-            _depth -= 1
+            _state.depth = depth
             if pause:
                 gc.enable()
 

@@ -55,11 +55,11 @@ def test_no_collection_while_compiling_and_collector_back_on():
     assert gc.isenabled()
     # the same compile as if it were nested in another (no pause of its own): the collector runs,
     # so the count above could have failed
-    numba_compile_gc._depth += 1
+    numba_compile_gc._state.depth = 1
     try:
         assert _collections_in_compile(lambda: _fresh_kernel()(a, a)) > 0
     finally:
-        numba_compile_gc._depth -= 1
+        numba_compile_gc._state.depth = 0
 
 
 def test_failed_compile_and_disabled_collector_left_as_they_were():
@@ -68,7 +68,7 @@ def test_failed_compile_and_disabled_collector_left_as_they_were():
         return x.no_such_attribute
     with pytest.raises(TypingError):
         bad(1.0)
-    assert gc.isenabled() and numba_compile_gc._depth == 0
+    assert gc.isenabled() and numba_compile_gc._state.depth == 0
     gc.disable()
     try:
         _fresh_kernel()(np.ones(3), np.ones(3))
