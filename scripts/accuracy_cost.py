@@ -123,12 +123,12 @@ def _cylinder_scene():
     def deck(n, damping=None, patches="1,1,1", ri=None, ro=None, t_end=None, dz=None, stab=None, ppc=None,
              fill=None, interpolator=None, geom=None, cut=None, heat=None):
         """n cells across the 1.2 m domain (dx = 1.2/n; the paper's 0.025 m: n = 48); ri, ro: the
-        annulus's radii in m (0.5, 1.0); t_end: the end time in s (2.5e-3); dz: the one z
-        cell's thickness in m (0.025), or dx; stab: the MPM <DoPressureStabilization> (false);
+        annulus's radii in m (0.5, 1.0); t_end: the end time in s (5e-3); dz: the one z
+        cell's thickness in m (0.025), or dx; stab: the MPM <DoPressureStabilization> (true);
         ppc: the steel's particles per cell per direction (2); fill: its
         <numLevelsParticleFilling>; interpolator (gimp); geom=smooth: the steel in rings; cut: its
-        <cut_cell_particles> (false; pysus only: sus runs the deck without it); heat: the steel's
-        heat exchange coefficient with the airs (1e6)."""
+        <cut_cell_particles> (true; pysus only: sus runs the deck without it); heat: the steel's
+        heat exchange coefficient with the airs (0)."""
         state["ri"] = C.RI if ri is None else float(ri)
         state["ro"] = C.RO if ro is None else float(ro)
         return C.deck(n, damping=damping, patches=patches, t_end=t_end, ri=state["ri"], ro=state["ro"], dz=dz,

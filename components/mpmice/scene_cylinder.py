@@ -3,16 +3,17 @@ against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
 
     deck(n, ri=, ro=, t_end=, dz=, ...)  inputs/MPMICE/pressurized_cylinder.ups with n cells
              across the 1.2 m domain (dx = 1.2 / n; the paper's 0.025 m is n = 48), the
-             annulus's inner and outer radius (0.5 and 1.0 m), the end time (2.5 ms) and the
-             one z cell's thickness (0.025 m; "dx": as thin as dx, so that it no longer sets
-             ICE's step: the same plane-strain problem, z faces symmetric); the steel's
+             annulus's inner and outer radius (0.5 and 1.0 m), the end time (the deck's 5 ms)
+             and the one z cell's thickness (0.025 m; "dx": as thin as dx, so that it no longer
+             sets ICE's step: the same plane-strain problem, z faces symmetric); the steel's
              particles per cell per direction (ppc, the deck's <res> 2), its
-             <numLevelsParticleFilling> (fill), <DoPressureStabilization> (stab: true, each
-             cell's particles take the cell's mean J), <interpolator>, the artificial damping
-             coefficient, geom="smooth": the steel laid in rings (a <smoothcyl>; MPM takes it
-             with the linear interpolator only) rather than on the cell lattice, and cut: the
-             steel's <cut_cell_particles> (its surface sub-cells' particles hold the part inside),
-             and heat: the steel's heat exchange coefficient with the airs (the deck's 1e6)
+             <numLevelsParticleFilling> (fill), <DoPressureStabilization> (stab: the deck's
+             true, each cell's particles take the cell's mean J), <interpolator>, the artificial
+             damping coefficient, geom="smooth": the steel laid in rings (a <smoothcyl>; MPM takes
+             it with the linear interpolator only) rather than on the cell lattice, cut: the
+             steel's <cut_cell_particles> (the deck's true: its surface sub-cells' particles hold
+             the part inside; false: the lattice's whole sub-cells), and heat: the steel's heat
+             exchange coefficient with the airs (the deck's 0, as Uintah's symAnnulus)
     errors(da, ri=, ro=)  (a pysus DataArchive or a sus UintahArchive) at the last output:
              P = mean gauge pressure of the inner air (cells with r < 0.8 ri); over all
              particles, eq. 43
@@ -48,19 +49,18 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, in
             ("<radius> 1.0 </radius>", f"<radius> {ro!r} </radius>"),
             ("<radius> 0.5 </radius>", f"<radius> {ri!r} </radius>")]
     if heat is not None:         # the steel's heat exchange coefficient with each air (the airs' own stays)
-        reps.append(("<heat> [1e6, 1e6, 1e10] </heat>", f"<heat> [{float(heat)!r}, {float(heat)!r}, 1e10] </heat>"))
+        reps.append(("<heat> [0.0, 0.0, 1e10] </heat>", f"<heat> [{float(heat)!r}, {float(heat)!r}, 1e10] </heat>"))
     if damping is not None:
         reps.append(("<artificial_damping_coeff> 4000.0 </artificial_damping_coeff>",
                      f"<artificial_damping_coeff> {float(damping)!r} </artificial_damping_coeff>"))
     if t_end is not None:
-        reps += [("<maxTime> 2.5e-3 </maxTime>", f"<maxTime> {float(t_end)!r} </maxTime>"),
-                 ("<outputInterval> 2.5e-3 </outputInterval>", f"<outputInterval> {float(t_end)!r} </outputInterval>")]
+        reps += [("<maxTime> 5.0e-3 </maxTime>", f"<maxTime> {float(t_end)!r} </maxTime>"),
+                 ("<outputInterval> 5.0e-3 </outputInterval>", f"<outputInterval> {float(t_end)!r} </outputInterval>")]
     if interpolator is not None:
         reps.append(("<interpolator>gimp</interpolator>", f"<interpolator>{interpolator}</interpolator>"))
     if stab is not None:
-        reps.append(("<time_integrator>explicit</time_integrator>",
-                     "<time_integrator>explicit</time_integrator>\n"
-                     f"    <DoPressureStabilization> {str(stab).lower()} </DoPressureStabilization>"))
+        reps.append(("<DoPressureStabilization> true </DoPressureStabilization>",
+                     f"<DoPressureStabilization> {_bool(stab, 'stab')} </DoPressureStabilization>"))
     for old, new in reps:
         assert old in text, old
         text = text.replace(old, new)
@@ -73,14 +73,22 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, in
         steel = steel.replace("</geom_object>", f"  <numLevelsParticleFilling> {int(fill)} "
                                                 "</numLevelsParticleFilling>\n        </geom_object>")
     if cut is not None:
-        steel = steel.replace("</geom_object>", f"  <cut_cell_particles> {str(cut).lower()} "
-                                                "</cut_cell_particles>\n        </geom_object>")
+        steel = steel.replace("<cut_cell_particles> true </cut_cell_particles>",
+                              f"<cut_cell_particles> {_bool(cut, 'cut')} </cut_cell_particles>")
     text = text[:a] + steel + text[b:]
     if geom not in (None, "lattice", "smooth"):
         raise ValueError(f"geom {geom!r}: lattice (the deck's) or smooth")
     if geom == "smooth":
         text = _smooth_steel(text, dx / (2 if ppc is None else int(ppc)), ri, ro, dz)
     return text
+
+
+def _bool(value, name):
+    """An option's true/false as the deck writes it (True, "true", "True", False, ...)."""
+    word = str(value).strip().lower()
+    if word not in ("true", "false"):
+        raise ValueError(f"{name}={value!r}: true or false")
+    return word
 
 
 def _smooth_steel(text, dr, ri, ro, dz):
@@ -93,6 +101,7 @@ def _smooth_steel(text, dr, ri, ro, dz):
                        f"<bottom>[0,0,0]</bottom><top>[0,0,{dz!r}]</top><outer_radius>{ro!r}</outer_radius>"
                        f"<inner_radius>{ri!r}</inner_radius><num_radial>{nr}</num_radial><num_axial>1</num_axial>"
                        f"<arc_start_angle>0</arc_start_angle><arc_angle>90</arc_angle></smoothcyl>") + text[b:]
+    text = text.replace("<cut_cell_particles> true </cut_cell_particles>", "")     # rings: no lattice to cut
     for label, r in (("outer cylinder", ro), ("inner cylinder", ri)):
         text = text.replace(f'<cylinder label="{label}"/>',
                             f'<cylinder label="{label}"><bottom>[0,0,-1]</bottom><top>[0,0,1]</top>'
@@ -137,3 +146,21 @@ def errors(da, ri=RI, ro=RO):
             "eq43_inner": float(np.mean(np.abs(dev[inner])) / two_a),
             "eq43_surf": float(np.mean(np.abs(dev[~inner])) / two_a),
             "level": float(np.mean(dev) / two_a)}
+
+
+def history(da, ri=RI, ro=RO):
+    """[(t, P in MPa, level, load)] at every output: level as in errors(); load the hoop force the
+    steel carries, the integral of s_t over the wall (the particles' s_t V / r over the quarter's
+    angle and depth), over Lame's P ri: 1 when the steel carries the inner pressure."""
+    out = []
+    area = 0.25 * np.pi * (ro ** 2 - ri ** 2)
+    for i, t in enumerate(da.times):
+        r, s_r, s_t, P = stresses(da, i, ri=ri)
+        if P <= 0.0:
+            continue
+        volume = particle_var(da, "p.volume", 0, i)
+        depth = float(volume.sum()) / area
+        hoop_force = float(np.sum(s_t * volume / r)) / (0.5 * np.pi * depth)
+        level = float(np.mean(np.abs(s_r + s_t))) / (2.0 * P * ri ** 2 / (ro ** 2 - ri ** 2)) - 1.0
+        out.append((float(t), P / 1e6, level, abs(hoop_force) / (P * ri)))
+    return out
