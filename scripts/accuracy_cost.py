@@ -121,18 +121,20 @@ def _cylinder_scene():
     state = {"ri": C.RI, "ro": C.RO}
 
     def deck(n, damping=None, patches="1,1,1", ri=None, ro=None, t_end=None, dz=None, stab=None, ppc=None,
-             fill=None, interpolator=None, geom=None, cut=None, heat=None):
+             fill=None, interpolator=None, geom=None, cut=None, heat=None, trace=None):
         """n cells across the 1.2 m domain (dx = 1.2/n; the paper's 0.025 m: n = 48); ri, ro: the
         annulus's radii in m (0.5, 1.0); t_end: the end time in s (5e-3); dz: the one z
         cell's thickness in m (0.025), or dx; stab: the MPM <DoPressureStabilization> (true);
         ppc: the steel's particles per cell per direction (2); fill: its
         <numLevelsParticleFilling>; interpolator (gimp); geom=smooth: the steel in rings; cut: its
         <cut_cell_particles> (true; pysus only: sus runs the deck without it); heat: the steel's
-        heat exchange coefficient with the airs (0)."""
+        heat exchange coefficient with the airs (0); trace: ICE's <delT_traceVolFrac> (none; pysus
+        only)."""
         state["ri"] = C.RI if ri is None else float(ri)
         state["ro"] = C.RO if ro is None else float(ro)
         return C.deck(n, damping=damping, patches=patches, t_end=t_end, ri=state["ri"], ro=state["ro"], dz=dz,
-                      stab=stab, ppc=ppc, fill=fill, interpolator=interpolator, geom=geom, cut=cut, heat=heat)
+                      stab=stab, ppc=ppc, fill=fill, interpolator=interpolator, geom=geom, cut=cut, heat=heat,
+                      trace=trace)
 
     def error(da):
         return C.errors(da, state["ri"], state["ro"])
@@ -229,7 +231,7 @@ def uintah_deck(text, solver="CGSolver"):
     for a in root.iter("advection"):
         for name in PYSUS_ONLY_ATTRS:
             a.attrib.pop(name, None)
-    for tag in ("conserveTotalEnergy", "delT_activeDirectionsOnly", "cut_cell_particles"):
+    for tag in ("conserveTotalEnergy", "delT_activeDirectionsOnly", "delT_traceVolFrac", "cut_cell_particles"):
         for e in list(root.iter(tag)):
             e.getparent().remove(e)
     if len(root.findall("MaterialProperties/ICE/material")) == 1:

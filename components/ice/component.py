@@ -289,6 +289,14 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
         # pysus extension: the CFL limit counts only directions with more than one cell
         # (Uintah also counts the one-cell directions' spacing, which can set a 1D run's step)
         self.delt_active_dirs_only = ice.get("delT_activeDirectionsOnly", "bool", False)
+        # pysus extension: in a cell where a material's volume fraction is below this, its sound
+        # speed does not limit the step (Uintah's counts every material in every cell, so that a
+        # hot trace of gas inside a solid can set it); its velocity still does
+        self.delt_trace_vol_frac = ice.get("delT_traceVolFrac", "float", 0.0)
+        if not 0.0 <= self.delt_trace_vol_frac < 1.0:
+            raise ice.child("delT_traceVolFrac").error(
+                f"value '{self.delt_trace_vol_frac:g}' is out of range; accepted: 0 <= value < 1 (a volume "
+                "fraction below which a material's sound speed does not limit the time step; 0: every material's does)")
 
     def schedule_sp_vol_src(self, t, sched):
         """computeLagrangianSpecificVolume also computes sp_vol_src_CC when a deck saves it."""
@@ -495,6 +503,8 @@ class ICE(ImplicitICE, LodiTasks, IceTasks, Component):
                  self.matls) \
             .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g) \
             .requires(NEW, I.speedSound_CC, *g).computes(L.delT)
+        if self.delt_trace_vol_frac > 0.0:
+            t.requires(NEW, I.rho_CC, *g)
         if self.cv_matls:
             t.requires(NEW, I.specific_heat, matls=self.cv_matls)
         transport = self._transport_matls()

@@ -254,7 +254,9 @@ class IceTasks:
         limit cfl / (2 D sum 1/dx^2); 'conservative' is cfl vol / swept outflow volume. Like
         Uintah, every direction counts, one-cell ones too, unless <delT_activeDirectionsOnly>.
         Implicit ICE takes the same step (as Uintah). A fluid at rest with knob 0 gets Uintah's
-        start value DELT_START, then the deck's delt_max and max_delt_increase."""
+        start value DELT_START, then the deck's delt_max and max_delt_increase. With
+        <delT_traceVolFrac> a material's sound speed counts only where its volume fraction
+        (rho_CC sp_vol_CC) reaches that value."""
         b = self.boxes(patch)
         count = self.dims if self.delt_active_dirs_only else np.ones(3, dtype=bool)
         dx = patch.level.dx
@@ -262,6 +264,9 @@ class IceTasks:
         for m in matls:
             mat = self.materials[m]
             vel, speed_sound, sp_vol = (new_dw.get(lab, m, patch) for lab in (I.vel_CC, I.speedSound_CC, I.sp_vol_CC))
+            if self.delt_trace_vol_frac > 0.0:      # a trace's sound speed aside; c + |u| = 0 gives inf
+                trace = new_dw.get(I.rho_CC, m, patch) * sp_vol < self.delt_trace_vol_frac
+                speed_sound = np.where(trace, 0.0, speed_sound)
             cp = mat.cv * mat.gamma
             if self._cv_model(m) is not None:       # the field's smallest cp: the largest diffusivity
                 sl = tuple(slice(l, h) for l, h in zip(b.lo, b.hi))

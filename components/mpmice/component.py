@@ -204,10 +204,12 @@ class MPMICE(MPMICETasks, Component):
     def schedule_compute_stable_timestep(self, level, sched):
         fn = self.stable_timestep_flow if self.ice.implicit or self.rigid else self.stable_timestep
         g = (Ghost.AROUND_CELLS, 1) if self.ice.conservative_dt else ()
-        sched.add_task(Task("MPMICE::computeStableTimestep", fn, self.ice.ice_matls)
-                       .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g)
-                       .requires(NEW, I.speedSound_CC, *g)
-                       .requires(NEW, M.WaveSpeed).computes(FL.delT))
+        t = Task("MPMICE::computeStableTimestep", fn, self.ice.ice_matls) \
+            .requires(NEW, I.vel_CC, *g).requires(NEW, I.temp_CC, *g).requires(NEW, I.sp_vol_CC, *g) \
+            .requires(NEW, I.speedSound_CC, *g).requires(NEW, M.WaveSpeed).computes(FL.delT)
+        if self.ice.delt_trace_vol_frac > 0.0:          # <delT_traceVolFrac>: the fluids' volume fractions
+            t.requires(NEW, I.rho_CC, *g)
+        sched.add_task(t)
 
     def schedule_time_advance(self, level, sched):
         if self.rigid and not self._described and sched.comm.rank == 0:

@@ -13,7 +13,8 @@ against Lame's solution (eq. 42) and the paper's error measure (eq. 43).
              it with the linear interpolator only) rather than on the cell lattice, cut: the
              steel's <cut_cell_particles> (the deck's true: its surface sub-cells' particles hold
              the part inside; false: the lattice's whole sub-cells), and heat: the steel's heat
-             exchange coefficient with the airs (the deck's 0, as Uintah's symAnnulus)
+             exchange coefficient with the airs (the deck's 0, as Uintah's symAnnulus), and trace:
+             ICE's <delT_traceVolFrac> (none: the trace airs inside the steel count in ICE's step)
     errors(da, ri=, ro=)  (a pysus DataArchive or a sus UintahArchive) at the last output:
              P = mean gauge pressure of the inner air (cells with r < 0.8 ri); over all
              particles, eq. 43
@@ -36,7 +37,7 @@ RI, RO, L, P_REF = 0.5, 1.0, 1.2, 101325.0
 
 
 def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, interpolator=None, ppc=None,
-         fill=None, stab=None, geom=None, cut=None, heat=None):
+         fill=None, stab=None, geom=None, cut=None, heat=None, trace=None):
     text = open(DECK, encoding="iso-8859-1").read()
     dx = L / int(n)
     ri, ro = float(ri), float(ro)
@@ -58,6 +59,9 @@ def deck(n, damping=None, patches="1,1,1", t_end=None, ri=RI, ro=RO, dz=None, in
                  ("<outputInterval> 5.0e-3 </outputInterval>", f"<outputInterval> {float(t_end)!r} </outputInterval>")]
     if interpolator is not None:
         reps.append(("<interpolator>gimp</interpolator>", f"<interpolator>{interpolator}</interpolator>"))
+    if trace is not None:
+        reps.append(("<advection type=\"SecondOrder\"/>", "<advection type=\"SecondOrder\"/>\n      "
+                     f"<delT_traceVolFrac> {float(trace)!r} </delT_traceVolFrac>"))
     if stab is not None:
         reps.append(("<DoPressureStabilization> true </DoPressureStabilization>",
                      f"<DoPressureStabilization> {_bool(stab, 'stab')} </DoPressureStabilization>"))
