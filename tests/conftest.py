@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import contextlib
+import importlib.util
 import io
 import os
 import subprocess
@@ -20,6 +21,14 @@ UINTAH_INPUTS = ROOT.parent / "shared" / "uintah-inputs"
 # messages and answers, a third of the CPU time of a 3-rank ICE run on 2 cores. Every mpiexec
 # started by a test inherits it; a value set outside is kept.
 os.environ.setdefault("MPIR_CVAR_ENABLE_HEAVY_YIELD", "1")
+
+
+def load_script(name):
+    """scripts/NAME.py as a module (the scripts are not a package)."""
+    spec = importlib.util.spec_from_file_location(name, ROOT / "scripts" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def run_deck(text, tmp_path, name="run", **kw):

@@ -1,12 +1,8 @@
 """scripts/uintah_decks.py: R_Tester lists read with their modUPS/modUPS2 edits, as Uintah's
 helpers/modUPS.py makes them (a sed of the line holding a tag; xmlstarlet XPath update/delete)."""
-import importlib.util
-import pathlib
+from tests.conftest import load_script
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-spec = importlib.util.spec_from_file_location("uintah_decks", ROOT / "scripts" / "uintah_decks.py")
-ud = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(ud)
+ud = load_script("uintah_decks")
 
 DECK = b"""<?xml version="1.0"?>
 <Uintah_specification>

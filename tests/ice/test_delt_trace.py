@@ -7,13 +7,11 @@ as thin as dx, to 2.5 ms: measured 1125 steps with every material counted, 697 w
 1e-6, eq. 43 error 0.0543 and 0.0560 (to the deck's 5 ms: 3001 and 1498 steps, 0.0537 and 0.0554;
 with the deck's own 0.025 m z cell 15598 and 5975 steps, 0.0611 and 0.0533).
 """
-import importlib.util
-
 import pytest
 
 from components.mpmice import scene_cylinder as C
 from framework.problemspec import InputError
-from tests.conftest import ROOT, run_deck
+from tests.conftest import load_script, run_deck
 
 
 def _cylinder(tmp_path, name, trace=None):
@@ -36,9 +34,7 @@ def test_out_of_range_is_refused_by_name(tmp_path):
 
 
 def test_uintah_deck_drops_it():
-    spec = importlib.util.spec_from_file_location("accuracy_cost", ROOT / "scripts" / "accuracy_cost.py")
-    acc = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(acc)
+    acc = load_script("accuracy_cost")
     deck = C.deck(12, trace=1e-6)
     assert "<delT_traceVolFrac> 1e-06 </delT_traceVolFrac>" in deck
     assert "delT_traceVolFrac" not in acc.uintah_deck(deck)

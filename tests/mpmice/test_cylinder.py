@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from components.mpmice import scene_cylinder as C
-from tests.conftest import run_deck
+from tests.conftest import load_script, run_deck
 
 
 # Uintah's sus on the same decks (scripts/accuracy_cost.py cylinder --res 12 18 24 --opt dz=dx
@@ -110,11 +110,7 @@ def test_deck_options():
     assert "<res> [4,4,1] </res>" in steel and text.count("<res> [2,2,1] </res>") == 2     # the airs keep theirs
     assert "<numLevelsParticleFilling> -2 </numLevelsParticleFilling>" in steel
     assert "<heat> [1000000.0, 1000000.0, 1e10] </heat>" in text
-    import importlib.util
-    from tests.conftest import ROOT
-    spec = importlib.util.spec_from_file_location("accuracy_cost", ROOT / "scripts" / "accuracy_cost.py")
-    acc = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(acc)
+    acc = load_script("accuracy_cost")
     assert "cut_cell_particles" not in acc.uintah_deck(deck)                  # sus runs it without
     smooth = C.deck(12, ri=0.6, geom="smooth", interpolator="linear")
     assert "<smoothcyl>" in smooth and "<num_radial>8</num_radial>" in smooth   # (1.0 - 0.6) / (0.1 / 2)

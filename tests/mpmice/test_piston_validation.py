@@ -184,12 +184,9 @@ def test_scene_gamma_keeps_the_start_pressure():
 def test_deck_for_uintahs_sus():
     """scripts/accuracy_cost.py --uintah: the piston deck as sus (built without hypre) runs it, the
     pressure solve on sus's CGSolver in the max norm, the output at t = 0 kept (V1/V2 starts from it)."""
-    import importlib.util
     from lxml import etree
-    from tests.conftest import ROOT
-    spec = importlib.util.spec_from_file_location("accuracy_cost", ROOT / "scripts" / "accuracy_cost.py")
-    acc = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(acc)
+    from tests.conftest import load_script
+    acc = load_script("accuracy_cost")
     root = etree.fromstring(acc.uintah_deck(S.deck(N)).encode())
     assert root.find("Solver").get("type") == "CGSolver"
     assert root.findtext("CFD/ICE/ImplicitSolver/Parameters/norm") == "LInfinity"

@@ -5,18 +5,13 @@ Measured with scripts/wedge_shock_angle.py (t = 1.5 ms; theory 37.76 deg, p2/p1 
   dx = 0.02 m: 35.18 deg (-2.59), p2/p1 = 3.458     (272 steps, 4 s)
   dx = 0.01 m: 36.70 deg (-1.06), p2/p1 = 3.565     (the deck; 542 steps, 40 s)
 """
-import importlib.util
-
 import pytest
 
-from tests.conftest import ROOT, run_deck
+from tests.conftest import ROOT, load_script, run_deck
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location("wedge_shock_angle", ROOT / "scripts" / "wedge_shock_angle.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_script("wedge_shock_angle")
 
 
 def test_theory_values():
